@@ -1,0 +1,72 @@
+//! Contact between two circles.
+
+use super::ContactGeometry;
+use crate::math::{Pose2, Vec2};
+use crate::shape::Circle;
+
+/// The contact of circle `a` at `pose_a` with circle `b` at `pose_b`, or
+/// `None` when they do not overlap.
+///
+/// The contact point is the midpoint of the chord P1P2 through the two
+/// intersection points, the normal is the line of centres (perpendicular to
+/// the chord) and the width is the chord length, as paper 000 defines them
+/// for ellipses (for circles the construction is exact and closed-form).
+/// Coincident centres have no defined normal; +x is used.
+pub fn contact_circle_circle(
+    a: &Circle,
+    pose_a: &Pose2,
+    b: &Circle,
+    pose_b: &Pose2,
+) -> Option<ContactGeometry> {
+    let (ra, rb) = (a.radius(), b.radius());
+    let delta = pose_b.position - pose_a.position;
+    let distance = delta.norm();
+    let overlap = ra + rb - distance;
+    if overlap <= 0.0 {
+        return None;
+    }
+    let normal = if distance > 0.0 {
+        delta / distance
+    } else {
+        Vec2::x()
+    };
+    // Distance from A's centre to the chord, and the chord's half length.
+    let (along, half_width) = if distance > (ra - rb).abs() {
+        let along = (distance * distance + ra * ra - rb * rb) / (2.0 * distance);
+        (along, (ra * ra - along * along).max(0.0).sqrt())
+    } else {
+        // One circle inside the other: no chord; use the deepest point.
+        (ra - 0.5 * overlap, 0.0)
+    };
+    Some(ContactGeometry {
+        point: pose_a.position + normal * along,
+        normal,
+        overlap,
+        width: 2.0 * half_width,
+        curvature_radius_a: ra,
+        curvature_radius_b: rb,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn equal_circles_touch_at_the_midpoint_with_the_chord_width() {
+        let c = Circle::new(1.0).unwrap();
+        let g = contact_circle_circle(&c, &Pose2::new(0.0, 0.0, 0.0), &c, &Pose2::new(1.8, 0.0, 0.0))
+            .unwrap();
+        assert_relative_eq!(g.overlap, 0.2, epsilon = 1e-12);
+        assert_relative_eq!(g.point.x, 0.9, epsilon = 1e-12);
+        assert_relative_eq!(g.width, 2.0 * (1.0f64 - 0.81).sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(g.normal.x, 1.0);
+    }
+
+    #[test]
+    fn separated_circles_have_no_contact() {
+        let c = Circle::new(1.0).unwrap();
+        assert!(contact_circle_circle(&c, &Pose2::default(), &c, &Pose2::new(2.0, 0.0, 0.0)).is_none());
+    }
+}

@@ -1,0 +1,74 @@
+//! The geometry of one contact and the relative kinematics at it.
+
+use crate::math::{cross, perp, Point, Vec2};
+
+/// The geometry of a contact between body A and body B.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// The contact point (world): the midpoint of the chord P1P2 joining the
+    /// two intersection points of the boundaries (paper 000, §2(3)).
+    pub point: Point,
+    /// Unit normal pointing from A into B (perpendicular to the chord).
+    pub normal: Vec2,
+    /// Penetration depth along the normal (m); positive when overlapping.
+    pub overlap: f64,
+    /// Contact width B = |P1P2| (m), used by the stiffness of eq. (19).
+    pub width: f64,
+    /// Radius of curvature of A's boundary at the contact (m;
+    /// `f64::INFINITY` for a flat wall).
+    pub curvature_radius_a: f64,
+    /// Radius of curvature of B's boundary at the contact.
+    pub curvature_radius_b: f64,
+}
+
+impl ContactGeometry {
+    /// Unit tangent: the normal turned by +90°.
+    pub fn tangent(&self) -> Vec2 {
+        perp(&self.normal)
+    }
+
+    /// The same contact seen from B: the normal flips, radii swap.
+    pub fn flipped(&self) -> Self {
+        Self {
+            normal: -self.normal,
+            curvature_radius_a: self.curvature_radius_b,
+            curvature_radius_b: self.curvature_radius_a,
+            ..*self
+        }
+    }
+}
+
+/// Relative displacement increment of B with respect to A at the contact
+/// point, in the local frame: `[Δu_n, Δu_s]`.
+///
+/// With lever arms `r_A = x_c − x_A`, `r_B = x_c − x_B`, and body increments
+/// `(Δx, Δφ)`, the contact point of each body moves by `Δx + Δφ × r`; the
+/// relative increment is `Δu = (Δx_B + Δφ_B × r_B) − (Δx_A + Δφ_A × r_A)`
+/// and
+///
+/// * `Δu_n = −Δu · n` (positive when the bodies approach), and
+/// * `Δu_s = Δu · t`, with `t` the normal turned by +90°.
+///
+/// This is the vector form of paper 000's missing eqs. (12)–(13). For a
+/// circle, `r` is parallel to `n`, so rotation changes only `Δu_s`; for an
+/// ellipse the lever arm is not parallel to the normal and rotation moves the
+/// contact point normally too.
+pub fn relative_increment(
+    geometry: &ContactGeometry,
+    centre_a: &Point,
+    increment_a: (&Vec2, f64),
+    centre_b: &Point,
+    increment_b: (&Vec2, f64),
+) -> [f64; 2] {
+    let r_a = geometry.point - centre_a;
+    let r_b = geometry.point - centre_b;
+    let point_a = increment_a.0 + perp(&r_a) * increment_a.1;
+    let point_b = increment_b.0 + perp(&r_b) * increment_b.1;
+    let du = point_b - point_a;
+    [-du.dot(&geometry.normal), du.dot(&geometry.tangent())]
+}
+
+/// The moment about `centre` of a force `force` applied at `point`.
+pub fn moment_about(centre: &Point, point: &Point, force: &Vec2) -> f64 {
+    cross(&(point - centre), force)
+}

@@ -1,0 +1,31 @@
+//! Contacts: pair geometry (narrow phase), the dispatcher that picks the
+//! routine for a shape pair, and the contact laws that turn relative motion
+//! into forces.
+//!
+//! The data flow of one contact in one step is
+//!
+//! 1. [`dispatch::contact_2d`] gives the [`ContactGeometry`] of a pair:
+//!    contact point, unit normal from A to B, overlap, contact width and the
+//!    radii of curvature of both surfaces at the contact;
+//! 2. the method computes the relative displacement increment of B with
+//!    respect to A at the contact point, in the local frame (normal, tangent),
+//!    with [`relative_increment`], which includes the motion of the contact
+//!    point due to each body's rotation (the point paper 000 stresses for
+//!    ellipses);
+//! 3. a [`ContactLaw`] maps that increment and the contact's history state to
+//!    forces, a consistent tangent (for implicit methods) and a regime
+//!    (open, stick, slip); a law may also expose the linear strength
+//!    `|t_s| ≤ c + μ t_n` that a limit analysis needs.
+
+pub mod circle_circle;
+pub mod circle_segment;
+pub mod dispatch;
+mod geometry;
+mod law;
+mod spring_dashpot;
+
+pub use geometry::{moment_about, relative_increment, ContactGeometry};
+pub use law::{
+    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+};
+pub use spring_dashpot::{Damping, NormalStiffness, SpringDashpotCoulomb, SpringState};

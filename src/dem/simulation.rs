@@ -1,0 +1,543 @@
+//! The explicit DEM loop.
+
+use std::collections::HashMap;
+
+use super::stability::critical_time_step;
+use crate::broad_phase::CellGrid;
+use crate::contact::dispatch::contact_2d;
+use crate::contact::{
+    moment_about, relative_increment, ContactGeometry, ContactInput, ContactLaw, PairProperties,
+    Regime,
+};
+use crate::error::{require_non_negative, require_positive, DismechError, Result};
+use crate::integrate::{ExplicitEuler, Integrator};
+use crate::math::{Aabb2, Point, Pose2, Vec2};
+use crate::scene::Scene;
+use crate::shape::AnyShape2;
+use crate::solve::{solve_lumped_into, LumpedSystem};
+
+/// Settings of a DEM run; validated by [`DemSimulation::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DemSettings {
+    /// Time step Δt (s).
+    pub dt: f64,
+    /// Largest overlap (m) accepted between two particles, or a particle and
+    /// a wall, at the start.
+    pub initial_overlap_tolerance: f64,
+    /// Refuse a time step above the estimated stable limit (on by default).
+    pub check_stability: bool,
+}
+
+impl Default for DemSettings {
+    fn default() -> Self {
+        Self {
+            dt: 1e-4,
+            initial_overlap_tolerance: 1e-6,
+            check_stability: true,
+        }
+    }
+}
+
+/// When a run counts as at rest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RestCriterion {
+    /// At rest when the kinetic energy is below this fraction of the
+    /// potential energy released since the start.
+    pub kinetic_to_released_ratio: f64,
+    /// Do not stop before this simulated time (s).
+    pub min_time: f64,
+    /// Give up (status [`RunStatus::TimeLimit`]) after this simulated time.
+    pub max_time: f64,
+    /// Test the criterion every this many steps.
+    pub check_every: u64,
+    /// The energy test must hold at this many consecutive checks (a single
+    /// check can fall on a moment when a bouncing assembly is momentarily
+    /// still).
+    pub consecutive_checks: u32,
+    /// And the mean unbalanced force per particle (contact forces plus
+    /// weight) must be below this fraction of the mean weight.
+    pub unbalanced_force_ratio: f64,
+}
+
+impl Default for RestCriterion {
+    fn default() -> Self {
+        Self {
+            kinetic_to_released_ratio: 1e-6,
+            min_time: 0.1,
+            max_time: 60.0,
+            check_every: 100,
+            consecutive_checks: 10,
+            unbalanced_force_ratio: 1e-4,
+        }
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunStatus {
+    /// The rest criterion was met.
+    AtRest,
+    /// The time limit was reached first.
+    TimeLimit,
+}
+
+/// The outcome of [`DemSimulation::run_to_rest`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunOutcome {
+    /// At rest or out of time.
+    pub status: RunStatus,
+    /// Steps taken in this run.
+    pub steps: u64,
+    /// Simulated time at the end (s).
+    pub time: f64,
+    /// Kinetic energy at the end (J/m).
+    pub kinetic_energy: f64,
+    /// Potential energy released since the start of the simulation (J/m).
+    pub released_potential_energy: f64,
+    /// Mean unbalanced force per particle / mean weight at the end.
+    pub unbalanced_force_ratio: f64,
+}
+
+/// What a contact touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ContactTarget {
+    /// Another particle.
+    Particle(usize),
+    /// A wall of the frame.
+    Wall(usize),
+}
+
+/// One contact of the last step, for output and checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRecord {
+    /// The particle (A).
+    pub particle: usize,
+    /// What it touches (B).
+    pub target: ContactTarget,
+    /// Contact point.
+    pub point: Point,
+    /// Force exerted by A on B (N/m); B exerts the opposite on A.
+    pub force_on_target: Vec2,
+    /// Normal from A to B.
+    pub normal: Vec2,
+    /// Regime of the law.
+    pub regime: Regime,
+}
+
+/// An explicit DEM simulation: a scene, a contact law and an integrator,
+/// plus the workspaces of the loop.
+#[derive(Debug)]
+pub struct DemSimulation<L: ContactLaw<2>, I: Integrator = ExplicitEuler> {
+    scene: Scene,
+    law: L,
+    integrator: I,
+    settings: DemSettings,
+    step: u64,
+    time: f64,
+    initial_potential: f64,
+    initial_kinetic: f64,
+    history: HashMap<(usize, ContactTarget), L::State>,
+    next_history: HashMap<(usize, ContactTarget), L::State>,
+    increments: Vec<(Vec2, f64)>,
+    grid: CellGrid,
+    boxes: Vec<Aabb2>,
+    pairs: Vec<(usize, usize)>,
+    system: LumpedSystem,
+    acceleration: Vec<f64>,
+    contacts: Vec<ContactRecord>,
+}
+
+impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
+    /// Set up a run: validates the settings, the integrator (must be
+    /// explicit), the initial overlaps and the time step against the stable
+    /// limit.
+    pub fn new(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
+        require_positive("time step dt", settings.dt)?;
+        require_non_negative(
+            "initial_overlap_tolerance",
+            settings.initial_overlap_tolerance,
+        )?;
+        if !integrator.is_explicit() {
+            return Err(DismechError::InvalidParameter {
+                name: "integrator",
+                value: f64::NAN,
+                requirement: "the DEM needs an explicit integrator (e.g. ExplicitEuler)",
+            });
+        }
+        if settings.check_stability {
+            let limit = critical_time_step(&scene, &law);
+            if settings.dt > limit.dt {
+                return Err(DismechError::UnstableTimeStep {
+                    dt: settings.dt,
+                    limit: limit.dt,
+                    governing: limit.governing,
+                });
+            }
+        }
+        let n = scene.particles.len();
+        let mut mass = Vec::with_capacity(3 * n);
+        for p in &scene.particles {
+            mass.extend_from_slice(&[p.mass, p.mass, p.inertia]);
+        }
+        let mut sim = Self {
+            law,
+            integrator,
+            settings,
+            step: 0,
+            time: 0.0,
+            initial_potential: 0.0,
+            initial_kinetic: 0.0,
+            history: HashMap::new(),
+            next_history: HashMap::new(),
+            increments: vec![(Vec2::zeros(), 0.0); n],
+            grid: CellGrid::new(),
+            boxes: Vec::with_capacity(n),
+            pairs: Vec::new(),
+            system: LumpedSystem {
+                force: vec![0.0; 3 * n],
+                mass,
+            },
+            acceleration: vec![0.0; 3 * n],
+            contacts: Vec::new(),
+            scene,
+        };
+        sim.check_initial_overlaps()?;
+        sim.initial_potential = sim.potential_energy();
+        sim.initial_kinetic = sim.kinetic_energy();
+        Ok(sim)
+    }
+
+    fn check_initial_overlaps(&mut self) -> Result<()> {
+        let tolerance = self.settings.initial_overlap_tolerance;
+        self.update_pairs();
+        for &(a, b) in &self.pairs {
+            let (pa, pb) = (&self.scene.particles[a], &self.scene.particles[b]);
+            if let Some(g) = contact_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose)? {
+                if g.overlap > tolerance {
+                    return Err(DismechError::InitialOverlap {
+                        a,
+                        b,
+                        overlap: g.overlap,
+                        tolerance,
+                    });
+                }
+            }
+        }
+        for (i, p) in self.scene.particles.iter().enumerate() {
+            for (w, wall) in self.scene.frame.walls().iter().enumerate() {
+                let shape = AnyShape2::Segment(*wall);
+                if let Some(g) = contact_2d(&p.shape, &p.pose, &shape, &Pose2::default())? {
+                    if g.overlap > tolerance {
+                        return Err(DismechError::StartsInsideWall {
+                            body: i,
+                            wall: w,
+                            penetration: g.overlap,
+                            tolerance,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The scene as it is now.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The contact law.
+    pub fn law(&self) -> &L {
+        &self.law
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.step
+    }
+
+    /// The contacts of the last step.
+    pub fn contacts(&self) -> &[ContactRecord] {
+        &self.contacts
+    }
+
+    /// Total kinetic energy (J/m).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.scene.particles.iter().map(|p| p.kinetic_energy()).sum()
+    }
+
+    /// Gravitational potential energy `−Σ m g·x` (J/m).
+    pub fn potential_energy(&self) -> f64 {
+        let g = self.scene.gravity;
+        self.scene
+            .particles
+            .iter()
+            .map(|p| -p.mass * g.dot(&p.pose.position.coords))
+            .sum()
+    }
+
+    /// Sum of the forces the particles exert on wall `wall` in the last step
+    /// (N/m); the wall's reaction on the particles is its negative.
+    pub fn wall_load(&self, wall: usize) -> Vec2 {
+        self.contacts
+            .iter()
+            .filter(|c| c.target == ContactTarget::Wall(wall))
+            .map(|c| c.force_on_target)
+            .sum()
+    }
+
+    /// Mean over particles of the unbalanced force `|Σ f|` (contacts plus
+    /// gravity, from the last step), divided by the mean weight.
+    pub fn unbalanced_force_ratio(&self) -> f64 {
+        let n = self.scene.particles.len();
+        if n == 0 {
+            return 0.0;
+        }
+        let net: f64 = (0..n)
+            .map(|i| Vec2::new(self.system.force[3 * i], self.system.force[3 * i + 1]).norm())
+            .sum();
+        let weight = self.scene.total_weight();
+        if weight > 0.0 {
+            net / weight
+        } else {
+            net
+        }
+    }
+
+    fn update_pairs(&mut self) {
+        self.boxes.clear();
+        for p in &self.scene.particles {
+            self.boxes.push(p.shape.as_shape().aabb(&p.pose));
+        }
+        self.grid.candidate_pairs(&self.boxes, 0.0, &mut self.pairs);
+    }
+
+    /// Evaluate one contact, accumulate its forces into the force vector and
+    /// record it.
+    fn apply_contact(
+        &mut self,
+        a: usize,
+        target: ContactTarget,
+        geometry: &ContactGeometry,
+        centre_b: Point,
+        increment_b: (Vec2, f64),
+        mass_b: f64,
+    ) {
+        let pa = &self.scene.particles[a];
+        let increment_a = self.increments[a];
+        let du = relative_increment(
+            geometry,
+            &pa.pose.position,
+            (&increment_a.0, increment_a.1),
+            &centre_b,
+            (&increment_b.0, increment_b.1),
+        );
+        let key = (a, target);
+        let previous = self.history.get(&key);
+        let input = ContactInput {
+            overlap: geometry.overlap,
+            increment: du.into(),
+            dt: self.settings.dt,
+            is_new: previous.is_none(),
+            pair: PairProperties {
+                curvature_radius_a: geometry.curvature_radius_a,
+                curvature_radius_b: geometry.curvature_radius_b,
+                width: geometry.width,
+                mass_a: pa.mass,
+                mass_b,
+            },
+        };
+        let default_state = L::State::default();
+        let response = self
+            .law
+            .evaluate(&input, previous.unwrap_or(&default_state));
+        let force_on_b = geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
+        let moment_a = moment_about(&pa.pose.position, &geometry.point, &(-force_on_b));
+        self.system.force[3 * a] -= force_on_b.x;
+        self.system.force[3 * a + 1] -= force_on_b.y;
+        self.system.force[3 * a + 2] += moment_a;
+        if let ContactTarget::Particle(b) = target {
+            let moment_b = moment_about(&centre_b, &geometry.point, &force_on_b);
+            self.system.force[3 * b] += force_on_b.x;
+            self.system.force[3 * b + 1] += force_on_b.y;
+            self.system.force[3 * b + 2] += moment_b;
+        }
+        self.next_history.insert(key, response.state);
+        self.contacts.push(ContactRecord {
+            particle: a,
+            target,
+            point: geometry.point,
+            force_on_target: force_on_b,
+            normal: geometry.normal,
+            regime: response.regime,
+        });
+    }
+
+    /// Advance one step.
+    pub fn step(&mut self) -> Result<()> {
+        let n = self.scene.particles.len();
+        let g = self.scene.gravity;
+        for (i, p) in self.scene.particles.iter().enumerate() {
+            self.system.force[3 * i] = p.mass * g.x;
+            self.system.force[3 * i + 1] = p.mass * g.y;
+            self.system.force[3 * i + 2] = 0.0;
+        }
+        self.contacts.clear();
+        self.next_history.clear();
+
+        // Particle pairs from the broad phase.
+        self.update_pairs();
+        for k in 0..self.pairs.len() {
+            let (a, b) = self.pairs[k];
+            let (pa, pb) = (&self.scene.particles[a], &self.scene.particles[b]);
+            if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose)? {
+                let (centre_b, mass_b) = (pb.pose.position, pb.mass);
+                self.apply_contact(
+                    a,
+                    ContactTarget::Particle(b),
+                    &geometry,
+                    centre_b,
+                    self.increments[b],
+                    mass_b,
+                );
+            }
+        }
+        // Walls: few, tested against each particle's box.
+        for a in 0..n {
+            for w in 0..self.scene.frame.walls().len() {
+                let wall = self.scene.frame.walls()[w];
+                let wall_box = Aabb2::from_corners(wall.start, wall.end);
+                if !wall_box.intersects(&self.boxes[a]) {
+                    continue;
+                }
+                let pa = &self.scene.particles[a];
+                let shape = AnyShape2::Segment(wall);
+                if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &shape, &Pose2::default())? {
+                    self.apply_contact(
+                        a,
+                        ContactTarget::Wall(w),
+                        &geometry,
+                        geometry.point,
+                        (Vec2::zeros(), 0.0),
+                        f64::INFINITY,
+                    );
+                }
+            }
+        }
+        std::mem::swap(&mut self.history, &mut self.next_history);
+
+        for (i, f) in self.system.force.iter().enumerate() {
+            if !f.is_finite() {
+                return Err(self.non_finite(i / 3, "force"));
+            }
+        }
+        solve_lumped_into(&self.system, &mut self.acceleration)?;
+        let dt = self.settings.dt;
+        for i in 0..n {
+            let p = &mut self.scene.particles[i];
+            let mut dx = [0.0; 3];
+            let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
+            for d in 0..3 {
+                dx[d] = self
+                    .integrator
+                    .explicit_step(dt, self.acceleration[3 * i + d], &mut velocity[d])
+                    .unwrap_or(0.0);
+            }
+            p.velocity = Vec2::new(velocity[0], velocity[1]);
+            p.angular_velocity = velocity[2];
+            p.pose.position += Vec2::new(dx[0], dx[1]);
+            p.pose.angle += dx[2];
+            self.increments[i] = (Vec2::new(dx[0], dx[1]), dx[2]);
+            if !(dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite())) {
+                return Err(self.non_finite(i, "position or velocity"));
+            }
+        }
+        self.step += 1;
+        self.time += dt;
+        Ok(())
+    }
+
+    fn non_finite(&self, body: usize, quantity: &'static str) -> DismechError {
+        DismechError::NonFinite {
+            step: self.step,
+            time: self.time,
+            body,
+            quantity,
+        }
+    }
+
+    /// Run until the rest criterion holds or the time limit is reached.
+    ///
+    /// Stops with [`DismechError::EnergyBlowUp`] if the kinetic energy
+    /// exceeds what gravity and the initial motion can supply (the sign of
+    /// an unstable step). `on_check` is called at every check with the
+    /// current time and the ratio of kinetic to released energy (for
+    /// progress reporting).
+    pub fn run_to_rest(
+        &mut self,
+        criterion: &RestCriterion,
+        mut on_check: impl FnMut(f64, f64),
+    ) -> Result<RunOutcome> {
+        require_positive("rest ratio", criterion.kinetic_to_released_ratio)?;
+        require_positive("max_time", criterion.max_time)?;
+        require_non_negative("min_time", criterion.min_time)?;
+        require_non_negative("unbalanced_force_ratio", criterion.unbalanced_force_ratio)?;
+        let every = criterion.check_every.max(1);
+        let start = self.step;
+        let mut calm_checks = 0u32;
+        loop {
+            self.step()?;
+            if (self.step - start) % every != 0 {
+                continue;
+            }
+            let kinetic = self.kinetic_energy();
+            let released = self.initial_potential - self.potential_energy();
+            let available = released.max(0.0) + self.initial_kinetic;
+            if kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0) {
+                return Err(DismechError::EnergyBlowUp {
+                    step: self.step,
+                    kinetic,
+                    available,
+                });
+            }
+            let ratio = if released > 0.0 {
+                kinetic / released
+            } else {
+                f64::INFINITY
+            };
+            on_check(self.time, ratio);
+            let unbalanced = self.unbalanced_force_ratio();
+            if ratio < criterion.kinetic_to_released_ratio
+                && unbalanced < criterion.unbalanced_force_ratio
+            {
+                calm_checks += 1;
+            } else {
+                calm_checks = 0;
+            }
+            let status = if self.time >= criterion.min_time
+                && calm_checks >= criterion.consecutive_checks.max(1)
+            {
+                Some(RunStatus::AtRest)
+            } else if self.time >= criterion.max_time {
+                Some(RunStatus::TimeLimit)
+            } else {
+                None
+            };
+            if let Some(status) = status {
+                return Ok(RunOutcome {
+                    status,
+                    steps: self.step - start,
+                    time: self.time,
+                    kinetic_energy: kinetic,
+                    released_potential_energy: released,
+                    unbalanced_force_ratio: unbalanced,
+                });
+            }
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! Typed errors for misuse and for runs that cannot go on.
+
+use crate::solve::SolveError;
+
+/// Every error dismech returns to a caller.
+///
+/// Each variant names the offending value, so that a message read on its own
+/// says what to change.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DismechError {
+    /// A parameter is outside its admissible range (non-finite, negative, zero…).
+    #[error("invalid {name} = {value}: {requirement}")]
+    InvalidParameter {
+        /// The parameter's name as the user wrote it (e.g. `radius`, `density`).
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy (e.g. `must be finite and > 0`).
+        requirement: &'static str,
+    },
+    /// A particle starts inside a wall.
+    #[error("particle {body} starts inside wall {wall}: penetration {penetration:.3e} m exceeds the tolerance {tolerance:.3e} m")]
+    StartsInsideWall {
+        /// Index of the particle.
+        body: usize,
+        /// Index of the wall.
+        wall: usize,
+        /// Depth of the penetration.
+        penetration: f64,
+        /// Largest penetration accepted at the start.
+        tolerance: f64,
+    },
+    /// Two particles overlap at the start by more than the tolerance.
+    #[error("particles {a} and {b} overlap by {overlap:.3e} m at the start, more than the tolerance {tolerance:.3e} m")]
+    InitialOverlap {
+        /// First particle.
+        a: usize,
+        /// Second particle.
+        b: usize,
+        /// Their overlap.
+        overlap: f64,
+        /// Largest overlap accepted at the start.
+        tolerance: f64,
+    },
+    /// The walls of a frame leave a gap.
+    #[error("frame does not close: wall {wall} ends at ({end_x}, {end_y}) but wall {next} starts at ({start_x}, {start_y}), a gap of {gap:.3e} m")]
+    FrameNotClosed {
+        /// Wall whose end is open.
+        wall: usize,
+        /// The wall that should start there.
+        next: usize,
+        /// End point of `wall`.
+        end_x: f64,
+        /// End point of `wall`.
+        end_y: f64,
+        /// Start point of `next`.
+        start_x: f64,
+        /// Start point of `next`.
+        start_y: f64,
+        /// Distance between the two.
+        gap: f64,
+    },
+    /// A wall segment has zero length or non-finite end points.
+    #[error("wall {wall} is degenerate: {reason}")]
+    DegenerateWall {
+        /// Index of the wall.
+        wall: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The time step is above the stable limit of the explicit scheme.
+    #[error("time step {dt:.3e} s exceeds the stable limit {limit:.3e} s ({governing}); use dt <= {limit:.3e} s, or lower the contact stiffness")]
+    UnstableTimeStep {
+        /// The time step requested.
+        dt: f64,
+        /// The estimated stable limit.
+        limit: f64,
+        /// Which mode governs the limit.
+        governing: String,
+    },
+    /// The run produced a NaN or an infinite value.
+    #[error("non-finite {quantity} of particle {body} at step {step} (t = {time:.6} s); reduce the time step or check the contact stiffness")]
+    NonFinite {
+        /// Step number at which it appeared.
+        step: u64,
+        /// Simulated time.
+        time: f64,
+        /// The particle.
+        body: usize,
+        /// Which quantity (position, velocity, force…).
+        quantity: &'static str,
+    },
+    /// The kinetic energy grew beyond what the loads can supply.
+    #[error("energy blow-up at step {step}: kinetic energy {kinetic:.3e} J exceeds twice the energy supplied {available:.3e} J; the time step is above the stable limit of the packed assembly: reduce dt")]
+    EnergyBlowUp {
+        /// Step number.
+        step: u64,
+        /// Kinetic energy at that step.
+        kinetic: f64,
+        /// Released potential energy plus initial kinetic energy.
+        available: f64,
+    },
+    /// A shape pair has no contact routine.
+    #[error("unsupported contact pair: {0} against {1}")]
+    UnsupportedPair(&'static str, &'static str),
+    /// A body index does not exist.
+    #[error("no body with index {index} (the scene has {count})")]
+    NoSuchBody {
+        /// Index asked for.
+        index: usize,
+        /// Number of bodies.
+        count: usize,
+    },
+    /// A global solve failed.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// Writing an output failed.
+    #[error("cannot write {path}: {message}")]
+    Output {
+        /// The file.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// A reproduction name that does not exist.
+    #[error("unknown study `{0}`; known studies: {1}")]
+    UnknownStudy(String, String),
+}
+
+/// Shorthand for results with [`DismechError`].
+pub type Result<T> = std::result::Result<T, DismechError>;
+
+/// Check that `value` is finite and strictly positive.
+pub fn require_positive(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(DismechError::InvalidParameter {
+            name,
+            value,
+            requirement: "must be finite and > 0",
+        })
+    }
+}
+
+/// Check that `value` is finite and not negative.
+pub fn require_non_negative(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(DismechError::InvalidParameter {
+            name,
+            value,
+            requirement: "must be finite and >= 0",
+        })
+    }
+}
+
+/// Check that `value` is finite.
+pub fn require_finite(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(DismechError::InvalidParameter {
+            name,
+            value,
+            requirement: "must be finite",
+        })
+    }
+}

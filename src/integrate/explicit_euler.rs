@@ -1,0 +1,30 @@
+//! The explicit Euler scheme of the DEM.
+
+use super::{ImplicitCoefficients, Integrator};
+
+/// Semi-implicit (symplectic) Euler, the DEM convention: first the velocity,
+/// then the position with the *new* velocity,
+///
+/// `v₁ = v₀ + Δt a₀`, `Δd = Δt v₁`.
+///
+/// Paper 000 solves its eqs. (20)–(22) "by Euler's method"; this variant is
+/// the one Cundall's DEM uses. It is first-order accurate, symplectic for
+/// conservative forces, and stable for an undamped spring when
+/// `Δt < 2/ω`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ExplicitEuler;
+
+impl Integrator for ExplicitEuler {
+    fn is_explicit(&self) -> bool {
+        true
+    }
+
+    fn explicit_step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> Option<f64> {
+        *velocity += dt * acceleration;
+        Some(dt * *velocity)
+    }
+
+    fn implicit_coefficients(&self, _dt: f64) -> Option<ImplicitCoefficients> {
+        None
+    }
+}

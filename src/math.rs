@@ -1,0 +1,94 @@
+//! Small fixed-size geometry types shared by every family.
+
+use nalgebra::{Point2, Vector2};
+
+/// A 2D vector (m, N, m/s…).
+pub type Vec2 = Vector2<f64>;
+/// A 2D point (m).
+pub type Point = Point2<f64>;
+
+/// Position and orientation of a 2D body: centre `(x, y)` and angle `phi`
+/// (rad, counter-clockwise from +x).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pose2 {
+    /// Position of the reference point (the centroid for rigid bodies).
+    pub position: Point,
+    /// Orientation (rad, counter-clockwise).
+    pub angle: f64,
+}
+
+impl Pose2 {
+    /// A pose at `(x, y)` with angle `angle`.
+    pub fn new(x: f64, y: f64, angle: f64) -> Self {
+        Self {
+            position: Point::new(x, y),
+            angle,
+        }
+    }
+
+    /// Map a point given in the body frame to the world frame.
+    pub fn transform_point(&self, local: &Point) -> Point {
+        self.position + rotate(&local.coords, self.angle)
+    }
+
+    /// Map a vector given in the body frame to the world frame.
+    pub fn transform_vector(&self, local: &Vec2) -> Vec2 {
+        rotate(local, self.angle)
+    }
+
+    /// Map a world point into the body frame.
+    pub fn inverse_transform_point(&self, world: &Point) -> Point {
+        Point::from(rotate(&(world - self.position), -self.angle))
+    }
+}
+
+/// Rotate `v` counter-clockwise by `angle`.
+pub fn rotate(v: &Vec2, angle: f64) -> Vec2 {
+    let (s, c) = angle.sin_cos();
+    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// The left perpendicular of `v`: `v` turned by +90°.
+pub fn perp(v: &Vec2) -> Vec2 {
+    Vec2::new(-v.y, v.x)
+}
+
+/// The scalar 2D cross product `a × b = a.x b.y − a.y b.x`.
+pub fn cross(a: &Vec2, b: &Vec2) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Axis-aligned bounding box in 2D.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb2 {
+    /// Lower-left corner.
+    pub min: Point,
+    /// Upper-right corner.
+    pub max: Point,
+}
+
+impl Aabb2 {
+    /// The box spanned by two corners (in any order).
+    pub fn from_corners(a: Point, b: Point) -> Self {
+        Self {
+            min: Point::new(a.x.min(b.x), a.y.min(b.y)),
+            max: Point::new(a.x.max(b.x), a.y.max(b.y)),
+        }
+    }
+
+    /// Whether two boxes overlap (touching counts).
+    pub fn intersects(&self, other: &Aabb2) -> bool {
+        self.min.x <= other.max.x
+            && other.min.x <= self.max.x
+            && self.min.y <= other.max.y
+            && other.min.y <= self.max.y
+    }
+
+    /// The box grown by `margin` on every side.
+    pub fn inflated(&self, margin: f64) -> Self {
+        Self {
+            min: Point::new(self.min.x - margin, self.min.y - margin),
+            max: Point::new(self.max.x + margin, self.max.y + margin),
+        }
+    }
+}

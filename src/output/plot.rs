@@ -1,0 +1,176 @@
+//! SVG plots (plotters): line charts and pictures of a particle assembly
+//! with its contact forces.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::write_atomically;
+use crate::error::{DismechError, Result};
+use crate::math::{Point, Vec2};
+use crate::shape::Segment;
+
+/// One named series of a line chart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// Points `(x, y)`.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers at the points as well as the line.
+    pub markers: bool,
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+fn plot_error(path: &Path, e: impl std::fmt::Display) -> DismechError {
+    DismechError::Output {
+        path: path.display().to_string(),
+        message: format!("plotting failed: {e}"),
+    }
+}
+
+fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 * lo.abs().max(1.0) };
+    (lo - pad, hi + pad)
+}
+
+/// A line chart of `series`, written atomically to `path`.
+pub fn line_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<()> {
+    let (x0, x1) = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    let (y0, y1) = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 600)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+        for (i, s) in series.iter().enumerate() {
+            let color = PALETTE[i % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
+                .map_err(|e| plot_error(path, e))?
+                .label(s.name.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            if s.markers {
+                chart
+                    .draw_series(s.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                    .map_err(|e| plot_error(path, e))?;
+            }
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+        root.present().map_err(|e| plot_error(path, e))?;
+    }
+    write_atomically(path, svg.as_bytes())
+}
+
+/// A force to draw: a segment through `point` along `force`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceMark {
+    /// Where the force acts.
+    pub point: Point,
+    /// The force (N/m).
+    pub force: Vec2,
+}
+
+/// A picture of an assembly: circles (outline), walls, and contact forces
+/// drawn as segments centred on the contact point, with length proportional
+/// to the force (the largest is `max_length` long), like paper 000 Fig. 5(b).
+pub fn assembly_picture(
+    path: &Path,
+    title: &str,
+    circles: &[(Point, f64)],
+    walls: &[Segment],
+    forces: &[ForceMark],
+    max_length: f64,
+) -> Result<()> {
+    let xs = circles
+        .iter()
+        .flat_map(|(c, r)| [c.x - r, c.x + r])
+        .chain(walls.iter().flat_map(|w| [w.start.x, w.end.x]));
+    let ys = circles
+        .iter()
+        .flat_map(|(c, r)| [c.y - r, c.y + r])
+        .chain(walls.iter().flat_map(|w| [w.start.y, w.end.y]));
+    let (x0, x1) = padded_range(xs);
+    let (y0, y1) = padded_range(ys);
+    let width_px = 800u32;
+    let height_px = ((width_px as f64) * (y1 - y0) / (x1 - x0)).clamp(200.0, 2400.0) as u32 + 60;
+    let largest = forces.iter().map(|f| f.force.norm()).fold(0.0, f64::max);
+    let scale = if largest > 0.0 { max_length / largest } else { 0.0 };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width_px, height_px)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(10)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| plot_error(path, e))?;
+        let grey = RGBColor(170, 170, 170);
+        chart
+            .draw_series(circles.iter().map(|(c, r)| {
+                let pts: Vec<(f64, f64)> = (0..=32)
+                    .map(|k| {
+                        let t = k as f64 / 32.0 * std::f64::consts::TAU;
+                        (c.x + r * t.cos(), c.y + r * t.sin())
+                    })
+                    .collect();
+                PathElement::new(pts, grey.stroke_width(1))
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series(walls.iter().map(|w| {
+                PathElement::new(vec![(w.start.x, w.start.y), (w.end.x, w.end.y)], BLACK.stroke_width(3))
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series(forces.iter().map(|f| {
+                let half = f.force * (0.5 * scale);
+                PathElement::new(
+                    vec![(f.point.x - half.x, f.point.y - half.y), (f.point.x + half.x, f.point.y + half.y)],
+                    PALETTE[1].stroke_width(2),
+                )
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        root.present().map_err(|e| plot_error(path, e))?;
+    }
+    write_atomically(path, svg.as_bytes())
+}

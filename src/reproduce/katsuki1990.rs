@@ -1,0 +1,418 @@
+//! Katsuki & Ishikawa (1990), *Earth pressure analysis of filled materials
+//! by distinct element method using ellipse model* (paper 000).
+//!
+//! **Example 1**: 179 circles, r = 0.07 m, in a rigid frame 2.0 m wide,
+//! self-weight only. Material (SI, converted once here): ρ = 2.69 gf/cm³ =
+//! 2690 kg/m³, E = 750 kgf/cm² = 73.55 MPa (1 kgf = 9.80665 N), ν = 0.3,
+//! s = 0.25, μ = 0.577, Δt = 1e-4 s, g = 9.80665 m/s².
+//!
+//! Choices where the paper's figure is missing (Fig. 5(a)):
+//! * the frame is an open box 2.0 m wide and 3.0 m tall;
+//! * the circles start at rest and without contacts, in rows alternately of
+//!   14 and 13 (horizontal pitch 2.0/14 m, the 13-rows shifted by half a
+//!   pitch so the assembly settles into a hexagonal packing), row pitch
+//!   0.16 m, the lowest row 5 mm above the floor; the last row is partial
+//!   and centred;
+//! * rest: kinetic energy below 1e-6 of the potential energy released *and*
+//!   mean unbalanced force per particle below 1e-4 of the mean weight, at
+//!   10 consecutive checks 100 steps apart (0.1 s), after at least 0.5 s.
+
+use std::path::Path;
+
+use super::StudyOptions;
+use crate::contact::SpringDashpotCoulomb;
+use crate::dem::{ContactTarget, DemSettings, DemSimulation, RestCriterion, RunOutcome};
+use crate::error::Result;
+use crate::integrate::ExplicitEuler;
+use crate::math::{Point, Vec2};
+use crate::output::plot::{assembly_picture, line_chart, ForceMark, Series};
+use crate::output::{write_csv, Check, Summary};
+use crate::scene::{Frame, Scene};
+use crate::shape::AnyShape2;
+
+/// File name of the paper.
+pub const PAPER: &str = "000_87caa095a10dc755.txt";
+/// Standard gravity (m/s²), also the kgf → N factor.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+/// ρ = 2.69 gf/cm³ in kg/m³.
+pub const DENSITY: f64 = 2.69 * 1e-3 / 1e-6;
+/// E = 750 kgf/cm² in Pa.
+pub const YOUNGS_MODULUS: f64 = 750.0 * STANDARD_GRAVITY / 1e-4;
+/// Poisson's ratio ν.
+pub const POISSON_RATIO: f64 = 0.3;
+/// k_s / k_n.
+pub const STIFFNESS_RATIO: f64 = 0.25;
+/// Friction coefficient μ (φ = 30°).
+pub const FRICTION: f64 = 0.577;
+/// Time step Δt (s).
+pub const TIME_STEP: f64 = 1e-4;
+
+/// Geometry of an Example-1-type filling.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FillConfig {
+    /// Number of circles.
+    pub count: usize,
+    /// Radius (m).
+    pub radius: f64,
+    /// Inner width of the frame (m).
+    pub width: f64,
+    /// Height of the frame walls (m).
+    pub height: f64,
+    /// Circles in a full row; rows alternate `per_row` and `per_row − 1`.
+    pub per_row: usize,
+    /// Vertical distance between rows at the start (m).
+    pub row_pitch: f64,
+}
+
+impl FillConfig {
+    /// The paper's Example 1 (179 circles, 2.0 m frame).
+    pub fn paper() -> Self {
+        Self {
+            count: 179,
+            radius: 0.07,
+            width: 2.0,
+            height: 3.0,
+            per_row: 14,
+            row_pitch: 0.16,
+        }
+    }
+
+    /// A smaller filling of the same kind (47 circles in a 1.0 m frame) that
+    /// runs in a second.
+    pub fn reduced() -> Self {
+        Self {
+            count: 47,
+            width: 1.0,
+            height: 1.5,
+            per_row: 7,
+            ..Self::paper()
+        }
+    }
+}
+
+/// The scene of an Example-1-type filling: circles at rest in an open box.
+pub fn fill_scene(config: &FillConfig) -> Result<Scene> {
+    let mut scene = Scene::new(
+        Frame::open_box(config.width, config.height)?,
+        Vec2::new(0.0, -STANDARD_GRAVITY),
+    )?;
+    let pitch = config.width / config.per_row as f64;
+    let mut placed = 0;
+    let mut row = 0;
+    while placed < config.count {
+        let full = row % 2 == 0;
+        let in_row = if full { config.per_row } else { config.per_row.saturating_sub(1).max(1) };
+        let n = in_row.min(config.count - placed);
+        let y = config.radius + 0.005 + row as f64 * config.row_pitch;
+        // A partial last row is centred on the slots of its row.
+        let first_slot = (in_row - n) / 2;
+        for k in 0..n {
+            let slot = (first_slot + k) as f64;
+            let x = if full { (slot + 0.5) * pitch } else { (slot + 1.0) * pitch };
+            scene.add_circle(Point::new(x, y), config.radius, DENSITY)?;
+        }
+        placed += n;
+        row += 1;
+    }
+    Ok(scene)
+}
+
+/// Paper 000's contact law with Example 1's material.
+pub fn material_law() -> Result<SpringDashpotCoulomb> {
+    SpringDashpotCoulomb::katsuki(YOUNGS_MODULUS, POISSON_RATIO, STIFFNESS_RATIO, FRICTION)
+}
+
+/// The rest criterion of Example 1.
+pub fn rest_criterion() -> RestCriterion {
+    RestCriterion {
+        kinetic_to_released_ratio: 1e-6,
+        min_time: 0.5,
+        max_time: 30.0,
+        check_every: 100,
+        consecutive_checks: 10,
+        unbalanced_force_ratio: 1e-4,
+    }
+}
+
+/// The equilibrium of a settled filling.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FillEquilibrium {
+    /// Total weight W (N/m).
+    pub weight: f64,
+    /// Σ vertical reactions of all walls on the particles (N/m).
+    pub vertical_reaction: f64,
+    /// Horizontal reaction of the left wall on the particles (N/m).
+    pub left_horizontal: f64,
+    /// Horizontal reaction of the right wall (N/m).
+    pub right_horizontal: f64,
+    /// Vertical (friction) reaction of the side walls (N/m).
+    pub side_friction: f64,
+    /// Height of the filling (m): highest particle top.
+    pub fill_height: f64,
+}
+
+impl FillEquilibrium {
+    /// Σ vertical reactions / W.
+    pub fn vertical_ratio(&self) -> f64 {
+        self.vertical_reaction / self.weight
+    }
+    /// |F_left + F_right| / W.
+    pub fn horizontal_imbalance(&self) -> f64 {
+        (self.left_horizontal + self.right_horizontal).abs() / self.weight
+    }
+}
+
+/// Wall reactions of a DEM run in an [`Frame::open_box`].
+pub fn equilibrium(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>) -> FillEquilibrium {
+    let frame = &sim.scene().frame;
+    let reaction = |name: &str| frame.index_of(name).map(|w| -sim.wall_load(w)).unwrap_or_default();
+    let (left, right, bottom) = (reaction("left"), reaction("right"), reaction("bottom"));
+    let fill_height = sim
+        .scene()
+        .particles
+        .iter()
+        .map(|p| p.pose.position.y + p.shape.as_shape().bounding_radius())
+        .fold(0.0, f64::max);
+    FillEquilibrium {
+        weight: sim.scene().total_weight(),
+        vertical_reaction: left.y + right.y + bottom.y,
+        left_horizontal: left.x,
+        right_horizontal: right.x,
+        side_friction: left.y + right.y,
+        fill_height,
+    }
+}
+
+/// Normal pressure on a side wall, binned by height: `(bin centre height,
+/// pressure)` with pressure = Σ normal contact force in the bin / bin
+/// height (Pa).
+pub fn wall_pressure_profile(
+    sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    wall_name: &str,
+    bin_height: f64,
+    fill_height: f64,
+) -> Vec<(f64, f64)> {
+    let frame = &sim.scene().frame;
+    let Some(w) = frame.index_of(wall_name) else {
+        return Vec::new();
+    };
+    let outward = -frame.walls()[w].inner_normal();
+    let bins = (fill_height / bin_height).ceil().max(1.0) as usize;
+    let mut sums = vec![0.0; bins];
+    for c in sim.contacts().iter().filter(|c| c.target == ContactTarget::Wall(w)) {
+        let k = ((c.point.y / bin_height).floor().max(0.0) as usize).min(bins - 1);
+        sums[k] += c.force_on_target.dot(&outward);
+    }
+    sums.iter()
+        .enumerate()
+        .map(|(k, s)| ((k as f64 + 0.5) * bin_height, s / bin_height))
+        .collect()
+}
+
+/// Build, check and settle a filling; `on_check(time, ratio)` reports
+/// progress.
+pub fn settle(
+    config: &FillConfig,
+    on_check: impl FnMut(f64, f64),
+) -> Result<(DemSimulation<SpringDashpotCoulomb, ExplicitEuler>, RunOutcome)> {
+    let settings = DemSettings {
+        dt: TIME_STEP,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(fill_scene(config)?, material_law()?, ExplicitEuler, settings)?;
+    let outcome = sim.run_to_rest(&rest_criterion(), on_check)?;
+    Ok((sim, outcome))
+}
+
+fn progress_bar(options: &StudyOptions, label: &str, max_time: f64) -> indicatif::ProgressBar {
+    if !options.progress {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new((max_time * 1000.0) as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{prefix} [{elapsed_precise}] {bar:30} t = {pos} ms  {msg}",
+    ) {
+        bar.set_style(style);
+    }
+    bar.set_prefix(label.to_string());
+    bar
+}
+
+/// Run Example 1 at full size and write its outputs into `out/katsuki1990/`.
+pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
+    let dir = options.out.join("katsuki1990");
+    let config = FillConfig::paper();
+    let bar = progress_bar(options, "katsuki1990 ex1", rest_criterion().max_time);
+    let (sim, outcome) = settle(&config, |t, ratio| {
+        bar.set_position((t * 1000.0) as u64);
+        bar.set_message(format!("KE/released = {ratio:.2e}"));
+    })?;
+    bar.finish_and_clear();
+    let eq = equilibrium(&sim);
+    let mut files = Vec::new();
+    write_example1_outputs(&dir, &sim, &config, &eq, &mut files)?;
+
+    let vertical = eq.vertical_ratio();
+    let horizontal = eq.horizontal_imbalance();
+    let rest_ratio = outcome.kinetic_energy / outcome.released_potential_energy;
+    let checks = vec![
+        Check {
+            id: "ex1.vertical_reaction_ratio".into(),
+            description: "sum of vertical wall reactions (bottom + side-wall friction) / total weight; passes when |ratio - 1| <= tolerance".into(),
+            paper: Some(1.0),
+            computed: vertical,
+            unit: "-".into(),
+            tolerance: 0.005,
+            passed: (vertical - 1.0).abs() <= 0.005,
+        },
+        Check {
+            id: "ex1.horizontal_imbalance_ratio".into(),
+            description: "|F_left + F_right| / total weight (horizontal reactions of the side walls cancel); passes when <= tolerance".into(),
+            paper: Some(0.0),
+            computed: horizontal,
+            unit: "-".into(),
+            tolerance: 0.01,
+            passed: horizontal <= 0.01,
+        },
+        Check {
+            id: "ex1.side_friction_ratio".into(),
+            description: "vertical friction carried by the side walls / total weight (no paper value; reported)".into(),
+            paper: None,
+            computed: eq.side_friction / eq.weight,
+            unit: "-".into(),
+            tolerance: 1.0,
+            passed: eq.side_friction / eq.weight <= 1.0,
+        },
+        Check {
+            id: "ex1.rest_kinetic_ratio".into(),
+            description: "kinetic energy / potential energy released at the end of the run; at rest when < tolerance".into(),
+            paper: None,
+            computed: rest_ratio,
+            unit: "-".into(),
+            tolerance: rest_criterion().kinetic_to_released_ratio,
+            passed: rest_ratio < rest_criterion().kinetic_to_released_ratio,
+        },
+        Check {
+            id: "ex1.settling_time".into(),
+            description: "simulated time to reach rest (s), reported".into(),
+            paper: None,
+            computed: outcome.time,
+            unit: "s".into(),
+            tolerance: rest_criterion().max_time,
+            passed: outcome.time < rest_criterion().max_time,
+        },
+    ];
+    let summary = Summary {
+        study: "katsuki1990".into(),
+        paper: PAPER.into(),
+        checks,
+        files,
+    };
+    summary.write(&dir)?;
+    Ok(summary)
+}
+
+fn write_example1_outputs(
+    dir: &Path,
+    sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    config: &FillConfig,
+    eq: &FillEquilibrium,
+    files: &mut Vec<String>,
+) -> Result<()> {
+    let scene = sim.scene();
+    let circles: Vec<(Point, f64)> = scene
+        .particles
+        .iter()
+        .filter_map(|p| match &p.shape {
+            AnyShape2::Circle(c) => Some((p.pose.position, c.radius())),
+            _ => None,
+        })
+        .collect();
+    let forces: Vec<ForceMark> = sim
+        .contacts()
+        .iter()
+        .map(|c| ForceMark {
+            point: c.point,
+            force: c.force_on_target,
+        })
+        .collect();
+    let walls: Vec<_> = scene.frame.walls().to_vec();
+    assembly_picture(
+        &dir.join("ex1_contact_forces.svg"),
+        "Example 1: contact forces at rest (179 circles), cf. paper Fig. 5(b)",
+        &circles,
+        &walls,
+        &forces,
+        2.0 * config.radius,
+    )?;
+    files.push("ex1_contact_forces.svg".into());
+
+    let bin = 2.0 * config.radius;
+    let left = wall_pressure_profile(sim, "left", bin, eq.fill_height);
+    let right = wall_pressure_profile(sim, "right", bin, eq.fill_height);
+    let kpa = |v: &[(f64, f64)]| v.iter().map(|&(h, p)| (p / 1e3, h)).collect::<Vec<_>>();
+    line_chart(
+        &dir.join("ex1_wall_pressure.svg"),
+        "Example 1: side-wall pressure vs height",
+        "normal pressure (kPa)",
+        "height above the floor (m)",
+        &[
+            Series {
+                name: "left wall".into(),
+                points: kpa(&left),
+                markers: true,
+            },
+            Series {
+                name: "right wall".into(),
+                points: kpa(&right),
+                markers: true,
+            },
+        ],
+    )?;
+    files.push("ex1_wall_pressure.svg".into());
+    let rows: Vec<Vec<f64>> = left
+        .iter()
+        .zip(&right)
+        .map(|(l, r)| vec![l.0, l.1, r.1])
+        .collect();
+    write_csv(
+        &dir.join("ex1_wall_pressure.csv"),
+        &["height_m", "left_pressure_pa", "right_pressure_pa"],
+        &rows,
+    )?;
+    files.push("ex1_wall_pressure.csv".into());
+
+    let contact_rows: Vec<Vec<f64>> = sim
+        .contacts()
+        .iter()
+        .map(|c| {
+            let (kind, index) = match c.target {
+                ContactTarget::Particle(j) => (0.0, j as f64),
+                ContactTarget::Wall(w) => (1.0, w as f64),
+            };
+            vec![
+                c.particle as f64,
+                kind,
+                index,
+                c.point.x,
+                c.point.y,
+                c.force_on_target.x,
+                c.force_on_target.y,
+            ]
+        })
+        .collect();
+    write_csv(
+        &dir.join("ex1_contacts.csv"),
+        &["particle", "target_is_wall", "target", "x_m", "y_m", "fx_n_per_m", "fy_n_per_m"],
+        &contact_rows,
+    )?;
+    files.push("ex1_contacts.csv".into());
+    let particle_rows: Vec<Vec<f64>> = scene
+        .particles
+        .iter()
+        .map(|p| vec![p.pose.position.x, p.pose.position.y, p.pose.angle])
+        .collect();
+    write_csv(&dir.join("ex1_particles.csv"), &["x_m", "y_m", "angle_rad"], &particle_rows)?;
+    files.push("ex1_particles.csv".into());
+    Ok(())
+}

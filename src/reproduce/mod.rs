@@ -1,0 +1,40 @@
+//! Reproductions of the papers' examples: each builds its scenes from the
+//! library pieces, runs them, compares with the paper and writes its
+//! numbers, plots and `summary.json` into `OUT/<study>/`.
+
+pub mod katsuki1990;
+
+use std::path::PathBuf;
+
+use crate::error::{DismechError, Result};
+use crate::output::Summary;
+
+/// Options shared by every study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyOptions {
+    /// Output folder; each study writes into `out/<study>/`.
+    pub out: PathBuf,
+    /// Show progress bars on the terminal.
+    pub progress: bool,
+}
+
+/// The studies that exist, by name.
+pub const STUDIES: &[&str] = &["katsuki1990"];
+
+/// Run the study `name` (or every study for `all`).
+pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
+    match name {
+        "all" => STUDIES.iter().map(|s| run_one(s, options)).collect(),
+        other => Ok(vec![run_one(other, options)?]),
+    }
+}
+
+fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
+    match name {
+        "katsuki1990" => katsuki1990::reproduce(options),
+        other => Err(DismechError::UnknownStudy(
+            other.to_string(),
+            STUDIES.join(", "),
+        )),
+    }
+}

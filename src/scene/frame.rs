@@ -1,0 +1,121 @@
+//! A rigid frame: a chain of wall segments.
+
+use crate::error::{require_positive, DismechError, Result};
+use crate::math::Point;
+use crate::shape::Segment;
+
+/// Walls joined end to end, material on their left (a frame is drawn
+/// counter-clockwise around what it holds). A frame may be open (a box
+/// without a lid) but must not leave gaps between consecutive walls.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    walls: Vec<Segment>,
+    names: Vec<String>,
+}
+
+/// Largest gap (m) accepted between the end of one wall and the start of the
+/// next.
+pub const JOINT_TOLERANCE: f64 = 1e-9;
+
+impl Frame {
+    /// A frame from named walls; each wall must start where the previous one
+    /// ends (within [`JOINT_TOLERANCE`]), have finite end points and a
+    /// positive length.
+    pub fn from_walls(walls: Vec<(String, Segment)>) -> Result<Self> {
+        for (i, (_, w)) in walls.iter().enumerate() {
+            let finite = [w.start.x, w.start.y, w.end.x, w.end.y].iter().all(|v| v.is_finite());
+            if !finite {
+                return Err(DismechError::DegenerateWall {
+                    wall: i,
+                    reason: "an end point is not finite",
+                });
+            }
+            if w.length() <= JOINT_TOLERANCE {
+                return Err(DismechError::DegenerateWall {
+                    wall: i,
+                    reason: "its length is zero",
+                });
+            }
+        }
+        for i in 1..walls.len() {
+            let (end, start) = (walls[i - 1].1.end, walls[i].1.start);
+            let gap = (end - start).norm();
+            if gap > JOINT_TOLERANCE {
+                return Err(DismechError::FrameNotClosed {
+                    wall: i - 1,
+                    next: i,
+                    end_x: end.x,
+                    end_y: end.y,
+                    start_x: start.x,
+                    start_y: start.y,
+                    gap,
+                });
+            }
+        }
+        let (names, walls) = walls.into_iter().unzip();
+        Ok(Self { walls, names })
+    }
+
+    /// An open box `width × height` with its bottom-left corner at the
+    /// origin: walls `left` (top to bottom), `bottom`, `right` (bottom to
+    /// top).
+    pub fn open_box(width: f64, height: f64) -> Result<Self> {
+        require_positive("frame width", width)?;
+        require_positive("frame height", height)?;
+        let (a, b, c, d) = (
+            Point::new(0.0, height),
+            Point::new(0.0, 0.0),
+            Point::new(width, 0.0),
+            Point::new(width, height),
+        );
+        Self::from_walls(vec![
+            ("left".into(), Segment::new(a, b)),
+            ("bottom".into(), Segment::new(b, c)),
+            ("right".into(), Segment::new(c, d)),
+        ])
+    }
+
+    /// The walls.
+    pub fn walls(&self) -> &[Segment] {
+        &self.walls
+    }
+
+    /// The name of wall `i` (`None` if there is no such wall).
+    pub fn name(&self, i: usize) -> Option<&str> {
+        self.names.get(i).map(String::as_str)
+    }
+
+    /// Index of the wall named `name`.
+    pub fn index_of(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_with_a_gap_is_refused_with_the_gap() {
+        let err = Frame::from_walls(vec![
+            ("a".into(), Segment::new(Point::new(0.0, 1.0), Point::new(0.0, 0.0))),
+            ("b".into(), Segment::new(Point::new(0.01, 0.0), Point::new(1.0, 0.0))),
+        ])
+        .unwrap_err();
+        match err {
+            DismechError::FrameNotClosed { wall: 0, next: 1, gap, .. } => {
+                approx::assert_relative_eq!(gap, 0.01)
+            }
+            other => panic!("unexpected {other}"),
+        }
+    }
+
+    #[test]
+    fn open_box_walls_face_inwards() {
+        let f = Frame::open_box(2.0, 1.0).unwrap();
+        let bottom = f.walls()[f.index_of("bottom").unwrap()];
+        approx::assert_relative_eq!(bottom.inner_normal().y, 1.0);
+        let left = f.walls()[f.index_of("left").unwrap()];
+        approx::assert_relative_eq!(left.inner_normal().x, 1.0);
+    }
+}

@@ -1,0 +1,61 @@
+//! The scene: bodies, boundaries and loads, as data apart from the
+//! algorithms that advance them.
+
+mod frame;
+mod particle;
+
+pub use frame::Frame;
+pub use particle::Particle;
+
+use crate::error::{require_finite, require_positive, DismechError, Result};
+use crate::math::{Point, Vec2};
+use crate::shape::{Circle, Shape};
+
+/// Particles in a rigid frame under gravity (2D, per unit thickness).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The moving bodies.
+    pub particles: Vec<Particle>,
+    /// The rigid walls.
+    pub frame: Frame,
+    /// Gravitational acceleration (m/s²), e.g. `(0, −9.81)`.
+    pub gravity: Vec2,
+}
+
+impl Scene {
+    /// An empty scene in `frame` under `gravity`.
+    pub fn new(frame: Frame, gravity: Vec2) -> Result<Self> {
+        require_finite("gravity x", gravity.x)?;
+        require_finite("gravity y", gravity.y)?;
+        Ok(Self {
+            particles: Vec::new(),
+            frame,
+            gravity,
+        })
+    }
+
+    /// Add a circle of `radius` (m) and `density` (kg/m³) at rest at
+    /// `centre`; returns its index.
+    pub fn add_circle(&mut self, centre: Point, radius: f64, density: f64) -> Result<usize> {
+        require_finite("centre x", centre.x)?;
+        require_finite("centre y", centre.y)?;
+        let circle = Circle::new(radius)?;
+        require_positive("density", density)?;
+        let mp = circle.mass_properties(density);
+        self.particles.push(Particle::at_rest(circle.into(), centre, mp));
+        Ok(self.particles.len() - 1)
+    }
+
+    /// The particle with index `index`.
+    pub fn particle(&self, index: usize) -> Result<&Particle> {
+        self.particles.get(index).ok_or(DismechError::NoSuchBody {
+            index,
+            count: self.particles.len(),
+        })
+    }
+
+    /// Total weight `Σ m |g|` (N per m of thickness).
+    pub fn total_weight(&self) -> f64 {
+        self.particles.iter().map(|p| p.mass).sum::<f64>() * self.gravity.norm()
+    }
+}

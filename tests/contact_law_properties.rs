@@ -1,0 +1,205 @@
+//! Property tests of the spring–dashpot–Coulomb law and of the contact
+//! geometry and kinematics that feed it.
+
+use dismech::contact::dispatch::contact_2d;
+use dismech::contact::{
+    relative_increment, ContactInput, ContactLaw, Damping, NormalStiffness, PairProperties,
+    Regime, SpringDashpotCoulomb, SpringState,
+};
+use dismech::math::{rotate, Point, Pose2, Vec2};
+use dismech::shape::{AnyShape2, Circle};
+use nalgebra::Vector2;
+use proptest::prelude::*;
+
+fn law(constant: bool, damping: bool, mu: f64) -> SpringDashpotCoulomb {
+    let normal = if constant {
+        NormalStiffness::Constant(1e7)
+    } else {
+        NormalStiffness::ContactWidth {
+            youngs_modulus: 73.55e6,
+            poisson_ratio: 0.3,
+            min_width_ratio: 1e-3,
+        }
+    };
+    let damping = if damping { Damping::Critical } else { Damping::None };
+    SpringDashpotCoulomb::new(normal, 0.25, mu, damping).unwrap()
+}
+
+fn pair(width: f64) -> PairProperties {
+    PairProperties {
+        curvature_radius_a: 0.07,
+        curvature_radius_b: 0.05,
+        width,
+        mass_a: 40.0,
+        mass_b: 25.0,
+    }
+}
+
+fn state(e_n: f64, e_s: f64) -> SpringState<2> {
+    let mut s = SpringState::<2>::default();
+    s.spring.0 = Vector2::new(e_n, e_s);
+    s
+}
+
+prop_compose! {
+    fn any_input()(overlap in -1e-3f64..2e-3, du_n in -1e-4f64..1e-4, du_s in -1e-3f64..1e-3,
+                   width in 1e-4f64..0.05, is_new in any::<bool>()) -> ContactInput<2> {
+        ContactInput { overlap, increment: Vector2::new(du_n, du_s), dt: 1e-4, is_new, pair: pair(width) }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn law_never_pulls_and_respects_the_coulomb_cap(
+        input in any_input(), e_n in 0.0f64..2e4, e_s in -2e4f64..2e4,
+        constant in any::<bool>(), damping in any::<bool>(), mu in 0.0f64..1.5
+    ) {
+        let law = law(constant, damping, mu);
+        let r = law.evaluate(&input, &state(e_n, e_s));
+        prop_assert!(r.force[0] >= 0.0, "tension {}", r.force[0]);
+        prop_assert!(r.spring_force[0] >= 0.0);
+        prop_assert!(r.spring_force[1].abs() <= mu * r.spring_force[0] * (1.0 + 1e-12) + 1e-12,
+            "|e_s| = {} > mu e_n = {}", r.spring_force[1].abs(), mu * r.spring_force[0]);
+        if r.regime == Regime::Slip {
+            prop_assert!((r.force[1].abs() - mu * r.spring_force[0]).abs() <= 1e-9 * (1.0 + r.spring_force[0]));
+        }
+    }
+
+    #[test]
+    fn law_gives_zero_force_and_forgets_history_without_overlap(
+        mut input in any_input(), e_n in 0.0f64..2e4, e_s in -2e4f64..2e4
+    ) {
+        input.overlap = -input.overlap.abs();
+        let r = law(false, true, 0.5).evaluate(&input, &state(e_n, e_s));
+        prop_assert_eq!(r.regime, Regime::Open);
+        prop_assert_eq!(r.force, Vector2::zeros());
+        prop_assert_eq!(r.state, SpringState::default());
+    }
+
+    /// The analytic tangent matches central differences of the force with
+    /// respect to the increment, in stick and in slip (away from the switch).
+    #[test]
+    fn law_tangent_matches_finite_differences(
+        mut input in any_input(), e_n in 100.0f64..2e4, e_s in -2e4f64..2e4,
+        constant in any::<bool>(), damping in any::<bool>()
+    ) {
+        input.overlap = input.overlap.abs() + 1e-5;
+        input.is_new = false;
+        let law = law(constant, damping, 0.4);
+        let s = state(e_n, e_s);
+        let r = law.evaluate(&input, &s);
+        let h = 1e-7;
+        for j in 0..2 {
+            let mut plus = input;
+            let mut minus = input;
+            plus.increment[j] += h;
+            minus.increment[j] -= h;
+            let (rp, rm) = (law.evaluate(&plus, &s), law.evaluate(&minus, &s));
+            // Skip differences that straddle a kink: a regime switch, or the
+            // no-pull clamp of the normal dashpot.
+            let clamped = |f: f64| f == 0.0;
+            if rp.regime != r.regime || rm.regime != r.regime || r.regime == Regime::Open
+                || clamped(rp.force[0]) != clamped(rm.force[0])
+            {
+                continue;
+            }
+            for i in 0..2 {
+                let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
+                // Round-off of the difference quotient: ε |f| / h.
+                let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
+                let scale = 1.0 + r.tangent[(i, j)].abs() + fd.abs();
+                prop_assert!((fd - r.tangent[(i, j)]).abs() <= 1e-6 * scale + roundoff,
+                    "d f{} / d u{}: analytic {} vs fd {}", i, j, r.tangent[(i, j)], fd);
+            }
+        }
+    }
+
+    /// Evaluating the pair as (A, B) or as (B, A) gives equal and opposite
+    /// world forces (action = reaction), with the geometry flipped by the
+    /// dispatcher and the increments from the same body motions.
+    #[test]
+    fn contact_force_on_a_equals_minus_force_on_b(
+        ra in 0.03f64..0.1, rb in 0.03f64..0.1, angle in 0.0f64..std::f64::consts::TAU,
+        depth in 1e-5f64..5e-3, dxa in -1e-4f64..1e-4, dya in -1e-4f64..1e-4, dpa in -1e-3f64..1e-3,
+        dxb in -1e-4f64..1e-4, dyb in -1e-4f64..1e-4, dpb in -1e-3f64..1e-3
+    ) {
+        let (a, b) = (AnyShape2::Circle(Circle::new(ra).unwrap()), AnyShape2::Circle(Circle::new(rb).unwrap()));
+        let d = ra + rb - depth;
+        let pa = Pose2::new(0.3, -0.2, 0.0);
+        let pb = Pose2::new(0.3 + d * angle.cos(), -0.2 + d * angle.sin(), 0.0);
+        let (inc_a, inc_b) = ((Vec2::new(dxa, dya), dpa), (Vec2::new(dxb, dyb), dpb));
+        let law = law(false, true, 0.5);
+        let world = |first: (&AnyShape2, &Pose2, (Vec2, f64)), second: (&AnyShape2, &Pose2, (Vec2, f64))| {
+            let g = contact_2d(first.0, first.1, second.0, second.1).unwrap().unwrap();
+            let du = relative_increment(&g, &first.1.position, (&first.2 .0, first.2 .1), &second.1.position, (&second.2 .0, second.2 .1));
+            let input = ContactInput { overlap: g.overlap, increment: du.into(), dt: 1e-4, is_new: false,
+                pair: PairProperties { curvature_radius_a: g.curvature_radius_a, curvature_radius_b: g.curvature_radius_b,
+                    width: g.width, mass_a: 1.0, mass_b: 1.0 } };
+            let r = law.evaluate(&input, &state(50.0, 10.0));
+            g.normal * r.force[0] - g.tangent() * r.force[1]
+        };
+        let on_b = world((&a, &pa, inc_a), (&b, &pb, inc_b));
+        let on_a = world((&b, &pb, inc_b), (&a, &pa, inc_a));
+        prop_assert!((on_a + on_b).norm() <= 1e-9 * (1.0 + on_b.norm()), "{on_a} vs {on_b}");
+    }
+
+    /// Moving and turning the whole pair (positions and increments) leaves
+    /// the local increments, the forces and the contact width unchanged.
+    #[test]
+    fn contact_is_invariant_under_rigid_motion_of_the_pair(
+        ra in 0.03f64..0.1, rb in 0.03f64..0.1, angle in 0.0f64..std::f64::consts::TAU,
+        depth in 1e-5f64..5e-3, turn in 0.0f64..std::f64::consts::TAU, tx in -5.0f64..5.0, ty in -5.0f64..5.0,
+        dxb in -1e-4f64..1e-4, dyb in -1e-4f64..1e-4, dpa in -1e-3f64..1e-3, dpb in -1e-3f64..1e-3
+    ) {
+        let (a, b) = (AnyShape2::Circle(Circle::new(ra).unwrap()), AnyShape2::Circle(Circle::new(rb).unwrap()));
+        let d = ra + rb - depth;
+        let law = law(false, true, 0.5);
+        let evaluate = |rot: f64, shift: Vec2| {
+            let ca = Point::from(shift);
+            let cb = ca + rotate(&Vec2::new(d * angle.cos(), d * angle.sin()), rot);
+            let (pa, pb) = (Pose2 { position: ca, angle: rot }, Pose2 { position: cb, angle: rot });
+            let g = contact_2d(&a, &pa, &b, &pb).unwrap().unwrap();
+            let inc_b = rotate(&Vec2::new(dxb, dyb), rot);
+            let du = relative_increment(&g, &ca, (&Vec2::zeros(), dpa), &cb, (&inc_b, dpb));
+            let input = ContactInput { overlap: g.overlap, increment: du.into(), dt: 1e-4, is_new: false,
+                pair: PairProperties { curvature_radius_a: g.curvature_radius_a, curvature_radius_b: g.curvature_radius_b,
+                    width: g.width, mass_a: 1.0, mass_b: 1.0 } };
+            let r = law.evaluate(&input, &state(50.0, 10.0));
+            (du, r.force, g.width, g.normal * r.force[0] - g.tangent() * r.force[1])
+        };
+        let (du0, f0, w0, world0) = evaluate(0.0, Vec2::zeros());
+        let (du1, f1, w1, world1) = evaluate(turn, Vec2::new(tx, ty));
+        for k in 0..2 {
+            prop_assert!((du0[k] - du1[k]).abs() <= 1e-12 + 1e-8 * du0[k].abs(), "du {:?} vs {:?}", du0, du1);
+            prop_assert!((f0[k] - f1[k]).abs() <= 1e-8 * (1.0 + f0[k].abs()));
+        }
+        prop_assert!((w0 - w1).abs() <= 1e-9);
+        prop_assert!((rotate(&world0, turn) - world1).norm() <= 1e-8 * (1.0 + world0.norm()));
+    }
+}
+
+#[test]
+fn law_rejects_bad_parameters_naming_them() {
+    let bad = [
+        SpringDashpotCoulomb::new(NormalStiffness::Constant(1e6), 0.25, -0.1, Damping::None),
+        SpringDashpotCoulomb::new(NormalStiffness::Constant(1e6), 0.0, 0.5, Damping::None),
+        SpringDashpotCoulomb::new(NormalStiffness::Constant(-1.0), 0.25, 0.5, Damping::None),
+        SpringDashpotCoulomb::katsuki(73.55e6, 0.5, 0.25, 0.5),
+    ];
+    let names = ["friction coefficient mu", "stiffness ratio s", "normal stiffness k_n", "Poisson's ratio"];
+    for (result, name) in bad.into_iter().zip(names) {
+        let message = result.unwrap_err().to_string();
+        assert!(message.contains(name), "{message} does not name {name}");
+    }
+}
+
+/// Eq. (19) with r1 = r2 = r and B = r gives πE / (2(1−ν²)(2/3 + 2 ln 4)).
+#[test]
+fn eq19_stiffness_matches_the_closed_form() {
+    let law = law(false, false, 0.5);
+    let p = PairProperties { curvature_radius_a: 0.07, curvature_radius_b: 0.07, width: 0.07, mass_a: 1.0, mass_b: 1.0 };
+    let expected = std::f64::consts::PI * 73.55e6 / (2.0 * (1.0 - 0.09) * (2.0 / 3.0 + 2.0 * 4f64.ln()));
+    approx::assert_relative_eq!(law.normal_stiffness(&p), expected, max_relative = 1e-12);
+}
