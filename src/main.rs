@@ -7,7 +7,11 @@ use clap::{Parser, Subcommand};
 use dismech::reproduce::{self, StudyOptions};
 
 #[derive(Parser)]
-#[command(name = "dismech", version, about = "Discrete mechanics of granular and blocky geomaterials")]
+#[command(
+    name = "dismech",
+    version,
+    about = "Discrete mechanics of granular and blocky geomaterials"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -42,7 +46,10 @@ fn main() -> ExitCode {
                     for s in &summaries {
                         println!("{} ({})", s.study, s.paper);
                         for c in &s.checks {
-                            let paper = c.paper.map(|p| format!("{p}")).unwrap_or_else(|| "-".into());
+                            let paper = c
+                                .paper
+                                .map(|p| format!("{p}"))
+                                .unwrap_or_else(|| "-".into());
                             println!(
                                 "  [{}] {:<34} computed {:>12.6e}  paper {:>8}  tol {:.1e}",
                                 if c.passed { "pass" } else { "FAIL" },

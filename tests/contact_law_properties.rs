@@ -3,8 +3,8 @@
 
 use dismech::contact::dispatch::contact_2d;
 use dismech::contact::{
-    relative_increment, ContactInput, ContactLaw, Damping, NormalStiffness, PairProperties,
-    Regime, SpringDashpotCoulomb, SpringState,
+    relative_increment, ContactInput, ContactLaw, Damping, NormalStiffness, PairProperties, Regime,
+    SpringDashpotCoulomb, SpringState,
 };
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::shape::{AnyShape2, Circle};
@@ -21,7 +21,11 @@ fn law(constant: bool, damping: bool, mu: f64) -> SpringDashpotCoulomb {
             min_width_ratio: 1e-3,
         }
     };
-    let damping = if damping { Damping::Critical } else { Damping::None };
+    let damping = if damping {
+        Damping::Critical
+    } else {
+        Damping::None
+    };
     SpringDashpotCoulomb::new(normal, 0.25, mu, damping).unwrap()
 }
 
@@ -188,7 +192,12 @@ fn law_rejects_bad_parameters_naming_them() {
         SpringDashpotCoulomb::new(NormalStiffness::Constant(-1.0), 0.25, 0.5, Damping::None),
         SpringDashpotCoulomb::katsuki(73.55e6, 0.5, 0.25, 0.5),
     ];
-    let names = ["friction coefficient mu", "stiffness ratio s", "normal stiffness k_n", "Poisson's ratio"];
+    let names = [
+        "friction coefficient mu",
+        "stiffness ratio s",
+        "normal stiffness k_n",
+        "Poisson's ratio",
+    ];
     for (result, name) in bad.into_iter().zip(names) {
         let message = result.unwrap_err().to_string();
         assert!(message.contains(name), "{message} does not name {name}");
@@ -199,7 +208,14 @@ fn law_rejects_bad_parameters_naming_them() {
 #[test]
 fn eq19_stiffness_matches_the_closed_form() {
     let law = law(false, false, 0.5);
-    let p = PairProperties { curvature_radius_a: 0.07, curvature_radius_b: 0.07, width: 0.07, mass_a: 1.0, mass_b: 1.0 };
-    let expected = std::f64::consts::PI * 73.55e6 / (2.0 * (1.0 - 0.09) * (2.0 / 3.0 + 2.0 * 4f64.ln()));
+    let p = PairProperties {
+        curvature_radius_a: 0.07,
+        curvature_radius_b: 0.07,
+        width: 0.07,
+        mass_a: 1.0,
+        mass_b: 1.0,
+    };
+    let expected =
+        std::f64::consts::PI * 73.55e6 / (2.0 * (1.0 - 0.09) * (2.0 / 3.0 + 2.0 * 4f64.ln()));
     approx::assert_relative_eq!(law.normal_stiffness(&p), expected, max_relative = 1e-12);
 }

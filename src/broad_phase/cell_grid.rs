@@ -27,7 +27,12 @@ impl CellGrid {
     /// Candidate pairs `(i, j)` with `i < j` whose bounding boxes (grown by
     /// `margin`) overlap, written into `pairs` (cleared first), in a
     /// deterministic order.
-    pub fn candidate_pairs(&mut self, boxes: &[Aabb2], margin: f64, pairs: &mut Vec<(usize, usize)>) {
+    pub fn candidate_pairs(
+        &mut self,
+        boxes: &[Aabb2],
+        margin: f64,
+        pairs: &mut Vec<(usize, usize)>,
+    ) {
         pairs.clear();
         let n = boxes.len();
         if n < 2 {
@@ -105,8 +110,10 @@ impl CellGrid {
     }
 
     fn cell_of(&self, x: f64, y: f64) -> usize {
-        let col = (((x - self.origin.0) / self.cell_size).floor().max(0.0) as usize).min(self.columns - 1);
-        let row = (((y - self.origin.1) / self.cell_size).floor().max(0.0) as usize).min(self.rows - 1);
+        let col = (((x - self.origin.0) / self.cell_size).floor().max(0.0) as usize)
+            .min(self.columns - 1);
+        let row =
+            (((y - self.origin.1) / self.cell_size).floor().max(0.0) as usize).min(self.rows - 1);
         row * self.columns + col
     }
 }

@@ -56,8 +56,13 @@ mod tests {
     #[test]
     fn equal_circles_touch_at_the_midpoint_with_the_chord_width() {
         let c = Circle::new(1.0).unwrap();
-        let g = contact_circle_circle(&c, &Pose2::new(0.0, 0.0, 0.0), &c, &Pose2::new(1.8, 0.0, 0.0))
-            .unwrap();
+        let g = contact_circle_circle(
+            &c,
+            &Pose2::new(0.0, 0.0, 0.0),
+            &c,
+            &Pose2::new(1.8, 0.0, 0.0),
+        )
+        .unwrap();
         assert_relative_eq!(g.overlap, 0.2, epsilon = 1e-12);
         assert_relative_eq!(g.point.x, 0.9, epsilon = 1e-12);
         assert_relative_eq!(g.width, 2.0 * (1.0f64 - 0.81).sqrt(), epsilon = 1e-12);
@@ -67,6 +72,8 @@ mod tests {
     #[test]
     fn separated_circles_have_no_contact() {
         let c = Circle::new(1.0).unwrap();
-        assert!(contact_circle_circle(&c, &Pose2::default(), &c, &Pose2::new(2.0, 0.0, 0.0)).is_none());
+        assert!(
+            contact_circle_circle(&c, &Pose2::default(), &c, &Pose2::new(2.0, 0.0, 0.0)).is_none()
+        );
     }
 }

@@ -14,7 +14,11 @@ use crate::shape::{Circle, Segment};
 /// as a corner. The normal points from the circle into the wall. The width
 /// is the chord the wall line cuts from the circle; the wall's radius of
 /// curvature is infinite.
-pub fn contact_circle_segment(a: &Circle, pose_a: &Pose2, wall: &Segment) -> Option<ContactGeometry> {
+pub fn contact_circle_segment(
+    a: &Circle,
+    pose_a: &Pose2,
+    wall: &Segment,
+) -> Option<ContactGeometry> {
     let r = a.radius();
     let c = pose_a.position;
     let length = wall.length();

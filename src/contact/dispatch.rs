@@ -12,7 +12,6 @@ use crate::error::{DismechError, Result};
 use crate::math::Pose2;
 use crate::shape::AnyShape2;
 
-
 /// The contact of `a` at `pose_a` with `b` at `pose_b`: `Ok(None)` when
 /// they do not touch. Segments are taken in world coordinates (their pose is
 /// ignored): walls are fixed.

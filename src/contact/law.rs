@@ -106,7 +106,11 @@ pub trait ContactLaw<const D: usize> {
     type State: Clone + Default + std::fmt::Debug + Send + Sync;
 
     /// Force, tangent and new state for one step.
-    fn evaluate(&self, input: &ContactInput<D>, state: &Self::State) -> ContactResponse<D, Self::State>;
+    fn evaluate(
+        &self,
+        input: &ContactInput<D>,
+        state: &Self::State,
+    ) -> ContactResponse<D, Self::State>;
 
     /// The law's linear strength, if it has one.
     fn strength(&self) -> Option<Strength> {

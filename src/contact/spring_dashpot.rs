@@ -169,10 +169,7 @@ impl SpringDashpotCoulomb {
             } => {
                 let (r1, r2) = effective_radii(pair);
                 let r_min = r1.min(r2);
-                let width = pair
-                    .width
-                    .max(min_width_ratio * r_min)
-                    .min(2.0 * r_min);
+                let width = pair.width.max(min_width_ratio * r_min).min(2.0 * r_min);
                 width_stiffness(youngs_modulus, poisson_ratio, r1, r2, width)
             }
         }
@@ -229,11 +226,7 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
         let k_s = self.stiffness_ratio * k_n;
         let (eta_n, eta_s) = self.damping_coefficients(k_n, &input.pair);
         let du = input.increment;
-        let elastic_normal_increment = if input.is_new {
-            input.overlap
-        } else {
-            du[0]
-        };
+        let elastic_normal_increment = if input.is_new { input.overlap } else { du[0] };
         let e_n = state.spring.0[0] + k_n * elastic_normal_increment;
         if e_n < 0.0 {
             return open;
@@ -265,7 +258,11 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
         let limit = self.friction * e_n;
         let regime = if shear_norm > limit {
             // Return to the Coulomb limit (eq. 18); no shear dashpot in slip.
-            let scale = if shear_norm > 0.0 { limit / shear_norm } else { 0.0 };
+            let scale = if shear_norm > 0.0 {
+                limit / shear_norm
+            } else {
+                0.0
+            };
             let direction: SVector<f64, D> = if shear_norm > 0.0 {
                 spring / shear_norm
             } else {

@@ -268,7 +268,11 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
 
     /// Total kinetic energy (J/m).
     pub fn kinetic_energy(&self) -> f64 {
-        self.scene.particles.iter().map(|p| p.kinetic_energy()).sum()
+        self.scene
+            .particles
+            .iter()
+            .map(|p| p.kinetic_energy())
+            .sum()
     }
 
     /// Gravitational potential energy `−Σ m g·x` (J/m).
@@ -356,7 +360,8 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
         let response = self
             .law
             .evaluate(&input, previous.unwrap_or(&default_state));
-        let force_on_b = geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
+        let force_on_b =
+            geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
         let moment_a = moment_about(&pa.pose.position, &geometry.point, &(-force_on_b));
         self.system.force[3 * a] -= force_on_b.x;
         self.system.force[3 * a + 1] -= force_on_b.y;
@@ -417,7 +422,8 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
                 }
                 let pa = &self.scene.particles[a];
                 let shape = AnyShape2::Segment(wall);
-                if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &shape, &Pose2::default())? {
+                if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &shape, &Pose2::default())?
+                {
                     self.apply_contact(
                         a,
                         ContactTarget::Wall(w),

@@ -46,8 +46,20 @@ pub fn critical_time_step<L: ContactLaw<2>>(scene: &Scene, law: &L) -> Stability
         };
         let shear_mass_one = 1.0 / (1.0 / p.mass + r * r / p.inertia);
         for (partner, partner_radius, partner_mass, rel_mass, rel_shear_mass) in [
-            ("an identical particle", r, p.mass, 0.5 * p.mass, 0.5 * shear_mass_one),
-            ("a wall", f64::INFINITY, f64::INFINITY, p.mass, shear_mass_one),
+            (
+                "an identical particle",
+                r,
+                p.mass,
+                0.5 * p.mass,
+                0.5 * shear_mass_one,
+            ),
+            (
+                "a wall",
+                f64::INFINITY,
+                f64::INFINITY,
+                p.mass,
+                shear_mass_one,
+            ),
         ] {
             let pair = PairProperties {
                 curvature_radius_a: r,
@@ -61,7 +73,12 @@ pub fn critical_time_step<L: ContactLaw<2>>(scene: &Scene, law: &L) -> Stability
             };
             for (mode, k, m, eta) in [
                 ("normal", bound.normal, rel_mass, bound.normal_damping),
-                ("shear-rotation", bound.shear, rel_shear_mass, bound.shear_damping),
+                (
+                    "shear-rotation",
+                    bound.shear,
+                    rel_shear_mass,
+                    bound.shear_damping,
+                ),
             ] {
                 let dt = oscillator_limit(k, m, eta);
                 if dt < best.dt {
@@ -92,7 +109,7 @@ mod tests {
     /// limit.
     #[test]
     fn damped_limit_separates_growth_from_decay() {
-        let (k, m) = (100.0, 1.0);
+        let (k, m) = (100.0f64, 1.0f64);
         let eta = 2.0 * (k * m).sqrt();
         let limit = oscillator_limit(k, m, eta);
         let run = |dt: f64| {

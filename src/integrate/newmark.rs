@@ -90,7 +90,8 @@ mod tests {
         let (mut d, mut v, mut a) = (1.0, 0.0, -k);
         let c = scheme.implicit_coefficients(dt).unwrap();
         for _ in 0..steps {
-            let rhs = -k * d + m * (c.acceleration_from_velocity * v + c.acceleration_from_acceleration * a);
+            let rhs = -k * d
+                + m * (c.acceleration_from_velocity * v + c.acceleration_from_acceleration * a);
             let dd = rhs / (k + c.acceleration_per_increment * m);
             scheme.finish_implicit(dt, dd, &mut v, &mut a);
             d += dd;

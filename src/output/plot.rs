@@ -46,7 +46,11 @@ fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
-    let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 * lo.abs().max(1.0) };
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        0.5 * lo.abs().max(1.0)
+    };
     (lo - pad, hi + pad)
 }
 
@@ -80,10 +84,15 @@ pub fn line_chart(
         for (i, s) in series.iter().enumerate() {
             let color = PALETTE[i % PALETTE.len()];
             chart
-                .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    color.stroke_width(2),
+                ))
                 .map_err(|e| plot_error(path, e))?
                 .label(s.name.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
             if s.markers {
                 chart
                     .draw_series(s.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
@@ -134,7 +143,11 @@ pub fn assembly_picture(
     let width_px = 800u32;
     let height_px = ((width_px as f64) * (y1 - y0) / (x1 - x0)).clamp(200.0, 2400.0) as u32 + 60;
     let largest = forces.iter().map(|f| f.force.norm()).fold(0.0, f64::max);
-    let scale = if largest > 0.0 { max_length / largest } else { 0.0 };
+    let scale = if largest > 0.0 {
+        max_length / largest
+    } else {
+        0.0
+    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width_px, height_px)).into_drawing_area();
@@ -158,14 +171,20 @@ pub fn assembly_picture(
             .map_err(|e| plot_error(path, e))?;
         chart
             .draw_series(walls.iter().map(|w| {
-                PathElement::new(vec![(w.start.x, w.start.y), (w.end.x, w.end.y)], BLACK.stroke_width(3))
+                PathElement::new(
+                    vec![(w.start.x, w.start.y), (w.end.x, w.end.y)],
+                    BLACK.stroke_width(3),
+                )
             }))
             .map_err(|e| plot_error(path, e))?;
         chart
             .draw_series(forces.iter().map(|f| {
                 let half = f.force * (0.5 * scale);
                 PathElement::new(
-                    vec![(f.point.x - half.x, f.point.y - half.y), (f.point.x + half.x, f.point.y + half.y)],
+                    vec![
+                        (f.point.x - half.x, f.point.y - half.y),
+                        (f.point.x + half.x, f.point.y + half.y),
+                    ],
                     PALETTE[1].stroke_width(2),
                 )
             }))

@@ -101,14 +101,22 @@ pub fn fill_scene(config: &FillConfig) -> Result<Scene> {
     let mut row = 0;
     while placed < config.count {
         let full = row % 2 == 0;
-        let in_row = if full { config.per_row } else { config.per_row.saturating_sub(1).max(1) };
+        let in_row = if full {
+            config.per_row
+        } else {
+            config.per_row.saturating_sub(1).max(1)
+        };
         let n = in_row.min(config.count - placed);
         let y = config.radius + 0.005 + row as f64 * config.row_pitch;
         // A partial last row is centred on the slots of its row.
         let first_slot = (in_row - n) / 2;
         for k in 0..n {
             let slot = (first_slot + k) as f64;
-            let x = if full { (slot + 0.5) * pitch } else { (slot + 1.0) * pitch };
+            let x = if full {
+                (slot + 0.5) * pitch
+            } else {
+                (slot + 1.0) * pitch
+            };
             scene.add_circle(Point::new(x, y), config.radius, DENSITY)?;
         }
         placed += n;
@@ -165,7 +173,12 @@ impl FillEquilibrium {
 /// Wall reactions of a DEM run in an [`Frame::open_box`].
 pub fn equilibrium(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>) -> FillEquilibrium {
     let frame = &sim.scene().frame;
-    let reaction = |name: &str| frame.index_of(name).map(|w| -sim.wall_load(w)).unwrap_or_default();
+    let reaction = |name: &str| {
+        frame
+            .index_of(name)
+            .map(|w| -sim.wall_load(w))
+            .unwrap_or_default()
+    };
     let (left, right, bottom) = (reaction("left"), reaction("right"), reaction("bottom"));
     let fill_height = sim
         .scene()
@@ -183,30 +196,35 @@ pub fn equilibrium(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>) -> 
     }
 }
 
-/// Normal pressure on a side wall, binned by height: `(bin centre height,
-/// pressure)` with pressure = Σ normal contact force in the bin / bin
-/// height (Pa).
+/// Normal pressure on a side wall at each of its contacts, as paper 000
+/// defines it for eq. (23): `(h, P_h / d)` with `h` the height of the
+/// contact, `P_h` its normal force and `d` the mean distance between the
+/// wall's contacts (`default_spacing` when the wall has fewer than two).
+/// Sorted by height.
 pub fn wall_pressure_profile(
     sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
     wall_name: &str,
-    bin_height: f64,
-    fill_height: f64,
+    default_spacing: f64,
 ) -> Vec<(f64, f64)> {
     let frame = &sim.scene().frame;
     let Some(w) = frame.index_of(wall_name) else {
         return Vec::new();
     };
     let outward = -frame.walls()[w].inner_normal();
-    let bins = (fill_height / bin_height).ceil().max(1.0) as usize;
-    let mut sums = vec![0.0; bins];
-    for c in sim.contacts().iter().filter(|c| c.target == ContactTarget::Wall(w)) {
-        let k = ((c.point.y / bin_height).floor().max(0.0) as usize).min(bins - 1);
-        sums[k] += c.force_on_target.dot(&outward);
-    }
-    sums.iter()
-        .enumerate()
-        .map(|(k, s)| ((k as f64 + 0.5) * bin_height, s / bin_height))
-        .collect()
+    let mut forces: Vec<(f64, f64)> = sim
+        .contacts()
+        .iter()
+        .filter(|c| c.target == ContactTarget::Wall(w))
+        .map(|c| (c.point.y, c.force_on_target.dot(&outward)))
+        .collect();
+    forces.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let spacing = match (forces.first(), forces.last()) {
+        (Some(lo), Some(hi)) if forces.len() > 1 && hi.0 > lo.0 => {
+            (hi.0 - lo.0) / (forces.len() - 1) as f64
+        }
+        _ => default_spacing,
+    };
+    forces.iter().map(|&(h, f)| (h, f / spacing)).collect()
 }
 
 /// Build, check and settle a filling; `on_check(time, ratio)` reports
@@ -214,12 +232,20 @@ pub fn wall_pressure_profile(
 pub fn settle(
     config: &FillConfig,
     on_check: impl FnMut(f64, f64),
-) -> Result<(DemSimulation<SpringDashpotCoulomb, ExplicitEuler>, RunOutcome)> {
+) -> Result<(
+    DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    RunOutcome,
+)> {
     let settings = DemSettings {
         dt: TIME_STEP,
         ..DemSettings::default()
     };
-    let mut sim = DemSimulation::new(fill_scene(config)?, material_law()?, ExplicitEuler, settings)?;
+    let mut sim = DemSimulation::new(
+        fill_scene(config)?,
+        material_law()?,
+        ExplicitEuler,
+        settings,
+    )?;
     let outcome = sim.run_to_rest(&rest_criterion(), on_check)?;
     Ok((sim, outcome))
 }
@@ -250,7 +276,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     bar.finish_and_clear();
     let eq = equilibrium(&sim);
     let mut files = Vec::new();
-    write_example1_outputs(&dir, &sim, &config, &eq, &mut files)?;
+    write_example1_outputs(&dir, &sim, &config, &mut files)?;
 
     let vertical = eq.vertical_ratio();
     let horizontal = eq.horizontal_imbalance();
@@ -316,7 +342,6 @@ fn write_example1_outputs(
     dir: &Path,
     sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
     config: &FillConfig,
-    eq: &FillEquilibrium,
     files: &mut Vec<String>,
 ) -> Result<()> {
     let scene = sim.scene();
@@ -347,13 +372,13 @@ fn write_example1_outputs(
     )?;
     files.push("ex1_contact_forces.svg".into());
 
-    let bin = 2.0 * config.radius;
-    let left = wall_pressure_profile(sim, "left", bin, eq.fill_height);
-    let right = wall_pressure_profile(sim, "right", bin, eq.fill_height);
+    let spacing = 2.0 * config.radius;
+    let left = wall_pressure_profile(sim, "left", spacing);
+    let right = wall_pressure_profile(sim, "right", spacing);
     let kpa = |v: &[(f64, f64)]| v.iter().map(|&(h, p)| (p / 1e3, h)).collect::<Vec<_>>();
     line_chart(
         &dir.join("ex1_wall_pressure.svg"),
-        "Example 1: side-wall pressure vs height",
+        "Example 1: side-wall pressure P_h / d vs height (eq. 23)",
         "normal pressure (kPa)",
         "height above the floor (m)",
         &[
@@ -372,12 +397,12 @@ fn write_example1_outputs(
     files.push("ex1_wall_pressure.svg".into());
     let rows: Vec<Vec<f64>> = left
         .iter()
-        .zip(&right)
-        .map(|(l, r)| vec![l.0, l.1, r.1])
+        .map(|&(h, p)| vec![0.0, h, p])
+        .chain(right.iter().map(|&(h, p)| vec![1.0, h, p]))
         .collect();
     write_csv(
         &dir.join("ex1_wall_pressure.csv"),
-        &["height_m", "left_pressure_pa", "right_pressure_pa"],
+        &["wall_is_right", "height_m", "pressure_pa"],
         &rows,
     )?;
     files.push("ex1_wall_pressure.csv".into());
@@ -403,7 +428,15 @@ fn write_example1_outputs(
         .collect();
     write_csv(
         &dir.join("ex1_contacts.csv"),
-        &["particle", "target_is_wall", "target", "x_m", "y_m", "fx_n_per_m", "fy_n_per_m"],
+        &[
+            "particle",
+            "target_is_wall",
+            "target",
+            "x_m",
+            "y_m",
+            "fx_n_per_m",
+            "fy_n_per_m",
+        ],
         &contact_rows,
     )?;
     files.push("ex1_contacts.csv".into());
@@ -412,7 +445,11 @@ fn write_example1_outputs(
         .iter()
         .map(|p| vec![p.pose.position.x, p.pose.position.y, p.pose.angle])
         .collect();
-    write_csv(&dir.join("ex1_particles.csv"), &["x_m", "y_m", "angle_rad"], &particle_rows)?;
+    write_csv(
+        &dir.join("ex1_particles.csv"),
+        &["x_m", "y_m", "angle_rad"],
+        &particle_rows,
+    )?;
     files.push("ex1_particles.csv".into());
     Ok(())
 }

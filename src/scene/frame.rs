@@ -23,7 +23,9 @@ impl Frame {
     /// positive length.
     pub fn from_walls(walls: Vec<(String, Segment)>) -> Result<Self> {
         for (i, (_, w)) in walls.iter().enumerate() {
-            let finite = [w.start.x, w.start.y, w.end.x, w.end.y].iter().all(|v| v.is_finite());
+            let finite = [w.start.x, w.start.y, w.end.x, w.end.y]
+                .iter()
+                .all(|v| v.is_finite());
             if !finite {
                 return Err(DismechError::DegenerateWall {
                     wall: i,
@@ -98,12 +100,23 @@ mod tests {
     #[test]
     fn frame_with_a_gap_is_refused_with_the_gap() {
         let err = Frame::from_walls(vec![
-            ("a".into(), Segment::new(Point::new(0.0, 1.0), Point::new(0.0, 0.0))),
-            ("b".into(), Segment::new(Point::new(0.01, 0.0), Point::new(1.0, 0.0))),
+            (
+                "a".into(),
+                Segment::new(Point::new(0.0, 1.0), Point::new(0.0, 0.0)),
+            ),
+            (
+                "b".into(),
+                Segment::new(Point::new(0.01, 0.0), Point::new(1.0, 0.0)),
+            ),
         ])
         .unwrap_err();
         match err {
-            DismechError::FrameNotClosed { wall: 0, next: 1, gap, .. } => {
+            DismechError::FrameNotClosed {
+                wall: 0,
+                next: 1,
+                gap,
+                ..
+            } => {
                 approx::assert_relative_eq!(gap, 0.01)
             }
             other => panic!("unexpected {other}"),

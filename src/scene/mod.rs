@@ -4,7 +4,7 @@
 mod frame;
 mod particle;
 
-pub use frame::Frame;
+pub use frame::{Frame, JOINT_TOLERANCE};
 pub use particle::Particle;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
@@ -42,7 +42,8 @@ impl Scene {
         let circle = Circle::new(radius)?;
         require_positive("density", density)?;
         let mp = circle.mass_properties(density);
-        self.particles.push(Particle::at_rest(circle.into(), centre, mp));
+        self.particles
+            .push(Particle::at_rest(circle.into(), centre, mp));
         Ok(self.particles.len() - 1)
     }
 

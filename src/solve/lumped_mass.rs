@@ -52,7 +52,7 @@ pub fn solve_lumped_into(system: &LumpedSystem, out: &mut Vec<f64>) -> Result<()
     }
     out.resize(system.mass.len(), 0.0);
     for (i, (&m, &f)) in system.mass.iter().zip(&system.force).enumerate() {
-        if !(m > 0.0) || !m.is_finite() {
+        if m.is_nan() || m <= 0.0 || !m.is_finite() {
             return Err(SolveError::NonPositive {
                 what: "lumped mass",
                 index: i,
