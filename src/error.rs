@@ -100,6 +100,14 @@ pub enum DismechError {
         /// Released potential energy plus initial kinetic energy.
         available: f64,
     },
+    /// A method was given an integrator of the wrong kind.
+    #[error("the {method} needs an {needed} integrator")]
+    IncompatibleIntegrator {
+        /// The method.
+        method: &'static str,
+        /// The kind it needs (`explicit` or `implicit`).
+        needed: &'static str,
+    },
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

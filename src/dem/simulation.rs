@@ -158,10 +158,9 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             settings.initial_overlap_tolerance,
         )?;
         if !integrator.is_explicit() {
-            return Err(DismechError::InvalidParameter {
-                name: "integrator",
-                value: f64::NAN,
-                requirement: "the DEM needs an explicit integrator (e.g. ExplicitEuler)",
+            return Err(DismechError::IncompatibleIntegrator {
+                method: "explicit DEM",
+                needed: "explicit",
             });
         }
         if settings.check_stability {

@@ -15,16 +15,15 @@ pub struct LumpedSystem {
     pub force: Vec<f64>,
 }
 
-/// Solves a [`LumpedSystem`] into a reusable acceleration buffer.
-#[derive(Debug, Clone, Default)]
-pub struct LumpedMassSolver {
-    acceleration: Vec<f64>,
-}
+/// Solves a [`LumpedSystem`]; hot loops call [`solve_lumped_into`] with a
+/// buffer they keep instead.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LumpedMassSolver;
 
 impl LumpedMassSolver {
-    /// A solver with an empty workspace.
+    /// The solver.
     pub fn new() -> Self {
-        Self::default()
+        Self
     }
 }
 
@@ -33,9 +32,8 @@ impl GlobalSolver for LumpedMassSolver {
     type Solution = Vec<f64>;
 
     fn solve(&mut self, system: &LumpedSystem) -> Result<Vec<f64>, SolveError> {
-        let mut out = std::mem::take(&mut self.acceleration);
+        let mut out = Vec::with_capacity(system.mass.len());
         solve_lumped_into(system, &mut out)?;
-        self.acceleration = out.clone();
         Ok(out)
     }
 }
