@@ -230,6 +230,15 @@ fn filling_in_a_frame_carries_its_weight_on_the_walls() {
 
 // ---- bad input -------------------------------------------------------------
 
+fn default_simulation(scene: Scene) -> Result<DemSimulation<SpringDashpotCoulomb>, DismechError> {
+    DemSimulation::new(
+        scene,
+        constant_law(1e7, 0.5, Damping::Critical),
+        ExplicitEuler,
+        DemSettings::default(),
+    )
+}
+
 fn expect_invalid(result: Result<impl std::fmt::Debug, DismechError>, name: &str) {
     match result {
         Err(DismechError::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
@@ -268,13 +277,7 @@ fn bad_parameters_are_typed_errors_naming_the_value() {
 #[test]
 fn particle_inside_a_wall_is_refused() {
     let scene = single_disc_scene(0.07, Point::new(0.05, 1.0));
-    let err = DemSimulation::new(
-        scene,
-        constant_law(1e7, 0.5, Damping::Critical),
-        ExplicitEuler,
-        DemSettings::default(),
-    )
-    .unwrap_err();
+    let err = default_simulation(scene).unwrap_err();
     assert!(
         matches!(
             err,
@@ -294,13 +297,7 @@ fn overlapping_particles_are_refused_beyond_the_tolerance() {
     scene
         .add_circle(Point::new(1.13, 1.0), 0.07, 2690.0)
         .unwrap();
-    let err = DemSimulation::new(
-        scene,
-        constant_law(1e7, 0.5, Damping::Critical),
-        ExplicitEuler,
-        DemSettings::default(),
-    )
-    .unwrap_err();
+    let err = default_simulation(scene).unwrap_err();
     match err {
         DismechError::InitialOverlap {
             a: 0,
@@ -341,13 +338,7 @@ fn non_finite_state_stops_the_run_naming_step_and_particle() {
         .add_circle(Point::new(2.0, 1.0), 0.07, 2690.0)
         .unwrap();
     scene.particles[1].velocity = Vec2::new(f64::NAN, 0.0);
-    let mut sim = DemSimulation::new(
-        scene,
-        constant_law(1e7, 0.5, Damping::Critical),
-        ExplicitEuler,
-        DemSettings::default(),
-    )
-    .unwrap();
+    let mut sim = default_simulation(scene).unwrap();
     match sim.step().unwrap_err() {
         DismechError::NonFinite {
             step: 0, body: 1, ..
