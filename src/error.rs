@@ -108,6 +108,26 @@ pub enum DismechError {
         /// The kind it needs (`explicit` or `implicit`).
         needed: &'static str,
     },
+    /// A contact was declared between bodies that do not touch.
+    #[error("contact {contact} (element {body} with {partner}) is declared but the surfaces are {gap:.3e} m apart (negative: overlapping); they must touch within {tolerance:.1e} m")]
+    ContactNotTouching {
+        /// Index of the contact.
+        contact: usize,
+        /// The element.
+        body: usize,
+        /// What it was declared against, in words.
+        partner: String,
+        /// Distance between the surfaces.
+        gap: f64,
+        /// Accepted distance.
+        tolerance: f64,
+    },
+    /// A driving plate has no contact.
+    #[error("the moving support `{0}` touches no element")]
+    PlateTouchesNothing(String),
+    /// A limit analysis needs exactly one moving support.
+    #[error("a limit analysis needs exactly one moving support (plate); found {0}")]
+    DrivingSupportCount(usize),
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

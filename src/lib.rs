@@ -65,3 +65,4 @@ pub mod solve;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+pub mod limit;

@@ -22,10 +22,12 @@ pub mod circle_segment;
 pub mod dispatch;
 mod geometry;
 mod law;
+mod rigid_plastic;
 mod spring_dashpot;
 
 pub use geometry::{moment_about, relative_increment, ContactGeometry};
 pub use law::{
     ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
 };
+pub use rigid_plastic::RigidPlastic;
 pub use spring_dashpot::{Damping, NormalStiffness, SpringDashpotCoulomb, SpringState};

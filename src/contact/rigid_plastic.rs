@@ -1,0 +1,110 @@
+//! The rigid-plastic contact of limit analysis (paper 002, eqs. 13–15):
+//! rigid bodies, a contact that keeps contact (or, unilaterally, may open),
+//! and a shear force bounded by a strength, `|T| ≤ C + N tan φ`.
+
+use nalgebra::{SMatrix, SVector};
+
+use super::law::{ContactInput, ContactLaw, ContactResponse, Regime, Strength};
+use crate::error::{require_non_negative, DismechError, Result};
+
+/// A rigid-plastic contact: cohesion `C`, friction angle `φ`, and whether it
+/// may open.
+///
+/// In a limit analysis the law gives the LP its admissible set
+/// ([`ContactLaw::strength`]) and its flow rule: slip `Ṡ` dissipates
+/// `C |Ṡ|` (eq. 15); with friction the flow is associated, so slip comes
+/// with dilation `|Ṡ| tan φ` and the dissipation stays `C |Ṡ|`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidPlastic {
+    cohesion: f64,
+    friction_angle: f64,
+    unilateral: bool,
+}
+
+impl RigidPlastic {
+    /// A bilateral (never opening) cohesive contact of strength `C ≥ 0`,
+    /// the contact of paper 002.
+    pub fn cohesive(cohesion: f64) -> Result<Self> {
+        Self::new(cohesion, 0.0, false)
+    }
+
+    /// A contact with cohesion `C ≥ 0`, friction angle `φ ∈ [0, π/2)` (rad)
+    /// and, if `unilateral`, no tension: the contact may open.
+    pub fn new(cohesion: f64, friction_angle: f64, unilateral: bool) -> Result<Self> {
+        require_non_negative("contact cohesion C", cohesion)?;
+        if !(friction_angle.is_finite()
+            && (0.0..std::f64::consts::FRAC_PI_2).contains(&friction_angle))
+        {
+            return Err(DismechError::InvalidParameter {
+                name: "friction angle phi",
+                value: friction_angle,
+                requirement: "must lie in [0, 90°) (radians)",
+            });
+        }
+        Ok(Self {
+            cohesion,
+            friction_angle,
+            unilateral,
+        })
+    }
+
+    /// Cohesion C.
+    pub fn cohesion(&self) -> f64 {
+        self.cohesion
+    }
+
+    /// Friction coefficient tan φ.
+    pub fn friction(&self) -> f64 {
+        self.friction_angle.tan()
+    }
+
+    /// Whether the contact may open.
+    pub fn is_unilateral(&self) -> bool {
+        self.unilateral
+    }
+
+    /// Whether the contact resists shear at all.
+    pub fn resists_shear(&self) -> bool {
+        self.cohesion > 0.0 || self.friction_angle > 0.0
+    }
+}
+
+impl<const D: usize> ContactLaw<D> for RigidPlastic {
+    type State = ();
+
+    /// The flow rule of eq. (14) for the shear part, for a cohesive
+    /// contact: `T = C sign(Ṡ)` while slipping; a stuck contact
+    /// (`Ṡ = 0`) may carry any `|T| ≤ C`, reported as 0. The normal force of
+    /// a rigid contact is a reaction, not a function of the motion: it is
+    /// found by the LP, so it is reported as 0 here.
+    fn evaluate(&self, input: &ContactInput<D>, _state: &()) -> ContactResponse<D, ()> {
+        let mut force = SVector::<f64, D>::zeros();
+        let mut slip2 = 0.0;
+        for i in 1..D {
+            slip2 += input.increment[i] * input.increment[i];
+        }
+        let slip = slip2.sqrt();
+        let regime = if slip > 0.0 {
+            for i in 1..D {
+                force[i] = self.cohesion * input.increment[i] / slip;
+            }
+            Regime::Slip
+        } else {
+            Regime::Stick
+        };
+        ContactResponse {
+            force,
+            spring_force: SVector::zeros(),
+            tangent: SMatrix::zeros(),
+            regime,
+            state: (),
+        }
+    }
+
+    fn strength(&self) -> Option<Strength> {
+        Some(Strength {
+            cohesion: self.cohesion,
+            friction: self.friction(),
+        })
+    }
+}

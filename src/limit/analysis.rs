@@ -1,0 +1,245 @@
+//! Assembly of the kinematic LP and its solution.
+
+use super::model::{LimitModel, Partner};
+use crate::error::{DismechError, Result};
+use crate::math::{cross, Vec2};
+use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
+
+/// How a limit analysis ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LimitStatus {
+    /// A collapse mechanism was found; the limit load is certified by equal
+    /// primal and dual optima.
+    Collapse,
+    /// No kinematically admissible mechanism exists: the assembly is locked
+    /// and no finite load moves the plate (the LP is infeasible).
+    Locked,
+    /// A mechanism dissipates less than the known loads supply: the
+    /// assembly collapses under its own loads (the LP is unbounded).
+    Unbounded,
+    /// The LP solver stopped without a certified optimum.
+    SolverTrouble(LpStatus),
+}
+
+/// The result of a limit analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitResult {
+    /// Outcome.
+    pub status: LimitStatus,
+    /// Limit load on the plate, along its velocity (N per m); `None` unless
+    /// the status is [`LimitStatus::Collapse`].
+    pub load: Option<f64>,
+    /// Upper bound: the minimum of the kinematic LP (dissipation minus the
+    /// power of known loads, divided by the plate speed).
+    pub kinematic_load: f64,
+    /// Lower bound: the load in equilibrium with the dual contact forces.
+    pub static_load: f64,
+    /// Velocity of each element `(velocity, angular velocity)` in the
+    /// mechanism (plate at unit speed).
+    pub velocities: Vec<(Vec2, f64)>,
+    /// Slip rate at each contact (relative tangential velocity of B w.r.t. A).
+    pub slip: Vec<f64>,
+    /// Opening rate at each contact (zero for a contact that keeps contact).
+    pub opening: Vec<f64>,
+    /// Normal force at each contact (compression positive).
+    pub normal_force: Vec<f64>,
+    /// Shear force at each contact (the sign of the slip it resists).
+    pub shear_force: Vec<f64>,
+    /// Interior-point iterations.
+    pub iterations: u32,
+    /// Number of LP variables, equality rows and non-zeros.
+    pub lp_size: (usize, usize, usize),
+}
+
+/// Column indices of one contact's extra LP variables.
+#[derive(Debug, Clone, Copy, Default)]
+struct ContactColumns {
+    slip: Option<(usize, usize)>,
+    opening: Option<usize>,
+    normal_row: usize,
+    shear_row: Option<usize>,
+}
+
+/// Build and solve the kinematic LP of `model` with `solver`.
+pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+    let drivers: Vec<usize> = model
+        .supports()
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.velocity.norm() > 0.0)
+        .map(|(i, _)| i)
+        .collect();
+    if drivers.len() != 1 {
+        return Err(DismechError::DrivingSupportCount(drivers.len()));
+    }
+    let plate = drivers[0];
+    if !model
+        .contacts()
+        .iter()
+        .any(|c| c.partner == Partner::Support(plate))
+    {
+        return Err(DismechError::PlateTouchesNothing(
+            model.supports()[plate].name.clone(),
+        ));
+    }
+    let speed = model.supports()[plate].velocity.norm();
+
+    // Velocity unknowns: u, v (and θ̇ for rolling elements) per element.
+    let mut dof = Vec::with_capacity(model.bodies().len());
+    let mut n = 0;
+    for b in model.bodies() {
+        dof.push(n);
+        n += if b.rotates { 3 } else { 2 };
+    }
+    // Extra unknowns per contact.
+    let mut columns = vec![ContactColumns::default(); model.contacts().len()];
+    for (c, contact) in model.contacts().iter().enumerate() {
+        if contact.law.resists_shear() {
+            columns[c].slip = Some((n, n + 1));
+            n += 2;
+        }
+        if contact.law.is_unilateral() || contact.law.friction() > 0.0 {
+            columns[c].opening = Some(n);
+            n += 1;
+        }
+    }
+    let mut lp = LinearProgram::new(n);
+    for (i, b) in model.bodies().iter().enumerate() {
+        lp.objective[dof[i]] = -b.load.x;
+        lp.objective[dof[i] + 1] = -b.load.y;
+    }
+
+    let mut row = Vec::with_capacity(8);
+    for (c, contact) in model.contacts().iter().enumerate() {
+        let law = &contact.law;
+        let mu = law.friction();
+        // Normal: opening rate = Δv·n.
+        let constant = jump_row(model, &dof, c, &contact.normal, &mut row);
+        if let Some(opening) = columns[c].opening {
+            row.push((opening, -1.0));
+            columns[c].normal_row = lp.add_equality(&row, -constant);
+            lp.add_bounds(opening, Some(0.0), None);
+            if mu > 0.0 && !law.is_unilateral() {
+                // Bilateral frictional contact: dissipation C cot φ × opening.
+                lp.objective[opening] = law.cohesion() / mu;
+            }
+        } else {
+            columns[c].normal_row = lp.add_equality(&row, -constant);
+        }
+        // Shear: slip rate = Δv·t = S⁺ − S⁻.
+        if let Some((plus, minus)) = columns[c].slip {
+            let constant = jump_row(model, &dof, c, &contact.tangent(), &mut row);
+            row.push((plus, -1.0));
+            row.push((minus, 1.0));
+            columns[c].shear_row = Some(lp.add_equality(&row, -constant));
+            lp.add_bounds(plus, Some(0.0), None);
+            lp.add_bounds(minus, Some(0.0), None);
+            let bilateral_frictional = mu > 0.0 && !law.is_unilateral();
+            let cost = if bilateral_frictional {
+                0.0
+            } else {
+                law.cohesion()
+            };
+            lp.objective[plus] = cost;
+            lp.objective[minus] = cost;
+            if let (Some(opening), true) = (columns[c].opening, mu > 0.0) {
+                // Associated flow: opening ≥ |S| tan φ.
+                lp.add_inequality(&[(plus, mu), (minus, mu), (opening, -1.0)], 0.0);
+            }
+        }
+    }
+    let lp_size = (
+        n,
+        lp.equality_rhs.len(),
+        lp.equalities.len() + lp.inequalities.len(),
+    );
+    let solution = solver.solve(&lp)?;
+
+    let status = match solution.status {
+        LpStatus::Optimal | LpStatus::AlmostOptimal => LimitStatus::Collapse,
+        LpStatus::PrimalInfeasible => LimitStatus::Locked,
+        LpStatus::DualInfeasible => LimitStatus::Unbounded,
+        other => LimitStatus::SolverTrouble(other),
+    };
+    let contacts = model.contacts();
+    let mut result = LimitResult {
+        status,
+        load: None,
+        kinematic_load: solution.objective / speed,
+        static_load: f64::NAN,
+        velocities: Vec::with_capacity(model.bodies().len()),
+        slip: vec![0.0; contacts.len()],
+        opening: vec![0.0; contacts.len()],
+        normal_force: vec![0.0; contacts.len()],
+        shear_force: vec![0.0; contacts.len()],
+        iterations: solution.iterations,
+        lp_size,
+    };
+    if status != LimitStatus::Collapse || solution.x.len() != n {
+        return Ok(result);
+    }
+    for (i, b) in model.bodies().iter().enumerate() {
+        let k = dof[i];
+        let omega = if b.rotates { solution.x[k + 2] } else { 0.0 };
+        result
+            .velocities
+            .push((Vec2::new(solution.x[k], solution.x[k + 1]), omega));
+    }
+    let plate_direction = model.supports()[plate].velocity / speed;
+    let mut plate_force = Vec2::zeros();
+    for (c, contact) in contacts.iter().enumerate() {
+        let cols = columns[c];
+        if let Some((plus, minus)) = cols.slip {
+            result.slip[c] = solution.x[plus] - solution.x[minus];
+        }
+        if let Some(opening) = cols.opening {
+            result.opening[c] = solution.x[opening];
+        }
+        // Dual multipliers → contact forces (see the module docs of
+        // `solve::linear_program` for the sign convention).
+        result.normal_force[c] = -solution.equality_duals[cols.normal_row];
+        if let Some(r) = cols.shear_row {
+            result.shear_force[c] = solution.equality_duals[r];
+        }
+        if contact.partner == Partner::Support(plate) {
+            plate_force +=
+                contact.normal * result.normal_force[c] - contact.tangent() * result.shear_force[c];
+        }
+    }
+    // The load that drives the plate balances the elements' push on it.
+    result.static_load = -plate_force.dot(&plate_direction);
+    result.load = Some(result.kinematic_load);
+    Ok(result)
+}
+
+/// Coefficients of `Δv · direction` at contact `c` in terms of the element
+/// velocities (into `row`), and the constant part from moving supports.
+fn jump_row(
+    model: &LimitModel,
+    dof: &[usize],
+    c: usize,
+    direction: &Vec2,
+    row: &mut Vec<(usize, f64)>,
+) -> f64 {
+    row.clear();
+    let contact = &model.contacts()[c];
+    let add_body = |i: usize, sign: f64, row: &mut Vec<(usize, f64)>| {
+        let b = &model.bodies()[i];
+        let k = dof[i];
+        row.push((k, sign * direction.x));
+        row.push((k + 1, sign * direction.y));
+        if b.rotates {
+            // ω × r = ω perp(r), so its component along d is ω (r × d).
+            let r = contact.point - b.centre;
+            row.push((k + 2, sign * cross(&r, direction)));
+        }
+    };
+    add_body(contact.body, -1.0, row);
+    match contact.partner {
+        Partner::Body(j) => {
+            add_body(j, 1.0, row);
+            0.0
+        }
+        Partner::Support(s) => model.supports()[s].velocity.dot(direction),
+    }
+}

@@ -1,0 +1,310 @@
+//! Rigid-plastic limit analysis by LP: exact small cases, static
+//! admissibility of the dual forces, and bad input.
+
+use dismech::contact::RigidPlastic;
+use dismech::error::DismechError;
+use dismech::limit::lattice::{eq32, eq38, Lattice};
+use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
+use dismech::math::{Point, Vec2};
+use dismech::solve::LinearProgramSolver;
+use std::f64::consts::SQRT_2;
+
+fn solve(model: &LimitModel) -> LimitResult {
+    analyse(model, &mut LinearProgramSolver::default()).unwrap()
+}
+
+/// Every element is in equilibrium under its load and the dual contact
+/// forces, and every shear force is within strength: the dual is a
+/// statically admissible field, so the static load is a lower bound.
+fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
+    let mut force = vec![Vec2::zeros(); model.bodies().len()];
+    let mut moment = vec![0.0; model.bodies().len()];
+    for (c, contact) in model.contacts().iter().enumerate() {
+        let on_b = contact.normal * r.normal_force[c] - contact.tangent() * r.shear_force[c];
+        let a = contact.body;
+        force[a] -= on_b;
+        let ra = contact.point - model.bodies()[a].centre;
+        moment[a] -= ra.x * on_b.y - ra.y * on_b.x;
+        if let Partner::Body(b) = contact.partner {
+            force[b] += on_b;
+            let rb = contact.point - model.bodies()[b].centre;
+            moment[b] += rb.x * on_b.y - rb.y * on_b.x;
+        }
+        let strength = contact.law.cohesion() + contact.law.friction() * r.normal_force[c].max(0.0);
+        assert!(
+            r.shear_force[c].abs() <= strength + 1e-6,
+            "contact {c}: |T| = {} > {}",
+            r.shear_force[c],
+            strength
+        );
+    }
+    let scale = 1.0 + r.kinematic_load.abs();
+    for (i, b) in model.bodies().iter().enumerate() {
+        let net = force[i] + b.load;
+        assert!(
+            net.norm() <= 1e-6 * scale,
+            "element {i} out of balance by {net}"
+        );
+        if b.rotates {
+            assert!(
+                moment[i].abs() <= 1e-6 * scale,
+                "element {i}: moment {}",
+                moment[i]
+            );
+        }
+    }
+    assert!(
+        (r.kinematic_load - r.static_load).abs() <= 1e-6 * scale,
+        "primal {} != dual {}",
+        r.kinematic_load,
+        r.static_load
+    );
+}
+
+/// §2.2: two elements at α = 45°; element 1 held by two walls can only
+/// rotate; element 2 is pushed by a plate; all strengths C.
+#[test]
+fn two_element_example_needs_one_plus_root_two_c() {
+    let (r, c) = (1.0, 1.0);
+    let law = RigidPlastic::cohesive(c).unwrap();
+    let mut m = LimitModel::new(1e-9).unwrap();
+    let e1 = m.add_body(Point::new(0.0, 0.0), r, true).unwrap();
+    let e2 = m
+        .add_body(Point::new(SQRT_2 * r, SQRT_2 * r), r, true)
+        .unwrap();
+    let left = m
+        .add_support(
+            "left wall",
+            Point::new(-r, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    let floor = m
+        .add_support(
+            "floor",
+            Point::new(0.0, -r),
+            Vec2::new(0.0, 1.0),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    let plate = m
+        .add_support(
+            "plate",
+            Point::new(SQRT_2 * r + r, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+        )
+        .unwrap();
+    m.add_contact(e1, Partner::Support(left), law).unwrap();
+    m.add_contact(e1, Partner::Support(floor), law).unwrap();
+    m.add_contact(e1, Partner::Body(e2), law).unwrap();
+    m.add_contact(e2, Partner::Support(plate), law).unwrap();
+    let result = solve(&m);
+    assert_eq!(result.status, LimitStatus::Collapse);
+    approx::assert_relative_eq!(
+        result.load.unwrap(),
+        (1.0 + SQRT_2) * c,
+        max_relative = 1e-7
+    );
+    assert_statically_admissible(&m, &result);
+}
+
+#[test]
+fn rolling_u_model_reproduces_eqs_26_to_28() {
+    for (k, np, expected) in [
+        (2, 1, 1.0 + SQRT_2),
+        (4, 1, 1.0 + 3.5 * SQRT_2),
+        (4, 2, 1.0 + 5.0 * SQRT_2),
+    ] {
+        let model = Lattice::u_model(k, k, np, true).build().unwrap();
+        let r = solve(&model);
+        approx::assert_relative_eq!(r.load.unwrap(), expected, max_relative = 1e-7);
+        assert_statically_admissible(&model, &r);
+    }
+}
+
+/// Where Table 1 and eq. (32) agree the LP gives both; at (8, 2) it gives
+/// Table 1's 14.59, below eq. (32): eq. (32) is the load of one guessed
+/// mechanism, an upper bound that the LP improves on.
+#[test]
+fn rolling_u_model_at_8_2_is_below_eq32() {
+    let model = Lattice::u_model(8, 8, 2, true).build().unwrap();
+    let r = solve(&model);
+    assert!(
+        (r.load.unwrap() - 14.59).abs() < 0.006,
+        "P = {}",
+        r.load.unwrap()
+    );
+    assert!(r.load.unwrap() < eq32(8, 2) - 0.05);
+    assert_statically_admissible(&model, &r);
+}
+
+#[test]
+fn non_rolling_u_model_follows_eq38() {
+    for k in [2, 4, 6] {
+        for np in 1..=k / 2 {
+            let model = Lattice::u_model(k, k, np, false).build().unwrap();
+            let r = solve(&model);
+            approx::assert_relative_eq!(r.load.unwrap(), eq38(k, np), max_relative = 1e-7);
+            assert_statically_admissible(&model, &r);
+        }
+    }
+}
+
+#[test]
+fn unequal_lattices_solve_or_report_locked() {
+    let r = solve(&Lattice::u_model(4, 8, 1, true).build().unwrap());
+    assert_eq!(r.status, LimitStatus::Collapse);
+    assert!(r.load.unwrap() > 0.0);
+    let locked = solve(&Lattice::u_model(8, 4, 1, true).build().unwrap());
+    assert_eq!(locked.status, LimitStatus::Locked);
+    assert_eq!(locked.load, None);
+}
+
+/// A single non-rolling element of weight W on a rough floor (cohesion C,
+/// friction φ, associated flow) pushed sideways by a smooth plate needs
+/// P = C + W tan φ: sliding dilates by tan φ and lifts the weight. If the
+/// element may roll it rolls on the floor without slipping: no slip, no
+/// dilation, no dissipation, so P = 0.
+#[test]
+fn mohr_coulomb_block_needs_c_plus_w_tan_phi_and_rolls_for_free() {
+    let (c, w, phi) = (3.0, 10.0, 30f64.to_radians());
+    for rotates in [false, true] {
+        let mut m = LimitModel::new(1e-9).unwrap();
+        let e = m.add_body(Point::new(0.0, 1.0), 1.0, rotates).unwrap();
+        m.set_load(e, Vec2::new(0.0, -w)).unwrap();
+        let floor = m
+            .add_support(
+                "floor",
+                Point::new(0.0, 0.0),
+                Vec2::new(0.0, 1.0),
+                Vec2::zeros(),
+            )
+            .unwrap();
+        let plate = m
+            .add_support(
+                "plate",
+                Point::new(1.0, 0.0),
+                Vec2::new(-1.0, 0.0),
+                Vec2::new(-1.0, 0.0),
+            )
+            .unwrap();
+        m.add_contact(
+            e,
+            Partner::Support(floor),
+            RigidPlastic::new(c, phi, true).unwrap(),
+        )
+        .unwrap();
+        m.add_contact(
+            e,
+            Partner::Support(plate),
+            RigidPlastic::cohesive(0.0).unwrap(),
+        )
+        .unwrap();
+        let r = solve(&m);
+        let expected = if rotates { 0.0 } else { c + w * phi.tan() };
+        assert!(
+            (r.load.unwrap() - expected).abs() < 1e-6,
+            "rolling {rotates}: P = {}",
+            r.load.unwrap()
+        );
+        assert_statically_admissible(&m, &r);
+    }
+}
+
+/// A contact that may open does so for free: an element of weight W on a
+/// cohesive floor, pushed by a smooth plate inclined at 45°, either slides
+/// (cost √2 C) or lifts off (cost √2 W); bilateral, it can only slide.
+#[test]
+fn unilateral_contact_opens_without_dissipation() {
+    let (c, w) = (5.0f64, 2.0f64);
+    let n_plate = Vec2::new(-1.0, 1.0) / SQRT_2;
+    for (unilateral, expected) in [(true, SQRT_2 * c.min(w)), (false, SQRT_2 * c)] {
+        let mut m = LimitModel::new(1e-9).unwrap();
+        let e = m.add_body(Point::new(0.0, 1.0), 1.0, false).unwrap();
+        m.set_load(e, Vec2::new(0.0, -w)).unwrap();
+        let floor = m
+            .add_support(
+                "floor",
+                Point::new(0.0, 0.0),
+                Vec2::new(0.0, 1.0),
+                Vec2::zeros(),
+            )
+            .unwrap();
+        let contact_point = Point::new(0.0, 1.0) - n_plate;
+        let plate = m
+            .add_support("plate", contact_point, n_plate, n_plate)
+            .unwrap();
+        m.add_contact(
+            e,
+            Partner::Support(floor),
+            RigidPlastic::new(c, 0.0, unilateral).unwrap(),
+        )
+        .unwrap();
+        m.add_contact(
+            e,
+            Partner::Support(plate),
+            RigidPlastic::cohesive(0.0).unwrap(),
+        )
+        .unwrap();
+        let r = solve(&m);
+        assert!(
+            (r.load.unwrap() - expected).abs() < 1e-6,
+            "unilateral {unilateral}: P = {}",
+            r.load.unwrap()
+        );
+        if unilateral {
+            approx::assert_relative_eq!(r.opening[0], SQRT_2, max_relative = 1e-6);
+            assert!(
+                r.normal_force[0].abs() < 1e-6,
+                "an open contact carries {}",
+                r.normal_force[0]
+            );
+        }
+        assert_statically_admissible(&m, &r);
+    }
+}
+
+#[test]
+fn limit_model_bad_input_is_a_typed_error() {
+    let mut m = LimitModel::new(1e-9).unwrap();
+    let a = m.add_body(Point::new(0.0, 0.0), 1.0, true).unwrap();
+    let b = m.add_body(Point::new(2.5, 0.0), 1.0, true).unwrap();
+    let law = RigidPlastic::cohesive(1.0).unwrap();
+    match m.add_contact(a, Partner::Body(b), law).unwrap_err() {
+        DismechError::ContactNotTouching {
+            contact: 0,
+            body: 0,
+            gap,
+            ..
+        } => approx::assert_relative_eq!(gap, 0.5),
+        other => panic!("{other}"),
+    }
+    assert!(matches!(
+        RigidPlastic::cohesive(-1.0),
+        Err(DismechError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        RigidPlastic::new(1.0, std::f64::consts::FRAC_PI_2, false),
+        Err(DismechError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        Lattice::u_model(3, 3, 1, true).build(),
+        Err(DismechError::InvalidParameter {
+            name: "m (columns)",
+            ..
+        })
+    ));
+    m.add_support(
+        "plate",
+        Point::new(10.0, 0.0),
+        Vec2::new(-1.0, 0.0),
+        Vec2::new(-1.0, 0.0),
+    )
+    .unwrap();
+    assert!(matches!(
+        analyse(&m, &mut LinearProgramSolver::default()),
+        Err(DismechError::PlateTouchesNothing(_))
+    ));
+}
