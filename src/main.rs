@@ -4,7 +4,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use dismech::error::DismechError;
+use dismech::limit::analyse;
+use dismech::limit::lattice::Lattice;
 use dismech::reproduce::{self, StudyOptions};
+use dismech::solve::LinearProgramSolver;
 
 #[derive(Parser)]
 #[command(
@@ -30,11 +34,96 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Limit load of a lattice of rigid circles by LP (paper 002's U- and
+    /// L-models; R = 1, C_p = 1).
+    LatticeLimitLoad {
+        /// Lattice: `u` (half footing, symmetry wall) or `l`.
+        #[arg(long, value_parser = ["u", "l"])]
+        model: String,
+        /// Columns (even).
+        #[arg(long)]
+        m: usize,
+        /// Elements per column.
+        #[arg(long)]
+        n: usize,
+        /// Elements under the plate (U-model).
+        #[arg(long, default_value_t = 1)]
+        nprime: usize,
+        /// Fix the rotation of every element.
+        #[arg(long)]
+        no_rolling: bool,
+        /// Strength of the base and far walls, in units of C_p.
+        #[arg(long, default_value_t = 2.0)]
+        c_wall: f64,
+        /// Print one JSON object (the default prints the same object).
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn lattice_limit_load(
+    model: &str,
+    m: usize,
+    n: usize,
+    nprime: usize,
+    rolling: bool,
+    c_wall: f64,
+) -> Result<serde_json::Value, DismechError> {
+    let mut lattice = if model == "u" {
+        Lattice::u_model(m, n, nprime, rolling)
+    } else {
+        Lattice::l_model(m, n, rolling)
+    };
+    lattice.wall_cohesion = c_wall;
+    let built = lattice.build()?;
+    let start = std::time::Instant::now();
+    let result = analyse(&built, &mut LinearProgramSolver::default())?;
+    let seconds = start.elapsed().as_secs_f64();
+    let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
+    Ok(serde_json::json!({
+        "model": model,
+        "m": m,
+        "n": n,
+        "nprime": if model == "u" { Some(nprime) } else { None },
+        "rolling": rolling,
+        "c_wall": c_wall,
+        "status": format!("{:?}", result.status),
+        "p_over_cp": result.load,
+        "kinematic_p_over_cp": finite(result.kinematic_load),
+        "static_p_over_cp": finite(result.static_load),
+        "plate_length": lattice.plate_length(),
+        "solver": {
+            "name": "clarabel",
+            "iterations": result.iterations,
+            "variables": result.lp_size.0,
+            "equality_rows": result.lp_size.1,
+            "nonzeros": result.lp_size.2,
+            "seconds": seconds,
+        }
+    }))
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::LatticeLimitLoad {
+            model,
+            m,
+            n,
+            nprime,
+            no_rolling,
+            c_wall,
+            json: _,
+        } => match lattice_limit_load(&model, m, n, nprime, !no_rolling, c_wall) {
+            Ok(value) => {
+                println!("{value}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Command::Reproduce { study, out, quiet } => {
             let options = StudyOptions {
                 out: out.clone(),

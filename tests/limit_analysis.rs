@@ -3,7 +3,7 @@
 
 use dismech::contact::RigidPlastic;
 use dismech::error::DismechError;
-use dismech::limit::lattice::{eq32, eq38, Lattice};
+use dismech::limit::lattice::{eq32, eq38, two_elements, Lattice};
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
 use dismech::math::{Point, Vec2};
 use dismech::solve::LinearProgramSolver;
@@ -65,41 +65,8 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
 /// rotate; element 2 is pushed by a plate; all strengths C.
 #[test]
 fn two_element_example_needs_one_plus_root_two_c() {
-    let (r, c) = (1.0, 1.0);
-    let law = RigidPlastic::cohesive(c).unwrap();
-    let mut m = LimitModel::new(1e-9).unwrap();
-    let e1 = m.add_body(Point::new(0.0, 0.0), r, true).unwrap();
-    let e2 = m
-        .add_body(Point::new(SQRT_2 * r, SQRT_2 * r), r, true)
-        .unwrap();
-    let left = m
-        .add_support(
-            "left wall",
-            Point::new(-r, 0.0),
-            Vec2::new(1.0, 0.0),
-            Vec2::zeros(),
-        )
-        .unwrap();
-    let floor = m
-        .add_support(
-            "floor",
-            Point::new(0.0, -r),
-            Vec2::new(0.0, 1.0),
-            Vec2::zeros(),
-        )
-        .unwrap();
-    let plate = m
-        .add_support(
-            "plate",
-            Point::new(SQRT_2 * r + r, 0.0),
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(-1.0, 0.0),
-        )
-        .unwrap();
-    m.add_contact(e1, Partner::Support(left), law).unwrap();
-    m.add_contact(e1, Partner::Support(floor), law).unwrap();
-    m.add_contact(e1, Partner::Body(e2), law).unwrap();
-    m.add_contact(e2, Partner::Support(plate), law).unwrap();
+    let c = 1.0;
+    let m = two_elements(c).unwrap();
     let result = solve(&m);
     assert_eq!(result.status, LimitStatus::Collapse);
     approx::assert_relative_eq!(

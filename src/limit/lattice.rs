@@ -124,6 +124,7 @@ impl Lattice {
                 model.add_body(Point::new(-(i as f64) * s, y), r, self.rolling)?;
             }
         }
+        crate::error::require_positive("element radius R", self.radius)?;
         let inner = RigidPlastic::cohesive(self.cohesion)?;
         let wall = RigidPlastic::cohesive(self.wall_cohesion)?;
         let smooth = RigidPlastic::cohesive(0.0)?;
@@ -188,6 +189,41 @@ impl Lattice {
         }
         Ok(model)
     }
+}
+
+/// The two-element example of §2.2 (Fig. 3): element 1 at the origin held
+/// by a left wall and a floor (so that it can only rotate), element 2 at
+/// α = 45° pushed in −x by a plate; every contact, plate included, has
+/// strength `cohesion`; R = 1. The paper's limit load is (1 + √2)C.
+pub fn two_elements(cohesion: f64) -> Result<LimitModel> {
+    let law = RigidPlastic::cohesive(cohesion)?;
+    let d = std::f64::consts::SQRT_2;
+    let mut m = LimitModel::new(1e-9)?;
+    let e1 = m.add_body(Point::new(0.0, 0.0), 1.0, true)?;
+    let e2 = m.add_body(Point::new(d, d), 1.0, true)?;
+    let left = m.add_support(
+        "left wall",
+        Point::new(-1.0, 0.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::zeros(),
+    )?;
+    let floor = m.add_support(
+        "floor",
+        Point::new(0.0, -1.0),
+        Vec2::new(0.0, 1.0),
+        Vec2::zeros(),
+    )?;
+    let plate = m.add_support(
+        "loading plate",
+        Point::new(d + 1.0, 0.0),
+        Vec2::new(-1.0, 0.0),
+        Vec2::new(-1.0, 0.0),
+    )?;
+    m.add_contact(e1, Partner::Support(left), law)?;
+    m.add_contact(e1, Partner::Support(floor), law)?;
+    m.add_contact(e1, Partner::Body(e2), law)?;
+    m.add_contact(e2, Partner::Support(plate), law)?;
+    Ok(m)
 }
 
 /// Eq. (32): the paper's inductive solution for the rolling U-model,

@@ -3,6 +3,7 @@
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
 pub mod katsuki1990;
+pub mod yamada2000;
 
 use std::path::PathBuf;
 
@@ -19,7 +20,7 @@ pub struct StudyOptions {
 }
 
 /// The studies that exist, by name.
-pub const STUDIES: &[&str] = &["katsuki1990"];
+pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000"];
 
 /// Run the study `name` (or every study for `all`).
 pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
@@ -32,6 +33,7 @@ pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
 fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
     match name {
         "katsuki1990" => katsuki1990::reproduce(options),
+        "yamada2000" => yamada2000::reproduce(options),
         other => Err(DismechError::UnknownStudy(
             other.to_string(),
             STUDIES.join(", "),

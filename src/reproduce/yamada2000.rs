@@ -1,0 +1,327 @@
+//! Yamada & Tamura (2000), *A rigid-plastic analysis for granular materials
+//! and its application to bearing capacity problems* (paper 002).
+//!
+//! Reproduced here: the two-element example of §2.2, eqs. (26)–(28), all
+//! 28 entries of Table 1 (rolling U-model) against the table and eq. (32),
+//! the non-rolling U-model against Table 3 and eq. (38) for k = 2 … 10, the
+//! L-model's global cohesion c_G = P / (2 l_L) for growing n against
+//! eq. (20), and unequal lattices m ≠ n (which the authors' simplex could
+//! not solve). The geometry is the lattice of [`crate::limit::lattice`]
+//! with R = 1, C_p = 1 and walls 2C_p.
+
+use std::fmt::Write as _;
+
+use super::StudyOptions;
+use crate::error::Result;
+use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
+use crate::limit::{analyse, LimitResult, LimitStatus};
+use crate::output::plot::{line_chart, Series};
+use crate::output::{write_atomically, write_csv, Check, Summary};
+use crate::solve::LinearProgramSolver;
+
+/// File name of the paper.
+pub const PAPER: &str = "002_d116351db0f49329.txt";
+
+/// Table 1 of the paper (rolling U-model, k = m = n, P / C_p), row k/2 − 1,
+/// column n' − 1.
+pub const TABLE1: [&[f64]; 7] = [
+    &[2.41],
+    &[5.95, 8.07],
+    &[9.01, 11.60, 13.72],
+    &[11.96, 14.59, 17.26, 19.38],
+    &[14.53, 17.37, 20.33, 22.92, 25.04],
+    &[17.53, 20.18, 23.27, 25.98, 28.57, 30.69],
+    &[20.60, 22.99, 26.14, 28.93, 31.64, 34.23, 36.36],
+];
+
+/// Table 3 of the paper (non-rolling U-model, P / C_p), k = 2 … 10; entries
+/// the table leaves blank are absent.
+pub const TABLE3: [&[f64]; 5] = [
+    &[4.83],
+    &[10.49, 8.07],
+    &[16.14, 22.14],
+    &[21.80, 27.80, 33.80],
+    &[27.46, 33.46, 39.46, 45.46],
+];
+
+/// Agreement with a printed table entry. The tables print two decimals and
+/// mostly *truncate* rather than round (11.6066 is printed 11.60, 13.7279
+/// 13.72, 30.6985 30.69), so an entry matches when within one unit of the
+/// last printed digit.
+const PRINT_TOLERANCE: f64 = 0.01;
+/// Relative agreement with a closed form.
+const FORMULA_TOLERANCE: f64 = 1e-6;
+
+/// Which reference an LP optimum agrees with.
+fn agreement(lp: f64, table: Option<f64>, formula: f64, formula_name: &str) -> String {
+    let table_ok = table.is_some_and(|t| (lp - t).abs() < PRINT_TOLERANCE);
+    let formula_ok = (lp - formula).abs() <= FORMULA_TOLERANCE * (1.0 + formula.abs());
+    match (table_ok, formula_ok) {
+        (true, true) => "both".into(),
+        (true, false) => "table only".into(),
+        (false, true) => format!("{formula_name} only"),
+        (false, false) => "neither".into(),
+    }
+}
+
+fn solve(lattice: &Lattice, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+    analyse(&lattice.build()?, solver)
+}
+
+/// Relative primal–dual gap of a solved LP.
+fn gap(r: &LimitResult) -> f64 {
+    (r.kinematic_load - r.static_load).abs() / (1.0 + r.kinematic_load.abs())
+}
+
+/// Run the study and write its outputs into `out/yamada2000/`.
+pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
+    let dir = options.out.join("yamada2000");
+    let mut solver = LinearProgramSolver::default();
+    let mut checks = Vec::new();
+    let mut files = Vec::new();
+    let mut max_gap = 0.0f64;
+    let mut report = String::from("# Yamada & Tamura (2000): LP limit loads against the paper\n\n");
+
+    // §2.2 and eqs. (26)–(28).
+    let two = analyse(&two_elements(1.0)?, &mut solver)?;
+    max_gap = max_gap.max(gap(&two));
+    let root2 = std::f64::consts::SQRT_2;
+    let mut exact = vec![(
+        "sec2_2.two_elements",
+        "two-element example of §2.2, P/C_p = 1 + √2",
+        two.kinematic_load,
+        1.0 + root2,
+    )];
+    for (id, text, k, np, value) in [
+        ("eq26", "P(2,2,1)/C_p = 1 + √2, eq. (26)", 2, 1, 1.0 + root2),
+        (
+            "eq27",
+            "P(4,4,1)/C_p = 1 + 7√2/2, eq. (27)",
+            4,
+            1,
+            1.0 + 3.5 * root2,
+        ),
+        (
+            "eq28",
+            "P(4,4,2)/C_p = 1 + 5√2, eq. (28)",
+            4,
+            2,
+            1.0 + 5.0 * root2,
+        ),
+    ] {
+        let r = solve(&Lattice::u_model(k, k, np, true), &mut solver)?;
+        max_gap = max_gap.max(gap(&r));
+        exact.push((id, text, r.kinematic_load, value));
+    }
+    for (id, text, computed, paper) in exact {
+        checks.push(Check {
+            id: id.into(),
+            description: format!(
+                "{text}; LP optimum, passes within relative {FORMULA_TOLERANCE:e}"
+            ),
+            paper: Some(paper),
+            computed,
+            unit: "C_p".into(),
+            tolerance: FORMULA_TOLERANCE,
+            passed: (computed - paper).abs() <= FORMULA_TOLERANCE * paper,
+        });
+    }
+
+    // Table 1: rolling U-model.
+    report.push_str("## Table 1 — rolling U-model, P/C_p\n\n| k | n' | Table 1 | eq. (32) | LP (primal) | LP (dual) | LP agrees with |\n|---|---|---|---|---|---|---|\n");
+    let mut rows = Vec::new();
+    for (row, values) in TABLE1.iter().enumerate() {
+        let k = 2 * (row + 1);
+        for (col, &paper) in values.iter().enumerate() {
+            let np = col + 1;
+            let r = solve(&Lattice::u_model(k, k, np, true), &mut solver)?;
+            max_gap = max_gap.max(gap(&r));
+            let formula = eq32(k, np);
+            let lp = r.kinematic_load;
+            let agrees = agreement(lp, Some(paper), formula, "eq. (32)");
+            let _ = writeln!(
+                report,
+                "| {k} | {np} | {paper:.2} | {formula:.4} | {lp:.4} | {:.4} | {agrees} |",
+                r.static_load
+            );
+            rows.push(vec![k as f64, np as f64, paper, formula, lp, r.static_load]);
+            checks.push(Check {
+                id: format!("table1.k{k}.n{np}"),
+                description: format!(
+                    "rolling U-model P(k,k,n')/C_p by LP; passes when it equals Table 1 (±{PRINT_TOLERANCE}) or eq. (32) (relative {FORMULA_TOLERANCE:e}); agrees with: {agrees}; eq. (32) = {formula:.4}"
+                ),
+                paper: Some(paper),
+                computed: lp,
+                unit: "C_p".into(),
+                tolerance: PRINT_TOLERANCE,
+                passed: agrees != "neither",
+            });
+        }
+    }
+    write_csv(
+        &dir.join("table1.csv"),
+        &["k", "n_prime", "table1", "eq32", "lp_primal", "lp_dual"],
+        &rows,
+    )?;
+    files.push("table1.csv".into());
+
+    // Table 3: non-rolling U-model.
+    report.push_str("\n## Table 3 — non-rolling U-model, P/C_p\n\n| k | n' | Table 3 | eq. (38) | LP (primal) | LP (dual) | LP agrees with |\n|---|---|---|---|---|---|---|\n");
+    let mut rows = Vec::new();
+    for k in (2..=10).step_by(2) {
+        for np in 1..=k / 2 {
+            let paper = TABLE3[k / 2 - 1].get(np - 1).copied();
+            let r = solve(&Lattice::u_model(k, k, np, false), &mut solver)?;
+            max_gap = max_gap.max(gap(&r));
+            let formula = eq38(k, np);
+            let lp = r.kinematic_load;
+            let agrees = agreement(lp, paper, formula, "eq. (38)");
+            let shown = paper
+                .map(|p| format!("{p:.2}"))
+                .unwrap_or_else(|| "—".into());
+            let _ = writeln!(
+                report,
+                "| {k} | {np} | {shown} | {formula:.4} | {lp:.4} | {:.4} | {agrees} |",
+                r.static_load
+            );
+            rows.push(vec![
+                k as f64,
+                np as f64,
+                paper.unwrap_or(f64::NAN),
+                formula,
+                lp,
+                r.static_load,
+            ]);
+            checks.push(Check {
+                id: format!("table3.k{k}.n{np}"),
+                description: format!(
+                    "non-rolling U-model P(k,k,n')/C_p by LP; passes when it equals Table 3 (±{PRINT_TOLERANCE}) or eq. (38) (relative {FORMULA_TOLERANCE:e}); agrees with: {agrees}"
+                ),
+                paper,
+                computed: lp,
+                unit: "C_p".into(),
+                tolerance: PRINT_TOLERANCE,
+                passed: agrees != "neither",
+            });
+        }
+    }
+    write_csv(
+        &dir.join("table3.csv"),
+        &["k", "n_prime", "table3", "eq38", "lp_primal", "lp_dual"],
+        &rows,
+    )?;
+    files.push("table3.csv".into());
+
+    // Eq. (20): global cohesion of the rolling L-model for growing n.
+    report.push_str("\n## Eq. (20) — rolling L-model, c_G R / C_p = P / (2 l_L)\n\n| m | n = 16 | n = 64 | n = 256 | eq. (20) | ratio at n = 256 |\n|---|---|---|---|---|---|\n");
+    let sizes = [4usize, 8, 16, 32, 64, 128, 256];
+    let mut rows = Vec::new();
+    let mut series = Vec::new();
+    for m in [2usize, 4, 6, 8] {
+        let formula = eq20(m);
+        let mut values = Vec::new();
+        for &n in &sizes {
+            let lattice = Lattice::l_model(m, n, true);
+            let r = solve(&lattice, &mut solver)?;
+            max_gap = max_gap.max(gap(&r));
+            let c_g = r.kinematic_load / (2.0 * lattice.plate_length());
+            values.push((n as f64, c_g));
+            rows.push(vec![m as f64, n as f64, c_g, formula]);
+        }
+        let at = |n: usize| values[sizes.iter().position(|&s| s == n).unwrap_or(0)].1;
+        let ratio = at(256) / formula;
+        let _ = writeln!(
+            report,
+            "| {m} | {:.4} | {:.4} | {:.4} | {formula:.4} | {ratio:.4} |",
+            at(16),
+            at(64),
+            at(256)
+        );
+        checks.push(Check {
+            id: format!("eq20.cG_over_formula.m{m}"),
+            description: format!(
+                "rolling L-model c_G = P/(2 l_L) at n = 256 divided by eq. (20) ({formula:.4}); c_G rises towards eq. (20) as n grows; passes within 1 %"
+            ),
+            paper: Some(1.0),
+            computed: ratio,
+            unit: "-".into(),
+            tolerance: 0.01,
+            passed: (ratio - 1.0).abs() <= 0.01,
+        });
+        series.push(Series {
+            name: format!("m = {m} (LP)"),
+            points: values.clone(),
+            markers: true,
+        });
+        series.push(Series {
+            name: format!("m = {m}, eq. (20)"),
+            points: vec![
+                (sizes[0] as f64, formula),
+                (sizes[sizes.len() - 1] as f64, formula),
+            ],
+            markers: false,
+        });
+    }
+    write_csv(
+        &dir.join("eq20.csv"),
+        &["m", "n", "c_g_lp", "c_g_eq20"],
+        &rows,
+    )?;
+    files.push("eq20.csv".into());
+    line_chart(
+        &dir.join("eq20_global_cohesion.svg"),
+        "Rolling L-model: global cohesion c_G R / C_p against n",
+        "elements per column n",
+        "c_G R / C_p",
+        &series,
+    )?;
+    files.push("eq20_global_cohesion.svg".into());
+
+    // Unequal lattices.
+    report.push_str("\n## Unequal lattices (m ≠ n), rolling U-model, n' = 1\n\n| m | n | status | P/C_p |\n|---|---|---|---|\n");
+    let mut rows = Vec::new();
+    for (m, n) in [
+        (2usize, 4usize),
+        (4, 2),
+        (4, 8),
+        (8, 4),
+        (6, 10),
+        (10, 6),
+        (8, 16),
+        (16, 8),
+    ] {
+        let r = solve(&Lattice::u_model(m, n, 1, true), &mut solver)?;
+        if r.status == LimitStatus::Collapse {
+            max_gap = max_gap.max(gap(&r));
+        }
+        let shown = r
+            .load
+            .map(|p| format!("{p:.4}"))
+            .unwrap_or_else(|| "no mechanism".into());
+        let _ = writeln!(report, "| {m} | {n} | {:?} | {shown} |", r.status);
+        rows.push(vec![m as f64, n as f64, r.load.unwrap_or(f64::NAN)]);
+    }
+    write_csv(&dir.join("unequal.csv"), &["m", "n", "p_over_cp"], &rows)?;
+    files.push("unequal.csv".into());
+
+    checks.push(Check {
+        id: "primal_dual_gap.max".into(),
+        description: "largest |kinematic − static| / (1 + |P|) over every solved LP of the study"
+            .into(),
+        paper: None,
+        computed: max_gap,
+        unit: "-".into(),
+        tolerance: 1e-6,
+        passed: max_gap <= 1e-6,
+    });
+    write_atomically(&dir.join("report.md"), report.as_bytes())?;
+    files.push("report.md".into());
+    let summary = Summary {
+        study: "yamada2000".into(),
+        paper: PAPER.into(),
+        checks,
+        files,
+    };
+    summary.write(&dir)?;
+    Ok(summary)
+}
