@@ -304,6 +304,82 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     write_csv(&dir.join("unequal.csv"), &["m", "n", "p_over_cp"], &rows)?;
     files.push("unequal.csv".into());
 
+    // Bearing-capacity factor N_c = P / (c_G l_U) against s = n'/k (Fig. 10).
+    let nc = bearing_capacity_curves(&mut solver, &mut max_gap)?;
+    let mut rows = Vec::new();
+    let mut series = Vec::new();
+    for curve in &nc {
+        for &(s, value) in &curve.points {
+            rows.push(vec![
+                curve.k as f64,
+                if curve.rolling { 1.0 } else { 0.0 },
+                s,
+                value,
+            ]);
+        }
+        series.push(Series {
+            name: format!(
+                "{}, k = {} (LP)",
+                if curve.rolling {
+                    "rolling"
+                } else {
+                    "non-rolling"
+                },
+                curve.k
+            ),
+            points: curve.points.clone(),
+            markers: true,
+        });
+    }
+    let s_axis: Vec<f64> = (5..=50).map(|i| i as f64 / 100.0).collect();
+    series.push(Series {
+        name: "N_c = 2 + 1/s, eq. (34)".into(),
+        points: s_axis.iter().map(|&s| (s, 2.0 + 1.0 / s)).collect(),
+        markers: false,
+    });
+    series.push(Series {
+        name: "N_c = 5√2/3 + 10/(9s), eq. (40)".into(),
+        points: s_axis
+            .iter()
+            .map(|&s| (s, 5.0 * root2 / 3.0 + 10.0 / (9.0 * s)))
+            .collect(),
+        markers: false,
+    });
+    write_csv(
+        &dir.join("bearing_capacity.csv"),
+        &["k", "rolling", "s", "n_c"],
+        &rows,
+    )?;
+    files.push("bearing_capacity.csv".into());
+    line_chart(
+        &dir.join("bearing_capacity.svg"),
+        "Bearing-capacity factor N_c against s = n'/k (cf. Fig. 10)",
+        "s = n'/k",
+        "N_c = P / (c_G l_U)",
+        &series,
+    )?;
+    files.push("bearing_capacity.svg".into());
+    report.push_str("\n## Bearing-capacity factor N_c = P/(c_G l_U) (Fig. 10)\n\nc_G = 1/(4 sin²α) C_p/R = 0.5 for rolling (eq. 21); 0.9 for non-rolling (the paper's value, §3.2). Values in `bearing_capacity.csv`, plot `bearing_capacity.svg`.\n\n| model | k | s | N_c (LP) | formula |\n|---|---|---|---|---|\n");
+    for curve in &nc {
+        for &(s, value) in curve.points.iter().step_by(3) {
+            let formula = if curve.rolling {
+                2.0 + 1.0 / s
+            } else {
+                5.0 * root2 / 3.0 + 10.0 / (9.0 * s)
+            };
+            let _ = writeln!(
+                report,
+                "| {} | {} | {s:.3} | {value:.3} | {formula:.3} |",
+                if curve.rolling {
+                    "rolling"
+                } else {
+                    "non-rolling"
+                },
+                curve.k
+            );
+        }
+    }
+
     checks.push(Check {
         id: "primal_dual_gap.max".into(),
         description: "largest |kinematic − static| / (1 + |P|) over every solved LP of the study"
@@ -324,4 +400,41 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     };
     summary.write(&dir)?;
     Ok(summary)
+}
+
+/// One computed N_c(s) curve.
+struct BearingCurve {
+    k: usize,
+    rolling: bool,
+    points: Vec<(f64, f64)>,
+}
+
+/// N_c = P / (c_G l_U) for n' = 2 … k/2 − 1 at k = 20 and 40, rolling
+/// (c_G = 0.5, eq. 21) and non-rolling (c_G = 0.9, §3.2).
+fn bearing_capacity_curves(
+    solver: &mut LinearProgramSolver,
+    max_gap: &mut f64,
+) -> Result<Vec<BearingCurve>> {
+    let mut curves = Vec::new();
+    for rolling in [true, false] {
+        let c_g = if rolling { 0.5 } else { 0.9 };
+        for k in [20usize, 40] {
+            let mut points = Vec::new();
+            // n' = 1 is left out: l_U = R there (eq. 22), far from the
+            // 4 n' R sin α that eqs. (34) and (40) assume.
+            for np in 2..k / 2 {
+                let lattice = Lattice::u_model(k, k, np, rolling);
+                let r = solve(&lattice, solver)?;
+                if r.status == LimitStatus::Collapse {
+                    *max_gap = max_gap.max(gap(&r));
+                    points.push((
+                        np as f64 / k as f64,
+                        r.kinematic_load / (c_g * lattice.plate_length()),
+                    ));
+                }
+            }
+            curves.push(BearingCurve { k, rolling, points });
+        }
+    }
+    Ok(curves)
 }
