@@ -60,8 +60,17 @@ struct ContactColumns {
     shear_row: Option<usize>,
 }
 
-/// Build and solve the kinematic LP of `model` with `solver`.
-pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+/// The kinematic LP of a model and where its unknowns sit.
+struct KinematicLp {
+    lp: LinearProgram,
+    dof: Vec<usize>,
+    columns: Vec<ContactColumns>,
+    plate: usize,
+    speed: f64,
+}
+
+/// Assemble the kinematic LP of `model`.
+fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
     let drivers: Vec<usize> = model
         .supports()
         .iter()
@@ -148,6 +157,25 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
             }
         }
     }
+    Ok(KinematicLp {
+        lp,
+        dof,
+        columns,
+        plate,
+        speed,
+    })
+}
+
+/// Build and solve the kinematic LP of `model` with `solver`.
+pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+    let KinematicLp {
+        lp,
+        dof,
+        columns,
+        plate,
+        speed,
+    } = build_kinematic_lp(model)?;
+    let n = lp.num_variables;
     let lp_size = (
         n,
         lp.equality_rhs.len(),
@@ -242,4 +270,73 @@ fn jump_row(
         }
         Partner::Support(s) => model.supports()[s].velocity.dot(direction),
     }
+}
+
+/// Whether the optimal mechanism is unique, tested on the element
+/// velocities.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Uniqueness {
+    /// `true` when every optimal mechanism has the same element velocities
+    /// (within the tolerance).
+    pub unique: bool,
+    /// Spread `max f − min f` of a fixed generic linear functional `f` of
+    /// the velocities over the optimal face.
+    pub spread: f64,
+}
+
+/// Test whether the optimum of a solved model is unique: fix the
+/// dissipation at its optimum (within a relative `1e-7`) and minimise and
+/// maximise a generic linear functional of the element velocities over
+/// that optimal face. An interior-point solver returns a point inside the
+/// face, which may blend several optimal vertex mechanisms; a spread above
+/// `1e-4` (relative to the velocity scale) says the face is not a point.
+pub fn mechanism_uniqueness(
+    model: &LimitModel,
+    solver: &mut LinearProgramSolver,
+    result: &LimitResult,
+) -> Result<Uniqueness> {
+    let KinematicLp {
+        mut lp, dof, speed, ..
+    } = build_kinematic_lp(model)?;
+    let optimum = result.kinematic_load * speed;
+    let row: Vec<(usize, f64)> = lp
+        .objective
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| **c != 0.0)
+        .map(|(j, c)| (j, *c))
+        .collect();
+    lp.add_inequality(&row, optimum + 1e-7 * (1.0 + optimum.abs()));
+    // A generic functional: weights from a fixed irrational sequence.
+    let mut weights = vec![0.0; lp.num_variables];
+    for (i, &k) in dof.iter().enumerate() {
+        let columns = if model.bodies()[i].rotates { 3 } else { 2 };
+        for d in 0..columns {
+            weights[k + d] = ((k + d + 1) as f64 * 0.618_033_988_749_895).fract() - 0.5;
+        }
+    }
+    let mut extreme = [0.0; 2];
+    for (slot, sign) in [1.0, -1.0].into_iter().enumerate() {
+        lp.objective = weights.iter().map(|w| sign * w).collect();
+        let solution = solver.solve(&lp)?;
+        if !matches!(solution.status, LpStatus::Optimal | LpStatus::AlmostOptimal) {
+            return Err(DismechError::Solve(
+                crate::solve::SolveError::LinearProgram(format!(
+                    "the uniqueness test LP ended with status {:?}",
+                    solution.status
+                )),
+            ));
+        }
+        extreme[slot] = sign * solution.objective;
+    }
+    let scale = result
+        .velocities
+        .iter()
+        .map(|(v, w)| v.norm().max(w.abs()))
+        .fold(1.0, f64::max);
+    let spread = (extreme[1] - extreme[0]).abs();
+    Ok(Uniqueness {
+        unique: spread <= 1e-4 * scale,
+        spread,
+    })
 }

@@ -25,5 +25,5 @@ mod analysis;
 pub mod lattice;
 mod model;
 
-pub use analysis::{analyse, LimitResult, LimitStatus};
+pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
 pub use model::{LimitBody, LimitContact, LimitModel, Partner, Support};

@@ -197,3 +197,90 @@ pub fn assembly_picture(
     }
     write_atomically(path, svg.as_bytes())
 }
+
+/// A picture of a collapse mechanism: elements (outline), supports (thick
+/// lines), velocity arrows from each element centre, and marks on slipping
+/// contacts, like paper 002's Figs. 4–9 and 11–16. The longest arrow is
+/// `max_arrow` long.
+pub fn mechanism_picture(
+    path: &Path,
+    title: &str,
+    circles: &[(Point, f64)],
+    lines: &[(Point, Point)],
+    arrows: &[(Point, Vec2)],
+    marks: &[Point],
+    max_arrow: f64,
+) -> Result<()> {
+    let xs = circles
+        .iter()
+        .flat_map(|(c, r)| [c.x - r, c.x + r])
+        .chain(lines.iter().flat_map(|(a, b)| [a.x, b.x]));
+    let ys = circles
+        .iter()
+        .flat_map(|(c, r)| [c.y - r, c.y + r])
+        .chain(lines.iter().flat_map(|(a, b)| [a.y, b.y]));
+    let (x0, x1) = padded_range(xs);
+    let (y0, y1) = padded_range(ys);
+    let width_px = 800u32;
+    let height_px = ((width_px as f64) * (y1 - y0) / (x1 - x0)).clamp(200.0, 2400.0) as u32 + 60;
+    let longest = arrows.iter().map(|a| a.1.norm()).fold(0.0, f64::max);
+    let scale = if longest > 0.0 {
+        max_arrow / longest
+    } else {
+        0.0
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width_px, height_px)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| plot_error(path, e))?;
+        let grey = RGBColor(160, 160, 160);
+        chart
+            .draw_series(circles.iter().map(|(c, r)| {
+                let pts: Vec<(f64, f64)> = (0..=32)
+                    .map(|k| {
+                        let t = k as f64 / 32.0 * std::f64::consts::TAU;
+                        (c.x + r * t.cos(), c.y + r * t.sin())
+                    })
+                    .collect();
+                PathElement::new(pts, grey.stroke_width(1))
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series(lines.iter().map(|(a, b)| {
+                PathElement::new(vec![(a.x, a.y), (b.x, b.y)], BLACK.stroke_width(3))
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        let blue = PALETTE[0];
+        chart
+            .draw_series(arrows.iter().filter(|a| a.1.norm() > 0.0).map(|(p, v)| {
+                let tip = *p + v * scale;
+                let back = -v.normalize() * (0.25 * max_arrow).min(0.4 * (v * scale).norm());
+                let side = crate::math::perp(&back) * 0.5;
+                PathElement::new(
+                    vec![
+                        (p.x, p.y),
+                        (tip.x, tip.y),
+                        (tip.x + back.x + side.x, tip.y + back.y + side.y),
+                        (tip.x, tip.y),
+                        (tip.x + back.x - side.x, tip.y + back.y - side.y),
+                    ],
+                    blue.stroke_width(2),
+                )
+            }))
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series(
+                marks
+                    .iter()
+                    .map(|p| Cross::new((p.x, p.y), 5, PALETTE[1].stroke_width(2))),
+            )
+            .map_err(|e| plot_error(path, e))?;
+        root.present().map_err(|e| plot_error(path, e))?;
+    }
+    write_atomically(path, svg.as_bytes())
+}

@@ -14,7 +14,9 @@ use std::fmt::Write as _;
 use super::StudyOptions;
 use crate::error::Result;
 use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
-use crate::limit::{analyse, LimitResult, LimitStatus};
+use crate::limit::{analyse, mechanism_uniqueness, LimitModel, LimitResult, LimitStatus};
+use crate::math::{perp, Point};
+use crate::output::plot::mechanism_picture;
 use crate::output::plot::{line_chart, Series};
 use crate::output::{write_atomically, write_csv, Check, Summary};
 use crate::solve::LinearProgramSolver;
@@ -380,6 +382,53 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         }
     }
 
+    // Mechanisms (Figs. 4, 6–8 rolling; 13–15 non-rolling).
+    report.push_str("\n## Mechanisms\n\n| figure | model | P/C_p | optimum unique | file |\n|---|---|---|---|---|\n");
+    for (figure, k, np, rolling) in [
+        ("Fig. 4", 2usize, 1usize, true),
+        ("Fig. 6", 4, 1, true),
+        ("Fig. 7", 4, 2, true),
+        ("Fig. 8", 10, 1, true),
+        ("Fig. 13", 2, 1, false),
+        ("Fig. 14", 4, 1, false),
+        ("Fig. 15", 10, 2, false),
+    ] {
+        let name = format!(
+            "mechanism_{}_k{k}_n{np}.svg",
+            if rolling { "rolling" } else { "nonrolling" }
+        );
+        let model = Lattice::u_model(k, k, np, rolling).build()?;
+        let r = analyse(&model, &mut solver)?;
+        max_gap = max_gap.max(gap(&r));
+        let uniqueness = mechanism_uniqueness(&model, &mut solver, &r)?;
+        let note = if uniqueness.unique {
+            "unique optimum".to_string()
+        } else {
+            format!(
+                "optimum NOT unique (spread {:.2e}): a blend of optimal mechanisms",
+                uniqueness.spread
+            )
+        };
+        plot_mechanism(
+            &dir.join(&name),
+            &format!(
+                "{figure}: {} U-model ({k},{k},{np}), P = {:.4} C_p; {note}",
+                if rolling { "rolling" } else { "non-rolling" },
+                r.kinematic_load
+            ),
+            &model,
+            &r,
+        )?;
+        let _ = writeln!(
+            report,
+            "| {figure} | ({k},{k},{np}) {} | {:.4} | {} | `{name}` |",
+            if rolling { "rolling" } else { "non-rolling" },
+            r.kinematic_load,
+            uniqueness.unique
+        );
+        files.push(name);
+    }
+
     checks.push(Check {
         id: "primal_dual_gap.max".into(),
         description: "largest |kinematic − static| / (1 + |P|) over every solved LP of the study"
@@ -437,4 +486,57 @@ fn bearing_capacity_curves(
         }
     }
     Ok(curves)
+}
+
+/// Draw the mechanism of a solved model: velocity arrows and slipping
+/// contacts (|slip| above 1e-6 of the plate speed).
+fn plot_mechanism(
+    path: &std::path::Path,
+    title: &str,
+    model: &LimitModel,
+    r: &LimitResult,
+) -> Result<()> {
+    let circles: Vec<(Point, f64)> = model
+        .bodies()
+        .iter()
+        .map(|b| (b.centre, b.radius))
+        .collect();
+    let (mut lo, mut hi) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for (c, radius) in &circles {
+        lo = Point::new(lo.x.min(c.x - radius), lo.y.min(c.y - radius));
+        hi = Point::new(hi.x.max(c.x + radius), hi.y.max(c.y + radius));
+    }
+    let lines: Vec<(Point, Point)> = model
+        .supports()
+        .iter()
+        .map(|s| {
+            let d = perp(&s.normal);
+            let ts = [lo, hi, Point::new(lo.x, hi.y), Point::new(hi.x, lo.y)]
+                .map(|q| (q - s.point).dot(&d));
+            let (t0, t1) = ts
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+                    (a.min(t), b.max(t))
+                });
+            (s.point + d * t0, s.point + d * t1)
+        })
+        .collect();
+    let arrows: Vec<_> = model
+        .bodies()
+        .iter()
+        .zip(&r.velocities)
+        .map(|(b, (v, _))| (b.centre, *v))
+        .collect();
+    let marks: Vec<Point> = model
+        .contacts()
+        .iter()
+        .zip(&r.slip)
+        .filter(|(_, s)| s.abs() > 1e-6)
+        .map(|(c, _)| c.point)
+        .collect();
+    let radius = model.bodies().first().map(|b| b.radius).unwrap_or(1.0);
+    mechanism_picture(path, title, &circles, &lines, &arrows, &marks, 1.6 * radius)
 }
