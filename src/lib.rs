@@ -19,7 +19,7 @@
 //! |---|---|---|---|---|---|
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | `Circle`, `Ellipse` | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | circles: [`dem`]; ellipses to come |
 //! | implicit DDA (003) | `Polygon` (6-DOF block) | penalty Coulomb with return mapping; the law's consistent tangent ([`contact::ContactResponse::tangent`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + Newton | pieces ready |
-//! | rigid-plastic limit analysis (002) | `Circle` | rigid-plastic law exposing [`contact::Strength`] | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | pieces ready |
+//! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
 //! | HPM slope stability (001) | `Column` (3D) | penalty springs, Mohr–Coulomb on the slip surface: [`contact::ContactLaw`]`<3>` | none (load steps) | [`solve::SparseDirectSolver`] (faer LLᵀ) | pieces ready |
 //!
 //! ## Data flow of one step
@@ -54,6 +54,7 @@ pub mod contact;
 pub mod dem;
 pub mod error;
 pub mod integrate;
+pub mod limit;
 pub mod math;
 pub mod output;
 pub mod reproduce;
@@ -65,4 +66,3 @@ pub mod solve;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
-pub mod limit;

@@ -94,6 +94,7 @@ fn lattice_limit_load(
         "plate_length": lattice.plate_length(),
         "solver": {
             "name": "clarabel",
+            "status": result.solver_status,
             "iterations": result.iterations,
             "variables": result.lp_size.0,
             "equality_rows": result.lp_size.1,

@@ -275,3 +275,53 @@ fn limit_model_bad_input_is_a_typed_error() {
         Err(DismechError::PlateTouchesNothing(_))
     ));
 }
+
+/// DEM → LP: a disc settled by the DEM into the corner of a box under a
+/// gravity with a sideways part, then pushed off the left wall (the plate,
+/// smooth) across the floor (cohesion C, friction φ, associated flow): the
+/// LP of the converted packing must give P = C + m|g_x| + m|g_y| tan φ with
+/// the DEM's mass and positions.
+#[test]
+fn settled_disc_converted_from_dem_needs_the_exact_push() {
+    use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+    use dismech::integrate::ExplicitEuler;
+    use dismech::limit::{model_from_packing, PackingLimitSettings};
+    use dismech::reproduce::katsuki1990::material_law;
+    use dismech::scene::{Frame, Scene};
+
+    let g = Vec2::new(-5.0, -9.81);
+    let mut scene = Scene::new(Frame::open_box(1.0, 1.0).unwrap(), g).unwrap();
+    scene
+        .add_circle(Point::new(0.2, 0.2), 0.07, 2690.0)
+        .unwrap();
+    let mut sim = DemSimulation::new(
+        scene,
+        material_law().unwrap(),
+        ExplicitEuler,
+        DemSettings::default(),
+    )
+    .unwrap();
+    sim.run_to_rest(&RestCriterion::default(), |_, _| {})
+        .unwrap();
+    assert_eq!(
+        sim.contacts().len(),
+        2,
+        "the disc should rest in the corner"
+    );
+
+    let (c, phi) = (50.0, 25f64.to_radians());
+    let settings = PackingLimitSettings {
+        rolling: false,
+        contact_law: RigidPlastic::cohesive(1.0).unwrap(),
+        wall_law: RigidPlastic::new(c, phi, true).unwrap(),
+        plate_law: RigidPlastic::new(0.0, 0.0, true).unwrap(),
+        plate_wall: "left".into(),
+        self_weight: true,
+    };
+    let model = model_from_packing(sim.scene(), sim.contacts(), &settings).unwrap();
+    let r = solve(&model);
+    let m = sim.scene().particles[0].mass;
+    let expected = c + m * g.x.abs() + m * g.y.abs() * phi.tan();
+    approx::assert_relative_eq!(r.load.unwrap(), expected, max_relative = 1e-6);
+    assert_statically_admissible(&model, &r);
+}

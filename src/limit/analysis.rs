@@ -47,6 +47,8 @@ pub struct LimitResult {
     pub shear_force: Vec<f64>,
     /// Interior-point iterations.
     pub iterations: u32,
+    /// Clarabel's own termination status.
+    pub solver_status: String,
     /// Number of LP variables, equality rows and non-zeros.
     pub lp_size: (usize, usize, usize),
 }
@@ -201,6 +203,7 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
         normal_force: vec![0.0; contacts.len()],
         shear_force: vec![0.0; contacts.len()],
         iterations: solution.iterations,
+        solver_status: solution.solver_status.clone(),
         lp_size,
     };
     if status != LimitStatus::Collapse || solution.x.len() != n {

@@ -22,8 +22,10 @@
 //! equal primal and dual optima certify the limit load.
 
 mod analysis;
+mod from_dem;
 pub mod lattice;
 mod model;
 
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
+pub use from_dem::{model_from_packing, PackingLimitSettings};
 pub use model::{LimitBody, LimitContact, LimitModel, Partner, Support};

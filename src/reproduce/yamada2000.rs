@@ -12,13 +12,23 @@
 use std::fmt::Write as _;
 
 use super::StudyOptions;
+use crate::contact::RigidPlastic;
+use crate::contact::SpringDashpotCoulomb;
+use crate::dem::{DemSettings, DemSimulation, RunOutcome};
 use crate::error::Result;
+use crate::integrate::ExplicitEuler;
 use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
-use crate::limit::{analyse, mechanism_uniqueness, LimitModel, LimitResult, LimitStatus};
+use crate::limit::{
+    analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,
+    PackingLimitSettings,
+};
+use crate::math::Vec2;
 use crate::math::{perp, Point};
 use crate::output::plot::mechanism_picture;
 use crate::output::plot::{line_chart, Series};
 use crate::output::{write_atomically, write_csv, Check, Summary};
+use crate::reproduce::katsuki1990;
+use crate::scene::{Frame, Scene};
 use crate::solve::LinearProgramSolver;
 
 /// File name of the paper.
@@ -429,6 +439,65 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         files.push(name);
     }
 
+    // Past the paper: a random polydisperse packing settled by the DEM,
+    // then its limit load by LP (the paper's future work (2)).
+    let (sim, _) = settle_polydisperse(options)?;
+    report.push_str("\n## DEM → LP: a settled polydisperse packing\n\n120 circles, radii uniform in [0.05, 0.09] m (fixed seed), settled under gravity with paper 000's law in an open box 1.6 m wide; its left wall then becomes a smooth plate pushed into the packing at unit speed. Contacts C_p = 1 between elements, 2C_p on the floor and the right wall, no weight (a c-material as in the paper).\n\n| model | status | P/C_p | primal − dual | optimum unique | file |\n|---|---|---|---|---|---|\n");
+    for rolling in [true, false] {
+        let settings = PackingLimitSettings {
+            rolling,
+            contact_law: RigidPlastic::cohesive(1.0)?,
+            wall_law: RigidPlastic::cohesive(2.0)?,
+            plate_law: RigidPlastic::cohesive(0.0)?,
+            plate_wall: "left".into(),
+            self_weight: false,
+        };
+        let model = model_from_packing(sim.scene(), sim.contacts(), &settings)?;
+        let r = analyse(&model, &mut solver)?;
+        let label = if rolling { "rolling" } else { "non-rolling" };
+        let name = format!(
+            "dem_packing_mechanism_{}.svg",
+            if rolling { "rolling" } else { "nonrolling" }
+        );
+        let (shown, unique) = if r.status == LimitStatus::Collapse {
+            max_gap = max_gap.max(gap(&r));
+            let u = mechanism_uniqueness(&model, &mut solver, &r)?;
+            let note = if u.unique {
+                "unique optimum".to_string()
+            } else {
+                format!("optimum NOT unique (spread {:.2e})", u.spread)
+            };
+            plot_mechanism(
+                &dir.join(&name),
+                &format!(
+                    "DEM packing, {label}: P = {:.3} C_p; {note}",
+                    r.kinematic_load
+                ),
+                &model,
+                &r,
+            )?;
+            files.push(name.clone());
+            (format!("{:.4}", r.kinematic_load), u.unique.to_string())
+        } else {
+            ("—".to_string(), "—".to_string())
+        };
+        let _ = writeln!(
+            report,
+            "| {label} | {:?} | {shown} | {:.2e} | {unique} | `{name}` |",
+            r.status,
+            r.kinematic_load - r.static_load
+        );
+        checks.push(Check {
+            id: format!("dem_to_lp.{label}.p_over_cp"),
+            description: format!("limit load of the DEM-settled polydisperse packing ({label}) by LP (no paper value); passes when a mechanism is found and primal and dual agree within 1e-6"),
+            paper: None,
+            computed: r.load.unwrap_or(f64::NAN),
+            unit: "C_p".into(),
+            tolerance: 1e-6,
+            passed: r.status == LimitStatus::Collapse && gap(&r) <= 1e-6,
+        });
+    }
+
     checks.push(Check {
         id: "primal_dual_gap.max".into(),
         description: "largest |kinematic − static| / (1 + |P|) over every solved LP of the study"
@@ -539,4 +608,49 @@ fn plot_mechanism(
         .collect();
     let radius = model.bodies().first().map(|b| b.radius).unwrap_or(1.0);
     mechanism_picture(path, title, &circles, &lines, &arrows, &marks, 1.6 * radius)
+}
+
+/// A deterministic uniform sequence in [0, 1) (SplitMix64), so that the
+/// packing is the same on every run.
+fn uniform_sequence(seed: u64) -> impl Iterator<Item = f64> {
+    let mut state = seed;
+    std::iter::repeat_with(move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    })
+}
+
+/// 120 circles with radii uniform in [0.05, 0.09] m, placed on a 0.2 m grid
+/// with a random shift and settled in an open box 1.6 m wide with paper
+/// 000's material.
+fn settle_polydisperse(
+    _options: &StudyOptions,
+) -> Result<(
+    DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    RunOutcome,
+)> {
+    let mut scene = Scene::new(
+        Frame::open_box(1.6, 3.6)?,
+        Vec2::new(0.0, -katsuki1990::STANDARD_GRAVITY),
+    )?;
+    let mut random = uniform_sequence(2000);
+    for k in 0..120 {
+        let (row, col) = (k / 8, k % 8);
+        let radius = 0.05 + 0.04 * random.next().unwrap_or(0.5);
+        let slack = 0.1 - radius - 0.001;
+        let shift = (2.0 * random.next().unwrap_or(0.5) - 1.0) * slack;
+        let centre = Point::new(0.1 + 0.2 * col as f64 + shift, 0.1 + 0.2 * row as f64);
+        scene.add_circle(centre, radius, katsuki1990::DENSITY)?;
+    }
+    let settings = DemSettings {
+        dt: katsuki1990::TIME_STEP,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(scene, katsuki1990::material_law()?, ExplicitEuler, settings)?;
+    let outcome = sim.run_to_rest(&katsuki1990::rest_criterion(), |_, _| {})?;
+    Ok((sim, outcome))
 }

@@ -291,6 +291,9 @@ pub struct LinearProgramSolution {
     pub inequality_duals: Vec<f64>,
     /// Number of interior-point iterations performed.
     pub iterations: u32,
+    /// Clarabel's own termination status, verbatim (e.g. `Solved`,
+    /// `AlmostSolved`, `MaxIterations`).
+    pub solver_status: String,
 }
 
 /// Interior-point LP solver backed by Clarabel.
@@ -391,6 +394,7 @@ impl LinearProgramSolver {
             equality_duals,
             inequality_duals,
             iterations: 0,
+            solver_status: "not run (no variables)".into(),
         }
     }
 
@@ -440,6 +444,7 @@ impl LinearProgramSolver {
             equality_duals: z,
             inequality_duals,
             iterations: sol.iterations,
+            solver_status: format!("{:?}", sol.status),
         })
     }
 }

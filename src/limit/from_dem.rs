@@ -1,0 +1,102 @@
+//! From a DEM packing to a limit analysis: the composition that turns a
+//! settled assembly (positions, contacts, weights) into the rigid-plastic
+//! LP of the same assembly.
+
+use super::model::{LimitModel, Partner};
+use crate::contact::RigidPlastic;
+use crate::dem::{ContactRecord, ContactTarget};
+use crate::error::{require_positive, DismechError, Result};
+use crate::scene::Scene;
+use crate::shape::AnyShape2;
+
+/// How a packing becomes a limit-analysis model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PackingLimitSettings {
+    /// Whether the elements may rotate.
+    pub rolling: bool,
+    /// Law of particle–particle contacts.
+    pub contact_law: RigidPlastic,
+    /// Law of particle–wall contacts.
+    pub wall_law: RigidPlastic,
+    /// Law of the contacts with the driven wall.
+    pub plate_law: RigidPlastic,
+    /// Name of the frame wall that becomes the loading plate, driven along
+    /// its inner normal at unit speed.
+    pub plate_wall: String,
+    /// Include the particles' weights (from the scene's gravity) as known
+    /// loads.
+    pub self_weight: bool,
+}
+
+/// Build the limit-analysis model of a packing: one rigid element per
+/// particle, one support per frame wall, one contact per DEM contact of the
+/// last step (overlapping pairs). Contacts are accepted as touching within
+/// the largest DEM overlap.
+pub fn model_from_packing(
+    scene: &Scene,
+    contacts: &[ContactRecord],
+    settings: &PackingLimitSettings,
+) -> Result<LimitModel> {
+    let plate =
+        scene
+            .frame
+            .index_of(&settings.plate_wall)
+            .ok_or(DismechError::InvalidParameter {
+                name: "plate wall (no frame wall has that name)",
+                value: f64::NAN,
+                requirement: "must name a wall of the frame, e.g. `left`",
+            })?;
+    let largest_overlap = contacts
+        .iter()
+        .map(|c| {
+            let a = &scene.particles[c.particle];
+            let ra = a.shape.as_shape().bounding_radius();
+            match c.target {
+                ContactTarget::Particle(j) => {
+                    let b = &scene.particles[j];
+                    ra + b.shape.as_shape().bounding_radius()
+                        - (b.pose.position - a.pose.position).norm()
+                }
+                ContactTarget::Wall(w) => {
+                    let wall = &scene.frame.walls()[w];
+                    ra - (a.pose.position - wall.start).dot(&wall.inner_normal())
+                }
+            }
+        })
+        .fold(0.0, f64::max);
+    let mut model = LimitModel::new(require_positive(
+        "contact tolerance",
+        1.01 * largest_overlap + 1e-12,
+    )?)?;
+    for p in &scene.particles {
+        let AnyShape2::Circle(circle) = &p.shape else {
+            return Err(DismechError::UnsupportedPair(
+                "limit analysis",
+                "non-circular particle",
+            ));
+        };
+        let i = model.add_body(p.pose.position, circle.radius(), settings.rolling)?;
+        if settings.self_weight {
+            model.set_load(i, scene.gravity * p.mass)?;
+        }
+    }
+    for (w, wall) in scene.frame.walls().iter().enumerate() {
+        let normal = wall.inner_normal();
+        let velocity = if w == plate { normal } else { normal * 0.0 };
+        model.add_support(
+            scene.frame.name(w).unwrap_or("wall"),
+            wall.start,
+            normal,
+            velocity,
+        )?;
+    }
+    for c in contacts {
+        let (partner, law) = match c.target {
+            ContactTarget::Particle(j) => (Partner::Body(j), settings.contact_law),
+            ContactTarget::Wall(w) if w == plate => (Partner::Support(w), settings.plate_law),
+            ContactTarget::Wall(w) => (Partner::Support(w), settings.wall_law),
+        };
+        model.add_contact(c.particle, partner, law)?;
+    }
+    Ok(model)
+}
