@@ -325,3 +325,26 @@ fn settled_disc_converted_from_dem_needs_the_exact_push() {
     approx::assert_relative_eq!(r.load.unwrap(), expected, max_relative = 1e-6);
     assert_statically_admissible(&model, &r);
 }
+
+/// The rolling (2,2,1) optimum is a face, not a point: one element between
+/// two cohesive contacts can share the slip between them in many ways. The
+/// vertex mechanism recovered from that face dissipates exactly P. The
+/// non-rolling (2,2,1) optimum is unique.
+#[test]
+fn non_unique_optimum_is_detected_and_a_vertex_mechanism_recovered() {
+    use dismech::limit::mechanism_uniqueness;
+    let mut solver = LinearProgramSolver::default();
+    for (rolling, unique) in [(true, false), (false, true)] {
+        let model = Lattice::u_model(2, 2, 1, rolling).build().unwrap();
+        let r = analyse(&model, &mut solver).unwrap();
+        let u = mechanism_uniqueness(&model, &mut solver, &r).unwrap();
+        assert_eq!(u.unique, unique, "rolling {rolling}: spread {}", u.spread);
+        let dissipation: f64 = model
+            .contacts()
+            .iter()
+            .zip(&u.vertex.slip)
+            .map(|(c, s)| c.law.cohesion() * s.abs())
+            .sum();
+        approx::assert_relative_eq!(dissipation, r.kinematic_load, max_relative = 1e-5);
+    }
+}

@@ -209,23 +209,11 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
     if status != LimitStatus::Collapse || solution.x.len() != n {
         return Ok(result);
     }
-    for (i, b) in model.bodies().iter().enumerate() {
-        let k = dof[i];
-        let omega = if b.rotates { solution.x[k + 2] } else { 0.0 };
-        result
-            .velocities
-            .push((Vec2::new(solution.x[k], solution.x[k + 1]), omega));
-    }
+    read_mechanism(model, &dof, &columns, &solution.x, &mut result);
     let plate_direction = model.supports()[plate].velocity / speed;
     let mut plate_force = Vec2::zeros();
     for (c, contact) in contacts.iter().enumerate() {
         let cols = columns[c];
-        if let Some((plus, minus)) = cols.slip {
-            result.slip[c] = solution.x[plus] - solution.x[minus];
-        }
-        if let Some(opening) = cols.opening {
-            result.opening[c] = solution.x[opening];
-        }
         // Dual multipliers → contact forces (see the module docs of
         // `solve::linear_program` for the sign convention).
         result.normal_force[c] = -solution.equality_duals[cols.normal_row];
@@ -241,6 +229,26 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
     result.static_load = -plate_force.dot(&plate_direction);
     result.load = Some(result.kinematic_load);
     Ok(result)
+}
+
+/// Element velocities, slips and openings of an LP solution `x`.
+fn read_mechanism(
+    model: &LimitModel,
+    dof: &[usize],
+    columns: &[ContactColumns],
+    x: &[f64],
+    result: &mut LimitResult,
+) {
+    result.velocities.clear();
+    for (i, b) in model.bodies().iter().enumerate() {
+        let k = dof[i];
+        let omega = if b.rotates { x[k + 2] } else { 0.0 };
+        result.velocities.push((Vec2::new(x[k], x[k + 1]), omega));
+    }
+    for (c, cols) in columns.iter().enumerate() {
+        result.slip[c] = cols.slip.map_or(0.0, |(plus, minus)| x[plus] - x[minus]);
+        result.opening[c] = cols.opening.map_or(0.0, |opening| x[opening]);
+    }
 }
 
 /// Coefficients of `Δv · direction` at contact `c` in terms of the element
@@ -277,7 +285,7 @@ fn jump_row(
 
 /// Whether the optimal mechanism is unique, tested on the element
 /// velocities.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Uniqueness {
     /// `true` when every optimal mechanism has the same element velocities
     /// (within the tolerance).
@@ -285,6 +293,11 @@ pub struct Uniqueness {
     /// Spread `max f − min f` of a fixed generic linear functional `f` of
     /// the velocities over the optimal face.
     pub spread: f64,
+    /// A vertex of the optimal face: the optimal mechanism that minimises
+    /// `f` (the result with its velocities, slips and openings replaced).
+    /// When the optimum is not unique this is one pure mechanism, where
+    /// the interior-point optimum may be a blend of several.
+    pub vertex: LimitResult,
 }
 
 /// Test whether the optimum of a solved model is unique: fix the
@@ -299,7 +312,11 @@ pub fn mechanism_uniqueness(
     result: &LimitResult,
 ) -> Result<Uniqueness> {
     let KinematicLp {
-        mut lp, dof, speed, ..
+        mut lp,
+        dof,
+        columns,
+        speed,
+        ..
     } = build_kinematic_lp(model)?;
     let optimum = result.kinematic_load * speed;
     let row: Vec<(usize, f64)> = lp
@@ -319,6 +336,7 @@ pub fn mechanism_uniqueness(
         }
     }
     let mut extreme = [0.0; 2];
+    let mut vertex = result.clone();
     for (slot, sign) in [1.0, -1.0].into_iter().enumerate() {
         lp.objective = weights.iter().map(|w| sign * w).collect();
         let solution = solver.solve(&lp)?;
@@ -331,6 +349,9 @@ pub fn mechanism_uniqueness(
             ));
         }
         extreme[slot] = sign * solution.objective;
+        if slot == 0 && solution.x.len() == lp.num_variables {
+            read_mechanism(model, &dof, &columns, &solution.x, &mut vertex);
+        }
     }
     let scale = result
         .velocities
@@ -341,5 +362,6 @@ pub fn mechanism_uniqueness(
     Ok(Uniqueness {
         unique: spread <= 1e-4 * scale,
         spread,
+        vertex,
     })
 }

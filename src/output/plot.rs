@@ -123,93 +123,27 @@ pub struct ForceMark {
     pub force: Vec2,
 }
 
-/// A picture of an assembly: circles (outline), walls, and contact forces
-/// drawn as segments centred on the contact point, with length proportional
-/// to the force (the largest is `max_length` long), like paper 000 Fig. 5(b).
-pub fn assembly_picture(
-    path: &Path,
-    title: &str,
-    circles: &[(Point, f64)],
-    walls: &[Segment],
-    forces: &[ForceMark],
-    max_length: f64,
-) -> Result<()> {
-    let xs = circles
-        .iter()
-        .flat_map(|(c, r)| [c.x - r, c.x + r])
-        .chain(walls.iter().flat_map(|w| [w.start.x, w.end.x]));
-    let ys = circles
-        .iter()
-        .flat_map(|(c, r)| [c.y - r, c.y + r])
-        .chain(walls.iter().flat_map(|w| [w.start.y, w.end.y]));
-    let (x0, x1) = padded_range(xs);
-    let (y0, y1) = padded_range(ys);
-    let width_px = 800u32;
-    let height_px = ((width_px as f64) * (y1 - y0) / (x1 - x0)).clamp(200.0, 2400.0) as u32 + 60;
-    let largest = forces.iter().map(|f| f.force.norm()).fold(0.0, f64::max);
-    let scale = if largest > 0.0 {
-        max_length / largest
-    } else {
-        0.0
-    };
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (width_px, height_px)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 20))
-            .margin(10)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| plot_error(path, e))?;
-        let grey = RGBColor(170, 170, 170);
-        chart
-            .draw_series(circles.iter().map(|(c, r)| {
-                let pts: Vec<(f64, f64)> = (0..=32)
-                    .map(|k| {
-                        let t = k as f64 / 32.0 * std::f64::consts::TAU;
-                        (c.x + r * t.cos(), c.y + r * t.sin())
-                    })
-                    .collect();
-                PathElement::new(pts, grey.stroke_width(1))
-            }))
-            .map_err(|e| plot_error(path, e))?;
-        chart
-            .draw_series(walls.iter().map(|w| {
-                PathElement::new(
-                    vec![(w.start.x, w.start.y), (w.end.x, w.end.y)],
-                    BLACK.stroke_width(3),
-                )
-            }))
-            .map_err(|e| plot_error(path, e))?;
-        chart
-            .draw_series(forces.iter().map(|f| {
-                let half = f.force * (0.5 * scale);
-                PathElement::new(
-                    vec![
-                        (f.point.x - half.x, f.point.y - half.y),
-                        (f.point.x + half.x, f.point.y + half.y),
-                    ],
-                    PALETTE[1].stroke_width(2),
-                )
-            }))
-            .map_err(|e| plot_error(path, e))?;
-        root.present().map_err(|e| plot_error(path, e))?;
-    }
-    write_atomically(path, svg.as_bytes())
+/// What a picture of an assembly shows on top of its circles and lines.
+#[derive(Debug, Default)]
+struct Overlay<'a> {
+    /// Segments centred on a point (contact forces), already scaled.
+    centred: Vec<(Point, Vec2)>,
+    /// Arrows from a point (velocities), already scaled.
+    arrows: Vec<(Point, Vec2)>,
+    /// Crosses (slipping contacts).
+    crosses: &'a [Point],
+    /// Head length of the arrows.
+    head: f64,
 }
 
-/// A picture of a collapse mechanism: elements (outline), supports (thick
-/// lines), velocity arrows from each element centre, and marks on slipping
-/// contacts, like paper 002's Figs. 4–9 and 11–16. The longest arrow is
-/// `max_arrow` long.
-pub fn mechanism_picture(
+/// Draw circles (outline), thick lines and an overlay, scaled equally in x
+/// and y, and write the SVG atomically.
+fn draw_picture(
     path: &Path,
     title: &str,
     circles: &[(Point, f64)],
     lines: &[(Point, Point)],
-    arrows: &[(Point, Vec2)],
-    marks: &[Point],
-    max_arrow: f64,
+    overlay: &Overlay,
 ) -> Result<()> {
     let xs = circles
         .iter()
@@ -223,12 +157,6 @@ pub fn mechanism_picture(
     let (y0, y1) = padded_range(ys);
     let width_px = 800u32;
     let height_px = ((width_px as f64) * (y1 - y0) / (x1 - x0)).clamp(200.0, 2400.0) as u32 + 60;
-    let longest = arrows.iter().map(|a| a.1.norm()).fold(0.0, f64::max);
-    let scale = if longest > 0.0 {
-        max_arrow / longest
-    } else {
-        0.0
-    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width_px, height_px)).into_drawing_area();
@@ -255,27 +183,42 @@ pub fn mechanism_picture(
                 PathElement::new(vec![(a.x, a.y), (b.x, b.y)], BLACK.stroke_width(3))
             }))
             .map_err(|e| plot_error(path, e))?;
-        let blue = PALETTE[0];
         chart
-            .draw_series(arrows.iter().filter(|a| a.1.norm() > 0.0).map(|(p, v)| {
-                let tip = *p + v * scale;
-                let back = -v.normalize() * (0.25 * max_arrow).min(0.4 * (v * scale).norm());
-                let side = crate::math::perp(&back) * 0.5;
+            .draw_series(overlay.centred.iter().map(|(p, v)| {
+                let half = v * 0.5;
                 PathElement::new(
-                    vec![
-                        (p.x, p.y),
-                        (tip.x, tip.y),
-                        (tip.x + back.x + side.x, tip.y + back.y + side.y),
-                        (tip.x, tip.y),
-                        (tip.x + back.x - side.x, tip.y + back.y - side.y),
-                    ],
-                    blue.stroke_width(2),
+                    vec![(p.x - half.x, p.y - half.y), (p.x + half.x, p.y + half.y)],
+                    PALETTE[1].stroke_width(2),
                 )
             }))
             .map_err(|e| plot_error(path, e))?;
         chart
             .draw_series(
-                marks
+                overlay
+                    .arrows
+                    .iter()
+                    .filter(|a| a.1.norm() > 0.0)
+                    .map(|(p, v)| {
+                        let tip = *p + v;
+                        let back = -v.normalize() * overlay.head.min(0.4 * v.norm());
+                        let side = crate::math::perp(&back) * 0.5;
+                        PathElement::new(
+                            vec![
+                                (p.x, p.y),
+                                (tip.x, tip.y),
+                                (tip.x + back.x + side.x, tip.y + back.y + side.y),
+                                (tip.x, tip.y),
+                                (tip.x + back.x - side.x, tip.y + back.y - side.y),
+                            ],
+                            PALETTE[0].stroke_width(2),
+                        )
+                    }),
+            )
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series(
+                overlay
+                    .crosses
                     .iter()
                     .map(|p| Cross::new((p.x, p.y), 5, PALETTE[1].stroke_width(2))),
             )
@@ -283,4 +226,57 @@ pub fn mechanism_picture(
         root.present().map_err(|e| plot_error(path, e))?;
     }
     write_atomically(path, svg.as_bytes())
+}
+
+/// The factor that makes the longest of `vectors` `max_length` long.
+fn scale_to(vectors: impl Iterator<Item = Vec2>, max_length: f64) -> f64 {
+    let longest = vectors.map(|v| v.norm()).fold(0.0, f64::max);
+    if longest > 0.0 {
+        max_length / longest
+    } else {
+        0.0
+    }
+}
+
+/// A picture of an assembly: circles (outline), walls, and contact forces
+/// drawn as segments centred on the contact point, with length proportional
+/// to the force (the largest is `max_length` long), like paper 000 Fig. 5(b).
+pub fn assembly_picture(
+    path: &Path,
+    title: &str,
+    circles: &[(Point, f64)],
+    walls: &[Segment],
+    forces: &[ForceMark],
+    max_length: f64,
+) -> Result<()> {
+    let scale = scale_to(forces.iter().map(|f| f.force), max_length);
+    let lines: Vec<(Point, Point)> = walls.iter().map(|w| (w.start, w.end)).collect();
+    let overlay = Overlay {
+        centred: forces.iter().map(|f| (f.point, f.force * scale)).collect(),
+        ..Overlay::default()
+    };
+    draw_picture(path, title, circles, &lines, &overlay)
+}
+
+/// A picture of a collapse mechanism: elements (outline), supports (thick
+/// lines), velocity arrows from each element centre, and crosses on
+/// slipping contacts, like paper 002's Figs. 4–9 and 11–16. The longest
+/// arrow is `max_arrow` long.
+pub fn mechanism_picture(
+    path: &Path,
+    title: &str,
+    circles: &[(Point, f64)],
+    lines: &[(Point, Point)],
+    arrows: &[(Point, Vec2)],
+    marks: &[Point],
+    max_arrow: f64,
+) -> Result<()> {
+    let scale = scale_to(arrows.iter().map(|a| a.1), max_arrow);
+    let overlay = Overlay {
+        arrows: arrows.iter().map(|(p, v)| (*p, v * scale)).collect(),
+        crosses: marks,
+        head: 0.25 * max_arrow,
+        ..Overlay::default()
+    };
+    draw_picture(path, title, circles, lines, &overlay)
 }

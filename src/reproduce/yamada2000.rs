@@ -20,7 +20,7 @@ use crate::integrate::ExplicitEuler;
 use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
 use crate::limit::{
     analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,
-    PackingLimitSettings,
+    PackingLimitSettings, Uniqueness,
 };
 use crate::math::Vec2;
 use crate::math::{perp, Point};
@@ -411,14 +411,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let r = analyse(&model, &mut solver)?;
         max_gap = max_gap.max(gap(&r));
         let uniqueness = mechanism_uniqueness(&model, &mut solver, &r)?;
-        let note = if uniqueness.unique {
-            "unique optimum".to_string()
-        } else {
-            format!(
-                "optimum NOT unique (spread {:.2e}): a blend of optimal mechanisms",
-                uniqueness.spread
-            )
-        };
+        let note = uniqueness_note(&uniqueness);
         plot_mechanism(
             &dir.join(&name),
             &format!(
@@ -427,7 +420,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                 r.kinematic_load
             ),
             &model,
-            &r,
+            &uniqueness.vertex,
         )?;
         let _ = writeln!(
             report,
@@ -462,11 +455,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let (shown, unique) = if r.status == LimitStatus::Collapse {
             max_gap = max_gap.max(gap(&r));
             let u = mechanism_uniqueness(&model, &mut solver, &r)?;
-            let note = if u.unique {
-                "unique optimum".to_string()
-            } else {
-                format!("optimum NOT unique (spread {:.2e})", u.spread)
-            };
+            let note = uniqueness_note(&u);
             plot_mechanism(
                 &dir.join(&name),
                 &format!(
@@ -474,7 +463,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                     r.kinematic_load
                 ),
                 &model,
-                &r,
+                &u.vertex,
             )?;
             files.push(name.clone());
             (format!("{:.4}", r.kinematic_load), u.unique.to_string())
@@ -555,6 +544,15 @@ fn bearing_capacity_curves(
         }
     }
     Ok(curves)
+}
+
+/// What a mechanism plot says of the optimum's uniqueness.
+fn uniqueness_note(u: &Uniqueness) -> &'static str {
+    if u.unique {
+        "unique optimum"
+    } else {
+        "optimum NOT unique: one vertex mechanism shown"
+    }
 }
 
 /// Draw the mechanism of a solved model: velocity arrows and slipping
