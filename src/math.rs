@@ -36,6 +36,11 @@ impl Pose2 {
         rotate(local, self.angle)
     }
 
+    /// Map a world vector into the body frame.
+    pub fn inverse_transform_vector(&self, world: &Vec2) -> Vec2 {
+        rotate(world, -self.angle)
+    }
+
     /// Map a world point into the body frame.
     pub fn inverse_transform_point(&self, world: &Point) -> Point {
         Point::from(rotate(&(world - self.position), -self.angle))

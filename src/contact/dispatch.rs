@@ -7,10 +7,16 @@
 
 use super::circle_circle::contact_circle_circle;
 use super::circle_segment::contact_circle_segment;
+use super::ellipse::{contact_ellipse_ellipse, contact_ellipse_segment};
 use super::ContactGeometry;
 use crate::error::{DismechError, Result};
 use crate::math::Pose2;
-use crate::shape::AnyShape2;
+use crate::shape::{AnyShape2, Circle, Ellipse};
+
+/// A circle as the a = b ellipse, for circle–ellipse pairs.
+fn as_ellipse(c: &Circle) -> Result<Ellipse> {
+    Ellipse::new(c.radius(), c.radius())
+}
 
 /// The contact of `a` at `pose_a` with `b` at `pose_b`: `Ok(None)` when
 /// they do not touch. Segments are taken in world coordinates (their pose is
@@ -28,6 +34,19 @@ pub fn contact_2d(
         (AnyShape2::Circle(c), AnyShape2::Segment(s)) => Ok(contact_circle_segment(c, pose_a, s)),
         (AnyShape2::Segment(s), AnyShape2::Circle(c)) => {
             Ok(contact_circle_segment(c, pose_b, s).map(|g| g.flipped()))
+        }
+        (AnyShape2::Ellipse(ea), AnyShape2::Ellipse(eb)) => {
+            Ok(contact_ellipse_ellipse(ea, pose_a, eb, pose_b))
+        }
+        (AnyShape2::Ellipse(e), AnyShape2::Circle(c)) => {
+            Ok(contact_ellipse_ellipse(e, pose_a, &as_ellipse(c)?, pose_b))
+        }
+        (AnyShape2::Circle(c), AnyShape2::Ellipse(e)) => {
+            Ok(contact_ellipse_ellipse(&as_ellipse(c)?, pose_a, e, pose_b))
+        }
+        (AnyShape2::Ellipse(e), AnyShape2::Segment(s)) => Ok(contact_ellipse_segment(e, pose_a, s)),
+        (AnyShape2::Segment(s), AnyShape2::Ellipse(e)) => {
+            Ok(contact_ellipse_segment(e, pose_b, s).map(|g| g.flipped()))
         }
         (AnyShape2::Segment(_), AnyShape2::Segment(_)) => Err(DismechError::UnsupportedPair(
             a.as_shape().kind().name(),

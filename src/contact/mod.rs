@@ -20,6 +20,7 @@
 pub mod circle_circle;
 pub mod circle_segment;
 pub mod dispatch;
+pub mod ellipse;
 mod geometry;
 mod law;
 mod rigid_plastic;

@@ -136,8 +136,9 @@ pub struct DemSimulation<L: ContactLaw<2>, I: Integrator = ExplicitEuler> {
     time: f64,
     initial_potential: f64,
     initial_kinetic: f64,
-    history: HashMap<(usize, ContactTarget), L::State>,
-    next_history: HashMap<(usize, ContactTarget), L::State>,
+    /// Law state and overlap of each contact at the previous step.
+    history: HashMap<(usize, ContactTarget), (L::State, f64)>,
+    next_history: HashMap<(usize, ContactTarget), (L::State, f64)>,
     increments: Vec<(Vec2, f64)>,
     grid: CellGrid,
     boxes: Vec<Aabb2>,
@@ -333,7 +334,7 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
     ) {
         let pa = &self.scene.particles[a];
         let increment_a = self.increments[a];
-        let du = relative_increment(
+        let mut du = relative_increment(
             geometry,
             &pa.pose.position,
             (&increment_a.0, increment_a.1),
@@ -342,6 +343,13 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
         );
         let key = (a, target);
         let previous = self.history.get(&key);
+        // The normal increment is the change of the overlap itself: exact
+        // for any shape. (The relative velocity at the chord midpoint misses
+        // the motion of the deepest point when a non-circular body rolls,
+        // and an incremental spring fed with it gains energy.)
+        if let Some((_, previous_overlap)) = previous {
+            du[0] = geometry.overlap - previous_overlap;
+        }
         let input = ContactInput {
             overlap: geometry.overlap,
             increment: du.into(),
@@ -358,7 +366,7 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
         let default_state = L::State::default();
         let response = self
             .law
-            .evaluate(&input, previous.unwrap_or(&default_state));
+            .evaluate(&input, previous.map_or(&default_state, |(state, _)| state));
         let force_on_b =
             geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
         let moment_a = moment_about(&pa.pose.position, &geometry.point, &(-force_on_b));
@@ -371,7 +379,8 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             self.system.force[3 * b + 1] += force_on_b.y;
             self.system.force[3 * b + 2] += moment_b;
         }
-        self.next_history.insert(key, response.state);
+        self.next_history
+            .insert(key, (response.state, geometry.overlap));
         self.contacts.push(ContactRecord {
             particle: a,
             target,

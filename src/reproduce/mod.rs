@@ -2,6 +2,7 @@
 //! library pieces, runs them, compares with the paper and writes its
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
+pub mod ellipse_pairs;
 pub mod katsuki1990;
 pub mod yamada2000;
 

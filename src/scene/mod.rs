@@ -9,7 +9,7 @@ pub use particle::Particle;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::math::{Point, Vec2};
-use crate::shape::{Circle, Shape};
+use crate::shape::{Circle, Ellipse, Shape};
 
 /// Particles in a rigid frame under gravity (2D, per unit thickness).
 #[derive(Debug, Clone, PartialEq)]
@@ -44,6 +44,28 @@ impl Scene {
         let mp = circle.mass_properties(density);
         self.particles
             .push(Particle::at_rest(circle.into(), centre, mp));
+        Ok(self.particles.len() - 1)
+    }
+
+    /// Add an ellipse with semi-axes `a ≥ b` (m), major axis at `angle`
+    /// (rad), `density` (kg/m³), at rest at `centre`; returns its index.
+    pub fn add_ellipse(
+        &mut self,
+        centre: Point,
+        a: f64,
+        b: f64,
+        angle: f64,
+        density: f64,
+    ) -> Result<usize> {
+        require_finite("centre x", centre.x)?;
+        require_finite("centre y", centre.y)?;
+        require_finite("angle", angle)?;
+        let ellipse = Ellipse::new(a, b)?;
+        require_positive("density", density)?;
+        let mp = ellipse.mass_properties(density);
+        let mut particle = Particle::at_rest(ellipse.into(), centre, mp);
+        particle.pose.angle = angle;
+        self.particles.push(particle);
         Ok(self.particles.len() - 1)
     }
 

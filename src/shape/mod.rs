@@ -13,9 +13,11 @@
 //! `Err(UnsupportedPair)` for a pair it lacks, never panic.
 
 mod circle;
+mod ellipse;
 mod segment;
 
 pub use circle::Circle;
+pub use ellipse::{Ellipse, MAX_ASPECT_RATIO};
 pub use segment::Segment;
 
 use crate::math::{Aabb2, Pose2};
@@ -93,6 +95,8 @@ pub enum AnyShape2 {
     Circle(Circle),
     /// A segment (wall).
     Segment(Segment),
+    /// An ellipse.
+    Ellipse(Ellipse),
 }
 
 impl AnyShape2 {
@@ -101,6 +105,7 @@ impl AnyShape2 {
         match self {
             AnyShape2::Circle(c) => c,
             AnyShape2::Segment(s) => s,
+            AnyShape2::Ellipse(e) => e,
         }
     }
 }
@@ -108,6 +113,12 @@ impl AnyShape2 {
 impl From<Circle> for AnyShape2 {
     fn from(c: Circle) -> Self {
         AnyShape2::Circle(c)
+    }
+}
+
+impl From<Ellipse> for AnyShape2 {
+    fn from(e: Ellipse) -> Self {
+        AnyShape2::Ellipse(e)
     }
 }
 
