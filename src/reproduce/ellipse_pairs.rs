@@ -222,3 +222,39 @@ pub fn random_pair_statistics(count: usize, seed: u64) -> PairStatistics {
     }
     stats
 }
+
+/// [`random_pair_statistics`] over `count` pairs split across the
+/// machine's cores (each share with its own seed derived from `seed`).
+pub fn random_pair_statistics_parallel(count: usize, seed: u64) -> PairStatistics {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .max(1);
+    let share = count.div_ceil(threads);
+    let parts: Vec<PairStatistics> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let n = share.min(count.saturating_sub(k * share));
+                scope.spawn(move || {
+                    random_pair_statistics(n, seed.wrapping_add(k as u64 * 0x1000_0000))
+                })
+            })
+            .collect();
+        handles.into_iter().filter_map(|h| h.join().ok()).collect()
+    });
+    parts.into_iter().fold(
+        PairStatistics {
+            count: 0,
+            in_contact: 0,
+            missed: 0,
+            false_contacts: 0,
+            max_point_error: 0.0,
+        },
+        |a, b| PairStatistics {
+            count: a.count + b.count,
+            in_contact: a.in_contact + b.in_contact,
+            missed: a.missed + b.missed,
+            false_contacts: a.false_contacts + b.false_contacts,
+            max_point_error: a.max_point_error.max(b.max_point_error),
+        },
+    )
+}

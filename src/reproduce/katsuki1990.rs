@@ -308,7 +308,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let vertical = eq.vertical_ratio();
     let horizontal = eq.horizontal_imbalance();
     let rest_ratio = outcome.kinetic_energy / outcome.released_potential_energy;
-    let checks = vec![
+    let mut checks = vec![
         Check {
             id: "ex1.vertical_reaction_ratio".into(),
             description: "sum of vertical wall reactions (bottom + side-wall friction) / total weight; passes when |ratio - 1| <= tolerance".into(),
@@ -349,6 +349,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             passed: TIME_STEP <= limit.dt,
         },
     ];
+    checks.extend(random_pair_checks());
     let summary = Summary {
         study: "katsuki1990".into(),
         paper: PAPER.into(),
@@ -473,4 +474,51 @@ fn write_example1_outputs(
     )?;
     files.push("ex1_particles.csv".into());
     Ok(())
+}
+
+/// Robustness of the ellipse contact over 100 000 random pairs against the
+/// independent reference of [`super::ellipse_pairs`].
+fn random_pair_checks() -> Vec<Check> {
+    let s = super::ellipse_pairs::random_pair_statistics_parallel(100_000, 2026);
+    let check = |id: &str, description: &str, computed: f64, tolerance: f64| Check {
+        id: id.into(),
+        description: description.into(),
+        paper: None,
+        computed,
+        unit: "-".into(),
+        tolerance,
+        passed: computed <= tolerance,
+    };
+    vec![
+        Check {
+            id: "contact.random_pairs.count".into(),
+            description: format!(
+                "random ellipse pairs tested (aspect 1-5, size ratio 1-10, overlap -5 % to 20 % of the smaller b), {} of them in contact by the reference; passes when all 100000 ran",
+                s.in_contact
+            ),
+            paper: None,
+            computed: s.count as f64,
+            unit: "-".into(),
+            tolerance: 0.0,
+            passed: s.count == 100_000 && s.in_contact > 0,
+        },
+        check(
+            "contact.random_pairs.missed",
+            "contacts the routine missed where the reference finds an overlap",
+            s.missed as f64,
+            0.0,
+        ),
+        check(
+            "contact.random_pairs.false",
+            "contacts the routine reported where the reference finds a gap",
+            s.false_contacts as f64,
+            0.0,
+        ),
+        check(
+            "contact.random_pairs.max_point_error",
+            "largest distance between the routine's and the reference's intersection points P1, P2, divided by the smaller b",
+            s.max_point_error,
+            1e-8,
+        ),
+    ]
 }
