@@ -61,6 +61,26 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
     );
 }
 
+/// One element of radius 1 and weight `w` resting on a fixed floor (the
+/// line y = 0) through a contact with `floor_law`; returns the model and
+/// the element.
+fn element_on_floor(rotates: bool, w: f64, floor_law: RigidPlastic) -> (LimitModel, usize) {
+    let mut m = LimitModel::new(1e-9).unwrap();
+    let e = m.add_body(Point::new(0.0, 1.0), 1.0, rotates).unwrap();
+    m.set_load(e, Vec2::new(0.0, -w)).unwrap();
+    let floor = m
+        .add_support(
+            "floor",
+            Point::new(0.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    m.add_contact(e, Partner::Support(floor), floor_law)
+        .unwrap();
+    (m, e)
+}
+
 /// §2.2: two elements at α = 45°; element 1 held by two walls can only
 /// rotate; element 2 is pushed by a plate; all strengths C.
 #[test]
@@ -138,17 +158,7 @@ fn unequal_lattices_solve_or_report_locked() {
 fn mohr_coulomb_block_needs_c_plus_w_tan_phi_and_rolls_for_free() {
     let (c, w, phi) = (3.0, 10.0, 30f64.to_radians());
     for rotates in [false, true] {
-        let mut m = LimitModel::new(1e-9).unwrap();
-        let e = m.add_body(Point::new(0.0, 1.0), 1.0, rotates).unwrap();
-        m.set_load(e, Vec2::new(0.0, -w)).unwrap();
-        let floor = m
-            .add_support(
-                "floor",
-                Point::new(0.0, 0.0),
-                Vec2::new(0.0, 1.0),
-                Vec2::zeros(),
-            )
-            .unwrap();
+        let (mut m, e) = element_on_floor(rotates, w, RigidPlastic::new(c, phi, true).unwrap());
         let plate = m
             .add_support(
                 "plate",
@@ -157,12 +167,6 @@ fn mohr_coulomb_block_needs_c_plus_w_tan_phi_and_rolls_for_free() {
                 Vec2::new(-1.0, 0.0),
             )
             .unwrap();
-        m.add_contact(
-            e,
-            Partner::Support(floor),
-            RigidPlastic::new(c, phi, true).unwrap(),
-        )
-        .unwrap();
         m.add_contact(
             e,
             Partner::Support(plate),
@@ -188,27 +192,12 @@ fn unilateral_contact_opens_without_dissipation() {
     let (c, w) = (5.0f64, 2.0f64);
     let n_plate = Vec2::new(-1.0, 1.0) / SQRT_2;
     for (unilateral, expected) in [(true, SQRT_2 * c.min(w)), (false, SQRT_2 * c)] {
-        let mut m = LimitModel::new(1e-9).unwrap();
-        let e = m.add_body(Point::new(0.0, 1.0), 1.0, false).unwrap();
-        m.set_load(e, Vec2::new(0.0, -w)).unwrap();
-        let floor = m
-            .add_support(
-                "floor",
-                Point::new(0.0, 0.0),
-                Vec2::new(0.0, 1.0),
-                Vec2::zeros(),
-            )
-            .unwrap();
+        let floor_law = RigidPlastic::new(c, 0.0, unilateral).unwrap();
+        let (mut m, e) = element_on_floor(false, w, floor_law);
         let contact_point = Point::new(0.0, 1.0) - n_plate;
         let plate = m
             .add_support("plate", contact_point, n_plate, n_plate)
             .unwrap();
-        m.add_contact(
-            e,
-            Partner::Support(floor),
-            RigidPlastic::new(c, 0.0, unilateral).unwrap(),
-        )
-        .unwrap();
         m.add_contact(
             e,
             Partner::Support(plate),
