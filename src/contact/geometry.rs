@@ -52,7 +52,9 @@ impl ContactGeometry {
 /// This is the vector form of paper 000's missing eqs. (12)–(13). For a
 /// circle, `r` is parallel to `n`, so rotation changes only `Δu_s`; for an
 /// ellipse the lever arm is not parallel to the normal and rotation moves the
-/// contact point normally too.
+/// contact point normally too. (The DEM takes the normal increment of a
+/// continuing contact from the change of overlap instead, which equals this
+/// `Δu_n` for circles and stays exact for rolling ellipses.)
 pub fn relative_increment(
     geometry: &ContactGeometry,
     centre_a: &Point,

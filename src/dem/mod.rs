@@ -13,7 +13,11 @@
 //! Per step: contact forces from the positions and the previous step's
 //! increments, accelerations from forces plus gravity (paper 000 eqs.
 //! 20–22), then velocities and positions. The contact history (spring
-//! forces) is kept per pair while the pair overlaps.
+//! forces and the overlap) is kept per pair while the pair overlaps. The
+//! shear increment is the relative displacement at the contact point
+//! (rotation included); the normal increment of a continuing contact is
+//! the change of the overlap itself, which stays exact when a non-circular
+//! body rolls and its deepest point moves along its boundary.
 
 mod simulation;
 mod stability;
