@@ -337,3 +337,34 @@ fn non_unique_optimum_is_detected_and_a_vertex_mechanism_recovered() {
         approx::assert_relative_eq!(dissipation, r.kinematic_load, max_relative = 1e-5);
     }
 }
+
+/// An element that touches only smooth contacts can move at no cost: the
+/// optimal face is unbounded, which the uniqueness test reports as not
+/// unique (infinite spread) instead of failing.
+#[test]
+fn free_element_makes_the_optimum_non_unique_without_failing() {
+    use dismech::limit::mechanism_uniqueness;
+    let mut model = two_elements(1.0).unwrap();
+    // A rattler: an element resting on a smooth floor, touching nothing else.
+    let rattler = model.add_body(Point::new(10.0, 1.0), 1.0, true).unwrap();
+    let floor = model
+        .add_support(
+            "smooth floor",
+            Point::new(10.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    model
+        .add_contact(
+            rattler,
+            Partner::Support(floor),
+            RigidPlastic::cohesive(0.0).unwrap(),
+        )
+        .unwrap();
+    let mut solver = LinearProgramSolver::default();
+    let r = analyse(&model, &mut solver).unwrap();
+    approx::assert_relative_eq!(r.load.unwrap(), 1.0 + SQRT_2, max_relative = 1e-7);
+    let u = mechanism_uniqueness(&model, &mut solver, &r).unwrap();
+    assert!(!u.unique && u.spread.is_infinite(), "{:?}", u.spread);
+}

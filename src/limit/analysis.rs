@@ -296,7 +296,9 @@ pub struct Uniqueness {
     /// A vertex of the optimal face: the optimal mechanism that minimises
     /// `f` (the result with its velocities, slips and openings replaced).
     /// When the optimum is not unique this is one pure mechanism, where
-    /// the interior-point optimum may be a blend of several.
+    /// the interior-point optimum may be a blend of several. When the face
+    /// is unbounded (`spread` infinite: an element moves freely at no cost)
+    /// there is no vertex and this is the interior-point optimum itself.
     pub vertex: LimitResult,
 }
 
@@ -340,6 +342,16 @@ pub fn mechanism_uniqueness(
     for (slot, sign) in [1.0, -1.0].into_iter().enumerate() {
         lp.objective = weights.iter().map(|w| sign * w).collect();
         let solution = solver.solve(&lp)?;
+        if solution.status == LpStatus::DualInfeasible {
+            // The optimal face is unbounded: some element can move freely
+            // at no cost (a rattler, or a rolling element between smooth
+            // contacts), so the mechanism is not unique and has no vertex.
+            return Ok(Uniqueness {
+                unique: false,
+                spread: f64::INFINITY,
+                vertex: result.clone(),
+            });
+        }
         if !matches!(solution.status, LpStatus::Optimal | LpStatus::AlmostOptimal) {
             return Err(DismechError::Solve(
                 crate::solve::SolveError::LinearProgram(format!(

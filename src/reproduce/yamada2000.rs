@@ -550,8 +550,10 @@ fn bearing_capacity_curves(
 fn uniqueness_note(u: &Uniqueness) -> &'static str {
     if u.unique {
         "unique optimum"
-    } else {
+    } else if u.spread.is_finite() {
         "optimum NOT unique: one vertex mechanism shown"
+    } else {
+        "optimum NOT unique: free elements move at no cost"
     }
 }
 
