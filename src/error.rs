@@ -128,6 +128,18 @@ pub enum DismechError {
     /// A limit analysis needs exactly one moving support.
     #[error("a limit analysis needs exactly one moving support (plate); found {0}")]
     DrivingSupportCount(usize),
+    /// A grid file (ESRI ASCII raster) is malformed.
+    #[error("{file}, line {line}, column {column}: {message}")]
+    GridFormat {
+        /// The file (or the name given to the text).
+        file: String,
+        /// Line number, from 1 (0 when the problem is the file as a whole).
+        line: usize,
+        /// Column (character position in the line), from 1.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

@@ -53,6 +53,7 @@ pub mod broad_phase;
 pub mod contact;
 pub mod dem;
 pub mod error;
+pub mod grid;
 pub mod integrate;
 pub mod limit;
 pub mod math;

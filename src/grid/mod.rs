@@ -1,0 +1,9 @@
+//! Regular grids of values (rasters) as slope engineers keep them: ground
+//! surface, slip surface and water table on one grid, read from and written
+//! to ESRI ASCII grid files (`.asc`, the format of GIS tools and Scoops3D).
+
+mod esri_ascii;
+mod raster;
+
+pub use esri_ascii::{parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii};
+pub use raster::Raster;

@@ -1,0 +1,132 @@
+//! A raster: values on a regular grid of square cells.
+
+use crate::error::{require_finite, require_positive, DismechError, Result};
+
+/// Values on `rows × columns` square cells of side `cell_size`, row 0 the
+/// northernmost (top) row as in an ESRI ASCII file; `None` marks a cell
+/// without data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Raster {
+    columns: usize,
+    rows: usize,
+    /// x of the lower-left corner of the grid (m).
+    x_lower_left: f64,
+    /// y of the lower-left corner of the grid (m).
+    y_lower_left: f64,
+    cell_size: f64,
+    values: Vec<Option<f64>>,
+}
+
+impl Raster {
+    /// A raster from its values, row-major with row 0 at the top.
+    pub fn new(
+        columns: usize,
+        rows: usize,
+        x_lower_left: f64,
+        y_lower_left: f64,
+        cell_size: f64,
+        values: Vec<Option<f64>>,
+    ) -> Result<Self> {
+        require_positive("raster columns", columns as f64)?;
+        require_positive("raster rows", rows as f64)?;
+        require_finite("raster x of the lower-left corner", x_lower_left)?;
+        require_finite("raster y of the lower-left corner", y_lower_left)?;
+        require_positive("raster cell size", cell_size)?;
+        if values.len() != columns * rows {
+            return Err(DismechError::InvalidParameter {
+                name: "raster value count",
+                value: values.len() as f64,
+                requirement: "must equal columns × rows",
+            });
+        }
+        if let Some(v) = values.iter().flatten().find(|v| !v.is_finite()) {
+            return Err(DismechError::InvalidParameter {
+                name: "raster value",
+                value: *v,
+                requirement: "must be finite (use None for a cell without data)",
+            });
+        }
+        Ok(Self {
+            columns,
+            rows,
+            x_lower_left,
+            y_lower_left,
+            cell_size,
+            values,
+        })
+    }
+
+    /// A raster whose value at each cell is `f(x, y)` at the cell centre.
+    pub fn from_fn(
+        columns: usize,
+        rows: usize,
+        x_lower_left: f64,
+        y_lower_left: f64,
+        cell_size: f64,
+        f: impl Fn(f64, f64) -> Option<f64>,
+    ) -> Result<Self> {
+        let mut values = Vec::with_capacity(columns * rows);
+        for row in 0..rows {
+            for column in 0..columns {
+                let x = x_lower_left + (column as f64 + 0.5) * cell_size;
+                let y = y_lower_left + (rows as f64 - row as f64 - 0.5) * cell_size;
+                values.push(f(x, y));
+            }
+        }
+        Self::new(columns, rows, x_lower_left, y_lower_left, cell_size, values)
+    }
+
+    /// Number of columns.
+    pub fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Side of a cell (m).
+    pub fn cell_size(&self) -> f64 {
+        self.cell_size
+    }
+
+    /// The lower-left corner of the grid.
+    pub fn lower_left(&self) -> (f64, f64) {
+        (self.x_lower_left, self.y_lower_left)
+    }
+
+    /// The value of cell (row, column), `None` outside the grid or without
+    /// data.
+    pub fn get(&self, row: usize, column: usize) -> Option<f64> {
+        if row < self.rows && column < self.columns {
+            self.values[row * self.columns + column]
+        } else {
+            None
+        }
+    }
+
+    /// The centre `(x, y)` of cell (row, column).
+    pub fn cell_centre(&self, row: usize, column: usize) -> (f64, f64) {
+        (
+            self.x_lower_left + (column as f64 + 0.5) * self.cell_size,
+            self.y_lower_left + (self.rows as f64 - row as f64 - 0.5) * self.cell_size,
+        )
+    }
+
+    /// The values, row-major, row 0 at the top.
+    pub fn values(&self) -> &[Option<f64>] {
+        &self.values
+    }
+
+    /// Whether `other` lies on the same grid (shape, corner and cell size,
+    /// within 1e-9 of a cell).
+    pub fn same_grid(&self, other: &Raster) -> bool {
+        let tol = 1e-9 * self.cell_size;
+        self.columns == other.columns
+            && self.rows == other.rows
+            && (self.cell_size - other.cell_size).abs() <= tol
+            && (self.x_lower_left - other.x_lower_left).abs() <= tol
+            && (self.y_lower_left - other.y_lower_left).abs() <= tol
+    }
+}
