@@ -219,3 +219,45 @@ fn eq19_stiffness_matches_the_closed_form() {
         std::f64::consts::PI * 73.55e6 / (2.0 * (1.0 - 0.09) * (2.0 / 3.0 + 2.0 * 4f64.ln()));
     approx::assert_relative_eq!(law.normal_stiffness(&p), expected, max_relative = 1e-12);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// In 3D (normal and two tangents, as the slip springs of a column) the
+    /// law keeps ‖e_s‖ ≤ μ e_n and its tangent, including the radial-return
+    /// part `μ e_n k_s (I − d dᵀ)/‖e_trial‖`, matches finite differences.
+    #[test]
+    fn law_in_3d_respects_the_cap_and_its_tangent_matches_finite_differences(
+        overlap in 1e-5f64..2e-3, du in prop::array::uniform3(-1e-3f64..1e-3),
+        e_n in 100.0f64..2e4, e_s in prop::array::uniform2(-2e4f64..2e4), damping in any::<bool>()
+    ) {
+        let law = law(true, damping, 0.4);
+        let input = dismech::contact::ContactInput::<3> {
+            overlap, increment: nalgebra::Vector3::new(du[0], du[1], du[2]), dt: 1e-4, is_new: false, pair: pair(0.01),
+        };
+        let mut s = SpringState::<3>::default();
+        s.spring.0 = nalgebra::Vector3::new(e_n, e_s[0], e_s[1]);
+        let r = law.evaluate(&input, &s);
+        let shear = (r.spring_force[1].powi(2) + r.spring_force[2].powi(2)).sqrt();
+        prop_assert!(shear <= 0.4 * r.spring_force[0] * (1.0 + 1e-12) + 1e-12);
+        let h = 1e-7;
+        for j in 0..3 {
+            let (mut plus, mut minus) = (input, input);
+            plus.increment[j] += h;
+            minus.increment[j] -= h;
+            let (rp, rm) = (law.evaluate(&plus, &s), law.evaluate(&minus, &s));
+            let clamped = |f: f64| f == 0.0;
+            if rp.regime != r.regime || rm.regime != r.regime || r.regime == Regime::Open
+                || clamped(rp.force[0]) != clamped(rm.force[0]) {
+                continue;
+            }
+            for i in 0..3 {
+                let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
+                let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
+                let scale = 1.0 + r.tangent[(i, j)].abs() + fd.abs();
+                prop_assert!((fd - r.tangent[(i, j)]).abs() <= 1e-5 * scale + roundoff,
+                    "3D d f{} / d u{} in {:?}: analytic {} vs fd {}", i, j, r.regime, r.tangent[(i, j)], fd);
+            }
+        }
+    }
+}
