@@ -140,6 +140,14 @@ pub enum DismechError {
         /// What is wrong.
         message: String,
     },
+    /// A polygon block is not a valid simple polygon.
+    #[error("block {block} is not a valid polygon: {reason}")]
+    InvalidPolygon {
+        /// Index of the block.
+        block: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

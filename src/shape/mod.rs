@@ -14,10 +14,12 @@
 
 mod circle;
 mod ellipse;
+mod polygon;
 mod segment;
 
 pub use circle::Circle;
 pub use ellipse::{Ellipse, MAX_ASPECT_RATIO};
+pub use polygon::Polygon;
 pub use segment::Segment;
 
 use crate::math::{Aabb2, Pose2};

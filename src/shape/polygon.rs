@@ -1,0 +1,300 @@
+//! The simple polygon: the block of DDA (paper 003), convex or concave.
+
+use nalgebra::SMatrix;
+
+use super::{MassProperties, Shape, Shape2, ShapeKind};
+use crate::error::{DismechError, Result};
+use crate::math::{cross, Aabb2, Point, Pose2};
+
+/// A simple polygon (no self-intersection), vertices counter-clockwise in
+/// the body frame, whose origin is the centroid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Polygon {
+    vertices: Vec<Point>,
+    area: f64,
+    /// `∫x² dA`, `∫y² dA`, `∫xy dA` about the centroid.
+    second_moments: [f64; 3],
+}
+
+/// Whether segments pq and rs cross or touch.
+fn segments_meet(p: &Point, q: &Point, r: &Point, s: &Point) -> bool {
+    let d1 = cross(&(q - p), &(r - p));
+    let d2 = cross(&(q - p), &(s - p));
+    let d3 = cross(&(s - r), &(p - r));
+    let d4 = cross(&(s - r), &(q - r));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let on = |a: &Point, b: &Point, c: &Point, d: f64| {
+        d == 0.0
+            && c.x >= a.x.min(b.x)
+            && c.x <= a.x.max(b.x)
+            && c.y >= a.y.min(b.y)
+            && c.y <= a.y.max(b.y)
+    };
+    on(p, q, r, d1) || on(p, q, s, d2) || on(r, s, p, d3) || on(r, s, q, d4)
+}
+
+/// `[A, ∫x dA, ∫y dA, ∫x² dA, ∫y² dA, ∫xy dA]` of a polygon by the exact
+/// vertex formulas (Green's theorem).
+fn moments(vertices: &[Point]) -> [f64; 6] {
+    let mut m = [0.0; 6];
+    for k in 0..vertices.len() {
+        let (p, q) = (vertices[k], vertices[(k + 1) % vertices.len()]);
+        let c = p.x * q.y - q.x * p.y;
+        m[0] += c / 2.0;
+        m[1] += c * (p.x + q.x) / 6.0;
+        m[2] += c * (p.y + q.y) / 6.0;
+        m[3] += c * (p.x * p.x + p.x * q.x + q.x * q.x) / 12.0;
+        m[4] += c * (p.y * p.y + p.y * q.y + q.y * q.y) / 12.0;
+        m[5] += c * (p.x * q.y + 2.0 * p.x * p.y + 2.0 * q.x * q.y + q.x * p.y) / 24.0;
+    }
+    m
+}
+
+impl Polygon {
+    /// A polygon from world vertices listed counter-clockwise; returns the
+    /// polygon (in its centroid frame) and the centroid. Refuses fewer than
+    /// three vertices, non-finite coordinates, a zero or negative
+    /// (clockwise) area and self-intersection; `block` names the block in
+    /// the error.
+    pub fn from_world(vertices: &[Point], block: usize) -> Result<(Self, Point)> {
+        let bad = |reason: &'static str| DismechError::InvalidPolygon { block, reason };
+        if vertices.len() < 3 {
+            return Err(bad("it has fewer than three vertices"));
+        }
+        if vertices
+            .iter()
+            .any(|v| !(v.x.is_finite() && v.y.is_finite()))
+        {
+            return Err(bad("a vertex is not finite"));
+        }
+        let n = vertices.len();
+        for i in 0..n {
+            for j in i + 1..n {
+                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+                let (p, q) = (vertices[i], vertices[(i + 1) % n]);
+                let (r, s) = (vertices[j], vertices[(j + 1) % n]);
+                if adjacent {
+                    if p == q || r == s {
+                        return Err(bad("two consecutive vertices coincide"));
+                    }
+                    continue;
+                }
+                if segments_meet(&p, &q, &r, &s) {
+                    return Err(bad("its edges intersect (not a simple polygon)"));
+                }
+            }
+        }
+        let m = moments(vertices);
+        let scale = vertices
+            .iter()
+            .map(|v| v.coords.norm_squared())
+            .fold(0.0, f64::max);
+        if m[0] <= 1e-14 * scale {
+            return Err(bad(if m[0] < 0.0 {
+                "its vertices run clockwise (list them counter-clockwise)"
+            } else {
+                "its area is zero"
+            }));
+        }
+        let centroid = Point::new(m[1] / m[0], m[2] / m[0]);
+        let local: Vec<Point> = vertices.iter().map(|v| Point::from(v - centroid)).collect();
+        let c = moments(&local);
+        Ok((
+            Self {
+                vertices: local,
+                area: m[0],
+                second_moments: [c[3], c[4], c[5]],
+            },
+            centroid,
+        ))
+    }
+
+    /// Vertices in the centroid frame, counter-clockwise.
+    pub fn vertices(&self) -> &[Point] {
+        &self.vertices
+    }
+
+    /// Second moments of area about the centroid: `[∫x², ∫y², ∫xy] dA`.
+    pub fn second_moments(&self) -> [f64; 3] {
+        self.second_moments
+    }
+
+    /// The DDA displacement matrix `[T(x, y)]` of paper 003 eq. (15) at a
+    /// point `(x, y)` given relative to the centroid: `u = T d` with
+    /// `d = (u₀, v₀, r₀, εx, εy, γxy)` (eq. 16).
+    pub fn dda_displacement_matrix(x: f64, y: f64) -> SMatrix<f64, 2, 6> {
+        SMatrix::<f64, 2, 6>::from_row_slice(&[
+            1.0,
+            0.0,
+            -y,
+            x,
+            0.0,
+            0.5 * y, //
+            0.0,
+            1.0,
+            x,
+            0.0,
+            y,
+            0.5 * x,
+        ])
+    }
+}
+
+impl Shape for Polygon {
+    fn kind(&self) -> ShapeKind {
+        ShapeKind::Polygon
+    }
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn measure(&self) -> f64 {
+        self.area
+    }
+    /// `m = ρ A`, `I = ρ (∫x² + ∫y²) dA` about the centroid.
+    fn mass_properties(&self, density: f64) -> MassProperties {
+        MassProperties {
+            mass: density * self.area,
+            inertia: density * (self.second_moments[0] + self.second_moments[1]),
+        }
+    }
+    /// The six DDA unknowns (u₀, v₀, r₀, εx, εy, γxy).
+    fn degrees_of_freedom(&self) -> usize {
+        6
+    }
+}
+
+impl Shape2 for Polygon {
+    fn aabb(&self, pose: &Pose2) -> Aabb2 {
+        let mut bb = Aabb2 {
+            min: Point::new(f64::INFINITY, f64::INFINITY),
+            max: Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        };
+        for v in &self.vertices {
+            let w = pose.transform_point(v);
+            bb.min = Point::new(bb.min.x.min(w.x), bb.min.y.min(w.y));
+            bb.max = Point::new(bb.max.x.max(w.x), bb.max.y.max(w.y));
+        }
+        bb
+    }
+    fn bounding_radius(&self) -> f64 {
+        self.vertices
+            .iter()
+            .map(|v| v.coords.norm())
+            .fold(0.0, f64::max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use proptest::prelude::*;
+
+    fn rectangle(w: f64, h: f64, x: f64, y: f64) -> Vec<Point> {
+        vec![
+            Point::new(x, y),
+            Point::new(x + w, y),
+            Point::new(x + w, y + h),
+            Point::new(x, y + h),
+        ]
+    }
+
+    #[test]
+    fn rectangle_has_the_textbook_area_centroid_and_moments() {
+        let (p, c) = Polygon::from_world(&rectangle(4.0, 2.0, 1.0, -1.0), 0).unwrap();
+        assert_relative_eq!(p.measure(), 8.0);
+        assert_relative_eq!(c.x, 3.0);
+        assert_relative_eq!(c.y, 0.0, epsilon = 1e-15);
+        let [ixx, iyy, ixy] = p.second_moments();
+        assert_relative_eq!(ixx, 2.0 * 4f64.powi(3) / 12.0);
+        assert_relative_eq!(iyy, 4.0 * 2f64.powi(3) / 12.0);
+        assert_relative_eq!(ixy, 0.0, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn concave_l_shape_moments_equal_the_sum_of_its_rectangles() {
+        // L = [0,2]×[0,1] ∪ [0,1]×[1,2].
+        let l = [
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ]
+        .map(|(x, y)| Point::new(x, y));
+        let (p, c) = Polygon::from_world(&l, 3).unwrap();
+        assert_relative_eq!(p.measure(), 3.0);
+        assert_relative_eq!(c.x, (2.0 * 1.0 + 1.0 * 0.5) / 3.0);
+        // ∫x² about the origin: [0,2]×[0,1] gives 8/3, [0,1]×[1,2] gives 1/3.
+        let ixx_origin = 8.0 / 3.0 + 1.0 / 3.0;
+        assert_relative_eq!(
+            p.second_moments()[0],
+            ixx_origin - 3.0 * c.x * c.x,
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn bad_polygons_are_refused_naming_the_block() {
+        let bow_tie =
+            [(0.0, 0.0), (1.0, 1.0), (1.0, 0.0), (0.0, 1.0)].map(|(x, y)| Point::new(x, y));
+        let mut clockwise = rectangle(1.0, 1.0, 0.0, 0.0);
+        clockwise.reverse();
+        let flat = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(|(x, y)| Point::new(x, y));
+        for (vertices, word) in [
+            (&bow_tie[..], "intersect"),
+            (&clockwise[..], "clockwise"),
+            (&flat[..], ""),
+        ] {
+            match Polygon::from_world(vertices, 7).unwrap_err() {
+                DismechError::InvalidPolygon { block: 7, reason } => {
+                    assert!(reason.contains(word), "{reason}")
+                }
+                other => panic!("{other}"),
+            }
+        }
+    }
+
+    proptest! {
+        /// A regular n-gon's area and polar moment match the closed forms,
+        /// wherever it is placed.
+        #[test]
+        fn regular_polygon_matches_closed_forms(n in 3usize..40, r in 0.1f64..10.0, x in -50.0f64..50.0, y in -50.0f64..50.0, turn in 0.0f64..6.3) {
+            let vertices: Vec<Point> = (0..n)
+                .map(|k| { let t = turn + k as f64 * std::f64::consts::TAU / n as f64; Point::new(x + r * t.cos(), y + r * t.sin()) })
+                .collect();
+            let (p, c) = Polygon::from_world(&vertices, 0).unwrap();
+            let nf = n as f64;
+            let area = 0.5 * nf * r * r * (std::f64::consts::TAU / nf).sin();
+            let polar = area * r * r / 6.0 * (2.0 + (std::f64::consts::TAU / nf).cos());
+            prop_assert!((p.measure() - area).abs() <= 1e-9 * area);
+            prop_assert!((c.x - x).abs() < 1e-9 * (1.0 + x.abs()) && (c.y - y).abs() < 1e-9 * (1.0 + y.abs()));
+            let [ixx, iyy, _] = p.second_moments();
+            prop_assert!((ixx + iyy - polar).abs() <= 1e-8 * polar);
+        }
+    }
+
+    #[test]
+    fn dda_matrix_gives_rigid_rotation_and_uniform_strain() {
+        // r₀ = 1: u = (−y, x); εx = 1: u = (x, 0); γxy = 2: u = (y, x).
+        let t = Polygon::dda_displacement_matrix(2.0, 3.0);
+        let apply = |d: [f64; 6]| t * nalgebra::SVector::<f64, 6>::from_row_slice(&d);
+        assert_eq!(
+            apply([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]),
+            nalgebra::Vector2::new(-3.0, 2.0)
+        );
+        assert_eq!(
+            apply([0.0, 0.0, 0.0, 1.0, 0.0, 0.0]),
+            nalgebra::Vector2::new(2.0, 0.0)
+        );
+        assert_eq!(
+            apply([0.0, 0.0, 0.0, 0.0, 0.0, 2.0]),
+            nalgebra::Vector2::new(3.0, 2.0)
+        );
+    }
+}
