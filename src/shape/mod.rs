@@ -13,11 +13,13 @@
 //! `Err(UnsupportedPair)` for a pair it lacks, never panic.
 
 mod circle;
+mod column;
 mod ellipse;
 mod polygon;
 mod segment;
 
 pub use circle::Circle;
+pub use column::Column;
 pub use ellipse::{Ellipse, MAX_ASPECT_RATIO};
 pub use polygon::Polygon;
 pub use segment::Segment;
