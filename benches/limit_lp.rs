@@ -1,9 +1,10 @@
 //! Speed of the rigid-plastic LP: assembly and solve of the rolling U-model
-//! at k = 40 (1 600 elements) and k = 100 (10 000 elements, n' = 25).
+//! at k = 40 (1 600 elements) and k = 100 (10 000 elements, n' = 25), in
+//! the kinematic (velocities) and the static (forces) formulation.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dismech::limit::analyse;
 use dismech::limit::lattice::Lattice;
+use dismech::limit::{analyse, analyse_static};
 use dismech::solve::LinearProgramSolver;
 
 fn bench_lp(c: &mut Criterion) {
@@ -11,10 +12,17 @@ fn bench_lp(c: &mut Criterion) {
     group.sample_size(10);
     for (k, np) in [(40usize, 10usize), (100, 25)] {
         let lattice = Lattice::u_model(k, k, np, true);
-        group.bench_function(format!("assemble + solve, k = {k}, n' = {np}"), |b| {
+        group.bench_function(format!("kinematic, k = {k}, n' = {np}"), |b| {
             b.iter(|| {
                 let model = lattice.build().map_err(|e| e.to_string())?;
                 analyse(&model, &mut LinearProgramSolver::default()).map_err(|e| e.to_string())
+            })
+        });
+        group.bench_function(format!("static, k = {k}, n' = {np}"), |b| {
+            b.iter(|| {
+                let model = lattice.build().map_err(|e| e.to_string())?;
+                analyse_static(&model, &mut LinearProgramSolver::default())
+                    .map_err(|e| e.to_string())
             })
         });
     }

@@ -368,3 +368,61 @@ fn free_element_makes_the_optimum_non_unique_without_failing() {
     let u = mechanism_uniqueness(&model, &mut solver, &r).unwrap();
     assert!(!u.unique && u.spread.is_infinite(), "{:?}", u.spread);
 }
+
+/// The static LP (forces as unknowns) gives the same limit load as the
+/// kinematic LP, and its multipliers are the same mechanism where that is
+/// unique.
+#[test]
+fn static_lp_gives_the_kinematic_limit_load() {
+    use dismech::limit::analyse_static;
+    let mut solver = LinearProgramSolver::default();
+    let mut models = vec![two_elements(1.0).unwrap()];
+    for (k, np, rolling) in [
+        (2, 1, true),
+        (4, 2, true),
+        (8, 2, true),
+        (6, 2, false),
+        (10, 2, false),
+    ] {
+        models.push(Lattice::u_model(k, k, np, rolling).build().unwrap());
+    }
+    let (mut mc, e) = element_on_floor(false, 10.0, RigidPlastic::new(3.0, 0.5, true).unwrap());
+    let plate = mc
+        .add_support(
+            "plate",
+            Point::new(1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+        )
+        .unwrap();
+    mc.add_contact(
+        e,
+        Partner::Support(plate),
+        RigidPlastic::cohesive(0.0).unwrap(),
+    )
+    .unwrap();
+    models.push(mc);
+    for (m, model) in models.iter().enumerate() {
+        let kinematic = analyse(model, &mut solver).unwrap();
+        let statics = analyse_static(model, &mut solver).unwrap();
+        assert_eq!(statics.status, LimitStatus::Collapse);
+        approx::assert_relative_eq!(
+            statics.load.unwrap(),
+            kinematic.load.unwrap(),
+            max_relative = 1e-6
+        );
+        assert_statically_admissible(model, &statics);
+        if m == 5 {
+            // Non-rolling (10,10,2): a unique mechanism.
+            for (a, b) in statics.velocities.iter().zip(&kinematic.velocities) {
+                assert!((a.0 - b.0).norm() < 1e-5, "{:?} vs {:?}", a.0, b.0);
+            }
+        }
+    }
+    let locked = analyse_static(
+        &Lattice::u_model(8, 4, 1, true).build().unwrap(),
+        &mut solver,
+    )
+    .unwrap();
+    assert_eq!(locked.status, LimitStatus::Locked);
+}

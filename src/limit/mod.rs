@@ -25,7 +25,9 @@ mod analysis;
 mod from_dem;
 pub mod lattice;
 mod model;
+mod static_lp;
 
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
 pub use from_dem::{model_from_packing, PackingLimitSettings};
 pub use model::{LimitBody, LimitContact, LimitModel, Partner, Support};
+pub use static_lp::analyse_static;

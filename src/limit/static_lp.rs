@@ -1,0 +1,157 @@
+//! The static (lower-bound) LP: maximise the plate load over contact
+//! forces in equilibrium and within strength (paper 002 eq. 4 with
+//! `|T| ≤ C + N tan φ`). It is the dual of the kinematic LP of
+//! [`super::analyse`]: both give the same limit load; which one an
+//! interior-point solver finishes faster depends on the model (see the
+//! `limit_lp` benchmark).
+
+use super::analysis::{LimitResult, LimitStatus};
+use super::model::{LimitModel, Partner};
+use crate::error::{DismechError, Result};
+use crate::math::{cross, Vec2};
+use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
+
+/// Solve the static LP of `model`. The mechanism comes from the
+/// multipliers of the equilibrium rows (element velocities); slips and
+/// openings are left at zero.
+pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+    let drivers: Vec<usize> = model
+        .supports()
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.velocity.norm() > 0.0)
+        .map(|(i, _)| i)
+        .collect();
+    if drivers.len() != 1 {
+        return Err(DismechError::DrivingSupportCount(drivers.len()));
+    }
+    let plate = drivers[0];
+    if !model
+        .contacts()
+        .iter()
+        .any(|c| c.partner == Partner::Support(plate))
+    {
+        return Err(DismechError::PlateTouchesNothing(
+            model.supports()[plate].name.clone(),
+        ));
+    }
+    let speed = model.supports()[plate].velocity.norm();
+    let direction = model.supports()[plate].velocity / speed;
+
+    // Unknowns: P, then N (and T where the contact resists shear) per contact.
+    let mut columns = Vec::with_capacity(model.contacts().len());
+    let mut n = 1;
+    for c in model.contacts() {
+        let shear = c.law.resists_shear().then_some(n + 1);
+        columns.push((n, shear));
+        n += if shear.is_some() { 2 } else { 1 };
+    }
+    let mut lp = LinearProgram::new(n);
+    lp.objective[0] = -1.0;
+    // Equilibrium of each element: Σ contact forces + load = 0 (and moments
+    // for rolling elements). Force on A from contact c: −N n + T t.
+    let mut rows: Vec<[Vec<(usize, f64)>; 3]> = (0..model.bodies().len())
+        .map(|_| [Vec::new(), Vec::new(), Vec::new()])
+        .collect();
+    let mut plate_row = vec![(0usize, 1.0)];
+    for (c, contact) in model.contacts().iter().enumerate() {
+        let (col_n, col_t) = columns[c];
+        let (normal, tangent) = (contact.normal, contact.tangent());
+        let add = |body: usize, sign: f64, rows: &mut Vec<[Vec<(usize, f64)>; 3]>| {
+            let r = contact.point - model.bodies()[body].centre;
+            // Force on this body: sign × (−N n + T t).
+            rows[body][0].push((col_n, -sign * normal.x));
+            rows[body][1].push((col_n, -sign * normal.y));
+            rows[body][2].push((col_n, -sign * cross(&r, &normal)));
+            if let Some(col_t) = col_t {
+                rows[body][0].push((col_t, sign * tangent.x));
+                rows[body][1].push((col_t, sign * tangent.y));
+                rows[body][2].push((col_t, sign * cross(&r, &tangent)));
+            }
+        };
+        add(contact.body, 1.0, &mut rows);
+        match contact.partner {
+            Partner::Body(b) => add(b, -1.0, &mut rows),
+            Partner::Support(s) if s == plate => {
+                // Plate equilibrium along its motion: P + (N n − T t)·d = 0.
+                plate_row.push((col_n, normal.dot(&direction)));
+                if let Some(col_t) = col_t {
+                    plate_row.push((col_t, -tangent.dot(&direction)));
+                }
+            }
+            Partner::Support(_) => {}
+        }
+        let law = &contact.law;
+        if law.is_unilateral() {
+            lp.add_bounds(col_n, Some(0.0), None);
+        }
+        if let Some(col_t) = col_t {
+            let mu = law.friction();
+            lp.add_inequality(&[(col_t, 1.0), (col_n, -mu)], law.cohesion());
+            lp.add_inequality(&[(col_t, -1.0), (col_n, -mu)], law.cohesion());
+        }
+    }
+    let mut equilibrium_rows = Vec::with_capacity(model.bodies().len());
+    for (i, b) in model.bodies().iter().enumerate() {
+        let load: [f64; 3] = [b.load.x, b.load.y, 0.0];
+        let count = if b.rotates { 3 } else { 2 };
+        let mut ids = [usize::MAX; 3];
+        for k in 0..count {
+            ids[k] = lp.add_equality(&rows[i][k], -load[k]);
+        }
+        equilibrium_rows.push(ids);
+    }
+    lp.add_equality(&plate_row, 0.0);
+    let lp_size = (
+        n,
+        lp.equality_rhs.len(),
+        lp.equalities.len() + lp.inequalities.len(),
+    );
+    let solution = solver.solve(&lp)?;
+    let status = match solution.status {
+        LpStatus::Optimal | LpStatus::AlmostOptimal => LimitStatus::Collapse,
+        // An unbounded static LP means no mechanism: locked.
+        LpStatus::DualInfeasible => LimitStatus::Locked,
+        LpStatus::PrimalInfeasible => LimitStatus::Unbounded,
+        other => LimitStatus::SolverTrouble(other),
+    };
+    let contacts = model.contacts().len();
+    let mut result = LimitResult {
+        status,
+        load: None,
+        kinematic_load: -solution.dual_objective,
+        static_load: -solution.objective,
+        velocities: Vec::new(),
+        slip: vec![0.0; contacts],
+        opening: vec![0.0; contacts],
+        normal_force: vec![0.0; contacts],
+        shear_force: vec![0.0; contacts],
+        iterations: solution.iterations,
+        solver_status: solution.solver_status.clone(),
+        lp_size,
+    };
+    if status != LimitStatus::Collapse || solution.x.len() != n {
+        return Ok(result);
+    }
+    for (c, &(col_n, col_t)) in columns.iter().enumerate() {
+        result.normal_force[c] = solution.x[col_n];
+        result.shear_force[c] = col_t.map_or(0.0, |k| solution.x[k]);
+    }
+    // Element velocities: the multipliers of the equilibrium rows, scaled
+    // so that the plate moves at its speed.
+    let scale = speed;
+    for ids in &equilibrium_rows {
+        let y = |k: usize| {
+            if ids[k] == usize::MAX {
+                0.0
+            } else {
+                solution.equality_duals[ids[k]]
+            }
+        };
+        result
+            .velocities
+            .push((Vec2::new(y(0), y(1)) * scale, y(2) * scale));
+    }
+    result.load = Some(result.static_load);
+    Ok(result)
+}
