@@ -73,27 +73,7 @@ struct KinematicLp {
 
 /// Assemble the kinematic LP of `model`.
 fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
-    let drivers: Vec<usize> = model
-        .supports()
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.velocity.norm() > 0.0)
-        .map(|(i, _)| i)
-        .collect();
-    if drivers.len() != 1 {
-        return Err(DismechError::DrivingSupportCount(drivers.len()));
-    }
-    let plate = drivers[0];
-    if !model
-        .contacts()
-        .iter()
-        .any(|c| c.partner == Partner::Support(plate))
-    {
-        return Err(DismechError::PlateTouchesNothing(
-            model.supports()[plate].name.clone(),
-        ));
-    }
-    let speed = model.supports()[plate].velocity.norm();
+    let (plate, speed) = driving_plate(model)?;
 
     // Velocity unknowns: u, v (and θ̇ for rolling elements) per element.
     let mut dof = Vec::with_capacity(model.bodies().len());
@@ -229,6 +209,32 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
     result.static_load = -plate_force.dot(&plate_direction);
     result.load = Some(result.kinematic_load);
     Ok(result)
+}
+
+/// The one moving support (the plate) of a model and its speed; errors
+/// when there is not exactly one or it touches nothing.
+pub(super) fn driving_plate(model: &LimitModel) -> Result<(usize, f64)> {
+    let drivers: Vec<usize> = model
+        .supports()
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.velocity.norm() > 0.0)
+        .map(|(i, _)| i)
+        .collect();
+    if drivers.len() != 1 {
+        return Err(DismechError::DrivingSupportCount(drivers.len()));
+    }
+    let plate = drivers[0];
+    if !model
+        .contacts()
+        .iter()
+        .any(|c| c.partner == Partner::Support(plate))
+    {
+        return Err(DismechError::PlateTouchesNothing(
+            model.supports()[plate].name.clone(),
+        ));
+    }
+    Ok((plate, model.supports()[plate].velocity.norm()))
 }
 
 /// Element velocities, slips and openings of an LP solution `x`.

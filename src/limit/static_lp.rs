@@ -5,9 +5,9 @@
 //! interior-point solver finishes faster depends on the model (see the
 //! `limit_lp` benchmark).
 
-use super::analysis::{LimitResult, LimitStatus};
+use super::analysis::{driving_plate, LimitResult, LimitStatus};
 use super::model::{LimitModel, Partner};
-use crate::error::{DismechError, Result};
+use crate::error::Result;
 use crate::math::{cross, Vec2};
 use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
 
@@ -15,27 +15,7 @@ use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
 /// multipliers of the equilibrium rows (element velocities); slips and
 /// openings are left at zero.
 pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
-    let drivers: Vec<usize> = model
-        .supports()
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.velocity.norm() > 0.0)
-        .map(|(i, _)| i)
-        .collect();
-    if drivers.len() != 1 {
-        return Err(DismechError::DrivingSupportCount(drivers.len()));
-    }
-    let plate = drivers[0];
-    if !model
-        .contacts()
-        .iter()
-        .any(|c| c.partner == Partner::Support(plate))
-    {
-        return Err(DismechError::PlateTouchesNothing(
-            model.supports()[plate].name.clone(),
-        ));
-    }
-    let speed = model.supports()[plate].velocity.norm();
+    let (plate, speed) = driving_plate(model)?;
     let direction = model.supports()[plate].velocity / speed;
 
     // Unknowns: P, then N (and T where the contact resists shear) per contact.
