@@ -81,6 +81,27 @@ fn element_on_floor(rotates: bool, w: f64, floor_law: RigidPlastic) -> (LimitMod
     (m, e)
 }
 
+/// [`element_on_floor`] pushed sideways (−x) by a smooth plate at unit
+/// speed.
+fn pushed_element_on_floor(rotates: bool, w: f64, floor_law: RigidPlastic) -> LimitModel {
+    let (mut m, e) = element_on_floor(rotates, w, floor_law);
+    let plate = m
+        .add_support(
+            "plate",
+            Point::new(1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+        )
+        .unwrap();
+    m.add_contact(
+        e,
+        Partner::Support(plate),
+        RigidPlastic::cohesive(0.0).unwrap(),
+    )
+    .unwrap();
+    m
+}
+
 /// §2.2: two elements at α = 45°; element 1 held by two walls can only
 /// rotate; element 2 is pushed by a plate; all strengths C.
 #[test]
@@ -158,21 +179,7 @@ fn unequal_lattices_solve_or_report_locked() {
 fn mohr_coulomb_block_needs_c_plus_w_tan_phi_and_rolls_for_free() {
     let (c, w, phi) = (3.0, 10.0, 30f64.to_radians());
     for rotates in [false, true] {
-        let (mut m, e) = element_on_floor(rotates, w, RigidPlastic::new(c, phi, true).unwrap());
-        let plate = m
-            .add_support(
-                "plate",
-                Point::new(1.0, 0.0),
-                Vec2::new(-1.0, 0.0),
-                Vec2::new(-1.0, 0.0),
-            )
-            .unwrap();
-        m.add_contact(
-            e,
-            Partner::Support(plate),
-            RigidPlastic::cohesive(0.0).unwrap(),
-        )
-        .unwrap();
+        let m = pushed_element_on_floor(rotates, w, RigidPlastic::new(c, phi, true).unwrap());
         let r = solve(&m);
         let expected = if rotates { 0.0 } else { c + w * phi.tan() };
         assert!(
@@ -386,21 +393,7 @@ fn static_lp_gives_the_kinematic_limit_load() {
     ] {
         models.push(Lattice::u_model(k, k, np, rolling).build().unwrap());
     }
-    let (mut mc, e) = element_on_floor(false, 10.0, RigidPlastic::new(3.0, 0.5, true).unwrap());
-    let plate = mc
-        .add_support(
-            "plate",
-            Point::new(1.0, 0.0),
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(-1.0, 0.0),
-        )
-        .unwrap();
-    mc.add_contact(
-        e,
-        Partner::Support(plate),
-        RigidPlastic::cohesive(0.0).unwrap(),
-    )
-    .unwrap();
+    let mc = pushed_element_on_floor(false, 10.0, RigidPlastic::new(3.0, 0.5, true).unwrap());
     models.push(mc);
     for (m, model) in models.iter().enumerate() {
         let kinematic = analyse(model, &mut solver).unwrap();
