@@ -46,24 +46,37 @@ pub fn model_from_packing(
                 value: f64::NAN,
                 requirement: "must name a wall of the frame, e.g. `left`",
             })?;
-    let largest_overlap = contacts
-        .iter()
-        .map(|c| {
-            let a = &scene.particles[c.particle];
-            let ra = a.shape.as_shape().bounding_radius();
-            match c.target {
-                ContactTarget::Particle(j) => {
-                    let b = &scene.particles[j];
-                    ra + b.shape.as_shape().bounding_radius()
-                        - (b.pose.position - a.pose.position).norm()
-                }
-                ContactTarget::Wall(w) => {
-                    let wall = &scene.frame.walls()[w];
-                    ra - (a.pose.position - wall.start).dot(&wall.inner_normal())
-                }
+    let count = scene.particles.len();
+    let particle = |i: usize| {
+        scene
+            .particles
+            .get(i)
+            .ok_or(DismechError::NoSuchBody { index: i, count })
+    };
+    let mut largest_overlap = 0.0f64;
+    for c in contacts {
+        let a = particle(c.particle)?;
+        let ra = a.shape.as_shape().bounding_radius();
+        let overlap = match c.target {
+            ContactTarget::Particle(j) => {
+                let b = particle(j)?;
+                ra + b.shape.as_shape().bounding_radius()
+                    - (b.pose.position - a.pose.position).norm()
             }
-        })
-        .fold(0.0, f64::max);
+            ContactTarget::Wall(w) => {
+                let wall = scene
+                    .frame
+                    .walls()
+                    .get(w)
+                    .ok_or(DismechError::DegenerateWall {
+                        wall: w,
+                        reason: "a contact names a wall the frame does not have",
+                    })?;
+                ra - (a.pose.position - wall.start).dot(&wall.inner_normal())
+            }
+        };
+        largest_overlap = largest_overlap.max(overlap);
+    }
     let mut model = LimitModel::new(require_positive(
         "contact tolerance",
         1.01 * largest_overlap + 1e-12,
