@@ -349,7 +349,15 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             passed: TIME_STEP <= limit.dt,
         },
     ];
+    let spinner = if options.progress {
+        indicatif::ProgressBar::new_spinner()
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    spinner.set_message("katsuki1990: checking the ellipse contact on 100 000 random pairs");
+    spinner.enable_steady_tick(std::time::Duration::from_millis(200));
     checks.extend(random_pair_checks());
+    spinner.finish_and_clear();
     let summary = Summary {
         study: "katsuki1990".into(),
         paper: PAPER.into(),
