@@ -17,6 +17,14 @@ pub struct Raster {
     values: Vec<Option<f64>>,
 }
 
+/// Centre of cell (row, column) of a grid with `rows` rows, row 0 at the top.
+fn cell_centre(x0: f64, y0: f64, rows: usize, cell: f64, row: usize, column: usize) -> (f64, f64) {
+    (
+        x0 + (column as f64 + 0.5) * cell,
+        y0 + (rows as f64 - row as f64 - 0.5) * cell,
+    )
+}
+
 impl Raster {
     /// A raster from its values, row-major with row 0 at the top.
     pub fn new(
@@ -65,14 +73,19 @@ impl Raster {
         cell_size: f64,
         f: impl Fn(f64, f64) -> Option<f64>,
     ) -> Result<Self> {
-        let mut values = Vec::with_capacity(columns * rows);
-        for row in 0..rows {
-            for column in 0..columns {
-                let x = x_lower_left + (column as f64 + 0.5) * cell_size;
-                let y = y_lower_left + (rows as f64 - row as f64 - 0.5) * cell_size;
-                values.push(f(x, y));
-            }
-        }
+        let values = (0..rows * columns)
+            .map(|k| {
+                let (x, y) = cell_centre(
+                    x_lower_left,
+                    y_lower_left,
+                    rows,
+                    cell_size,
+                    k / columns,
+                    k % columns,
+                );
+                f(x, y)
+            })
+            .collect();
         Self::new(columns, rows, x_lower_left, y_lower_left, cell_size, values)
     }
 
@@ -108,9 +121,13 @@ impl Raster {
 
     /// The centre `(x, y)` of cell (row, column).
     pub fn cell_centre(&self, row: usize, column: usize) -> (f64, f64) {
-        (
-            self.x_lower_left + (column as f64 + 0.5) * self.cell_size,
-            self.y_lower_left + (self.rows as f64 - row as f64 - 0.5) * self.cell_size,
+        cell_centre(
+            self.x_lower_left,
+            self.y_lower_left,
+            self.rows,
+            self.cell_size,
+            row,
+            column,
         )
     }
 

@@ -158,11 +158,7 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
         speed,
     } = build_kinematic_lp(model)?;
     let n = lp.num_variables;
-    let lp_size = (
-        n,
-        lp.equality_rhs.len(),
-        lp.equalities.len() + lp.inequalities.len(),
-    );
+    let lp_size = lp.size();
     let solution = solver.solve(&lp)?;
 
     let status = match solution.status {

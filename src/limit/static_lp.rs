@@ -82,11 +82,7 @@ pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> R
         equilibrium_rows.push(ids);
     }
     lp.add_equality(&plate_row, 0.0);
-    let lp_size = (
-        n,
-        lp.equality_rhs.len(),
-        lp.equalities.len() + lp.inequalities.len(),
-    );
+    let lp_size = lp.size();
     let solution = solver.solve(&lp)?;
     let status = match solution.status {
         LpStatus::Optimal | LpStatus::AlmostOptimal => LimitStatus::Collapse,

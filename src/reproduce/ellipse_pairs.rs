@@ -13,6 +13,7 @@
 //! is found by bisection on the reference, then the pair is moved closer by
 //! an overlap uniform in [−5 %, 20 %] of the smaller b (negative: apart).
 
+use super::random::SplitMix64;
 use crate::contact::ellipse::contact_ellipse_ellipse;
 use crate::math::{Pose2, Vec2};
 use crate::shape::Ellipse;
@@ -32,20 +33,6 @@ pub struct PairStatistics {
     /// Largest distance between the routine's and the reference's P1, P2,
     /// divided by the smaller b.
     pub max_point_error: f64,
-}
-
-/// SplitMix64 in [0, 1).
-struct Uniform(u64);
-
-impl Uniform {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// Value of j's implicit function at i's boundary point `t`.
@@ -167,7 +154,7 @@ pub fn touching_distance(
 /// Compare the contact routine with the reference over `count` random
 /// pairs drawn from `seed`.
 pub fn random_pair_statistics(count: usize, seed: u64) -> PairStatistics {
-    let mut rng = Uniform(seed);
+    let mut rng = SplitMix64(seed);
     let mut stats = PairStatistics {
         count,
         in_contact: 0,
@@ -177,27 +164,31 @@ pub fn random_pair_statistics(count: usize, seed: u64) -> PairStatistics {
     };
     for _ in 0..count {
         let b_i = 1.0;
-        let b_j = if rng.next() < 0.5 {
-            1.0 + 9.0 * rng.next()
+        let b_j = if rng.next_uniform() < 0.5 {
+            1.0 + 9.0 * rng.next_uniform()
         } else {
-            1.0 / (1.0 + 9.0 * rng.next())
+            1.0 / (1.0 + 9.0 * rng.next_uniform())
         };
         let (Ok(ei), Ok(ej)) = (
-            Ellipse::new(b_i * (1.0 + 4.0 * rng.next()), b_i),
-            Ellipse::new(b_j * (1.0 + 4.0 * rng.next()), b_j),
+            Ellipse::new(b_i * (1.0 + 4.0 * rng.next_uniform()), b_i),
+            Ellipse::new(b_j * (1.0 + 4.0 * rng.next_uniform()), b_j),
         ) else {
             continue;
         };
         let tau = std::f64::consts::TAU;
-        let pi = Pose2::new(0.0, 0.0, tau * rng.next());
-        let angle_j = tau * rng.next();
-        let direction = Vec2::new((tau * rng.next()).cos(), (tau * rng.next()).sin()).normalize();
+        let pi = Pose2::new(0.0, 0.0, tau * rng.next_uniform());
+        let angle_j = tau * rng.next_uniform();
+        let direction = Vec2::new(
+            (tau * rng.next_uniform()).cos(),
+            (tau * rng.next_uniform()).sin(),
+        )
+        .normalize();
         let b_min = b_i.min(b_j);
         let at = |d: f64| Pose2 {
             position: pi.position + direction * d,
             angle: angle_j,
         };
-        let overlap = (-0.05 + 0.25 * rng.next()) * b_min;
+        let overlap = (-0.05 + 0.25 * rng.next_uniform()) * b_min;
         let touching = touching_distance(&ei, &pi, &ej, angle_j, &direction);
         let pj = at(touching - overlap);
         let minimum = reference_minimum(&ei, &pi, &ej, &pj, 4096);

@@ -4,6 +4,7 @@
 
 pub mod ellipse_pairs;
 pub mod katsuki1990;
+mod random;
 pub mod yamada2000;
 
 use std::path::PathBuf;

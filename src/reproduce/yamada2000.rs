@@ -11,6 +11,7 @@
 
 use std::fmt::Write as _;
 
+use super::random::SplitMix64;
 use super::StudyOptions;
 use crate::contact::RigidPlastic;
 use crate::contact::SpringDashpotCoulomb;
@@ -610,20 +611,6 @@ fn plot_mechanism(
     mechanism_picture(path, title, &circles, &lines, &arrows, &marks, 1.6 * radius)
 }
 
-/// A deterministic uniform sequence in [0, 1) (SplitMix64), so that the
-/// packing is the same on every run.
-fn uniform_sequence(seed: u64) -> impl Iterator<Item = f64> {
-    let mut state = seed;
-    std::iter::repeat_with(move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    })
-}
-
 /// 120 circles with radii uniform in [0.05, 0.09] m, placed on a 0.2 m grid
 /// with a random shift and settled in an open box 1.6 m wide with paper
 /// 000's material.
@@ -637,12 +624,12 @@ fn settle_polydisperse(
         Frame::open_box(1.6, 3.6)?,
         Vec2::new(0.0, -katsuki1990::STANDARD_GRAVITY),
     )?;
-    let mut random = uniform_sequence(2000);
+    let mut random = SplitMix64(2000);
     for k in 0..120 {
         let (row, col) = (k / 8, k % 8);
-        let radius = 0.05 + 0.04 * random.next().unwrap_or(0.5);
+        let radius = 0.05 + 0.04 * random.next_uniform();
         let slack = 0.1 - radius - 0.001;
-        let shift = (2.0 * random.next().unwrap_or(0.5) - 1.0) * slack;
+        let shift = (2.0 * random.next_uniform() - 1.0) * slack;
         let centre = Point::new(0.1 + 0.2 * col as f64 + shift, 0.1 + 0.2 * row as f64);
         scene.add_circle(centre, radius, katsuki1990::DENSITY)?;
     }

@@ -121,6 +121,15 @@ impl LinearProgram {
         row
     }
 
+    /// Size of the LP: `(variables, equality rows, non-zeros of all rows)`.
+    pub fn size(&self) -> (usize, usize, usize) {
+        (
+            self.num_variables,
+            self.equality_rhs.len(),
+            self.equalities.len() + self.inequalities.len(),
+        )
+    }
+
     /// Adds `lower ≤ x[var] ≤ upper` as inequality rows: `−x[var] ≤ −lower`
     /// (if `lower` is given) followed by `x[var] ≤ upper` (if `upper` is
     /// given). `None` means unbounded on that side.
