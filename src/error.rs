@@ -90,6 +90,20 @@ pub enum DismechError {
         /// Which quantity (position, velocity, force…).
         quantity: &'static str,
     },
+    /// A particle fell or was pushed out of the frame.
+    #[error("particle {body} left the frame at step {step} (t = {time:.6} s): its centre ({x:.3}, {y:.3}) m is farther than the frame's size from the walls; close the frame on the side it left, or check the loads on the particles there")]
+    ParticleLeftFrame {
+        /// Step number.
+        step: u64,
+        /// Simulated time.
+        time: f64,
+        /// The particle.
+        body: usize,
+        /// Centre x (m).
+        x: f64,
+        /// Centre y (m).
+        y: f64,
+    },
     /// The kinetic energy grew beyond what the loads can supply.
     #[error("energy blow-up at step {step}: kinetic energy {kinetic:.3e} J exceeds twice the energy supplied {available:.3e} J; the time step is above the stable limit of the packed assembly: reduce dt")]
     EnergyBlowUp {

@@ -89,6 +89,19 @@ impl Aabb2 {
             && other.min.y <= self.max.y
     }
 
+    /// The smallest box holding both.
+    pub fn merged(&self, other: &Aabb2) -> Self {
+        Self {
+            min: Point::new(self.min.x.min(other.min.x), self.min.y.min(other.min.y)),
+            max: Point::new(self.max.x.max(other.max.x), self.max.y.max(other.max.y)),
+        }
+    }
+
+    /// Whether `p` lies in the box (the boundary counts).
+    pub fn contains(&self, p: &Point) -> bool {
+        (self.min.x..=self.max.x).contains(&p.x) && (self.min.y..=self.max.y).contains(&p.y)
+    }
+
     /// The box grown by `margin` on every side.
     pub fn inflated(&self, margin: f64) -> Self {
         Self {

@@ -146,6 +146,31 @@ pub struct DemSimulation<L: ContactLaw<2>, I: Integrator = ExplicitEuler> {
     system: LumpedSystem,
     acceleration: Vec<f64>,
     contacts: Vec<ContactRecord>,
+    /// The box of the walls grown by its own size on every side but the
+    /// top (particles may be dropped from high above an open box): a
+    /// particle whose centre leaves it has left the frame.
+    frame_reach: Aabb2,
+}
+
+/// See [`DemSimulation::frame_reach`]. Without walls the reach is the
+/// whole plane.
+fn frame_reach(scene: &Scene) -> Aabb2 {
+    let walls = scene.frame.walls();
+    if walls.is_empty() {
+        return Aabb2 {
+            min: Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+            max: Point::new(f64::INFINITY, f64::INFINITY),
+        };
+    }
+    let mut reach = Aabb2::from_corners(walls[0].start, walls[0].end);
+    for w in walls {
+        reach = reach.merged(&Aabb2::from_corners(w.start, w.end));
+    }
+    let size = (reach.max.x - reach.min.x).max(reach.max.y - reach.min.y);
+    Aabb2 {
+        min: Point::new(reach.min.x - size, reach.min.y - size),
+        max: Point::new(reach.max.x + size, f64::INFINITY),
+    }
 }
 
 impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
@@ -199,6 +224,7 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             },
             acceleration: vec![0.0; 3 * n],
             contacts: Vec::new(),
+            frame_reach: frame_reach(&scene),
             scene,
         };
         sim.check_initial_overlaps()?;
@@ -275,13 +301,14 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             .sum()
     }
 
-    /// Gravitational potential energy `−Σ m g·x` (J/m).
+    /// Potential energy of gravity and the constant external forces,
+    /// `−Σ (m g + f_ext)·x` (J/m).
     pub fn potential_energy(&self) -> f64 {
         let g = self.scene.gravity;
         self.scene
             .particles
             .iter()
-            .map(|p| -p.mass * g.dot(&p.pose.position.coords))
+            .map(|p| -(p.mass * g + p.external_force).dot(&p.pose.position.coords))
             .sum()
     }
 
@@ -396,8 +423,8 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
         let n = self.scene.particles.len();
         let g = self.scene.gravity;
         for (i, p) in self.scene.particles.iter().enumerate() {
-            self.system.force[3 * i] = p.mass * g.x;
-            self.system.force[3 * i + 1] = p.mass * g.y;
+            self.system.force[3 * i] = p.mass * g.x + p.external_force.x;
+            self.system.force[3 * i + 1] = p.mass * g.y + p.external_force.y;
             self.system.force[3 * i + 2] = 0.0;
         }
         self.contacts.clear();
@@ -469,6 +496,15 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             self.increments[i] = (Vec2::new(dx[0], dx[1]), dx[2]);
             if !(dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite())) {
                 return Err(self.non_finite(i, "position or velocity"));
+            }
+            if !self.frame_reach.contains(&p.pose.position) {
+                return Err(DismechError::ParticleLeftFrame {
+                    step: self.step,
+                    time: self.time,
+                    body: i,
+                    x: p.pose.position.x,
+                    y: p.pose.position.y,
+                });
             }
         }
         self.step += 1;

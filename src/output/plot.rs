@@ -66,6 +66,28 @@ pub fn line_chart(
     y_label: &str,
     series: &[Series],
 ) -> Result<()> {
+    chart(path, title, (x_label, y_label), series, true)
+}
+
+/// A scatter chart of `series` (markers only, no lines), written
+/// atomically to `path`.
+pub fn scatter_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<()> {
+    chart(path, title, (x_label, y_label), series, false)
+}
+
+fn chart(
+    path: &Path,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    series: &[Series],
+    lines: bool,
+) -> Result<()> {
     let (x0, x1) = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
     let (y0, y1) = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
     let mut svg = String::new();
@@ -87,17 +109,15 @@ pub fn line_chart(
             .map_err(|e| plot_error(path, e))?;
         for (i, s) in series.iter().enumerate() {
             let color = PALETTE[i % PALETTE.len()];
+            let line = if lines { &s.points[..] } else { &[] };
             chart
-                .draw_series(LineSeries::new(
-                    s.points.iter().copied(),
-                    color.stroke_width(2),
-                ))
+                .draw_series(LineSeries::new(line.iter().copied(), color.stroke_width(2)))
                 .map_err(|e| plot_error(path, e))?
                 .label(s.name.clone())
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
-            if s.markers {
+            if s.markers || !lines {
                 chart
                     .draw_series(s.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
                     .map_err(|e| plot_error(path, e))?;
@@ -136,22 +156,34 @@ struct Overlay<'a> {
     head: f64,
 }
 
-/// Draw circles (outline), thick lines and an overlay, scaled equally in x
-/// and y, and write the SVG atomically.
+/// The outline of a circle as a closed polyline of 33 points.
+fn circle_outline(centre: &Point, radius: f64) -> Vec<Point> {
+    (0..=32)
+        .map(|k| {
+            let t = k as f64 / 32.0 * std::f64::consts::TAU;
+            Point::new(centre.x + radius * t.cos(), centre.y + radius * t.sin())
+        })
+        .collect()
+}
+
+/// Draw particle outlines (closed polylines), thick lines and an overlay,
+/// scaled equally in x and y, and write the SVG atomically.
 fn draw_picture(
     path: &Path,
     title: &str,
-    circles: &[(Point, f64)],
+    outlines: &[Vec<Point>],
     lines: &[(Point, Point)],
     overlay: &Overlay,
 ) -> Result<()> {
-    let xs = circles
+    let xs = outlines
         .iter()
-        .flat_map(|(c, r)| [c.x - r, c.x + r])
+        .flatten()
+        .map(|p| p.x)
         .chain(lines.iter().flat_map(|(a, b)| [a.x, b.x]));
-    let ys = circles
+    let ys = outlines
         .iter()
-        .flat_map(|(c, r)| [c.y - r, c.y + r])
+        .flatten()
+        .map(|p| p.y)
         .chain(lines.iter().flat_map(|(a, b)| [a.y, b.y]));
     let (x0, x1) = padded_range(xs);
     let (y0, y1) = padded_range(ys);
@@ -168,13 +200,8 @@ fn draw_picture(
             .map_err(|e| plot_error(path, e))?;
         let grey = RGBColor(160, 160, 160);
         chart
-            .draw_series(circles.iter().map(|(c, r)| {
-                let pts: Vec<(f64, f64)> = (0..=32)
-                    .map(|k| {
-                        let t = k as f64 / 32.0 * std::f64::consts::TAU;
-                        (c.x + r * t.cos(), c.y + r * t.sin())
-                    })
-                    .collect();
+            .draw_series(outlines.iter().map(|outline| {
+                let pts: Vec<(f64, f64)> = outline.iter().map(|p| (p.x, p.y)).collect();
                 PathElement::new(pts, grey.stroke_width(1))
             }))
             .map_err(|e| plot_error(path, e))?;
@@ -249,13 +276,27 @@ pub fn assembly_picture(
     forces: &[ForceMark],
     max_length: f64,
 ) -> Result<()> {
+    let outlines: Vec<Vec<Point>> = circles.iter().map(|(c, r)| circle_outline(c, *r)).collect();
+    outline_picture(path, title, &outlines, walls, forces, max_length)
+}
+
+/// [`assembly_picture`] for particles of any shape, given by their outlines
+/// (closed polylines).
+pub fn outline_picture(
+    path: &Path,
+    title: &str,
+    outlines: &[Vec<Point>],
+    walls: &[Segment],
+    forces: &[ForceMark],
+    max_length: f64,
+) -> Result<()> {
     let scale = scale_to(forces.iter().map(|f| f.force), max_length);
     let lines: Vec<(Point, Point)> = walls.iter().map(|w| (w.start, w.end)).collect();
     let overlay = Overlay {
         centred: forces.iter().map(|f| (f.point, f.force * scale)).collect(),
         ..Overlay::default()
     };
-    draw_picture(path, title, circles, &lines, &overlay)
+    draw_picture(path, title, outlines, &lines, &overlay)
 }
 
 /// A picture of a collapse mechanism: elements (outline), supports (thick
@@ -278,5 +319,6 @@ pub fn mechanism_picture(
         head: 0.25 * max_arrow,
         ..Overlay::default()
     };
-    draw_picture(path, title, circles, lines, &overlay)
+    let outlines: Vec<Vec<Point>> = circles.iter().map(|(c, r)| circle_outline(c, *r)).collect();
+    draw_picture(path, title, &outlines, lines, &overlay)
 }

@@ -3,6 +3,7 @@
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
 pub mod ellipse_pairs;
+pub mod fill_patterns;
 pub mod katsuki1990;
 mod random;
 pub mod yamada2000;

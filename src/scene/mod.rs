@@ -77,6 +77,20 @@ impl Scene {
         })
     }
 
+    /// Apply the constant external force `force` (N/m) to the centre of
+    /// particle `index`, replacing any force set before.
+    pub fn set_external_force(&mut self, index: usize, force: Vec2) -> Result<()> {
+        require_finite("external force x", force.x)?;
+        require_finite("external force y", force.y)?;
+        let count = self.particles.len();
+        let particle = self
+            .particles
+            .get_mut(index)
+            .ok_or(DismechError::NoSuchBody { index, count })?;
+        particle.external_force = force;
+        Ok(())
+    }
+
     /// Total weight `Σ m |g|` (N per m of thickness).
     pub fn total_weight(&self) -> f64 {
         self.particles.iter().map(|p| p.mass).sum::<f64>() * self.gravity.norm()

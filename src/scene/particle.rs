@@ -19,6 +19,9 @@ pub struct Particle {
     pub mass: f64,
     /// Moment of inertia about the centre (kg·m²/m).
     pub inertia: f64,
+    /// A constant external force on the centre (N/m), besides gravity;
+    /// e.g. a pressure applied to the particles on a free boundary.
+    pub external_force: Vec2,
 }
 
 impl Particle {
@@ -34,6 +37,7 @@ impl Particle {
             angular_velocity: 0.0,
             mass: mass.mass,
             inertia: mass.inertia,
+            external_force: Vec2::zeros(),
         }
     }
 

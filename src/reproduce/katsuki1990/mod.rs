@@ -16,6 +16,20 @@
 //! * rest: kinetic energy below 1e-6 of the potential energy released *and*
 //!   mean unbalanced force per particle below 1e-4 of the mean weight, at
 //!   10 consecutive checks 100 steps apart (0.1 s), after at least 0.5 s.
+//!
+//! **Example 2** (shape anisotropy, patterns A–D) and **Example 3** (back
+//! storage sand pressure, patterns A–E) use the same material, time step
+//! and rest criterion; their patterns are in [`patterns`], the measurement
+//! of eq. (23) in [`crate::reproduce::fill_patterns`], and the reasoning of
+//! each in its module ([`shape_anisotropy`], [`back_pressure`]).
+
+pub mod back_pressure;
+pub mod patterns;
+pub mod shape_anisotropy;
+
+pub use back_pressure::{run_back_pressure, BackPressureRun, BACK_PRESSURE};
+pub use patterns::{Pattern, EXAMPLE2, PATTERN_E};
+pub use shape_anisotropy::{run_pattern, PatternRun};
 
 use std::path::Path;
 
@@ -28,7 +42,7 @@ use crate::error::Result;
 use crate::integrate::ExplicitEuler;
 use crate::math::{Point, Vec2};
 use crate::output::plot::{assembly_picture, line_chart, ForceMark, Series};
-use crate::output::{write_csv, Check, Summary};
+use crate::output::{write_atomically, write_csv, Check, Summary};
 use crate::scene::{Frame, Scene};
 use crate::shape::AnyShape2;
 
@@ -238,21 +252,41 @@ pub fn settle(
     DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
     RunOutcome,
 )> {
+    settle_scene(
+        fill_scene(config)?,
+        DemSettings::default().initial_overlap_tolerance,
+        on_check,
+    )
+}
+
+/// Run `scene` with Example 1's material, time step and rest criterion
+/// until it is at rest; `on_check(time, ratio)` reports progress.
+/// `overlap_tolerance` (m) is the largest overlap accepted at the start:
+/// tiny for a filling that starts without contacts, a fraction of a
+/// millimetre for an assembly that has settled and is loaded anew.
+pub fn settle_scene(
+    scene: Scene,
+    overlap_tolerance: f64,
+    on_check: impl FnMut(f64, f64),
+) -> Result<(
+    DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    RunOutcome,
+)> {
     let settings = DemSettings {
         dt: TIME_STEP,
+        initial_overlap_tolerance: overlap_tolerance,
         ..DemSettings::default()
     };
-    let mut sim = DemSimulation::new(
-        fill_scene(config)?,
-        material_law()?,
-        ExplicitEuler,
-        settings,
-    )?;
+    let mut sim = DemSimulation::new(scene, material_law()?, ExplicitEuler, settings)?;
     let outcome = sim.run_to_rest(&rest_criterion(), on_check)?;
     Ok((sim, outcome))
 }
 
-fn progress_bar(options: &StudyOptions, label: &str, max_time: f64) -> indicatif::ProgressBar {
+pub(crate) fn progress_bar(
+    options: &StudyOptions,
+    label: &str,
+    max_time: f64,
+) -> indicatif::ProgressBar {
     if !options.progress {
         return indicatif::ProgressBar::hidden();
     }
@@ -357,7 +391,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     spinner.set_message("katsuki1990: checking the ellipse contact on 100 000 random pairs");
     spinner.enable_steady_tick(std::time::Duration::from_millis(200));
     checks.extend(random_pair_checks());
+    spinner.set_message(
+        "katsuki1990: Examples 2 and 3 (patterns A-E settle, then take the back pressure)",
+    );
+    let (example_checks, report) = examples_2_and_3(&dir, 1.0, &mut files)?;
+    checks.extend(example_checks);
     spinner.finish_and_clear();
+    write_atomically(&dir.join("report.md"), report.as_bytes())?;
+    files.push("report.md".into());
     let summary = Summary {
         study: "katsuki1990".into(),
         paper: PAPER.into(),
@@ -482,6 +523,73 @@ fn write_example1_outputs(
     )?;
     files.push("ex1_particles.csv".into());
     Ok(())
+}
+
+/// Examples 2 and 3 at `scale` (see [`Pattern::layout`]): settle patterns
+/// A–E (two at a time), measure Example 2 on A–D, load all five with the
+/// back pressure; returns the checks and the Markdown report.
+pub fn examples_2_and_3(
+    dir: &Path,
+    scale: f64,
+    files: &mut Vec<String>,
+) -> Result<(Vec<Check>, String)> {
+    use rayon::prelude::*;
+    let patterns: Vec<Pattern> = EXAMPLE2.iter().copied().chain([PATTERN_E]).collect();
+    let settled: Vec<PatternRun> = patterns
+        .par_iter()
+        .map(|p| run_pattern(p, scale, |_, _| {}))
+        .collect::<Result<_>>()?;
+    let loaded: Vec<(Pattern, BackPressureRun)> = settled
+        .par_iter()
+        .map(|run| Ok((run.pattern, run_back_pressure(run, |_, _| {})?)))
+        .collect::<Result<_>>()?;
+    let mut checks = shape_anisotropy::example2_outputs(dir, &settled[..EXAMPLE2.len()], files)?;
+    let (ex3_checks, ex3_table) = back_pressure::example3_outputs(dir, &loaded, files)?;
+    checks.extend(ex3_checks);
+    Ok((checks, report(&settled[..EXAMPLE2.len()], &ex3_table)))
+}
+
+/// The Markdown report of Examples 2 and 3.
+fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
+    let mut md = String::from(
+        "# Katsuki & Ishikawa (1990): Examples 2 and 3\n\n\
+         Patterns (Figs. 6(a) and 8(a) are missing; chosen here): every particle has the area of a circle of r = 0.07 m; ellipses have a/b = 2; frame 2.0 m wide; rows alternate n and n - 1 particles (running bond), started 10 mm apart and settled under self-weight with Example 1's material and rest criterion.\n\n\
+         ## Example 2: earth-pressure coefficient K (eq. 23)\n\n\
+         K at each side-wall contact is (P_h / d) / (sigma_v,max z / H), sigma_v,max = W / width, z the depth below the top of the filling. Representative K: median over both walls at depths 0.2-0.9 H. `K (d = wall contacts)` takes d as the spacing of the wall contacts (P_h / d is then the wall stress); `K (d = element spacing)` takes d as the row pitch.\n\n\
+         | pattern | particles | omega (deg) | K (d = wall contacts) | K (d = element spacing) | paper K |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for run in example2 {
+        let paper = match run.pattern.name {
+            "A" => "0.2-0.3",
+            "C" => "0.6",
+            "D" => "1.2-2.0",
+            _ => "small (as A)",
+        };
+        md.push_str(&format!(
+            "| {} ({}) | {} | {:.1} | {} | {} | {} |\n",
+            run.pattern.name,
+            run.pattern.description,
+            run.sim.scene().particles.len(),
+            run.mean_omega_deg(),
+            run.k().2.map_or("none".into(), |k| format!("{k:.3}")),
+            run.k_element_spacing()
+                .map_or("none".into(), |k| format!("{k:.3}")),
+            paper
+        ));
+    }
+    md.push_str(&format!(
+        "\n## Example 3: front-wall pressure under a uniform back pressure of {} kPa\n\n\
+         The back wall is replaced by the pressure on the back particles (those within the smallest semi-axis of the back, and the first seen from the back at each height), each over its share of the height; the frame is closed by a lid; self-weight stays on. Centroid: height of the resultant front-wall force / H (1/3 triangular, 1/2 uniform).\n\n\
+         | pattern | arrangement | front force / (p H) | centroid / H | lower-half share | reads as | paper |\n\
+         |---|---|---|---|---|---|---|\n",
+        BACK_PRESSURE / 1e3
+    ));
+    for row in example3_rows {
+        md.push_str(row);
+        md.push('\n');
+    }
+    md
 }
 
 /// Robustness of the ellipse contact over 100 000 random pairs against the

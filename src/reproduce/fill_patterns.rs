@@ -1,0 +1,409 @@
+//! Regular fillings of ellipses or circles in a rigid frame, and the earth
+//! pressure they put on a wall: the scenes of paper 000's Examples 2 and 3.
+//!
+//! A [`Layout`] is a stack of rows of identical particles. The full rows
+//! hold `per_row` particles at a horizontal pitch `width / per_row`; in a
+//! staggered layout every other row holds `per_row − 1` particles shifted
+//! by half a pitch (a running bond, as Example 1's circles), otherwise all
+//! rows are full and the particles stand in vertical stacks. Rows start
+//! `gap` apart, so that the filling starts without contacts and settles
+//! under its own weight.
+//!
+//! The earth-pressure coefficient is eq. (23) of the paper,
+//! `K = (P_h / d) / (σ_v,max · z / H)`, for every contact of a side wall:
+//! `P_h` its normal force, `d` the mean distance between the wall's
+//! contacts, `σ_v,max = W / width` the vertical pressure of the whole
+//! filling on the bottom (W its weight), `H` the filling height and `z` the
+//! depth of the contact below the top of the filling. The paper calls `h`
+//! "the height from the bottom plate" but the ratio `h / H` must vanish at
+//! the top for `σ_v,max · h / H` to be a vertical stress, so it is read here
+//! as the depth.
+
+use crate::contact::SpringDashpotCoulomb;
+use crate::dem::{ContactTarget, DemSimulation};
+use crate::error::{DismechError, Result};
+use crate::integrate::ExplicitEuler;
+use crate::math::{Point, Vec2};
+use crate::scene::{Frame, Scene};
+use crate::shape::AnyShape2;
+
+/// A regular filling: identical particles in rows (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layout {
+    /// Inner width of the frame (m).
+    pub width: f64,
+    /// Height of the frame walls (m).
+    pub height: f64,
+    /// Semi-major axis a (m); equal to `semi_minor` for circles.
+    pub semi_major: f64,
+    /// Semi-minor axis b (m).
+    pub semi_minor: f64,
+    /// Angle of the major axis from the horizontal (rad).
+    pub angle: f64,
+    /// Particles in a full row.
+    pub per_row: usize,
+    /// Rows alternate `per_row` and `per_row − 1` particles (running bond)
+    /// instead of all holding `per_row` (stacks).
+    pub staggered: bool,
+    /// Number of rows.
+    pub rows: usize,
+    /// Vertical gap between the rows at the start (m).
+    pub gap: f64,
+    /// Density (kg/m³).
+    pub density: f64,
+}
+
+impl Layout {
+    /// Half the horizontal and vertical extent of one particle (m).
+    pub fn half_extent(&self) -> (f64, f64) {
+        ellipse_half_extent(self.semi_major, self.semi_minor, self.angle)
+    }
+
+    /// Horizontal distance between neighbours in a row (m).
+    pub fn pitch(&self) -> f64 {
+        self.width / self.per_row as f64
+    }
+
+    /// Centres of the particles, row by row from the bottom.
+    pub fn centres(&self) -> Vec<Point> {
+        let (_, half_height) = self.half_extent();
+        let pitch = self.pitch();
+        let mut centres = Vec::new();
+        for row in 0..self.rows {
+            let y = half_height + self.gap + row as f64 * (2.0 * half_height + self.gap);
+            let short = self.staggered && row % 2 == 1;
+            let (count, x0) = if short {
+                (self.per_row - 1, pitch)
+            } else {
+                (self.per_row, 0.5 * pitch)
+            };
+            centres.extend((0..count).map(|k| Point::new(x0 + k as f64 * pitch, y)));
+        }
+        centres
+    }
+
+    /// The scene: the particles at rest in an open box under gravity `g`
+    /// (m/s²). Refuses a layout whose neighbours in a row, or whose end
+    /// particles and the side walls, would overlap at the start.
+    pub fn scene(&self, g: f64) -> Result<Scene> {
+        let (half_width, half_height) = self.half_extent();
+        if self.per_row < 2 {
+            return Err(DismechError::InvalidParameter {
+                name: "particles per row",
+                value: self.per_row as f64,
+                requirement: "at least 2",
+            });
+        }
+        if self.pitch() < 2.0 * half_width {
+            return Err(DismechError::InvalidParameter {
+                name: "row pitch (frame width / particles per row)",
+                value: self.pitch(),
+                requirement: "at least the particle width, so that a row starts without overlaps",
+            });
+        }
+        let top = self.rows as f64 * (2.0 * half_height + self.gap);
+        if top > self.height {
+            return Err(DismechError::InvalidParameter {
+                name: "height of the stacked rows",
+                value: top,
+                requirement: "at most the frame height",
+            });
+        }
+        let mut scene = Scene::new(
+            Frame::open_box(self.width, self.height)?,
+            Vec2::new(0.0, -g),
+        )?;
+        for centre in self.centres() {
+            if self.semi_major == self.semi_minor {
+                scene.add_circle(centre, self.semi_major, self.density)?;
+            } else {
+                scene.add_ellipse(
+                    centre,
+                    self.semi_major,
+                    self.semi_minor,
+                    self.angle,
+                    self.density,
+                )?;
+            }
+        }
+        Ok(scene)
+    }
+}
+
+/// One contact of a side wall with its eq. (23) earth-pressure coefficient.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallPressure {
+    /// Height of the contact above the floor (m).
+    pub height: f64,
+    /// Depth below the top of the filling (m).
+    pub depth: f64,
+    /// `P_h / d`, the normal pressure at the contact (Pa).
+    pub pressure: f64,
+    /// Eq. (23): `(P_h / d) / (σ_v,max · depth / H)`.
+    pub k: f64,
+    /// Contact angle ω of the wall particle (degrees from the horizontal):
+    /// the normal-force-weighted mean of `|angle|` of the normals of its
+    /// contacts with other particles, folded into [0°, 90°].
+    pub omega_deg: f64,
+}
+
+/// The eq. (23) coefficient at every contact of the wall `wall_name`, sorted
+/// by height. `fill_height` is H (m); `default_spacing` is `d` when the wall
+/// has fewer than two contacts.
+pub fn wall_pressures(
+    sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    wall_name: &str,
+    fill_height: f64,
+    default_spacing: f64,
+) -> Vec<WallPressure> {
+    let scene = sim.scene();
+    let Some(w) = scene.frame.index_of(wall_name) else {
+        return Vec::new();
+    };
+    let outward = -scene.frame.walls()[w].inner_normal();
+    let width = scene
+        .frame
+        .walls()
+        .iter()
+        .flat_map(|s| [s.start.x, s.end.x])
+        .fold(f64::NEG_INFINITY, f64::max)
+        - scene
+            .frame
+            .walls()
+            .iter()
+            .flat_map(|s| [s.start.x, s.end.x])
+            .fold(f64::INFINITY, f64::min);
+    let sigma_v_max = scene.total_weight() / width;
+    let mut contacts: Vec<(f64, f64, usize)> = sim
+        .contacts()
+        .iter()
+        .filter(|c| c.target == ContactTarget::Wall(w))
+        .map(|c| (c.point.y, c.force_on_target.dot(&outward), c.particle))
+        .collect();
+    contacts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let spacing = match (contacts.first(), contacts.last()) {
+        (Some(lo), Some(hi)) if contacts.len() > 1 && hi.0 > lo.0 => {
+            (hi.0 - lo.0) / (contacts.len() - 1) as f64
+        }
+        _ => default_spacing,
+    };
+    contacts
+        .iter()
+        .map(|&(height, force, particle)| {
+            let depth = fill_height - height;
+            let pressure = force / spacing;
+            WallPressure {
+                height,
+                depth,
+                pressure,
+                k: pressure / (sigma_v_max * depth / fill_height),
+                omega_deg: contact_angle(sim, particle),
+            }
+        })
+        .collect()
+}
+
+/// The normal-force-weighted mean angle from the horizontal (degrees, in
+/// [0°, 90°]) of the particle–particle contact normals of `particle`.
+fn contact_angle(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>, particle: usize) -> f64 {
+    let (mut sum, mut weight) = (0.0, 0.0);
+    for c in sim.contacts() {
+        let ContactTarget::Particle(other) = c.target else {
+            continue;
+        };
+        if c.particle != particle && other != particle {
+            continue;
+        }
+        let normal_force = c.force_on_target.dot(&c.normal).abs();
+        let angle = c.normal.y.abs().atan2(c.normal.x.abs()).to_degrees();
+        sum += normal_force * angle;
+        weight += normal_force;
+    }
+    if weight > 0.0 {
+        sum / weight
+    } else {
+        f64::NAN
+    }
+}
+
+/// The representative K of a wall profile: the median of the per-contact
+/// values at depths between 20 % and 90 % of H (the top fifth divides by a
+/// vanishing σ_v, and the paper notes the bottom is disturbed by the
+/// friction of the bottom plate). `None` when no contact lies in that band.
+pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f64> {
+    let mut ks: Vec<f64> = profile
+        .iter()
+        .filter(|p| p.depth >= 0.2 * fill_height && p.depth <= 0.9 * fill_height)
+        .map(|p| p.k)
+        .collect();
+    if ks.is_empty() {
+        return None;
+    }
+    ks.sort_by(f64::total_cmp);
+    let n = ks.len();
+    Some(if n % 2 == 1 {
+        ks[n / 2]
+    } else {
+        0.5 * (ks[n / 2 - 1] + ks[n / 2])
+    })
+}
+
+/// Half the horizontal and vertical extent of an ellipse with semi-axes
+/// `a`, `b` whose major axis is at `angle` (rad) from the horizontal.
+fn ellipse_half_extent(a: f64, b: f64, angle: f64) -> (f64, f64) {
+    let (s, c) = angle.sin_cos();
+    (
+        (a * a * c * c + b * b * s * s).sqrt(),
+        (a * a * s * s + b * b * c * c).sqrt(),
+    )
+}
+
+/// The smallest half-size of a particle: semi-minor axis or radius (m).
+fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
+    match &p.shape {
+        AnyShape2::Circle(c) => c.radius(),
+        AnyShape2::Ellipse(e) => e.b(),
+        AnyShape2::Segment(_) => f64::INFINITY,
+    }
+}
+
+/// Half the horizontal and vertical extent of a particle (m).
+fn half_extent(p: &crate::scene::Particle) -> (f64, f64) {
+    match &p.shape {
+        AnyShape2::Circle(c) => (c.radius(), c.radius()),
+        AnyShape2::Ellipse(e) => ellipse_half_extent(e.a(), e.b(), p.pose.angle),
+        AnyShape2::Segment(seg) => {
+            let d = seg.end - seg.start;
+            (0.5 * d.x.abs(), 0.5 * d.y.abs())
+        }
+    }
+}
+
+/// Outlines of the particles of `scene` (closed polylines, for pictures).
+pub fn particle_outlines(scene: &Scene) -> Vec<Vec<Point>> {
+    const POINTS: usize = 48;
+    scene
+        .particles
+        .iter()
+        .filter_map(|p| {
+            let point = |k: usize| {
+                let t = k as f64 / POINTS as f64 * std::f64::consts::TAU;
+                match &p.shape {
+                    AnyShape2::Circle(c) => Some(Point::new(
+                        p.pose.position.x + c.radius() * t.cos(),
+                        p.pose.position.y + c.radius() * t.sin(),
+                    )),
+                    AnyShape2::Ellipse(e) => Some(e.world_point(&p.pose, t)),
+                    AnyShape2::Segment(_) => None,
+                }
+            };
+            (0..=POINTS).map(point).collect()
+        })
+        .collect()
+}
+
+/// The particles of a settled filling in an open box, with the back
+/// (`left`) wall replaced by a uniform horizontal `pressure` (Pa, acting
+/// towards +x) on the back particles, and the box closed by a lid just above
+/// the filling: Example 3's rigid rectangular frame under back storage sand
+/// pressure.
+///
+/// The back particles are those whose back edge lies within the smallest
+/// half-size of any particle (its semi-minor axis or radius) of the back,
+/// and the first particles seen from the back: those with no particle
+/// further back whose height range overlaps the middle half of theirs (in a
+/// running bond, the end particle of every row). Each
+/// takes the pressure over its share of the height: from half-way to the
+/// back particle below (the floor for the lowest) to half-way to the one
+/// above (the top of the filling, `fill_height`, for the highest), so that
+/// the forces add up to `pressure · fill_height`. The walls of the new
+/// frame are `bottom`, `front` and `lid`. The particles start at their
+/// settled poses, at rest and without contact history.
+pub fn back_pressure_scene(
+    settled: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    pressure: f64,
+    fill_height: f64,
+    lid_gap: f64,
+) -> Result<Scene> {
+    crate::error::require_finite("back pressure", pressure)?;
+    crate::error::require_non_negative("lid gap", lid_gap)?;
+    let old = settled.scene();
+    let left = old
+        .frame
+        .index_of("left")
+        .ok_or(DismechError::InvalidParameter {
+            name: "walls of the settled frame",
+            value: old.frame.walls().len() as f64,
+            requirement: "a wall named `left` (an open box)",
+        })?;
+    let back_x = old.frame.walls()[left]
+        .start
+        .x
+        .max(old.frame.walls()[left].end.x);
+    let right_x = old
+        .frame
+        .walls()
+        .iter()
+        .flat_map(|s| [s.start.x, s.end.x])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let top = fill_height + lid_gap;
+    let frame = Frame::from_walls(vec![
+        (
+            "bottom".into(),
+            crate::shape::Segment::new(Point::new(back_x, 0.0), Point::new(right_x, 0.0)),
+        ),
+        (
+            "front".into(),
+            crate::shape::Segment::new(Point::new(right_x, 0.0), Point::new(right_x, top)),
+        ),
+        (
+            "lid".into(),
+            crate::shape::Segment::new(Point::new(right_x, top), Point::new(back_x, top)),
+        ),
+    ])?;
+    let extents: Vec<(f64, f64)> = old.particles.iter().map(half_extent).collect();
+    let reach = old
+        .particles
+        .iter()
+        .map(smallest_half_size)
+        .fold(f64::INFINITY, f64::min);
+    let mut back: Vec<(f64, usize)> = (0..old.particles.len())
+        .filter(|&i| {
+            let (x, y) = (
+                old.particles[i].pose.position.x,
+                old.particles[i].pose.position.y,
+            );
+            let (half_width, band) = (extents[i].0, 0.5 * extents[i].1);
+            let near_the_back = x - half_width - back_x < reach;
+            let first_seen = !old.particles.iter().enumerate().any(|(j, q)| {
+                let (qy, qh) = (q.pose.position.y, extents[j].1);
+                q.pose.position.x < x && qy + qh > y - band && qy - qh < y + band
+            });
+            near_the_back || first_seen
+        })
+        .map(|i| (old.particles[i].pose.position.y, i))
+        .collect();
+    back.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut scene = Scene::new(frame, old.gravity)?;
+    for p in &old.particles {
+        let mut particle = p.clone();
+        particle.velocity = Vec2::zeros();
+        particle.angular_velocity = 0.0;
+        particle.external_force = Vec2::zeros();
+        scene.particles.push(particle);
+    }
+    for (k, &(y, particle)) in back.iter().enumerate() {
+        let below = if k == 0 {
+            0.0
+        } else {
+            0.5 * (y + back[k - 1].0)
+        };
+        let above = if k + 1 == back.len() {
+            fill_height
+        } else {
+            0.5 * (y + back[k + 1].0)
+        };
+        scene.set_external_force(particle, Vec2::new(pressure * (above - below), 0.0))?;
+    }
+    Ok(scene)
+}
