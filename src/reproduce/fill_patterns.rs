@@ -160,7 +160,6 @@ pub fn wall_pressures(
     let Some(w) = scene.frame.index_of(wall_name) else {
         return Vec::new();
     };
-    let outward = -scene.frame.walls()[w].inner_normal();
     let width = scene
         .frame
         .walls()
@@ -174,19 +173,7 @@ pub fn wall_pressures(
             .flat_map(|s| [s.start.x, s.end.x])
             .fold(f64::INFINITY, f64::min);
     let sigma_v_max = scene.total_weight() / width;
-    let mut contacts: Vec<(f64, f64, usize)> = sim
-        .contacts()
-        .iter()
-        .filter(|c| c.target == ContactTarget::Wall(w))
-        .map(|c| (c.point.y, c.force_on_target.dot(&outward), c.particle))
-        .collect();
-    contacts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let spacing = match (contacts.first(), contacts.last()) {
-        (Some(lo), Some(hi)) if contacts.len() > 1 && hi.0 > lo.0 => {
-            (hi.0 - lo.0) / (contacts.len() - 1) as f64
-        }
-        _ => default_spacing,
-    };
+    let (contacts, spacing) = wall_normal_forces(sim, w, default_spacing);
     contacts
         .iter()
         .map(|&(height, force, particle)| {
@@ -201,6 +188,34 @@ pub fn wall_pressures(
             }
         })
         .collect()
+}
+
+/// The contacts of wall `w` as `(height, normal force pushing the wall
+/// outward, particle)`, sorted by height, and the mean distance `d` between
+/// them (`default_spacing` when there are fewer than two).
+pub fn wall_normal_forces(
+    sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
+    w: usize,
+    default_spacing: f64,
+) -> (Vec<(f64, f64, usize)>, f64) {
+    let Some(wall) = sim.scene().frame.walls().get(w) else {
+        return (Vec::new(), default_spacing);
+    };
+    let outward = -wall.inner_normal();
+    let mut contacts: Vec<(f64, f64, usize)> = sim
+        .contacts()
+        .iter()
+        .filter(|c| c.target == ContactTarget::Wall(w))
+        .map(|c| (c.point.y, c.force_on_target.dot(&outward), c.particle))
+        .collect();
+    contacts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let spacing = match (contacts.first(), contacts.last()) {
+        (Some(lo), Some(hi)) if contacts.len() > 1 && hi.0 > lo.0 => {
+            (hi.0 - lo.0) / (contacts.len() - 1) as f64
+        }
+        _ => default_spacing,
+    };
+    (contacts, spacing)
 }
 
 /// The normal-force-weighted mean angle from the horizontal (degrees, in

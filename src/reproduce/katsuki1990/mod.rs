@@ -41,10 +41,9 @@ use crate::dem::{
 use crate::error::Result;
 use crate::integrate::ExplicitEuler;
 use crate::math::{Point, Vec2};
-use crate::output::plot::{assembly_picture, line_chart, ForceMark, Series};
+use crate::output::plot::{line_chart, Series};
 use crate::output::{write_atomically, write_csv, Check, Summary};
 use crate::scene::{Frame, Scene};
-use crate::shape::AnyShape2;
 
 /// File name of the paper.
 pub const PAPER: &str = "000_87caa095a10dc755.txt";
@@ -222,25 +221,12 @@ pub fn wall_pressure_profile(
     wall_name: &str,
     default_spacing: f64,
 ) -> Vec<(f64, f64)> {
-    let frame = &sim.scene().frame;
-    let Some(w) = frame.index_of(wall_name) else {
+    let Some(w) = sim.scene().frame.index_of(wall_name) else {
         return Vec::new();
     };
-    let outward = -frame.walls()[w].inner_normal();
-    let mut forces: Vec<(f64, f64)> = sim
-        .contacts()
-        .iter()
-        .filter(|c| c.target == ContactTarget::Wall(w))
-        .map(|c| (c.point.y, c.force_on_target.dot(&outward)))
-        .collect();
-    forces.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let spacing = match (forces.first(), forces.last()) {
-        (Some(lo), Some(hi)) if forces.len() > 1 && hi.0 > lo.0 => {
-            (hi.0 - lo.0) / (forces.len() - 1) as f64
-        }
-        _ => default_spacing,
-    };
-    forces.iter().map(|&(h, f)| (h, f / spacing)).collect()
+    let (forces, spacing) =
+        crate::reproduce::fill_patterns::wall_normal_forces(sim, w, default_spacing);
+    forces.iter().map(|&(h, f, _)| (h, f / spacing)).collect()
 }
 
 /// Build, check and settle a filling; `on_check(time, ratio)` reports
@@ -416,30 +402,10 @@ fn write_example1_outputs(
     files: &mut Vec<String>,
 ) -> Result<()> {
     let scene = sim.scene();
-    let circles: Vec<(Point, f64)> = scene
-        .particles
-        .iter()
-        .filter_map(|p| match &p.shape {
-            AnyShape2::Circle(c) => Some((p.pose.position, c.radius())),
-            _ => None,
-        })
-        .collect();
-    let forces: Vec<ForceMark> = sim
-        .contacts()
-        .iter()
-        .map(|c| ForceMark {
-            point: c.point,
-            force: c.force_on_target,
-        })
-        .collect();
-    let walls: Vec<_> = scene.frame.walls().to_vec();
-    assembly_picture(
+    shape_anisotropy::picture(
         &dir.join("ex1_contact_forces.svg"),
         "Example 1: contact forces at rest (179 circles), cf. paper Fig. 5(b)",
-        &circles,
-        &walls,
-        &forces,
-        2.0 * config.radius,
+        sim,
     )?;
     files.push("ex1_contact_forces.svg".into());
 

@@ -312,7 +312,8 @@ fn fmt_option(value: Option<f64>) -> String {
     value.map_or_else(|| "none".to_string(), |v| format!("{v:.3}"))
 }
 
-/// A picture of a settled assembly with its contact forces.
+/// A picture of a settled assembly with its contact forces (segments
+/// centred on the contact points, the largest one particle diameter long).
 pub(super) fn picture(
     path: &Path,
     title: &str,
