@@ -54,6 +54,7 @@ pub mod contact;
 pub mod dem;
 pub mod error;
 pub mod grid;
+pub mod hpm;
 pub mod integrate;
 pub mod limit;
 pub mod math;
