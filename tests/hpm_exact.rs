@@ -42,7 +42,14 @@ struct Exact {
     area: f64,
 }
 
-fn exact_slab(rows: usize, columns: usize, dip: f64, m: &HpmMaterial, h: f64, hw: Option<f64>) -> Exact {
+fn exact_slab(
+    rows: usize,
+    columns: usize,
+    dip: f64,
+    m: &HpmMaterial,
+    h: f64,
+    hw: Option<f64>,
+) -> Exact {
     let plan = (rows * columns) as f64 * 100.0;
     let per_area = match hw {
         None => m.unit_weight * h,
@@ -96,7 +103,10 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
         let hov = hovland(&model, &seismic, towards).unwrap().safety_factor;
         eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM {fs:.5}, Hovland {hov:.5}");
         assert!((fs / exact - 1.0).abs() < 0.01, "HPM {fs} vs exact {exact}");
-        assert!((hov / exact - 1.0).abs() < 1e-9, "Hovland {hov} vs exact {exact}");
+        assert!(
+            (hov / exact - 1.0).abs() < 1e-9,
+            "Hovland {hov} vs exact {exact}"
+        );
     }
 }
 
@@ -110,18 +120,25 @@ fn planar_slab_slip_springs_balance_the_load_exactly() {
         coefficient: 0.15,
         direction_deg: 250.0,
     };
-    let r = HpmSolver::new(&model).unwrap().elastic(&model, &seismic).unwrap();
+    let r = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
     let mut reaction = Vector3::zeros();
     for (s, t) in model.slip.iter().zip(&r.tractions) {
         let p = &s.point;
         // Force of the ground on the soil: against n (into the ground), s, t.
-        reaction -= (p.point.normal * t.normal + p.s * t.shear[0] + p.t * t.shear[1]) * p.point.area;
+        reaction -=
+            (p.point.normal * t.normal + p.s * t.shear[0] + p.t * t.shear[1]) * p.point.area;
     }
     let f = model.loads(&seismic);
     let applied: Vector3<f64> = (0..model.elements.len())
         .map(|e| Vector3::new(f[12 * e], f[12 * e + 1], f[12 * e + 2]))
         .sum();
-    assert!((reaction + applied).norm() < 1e-8 * applied.norm(), "{reaction} vs {applied}");
+    assert!(
+        (reaction + applied).norm() < 1e-8 * applied.norm(),
+        "{reaction} vs {applied}"
+    );
 }
 
 #[test]
@@ -136,13 +153,21 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
     let exact = exact_fs(&exact_slab(rows, columns, dip, &m, h, None), &m, dip, 0.0);
     let solver = HpmSolver::new(&model).unwrap();
     let settings = NonlinearSettings::default();
-    let r = solver.nonlinear(&model, &Seismic::none(), 1.0, &settings).unwrap();
+    let r = solver
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
     assert!(r.convergence.converged(), "{:?}", r.convergence);
     assert!((r.safety_factor(&model) / exact - 1.0).abs() < 0.01);
     let srf = strength_reduction(&solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
-    eprintln!("exact {exact:.4}; strength reduction in [{:.4}, {:.4}]", srf.safety_factor, srf.failed_at);
+    eprintln!(
+        "exact {exact:.4}; strength reduction in [{:.4}, {:.4}]",
+        srf.safety_factor, srf.failed_at
+    );
     // The uniform slab fails everywhere at once, at F = Fs: the bracket holds it.
-    assert!(srf.safety_factor <= exact * 1.001 && srf.failed_at >= exact * 0.98, "{srf:?}");
+    assert!(
+        srf.safety_factor <= exact * 1.001 && srf.failed_at >= exact * 0.98,
+        "{srf:?}"
+    );
 }
 
 #[test]
@@ -203,11 +228,17 @@ fn outer_faces(model: &HpmModel) -> Vec<(usize, FacePoint)> {
                 push(side_face((x0, y0 - d), d, &b, &t, Side::North), true);
             }
             if e + 1 == column.elements.end {
-                let top: Vec<FacePoint> = bilinear_face((x0, y0), d, &t).into_iter().map(|p| p.point).collect();
+                let top: Vec<FacePoint> = bilinear_face((x0, y0), d, &t)
+                    .into_iter()
+                    .map(|p| p.point)
+                    .collect();
                 push(top, true);
             }
             if e == column.elements.start {
-                let bottom: Vec<FacePoint> = bilinear_face((x0, y0), d, &b).into_iter().map(|p| p.point).collect();
+                let bottom: Vec<FacePoint> = bilinear_face((x0, y0), d, &b)
+                    .into_iter()
+                    .map(|p| p.point)
+                    .collect();
                 push(bottom, false);
             }
         }
@@ -225,7 +256,15 @@ fn patch_test_uniform_stress_gives_the_exact_uniform_strain_in_every_element() {
         None,
     )
     .unwrap();
-    let model = HpmModel::new(&grids, &m, &HpmSettings { layers: 4, penalty: 100.0 }).unwrap();
+    let model = HpmModel::new(
+        &grids,
+        &m,
+        &HpmSettings {
+            layers: 4,
+            penalty: 100.0,
+        },
+    )
+    .unwrap();
     // A uniform stress with every component present (Pa).
     let sigma = Matrix3::new(-50e3, 8e3, 5e3, 8e3, -30e3, -4e3, 5e3, -4e3, -120e3);
     let mut f = vec![0.0; model.dof()];
@@ -270,7 +309,10 @@ fn patch_test_uniform_stress_gives_the_exact_uniform_strain_in_every_element() {
     // Element 0 is held with no reaction: the interface springs carry the
     // whole load, so its translation and rotation stay zero.
     for i in 0..6 {
-        assert!(u[i].abs() * hold <= 1e-8 * sigma.amax() * 100.0, "reaction at DOF {i}");
+        assert!(
+            u[i].abs() * hold <= 1e-8 * sigma.amax() * 100.0,
+            "reaction at DOF {i}"
+        );
     }
 }
 
@@ -280,10 +322,19 @@ fn bowl() -> SlopeGrids {
     let slip = Raster::from_fn(9, 11, 0.0, 0.0, 10.0, |x, y| {
         let q = ((x - 45.0) / 40.0).powi(2) + ((y - 55.0) / 50.0).powi(2);
         let g = 0.4 * y;
-        Some(if q < 1.0 { (g - 12.0 * (1.0 - q).sqrt()).min(g) } else { g })
+        Some(if q < 1.0 {
+            (g - 12.0 * (1.0 - q).sqrt()).min(g)
+        } else {
+            g
+        })
     })
     .unwrap();
-    SlopeGrids::new(NamedRaster::new("ground", ground), NamedRaster::new("slip", slip), None).unwrap()
+    SlopeGrids::new(
+        NamedRaster::new("ground", ground),
+        NamedRaster::new("slip", slip),
+        None,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -293,22 +344,44 @@ fn layer_refinement_3_6_12_converges_in_fs_and_top_displacement() {
     let mut fs = Vec::new();
     let mut top = Vec::new();
     for layers in [3, 6, 12] {
-        let model = HpmModel::new(&grids, &m, &HpmSettings { layers, penalty: 100.0 }).unwrap();
-        let r = HpmSolver::new(&model).unwrap().elastic(&model, &Seismic::none()).unwrap();
+        let model = HpmModel::new(
+            &grids,
+            &m,
+            &HpmSettings {
+                layers,
+                penalty: 100.0,
+            },
+        )
+        .unwrap();
+        let r = HpmSolver::new(&model)
+            .unwrap()
+            .elastic(&model, &Seismic::none())
+            .unwrap();
         fs.push(r.safety_factor(&model));
         let surface = r.surface(&model);
-        top.push(surface.iter().map(|p| p.displacement.norm()).fold(0.0, f64::max));
+        top.push(
+            surface
+                .iter()
+                .map(|p| p.displacement.norm())
+                .fold(0.0, f64::max),
+        );
     }
     eprintln!("layers 3, 6, 12: Fs {fs:?}, largest surface displacement {top:?} m");
     let change = |v: &[f64], k: usize| (v[k + 1] - v[k]).abs() / v[k + 1].abs();
     assert!(change(&fs, 1) < change(&fs, 0), "Fs {fs:?}");
-    assert!(change(&top, 1) < change(&top, 0), "top displacement {top:?}");
+    assert!(
+        change(&top, 1) < change(&top, 0),
+        "top displacement {top:?}"
+    );
 }
 
 const GRID: &str = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";
 
 fn named(name: &str, values: &str) -> NamedRaster {
-    NamedRaster::new(name, parse_esri_ascii(&format!("{GRID}{values}"), name).unwrap())
+    NamedRaster::new(
+        name,
+        parse_esri_ascii(&format!("{GRID}{values}"), name).unwrap(),
+    )
 }
 
 #[test]
@@ -317,18 +390,29 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     // A different grid.
     let other = NamedRaster::new(
         "slip.asc",
-        parse_esri_ascii("ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 1 1\n1 1 1\n1 1 1\n", "slip.asc").unwrap(),
+        parse_esri_ascii(
+            "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 1 1\n1 1 1\n1 1 1\n",
+            "slip.asc",
+        )
+        .unwrap(),
     );
     match SlopeGrids::new(ground(), other, None).unwrap_err() {
-        DismechError::GridMismatch { file, reference, .. } => {
-            assert_eq!((file.as_str(), reference.as_str()), ("slip.asc", "ground.asc"))
+        DismechError::GridMismatch {
+            file, reference, ..
+        } => {
+            assert_eq!(
+                (file.as_str(), reference.as_str()),
+                ("slip.asc", "ground.asc")
+            )
         }
         e => panic!("{e}"),
     }
     // A hole in the slip surface inside the slide.
     let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
     match SlopeGrids::new(ground(), holed, None).unwrap_err() {
-        DismechError::GridCell { file, row, column, .. } => {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
             assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1))
         }
         e => panic!("{e}"),
@@ -336,15 +420,25 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     // No ground data where the slip surface is given.
     let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
     match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
-        DismechError::GridCell { file, row, column, .. } => {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
             assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1))
         }
         e => panic!("{e}"),
     }
     // Water table missing over a valid column.
     let w = named("water.asc", "1 1 1\n1 1 -9999\n1 1 1\n");
-    match SlopeGrids::new(ground(), named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), Some(w)).unwrap_err() {
-        DismechError::GridCell { file, row, column, .. } => {
+    match SlopeGrids::new(
+        ground(),
+        named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"),
+        Some(w),
+    )
+    .unwrap_err()
+    {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
             assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2))
         }
         e => panic!("{e}"),
@@ -357,24 +451,66 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     ));
     // NaN in a file is refused with its line and column.
     let nan = parse_esri_ascii(&format!("{GRID}1 1 1\n1 NaN 1\n1 1 1\n"), "slip.asc").unwrap_err();
-    assert!(matches!(nan, DismechError::GridFormat { line: 8, column: 3, .. }), "{nan}");
+    assert!(
+        matches!(
+            nan,
+            DismechError::GridFormat {
+                line: 8,
+                column: 3,
+                ..
+            }
+        ),
+        "{nan}"
+    );
 }
 
 #[test]
 fn bad_material_values_are_refused_with_their_name_and_value() {
     let grids = slab(2, 2, 20.0, 270.0, 5.0, None);
     for (m, name) in [
-        (HpmMaterial { poisson_ratio: 0.5, ..HpmMaterial::paper() }, "Poisson's ratio nu"),
-        (HpmMaterial { cohesion: -1.0, ..HpmMaterial::paper() }, "cohesion c"),
-        (HpmMaterial { friction_angle_deg: 90.0, ..HpmMaterial::paper() }, "friction angle phi (degrees)"),
-        (HpmMaterial { friction_angle_deg: -1.0, ..HpmMaterial::paper() }, "friction angle phi (degrees)"),
+        (
+            HpmMaterial {
+                poisson_ratio: 0.5,
+                ..HpmMaterial::paper()
+            },
+            "Poisson's ratio nu",
+        ),
+        (
+            HpmMaterial {
+                cohesion: -1.0,
+                ..HpmMaterial::paper()
+            },
+            "cohesion c",
+        ),
+        (
+            HpmMaterial {
+                friction_angle_deg: 90.0,
+                ..HpmMaterial::paper()
+            },
+            "friction angle phi (degrees)",
+        ),
+        (
+            HpmMaterial {
+                friction_angle_deg: -1.0,
+                ..HpmMaterial::paper()
+            },
+            "friction angle phi (degrees)",
+        ),
     ] {
         match HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap_err() {
             DismechError::InvalidParameter { name: got, .. } => assert_eq!(got, name),
             e => panic!("{e}"),
         }
     }
-    assert!(HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings { layers: 2, penalty: 100.0 }).is_err());
+    assert!(HpmModel::new(
+        &grids,
+        &HpmMaterial::paper(),
+        &HpmSettings {
+            layers: 2,
+            penalty: 100.0
+        }
+    )
+    .is_err());
 }
 
 #[test]
@@ -384,4 +520,18 @@ fn shape_matrix_moves_a_point_rigidly_for_rotation_dofs() {
     u[5] = 1e-3; // rotation about z
     let d = displacement_at(&c, &u, &Point3::new(2.0, 0.0, 0.0));
     assert!((d - Vector3::new(0.0, 2e-3, 0.0)).norm() < 1e-15);
+}
+
+#[test]
+fn shipped_slope_grids_are_the_reproduction_slope() {
+    let (ground, slip) = dismech::reproduce::yamaguchi_hpm::representative_slope().unwrap();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data");
+    assert_eq!(
+        dismech::grid::read_esri_ascii(&dir.join("hpm_ground.asc")).unwrap(),
+        ground
+    );
+    assert_eq!(
+        dismech::grid::read_esri_ascii(&dir.join("hpm_slip.asc")).unwrap(),
+        slip
+    );
 }

@@ -58,7 +58,11 @@ impl MohrCoulombSpring {
 impl ContactLaw<3> for MohrCoulombSpring {
     type State = SpringState<3>;
 
-    fn evaluate(&self, input: &ContactInput<3>, state: &Self::State) -> ContactResponse<3, Self::State> {
+    fn evaluate(
+        &self,
+        input: &ContactInput<3>,
+        state: &Self::State,
+    ) -> ContactResponse<3, Self::State> {
         let (k_n, k_s) = (self.normal_stiffness, self.shear_stiffness);
         let du = input.increment;
         let mut spring = SVector::<f64, 3>::new(
@@ -155,7 +159,7 @@ mod tests {
         // Tension: nothing carried, cohesion included.
         let r = law.evaluate(&input([-0.1, 0.1, 0.0]), &zero);
         assert_eq!(r.regime, Regime::Open);
-        assert_eq!(r.force, SVector::zeros());
+        assert_eq!(r.force, SVector::<f64, 3>::zeros());
         assert!(MohrCoulombSpring::new(1.0, 1.0, -1.0, 0.5).is_err());
     }
 
@@ -172,7 +176,11 @@ mod tests {
             let f = law.evaluate(&input(p), &zero).force;
             for i in 0..3 {
                 let fd = (f[i] - r.force[i]) / h;
-                assert!((fd - r.tangent[(i, j)]).abs() < 1e-5, "({i},{j}): {fd} vs {}", r.tangent[(i, j)]);
+                assert!(
+                    (fd - r.tangent[(i, j)]).abs() < 1e-5,
+                    "({i},{j}): {fd} vs {}",
+                    r.tangent[(i, j)]
+                );
             }
         }
     }

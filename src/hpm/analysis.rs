@@ -6,8 +6,9 @@
 //!   are linear and may carry tension.
 //! * **Nonlinear**: the slip springs follow [`MohrCoulombSpring`] (c, φ,
 //!   return mapping, no tension). The global equations are solved by the
-//!   initial-stiffness method: the elastic stiffness, factorised once, is
-//!   applied to the out-of-balance force `F − F_int(U)` until
+//!   initial-stiffness method with Aitken's relaxation: the elastic
+//!   stiffness, factorised once, is applied to the out-of-balance force
+//!   `F − F_int(U)` and the correction scaled by Aitken's factor until
 //!   `‖F − F_int‖ ≤ tol ‖F‖` (Euclidean norms over all DOFs); the load is
 //!   applied in one step. A run that does not reach the tolerance within
 //!   the iteration limit reports [`Convergence::NotConverged`] with its
@@ -54,7 +55,8 @@ impl Default for NonlinearSettings {
 pub enum Convergence {
     /// Direct solve or converged iteration.
     Converged {
-        /// Iterations (0 for the elastic solve).
+        /// Iterations (0 for the elastic solve, whose residual is that of
+        /// the direct solve).
         iterations: usize,
         /// Final relative out-of-balance force.
         residual: f64,
@@ -169,6 +171,9 @@ impl HpmSolver {
     /// per element, conjugate to the DOFs of eq. 2).
     pub fn elastic_with_loads(&self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
         let u = self.factor.solve(f)?;
+        let ku = self.stiffness.multiply(&u);
+        let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
+        let residual = norm(&out) / norm(f);
         let tractions = model
             .slip
             .iter()
@@ -190,7 +195,7 @@ impl HpmSolver {
             tractions,
             convergence: Convergence::Converged {
                 iterations: 0,
-                residual: 0.0,
+                residual,
             },
         })
     }
@@ -219,6 +224,8 @@ impl HpmSolver {
         let f_norm = norm(&f);
         let mut u = vec![0.0; f.len()];
         let mut iterations = 0;
+        let mut relaxation = 1.0;
+        let mut last_correction: Option<Vec<f64>> = None;
         loop {
             let (residual, tractions) = self.out_of_balance(model, &laws, &f, &u);
             let relative = norm(&residual) / f_norm;
@@ -242,9 +249,20 @@ impl HpmSolver {
                 });
             }
             let du = self.factor.solve(&residual)?;
-            for (ui, d) in u.iter_mut().zip(&du) {
-                *ui += d;
+            // Aitken's relaxation of the fixed-point iteration
+            // u ← u + K⁻¹ r(u): ω_k = −ω_{k−1} d_{k−1}·(d_k − d_{k−1}) / ‖d_k − d_{k−1}‖².
+            if let Some(previous) = &last_correction {
+                let diff: Vec<f64> = du.iter().zip(previous).map(|(a, b)| a - b).collect();
+                let denominator = dot(&diff, &diff);
+                if denominator > 0.0 {
+                    relaxation = (-relaxation * dot(previous, &diff) / denominator)
+                        .clamp(MIN_RELAXATION, MAX_RELAXATION);
+                }
             }
+            for (ui, d) in u.iter_mut().zip(&du) {
+                *ui += relaxation * d;
+            }
+            last_correction = Some(du);
             iterations += 1;
         }
     }
@@ -296,9 +314,17 @@ fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>,
     }
 }
 
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
+
+fn norm(v: &[f64]) -> f64 {
+    dot(v, v).sqrt()
+}
+
+/// Bounds of Aitken's relaxation factor.
+const MIN_RELAXATION: f64 = 0.1;
+const MAX_RELAXATION: f64 = 10.0;
 
 impl HpmResult {
     /// Global safety factor `Σ (c + σ tan φ) A / Σ |τ| A` with the
@@ -344,11 +370,8 @@ impl HpmResult {
                 );
                 let (x0, y0) = column.shape.origin();
                 let half = 0.5 * column.shape.size();
-                let position = nalgebra::Point3::new(
-                    x0 + half,
-                    y0 + half,
-                    column.shape.top_at(0.5, 0.5),
-                );
+                let position =
+                    nalgebra::Point3::new(x0 + half, y0 + half, column.shape.top_at(0.5, 0.5));
                 let strain = strain_tensor(&dofs);
                 let (exx, eyy, exy) = (strain[(0, 0)], strain[(1, 1)], strain[(0, 1)]);
                 let centre = 0.5 * (exx + eyy);
@@ -370,7 +393,7 @@ impl HpmResult {
             .slip
             .iter()
             .zip(&self.tractions)
-            .filter(|(_, t)| t.regime == Regime::Slip)
+            .filter(|(_, t)| t.regime != Regime::Stick)
             .map(|(s, _)| s.point.point.area)
             .sum();
         yielded / total

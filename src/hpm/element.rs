@@ -101,9 +101,11 @@ mod tests {
     fn the_field_has_the_strain_of_its_strain_dofs_and_rotates_rigidly() {
         let c = Point3::new(1.0, 2.0, 3.0);
         let mut u = ElementDofs::zeros();
-        for (k, v) in [0.1, 0.2, 0.3, 0.01, -0.02, 0.03, 1e-3, 2e-3, -3e-3, 4e-4, 5e-4, -6e-4]
-            .iter()
-            .enumerate()
+        for (k, v) in [
+            0.1, 0.2, 0.3, 0.01, -0.02, 0.03, 1e-3, 2e-3, -3e-3, 4e-4, 5e-4, -6e-4,
+        ]
+        .iter()
+        .enumerate()
         {
             u[k] = *v;
         }

@@ -144,7 +144,13 @@ mod tests {
             assert!(n.dot(&p.s).abs() < 1e-12 && n.dot(&p.t).abs() < 1e-12);
             assert!(p.s.dot(&p.t).abs() < 1e-12 && (p.t.norm() - 1.0).abs() < 1e-12);
         }
-        let side = side_face((0.0, 0.0), 10.0, &[0.0; 4], &[1.0, 2.0, 4.0, 1.0], Side::East);
+        let side = side_face(
+            (0.0, 0.0),
+            10.0,
+            &[0.0; 4],
+            &[1.0, 2.0, 4.0, 1.0],
+            Side::East,
+        );
         let side_area: f64 = side.iter().map(|p| p.area).sum();
         assert!((side_area - 30.0).abs() < 1e-12);
     }

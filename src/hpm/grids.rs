@@ -37,7 +37,10 @@ impl NamedRaster {
 
     /// Read an ESRI ASCII grid file.
     pub fn read(path: &Path) -> Result<Self> {
-        Ok(Self::new(path.display().to_string(), read_esri_ascii(path)?))
+        Ok(Self::new(
+            path.display().to_string(),
+            read_esri_ascii(path)?,
+        ))
     }
 }
 

@@ -65,7 +65,10 @@ impl HpmMaterial {
             });
         }
         require_positive("unit weight gamma_t", self.unit_weight)?;
-        require_positive("submerged unit weight gamma_sub", self.submerged_unit_weight)?;
+        require_positive(
+            "submerged unit weight gamma_sub",
+            self.submerged_unit_weight,
+        )?;
         require_positive("slip-surface modulus E_slip", self.slip_modulus)?;
         if let Some(k) = self.slip_shear_stiffness {
             require_positive("slip-surface shear stiffness k_s", k)?;
@@ -82,7 +85,10 @@ impl HpmMaterial {
     /// `k_n` and `k_s = k_t` (eq. 16, with the errata's form of `k_n`).
     pub fn spring_factors(&self) -> (f64, f64) {
         let nu = self.poisson_ratio;
-        ((1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)), 1.0 / (1.0 + nu))
+        (
+            (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            1.0 / (1.0 + nu),
+        )
     }
 }
 

@@ -14,7 +14,7 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::element::{element_stiffness, elasticity, shape_matrix, Block, ELEMENT_DOF};
+use super::element::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
 use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
@@ -195,17 +195,13 @@ impl HpmModel {
             for e in column.elements.start..column.elements.end - 1 {
                 let (lower, upper) = (&elements[e], &elements[e + 1]);
                 let h = upper.centre.z - lower.centre.z;
-                let points = bilinear_face(
-                    lower.shape.origin(),
-                    d,
-                    &lower.shape.top(),
-                )
-                .into_iter()
-                .map(|p| FacePoint {
-                    normal: -p.point.normal,
-                    ..p.point
-                })
-                .collect();
+                let points = bilinear_face(lower.shape.origin(), d, &lower.shape.top())
+                    .into_iter()
+                    .map(|p| FacePoint {
+                        normal: -p.point.normal,
+                        ..p.point
+                    })
+                    .collect();
                 interfaces.push(Interface {
                     a: e,
                     b: e + 1,
@@ -264,8 +260,8 @@ impl HpmModel {
         for spring in &self.slip {
             let e = &self.elements[spring.element];
             let p = &spring.point.point;
-            let ks = spring_matrix(&p.normal, spring.normal_stiffness, spring.shear_stiffness)
-                * p.area;
+            let ks =
+                spring_matrix(&p.normal, spring.normal_stiffness, spring.shear_stiffness) * p.area;
             let n = shape_matrix(&e.centre, &p.position);
             k.diagonal[spring.element] += n.transpose() * ks * n;
         }
@@ -284,8 +280,8 @@ impl HpmModel {
             let (ea, eb) = (&self.elements[face.a], &self.elements[face.b]);
             let mut coupling = Block::zeros();
             for p in &face.points {
-                let ks = spring_matrix(&p.normal, face.normal_stiffness, face.shear_stiffness)
-                    * p.area;
+                let ks =
+                    spring_matrix(&p.normal, face.normal_stiffness, face.shear_stiffness) * p.area;
                 let na = shape_matrix(&ea.centre, &p.position);
                 let nb = shape_matrix(&eb.centre, &p.position);
                 k.diagonal[face.a] += na.transpose() * ks * na;
@@ -324,10 +320,6 @@ impl HpmModel {
         let n = shape_matrix(&e.centre, &spring.point.point.position);
         let disp = n * super::element::ElementDofs::from_column_slice(dofs);
         let p = &spring.point;
-        Vector3::new(
-            p.point.normal.dot(&disp),
-            p.s.dot(&disp),
-            p.t.dot(&disp),
-        )
+        Vector3::new(p.point.normal.dot(&disp), p.s.dot(&disp), p.t.dot(&disp))
     }
 }

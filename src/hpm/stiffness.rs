@@ -8,8 +8,11 @@
 //! once; the factor is kept for the repeated solves of the nonlinear
 //! iteration.
 
-use faer::prelude::{Reborrow, Solve};
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::prelude::Reborrow;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Col, Side};
 
@@ -110,21 +113,41 @@ impl BlockMatrix {
         Ok(SparseColMat::new(symbolic, values))
     }
 
-    /// Factorise `K = L Lᵀ` (sparse Cholesky, faer's default fill-reducing
-    /// ordering and supernodal numeric factorisation).
+    /// Factorise `K = L Lᵀ`: faer's sparse Cholesky with its
+    /// approximate-minimum-degree ordering, supernodal where it pays, on
+    /// faer's global parallelism.
     pub fn factorize(&self) -> Result<CholeskyFactor, SolveError> {
         let matrix = self.lower_csc()?;
-        let symbolic = SymbolicLlt::try_new(matrix.symbolic(), Side::Lower).map_err(|e| {
-            SolveError::Factorization(format!("symbolic Cholesky analysis failed: {e}"))
-        })?;
-        let llt = Llt::try_new_with_symbolic(symbolic, matrix.rb(), Side::Lower).map_err(|e| {
-            SolveError::Factorization(format!(
-                "sparse Cholesky failed (stiffness not positive definite): {e}"
-            ))
-        })?;
+        let failed = |what: &str, e: &dyn std::fmt::Debug| {
+            SolveError::Factorization(format!("{what} failed: {e:?}"))
+        };
+        let symbolic = factorize_symbolic_cholesky(
+            matrix.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|e| failed("symbolic Cholesky analysis", &e))?;
+        let par = faer::get_global_parallelism();
+        let mut values = vec![0.0; symbolic.len_val()];
+        let mut buffer = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|e| failed("allocating the Cholesky workspace", &e))?;
+        symbolic
+            .factorize_numeric_llt::<f64>(
+                &mut values,
+                matrix.rb(),
+                Side::Lower,
+                Default::default(),
+                par,
+                MemStack::new(&mut buffer),
+                Default::default(),
+            )
+            .map_err(|e| failed("sparse Cholesky (stiffness not positive definite)", &e))?;
         Ok(CholeskyFactor {
-            llt,
-            dimension: self.dimension(),
+            symbolic,
+            values,
             stored: matrix.compute_nnz(),
         })
     }
@@ -133,23 +156,36 @@ impl BlockMatrix {
 /// A sparse Cholesky factor of the stiffness, reused for many solves.
 #[derive(Debug)]
 pub struct CholeskyFactor {
-    llt: Llt<usize, f64>,
-    dimension: usize,
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
     stored: usize,
 }
 
 impl CholeskyFactor {
     /// Solve `K x = b`.
     pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>, SolveError> {
-        if b.len() != self.dimension {
+        let n = self.symbolic.nrows();
+        if b.len() != n {
             return Err(SolveError::DimensionMismatch {
                 what: "right-hand side length",
-                expected: self.dimension,
+                expected: n,
                 found: b.len(),
             });
         }
-        let mut x = Col::<f64>::from_fn(b.len(), |i| b[i]);
-        self.llt.solve_in_place(x.as_mut());
+        // One right-hand side: the triangular solves run sequentially (the
+        // factorisation uses faer's global parallelism).
+        let par = faer::Par::Seq;
+        let mut buffer = MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, par))
+            .map_err(|e| {
+                SolveError::Factorization(format!("allocating the solve workspace failed: {e:?}"))
+            })?;
+        let mut x = Col::<f64>::from_fn(n, |i| b[i]);
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            faer::Conj::No,
+            x.as_mat_mut(),
+            par,
+            MemStack::new(&mut buffer),
+        );
         let x: Vec<f64> = x.iter().copied().collect();
         if let Some((index, &value)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
             return Err(SolveError::NonFinite {
@@ -164,5 +200,10 @@ impl CholeskyFactor {
     /// Number of stored entries of the lower triangle of K.
     pub fn matrix_entries(&self) -> usize {
         self.stored
+    }
+
+    /// Number of stored entries of the Cholesky factor L.
+    pub fn factor_entries(&self) -> usize {
+        self.values.len()
     }
 }
