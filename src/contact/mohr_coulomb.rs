@@ -17,7 +17,9 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::law::{ContactInput, ContactLaw, ContactResponse, Regime, StiffnessBound, Strength};
+use super::law::{
+    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+};
 use super::spring_dashpot::{SpringState, SpringVector};
 use crate::error::{require_non_negative, require_positive, Result};
 
@@ -47,6 +49,26 @@ impl MohrCoulombSpring {
                 friction: require_non_negative("friction coefficient tan(phi)", friction)?,
             },
         })
+    }
+
+    /// Evaluate from a zero state with the total relative displacement
+    /// `[approach, along s, along t]` as the increment (the one-step,
+    /// total-displacement form).
+    pub fn evaluate_total(&self, delta: [f64; 3]) -> ContactResponse<3, SpringState<3>> {
+        let input = ContactInput {
+            overlap: delta[0],
+            increment: SVector::from(delta),
+            dt: 1.0,
+            is_new: false,
+            pair: PairProperties {
+                curvature_radius_a: f64::INFINITY,
+                curvature_radius_b: f64::INFINITY,
+                width: 1.0,
+                mass_a: f64::INFINITY,
+                mass_b: f64::INFINITY,
+            },
+        };
+        self.evaluate(&input, &SpringState::default())
     }
 
     /// The same spring with its strength replaced (strength reduction).
@@ -112,7 +134,7 @@ impl ContactLaw<3> for MohrCoulombSpring {
         Some(self.strength)
     }
 
-    fn stiffness_bound(&self, _pair: &super::PairProperties) -> Option<StiffnessBound> {
+    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
         Some(StiffnessBound {
             normal: self.normal_stiffness,
             shear: self.shear_stiffness,
@@ -125,39 +147,21 @@ impl ContactLaw<3> for MohrCoulombSpring {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::PairProperties;
-
-    fn input(du: [f64; 3]) -> ContactInput<3> {
-        ContactInput {
-            overlap: 0.0,
-            increment: SVector::from(du),
-            dt: 1.0,
-            is_new: false,
-            pair: PairProperties {
-                curvature_radius_a: f64::INFINITY,
-                curvature_radius_b: f64::INFINITY,
-                width: 1.0,
-                mass_a: f64::INFINITY,
-                mass_b: 1.0,
-            },
-        }
-    }
 
     #[test]
     fn mohr_coulomb_spring_caps_shear_at_cohesion_plus_friction_and_opens_in_tension() {
         let law = MohrCoulombSpring::new(10.0, 5.0, 2.0, 0.5).unwrap();
-        let zero = SpringState::default();
         // Stick: within the limit 2 + 0.5·10 = 7.
-        let r = law.evaluate(&input([1.0, 0.6, 0.8]), &zero);
+        let r = law.evaluate_total([1.0, 0.6, 0.8]);
         assert_eq!(r.regime, Regime::Stick);
         assert_eq!(r.force, SVector::from([10.0, 3.0, 4.0]));
         // Slip: trial shear 15 capped to 7 along the trial direction.
-        let r = law.evaluate(&input([1.0, 1.8, 2.4]), &zero);
+        let r = law.evaluate_total([1.0, 1.8, 2.4]);
         assert_eq!(r.regime, Regime::Slip);
         assert!((r.force[1].hypot(r.force[2]) - 7.0).abs() < 1e-12);
         assert!((r.force[1] / r.force[2] - 0.75).abs() < 1e-12);
         // Tension: nothing carried, cohesion included.
-        let r = law.evaluate(&input([-0.1, 0.1, 0.0]), &zero);
+        let r = law.evaluate_total([-0.1, 0.1, 0.0]);
         assert_eq!(r.regime, Regime::Open);
         assert_eq!(r.force, SVector::<f64, 3>::zeros());
         assert!(MohrCoulombSpring::new(1.0, 1.0, -1.0, 0.5).is_err());
@@ -166,14 +170,13 @@ mod tests {
     #[test]
     fn mohr_coulomb_tangent_matches_finite_differences_in_slip() {
         let law = MohrCoulombSpring::new(10.0, 5.0, 2.0, 0.5).unwrap();
-        let zero = SpringState::default();
         let du = [1.0, 1.8, -2.4];
-        let r = law.evaluate(&input(du), &zero);
+        let r = law.evaluate_total(du);
         let h = 1e-7;
         for j in 0..3 {
             let mut p = du;
             p[j] += h;
-            let f = law.evaluate(&input(p), &zero).force;
+            let f = law.evaluate_total(p).force;
             for i in 0..3 {
                 let fd = (f[i] - r.force[i]) / h;
                 assert!(

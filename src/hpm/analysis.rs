@@ -20,15 +20,13 @@
 //! factor of a column the same ratio over the springs under it; σ is the
 //! normal traction (compression positive) and `|τ| = √(τ_s² + τ_t²)`.
 
-use nalgebra::{SVector, Vector3};
+use nalgebra::Vector3;
 
 use super::element::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use super::material::Seismic;
 use super::model::{HpmModel, SlipSpring};
 use super::stiffness::{BlockMatrix, CholeskyFactor};
-use crate::contact::{
-    ContactInput, ContactLaw, MohrCoulombSpring, PairProperties, Regime, SpringState, Strength,
-};
+use crate::contact::{MohrCoulombSpring, Regime, Strength};
 use crate::error::Result;
 
 /// Iteration limits of the nonlinear solve.
@@ -126,26 +124,6 @@ pub struct HpmResult {
 pub struct HpmSolver {
     stiffness: BlockMatrix,
     factor: CholeskyFactor,
-}
-
-/// Evaluate the law of a slip spring from a zero state for the total
-/// relative displacement `delta` (one load step).
-fn evaluate(law: &MohrCoulombSpring, delta: &Vector3<f64>) -> (SVector<f64, 3>, Regime) {
-    let input = ContactInput {
-        overlap: delta[0],
-        increment: SVector::from([delta[0], delta[1], delta[2]]),
-        dt: 1.0,
-        is_new: false,
-        pair: PairProperties {
-            curvature_radius_a: f64::INFINITY,
-            curvature_radius_b: f64::INFINITY,
-            width: 1.0,
-            mass_a: f64::INFINITY,
-            mass_b: f64::INFINITY,
-        },
-    };
-    let r = law.evaluate(&input, &SpringState::default());
-    (r.force, r.regime)
 }
 
 impl HpmSolver {
@@ -281,7 +259,8 @@ impl HpmSolver {
         let mut tractions = Vec::with_capacity(model.slip.len());
         for (spring, law) in model.slip.iter().zip(laws) {
             let d = model.slip_displacement(spring, u);
-            let (force, regime) = evaluate(law, &d);
+            let response = law.evaluate_total([d[0], d[1], d[2]]);
+            let (force, regime) = (response.force, response.regime);
             let elastic = Vector3::new(
                 spring.normal_stiffness * d[0],
                 spring.shear_stiffness * d[1],

@@ -1,5 +1,5 @@
 //! Hovland's 3D column method (1977) on the same grid data: the simplified
-//! method HPM is meant to match (paper 001, §1, ref. [1]).
+//! method HPM is meant to match (paper 001, §1, its ref. 1).
 //!
 //! Each column is a rigid prism whose base is the slip surface at the cell
 //! centre (the bilinear surface of eq. 23 and its slopes there), with the

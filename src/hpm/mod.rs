@@ -19,7 +19,7 @@
 //! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
 //! | stiffness blocks, sparse Cholesky | `stiffness.rs` | eq. 4 |
 //! | elastic and nonlinear analyses, Fs | `analysis.rs` | §5 |
-//! | Hovland's column method | `hovland.rs` | ref. [1] |
+//! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
 //! Composition: the element is a [`crate::shape::Column`] layer, the slip

@@ -174,6 +174,17 @@ fn write_maps(
             color,
         }
     };
+    let draw = |name: String,
+                title: String,
+                cells: &[MapCell],
+                arrows: &[Arrow],
+                legend: &[(String, (u8, u8, u8))],
+                files: &mut Vec<String>|
+     -> Result<()> {
+        cell_map(&dir.join(&name), &title, extent, cells, arrows, legend)?;
+        files.push(name);
+        Ok(())
+    };
     let fs_cells: Vec<MapCell> = (0..local.len())
         .map(|k| cell(k, fs_colour(local[k])))
         .collect();
@@ -184,16 +195,14 @@ fn write_maps(
         ("Fs >= 2".to_string(), fs_colour(2.0)),
     ];
     let fs = result.safety_factor(model);
-    let name = format!("local_fs_{tag}.svg");
-    cell_map(
-        &dir.join(&name),
-        &format!("Local safety factor on the slip surface, {tag} (Fs = {fs:.3})"),
-        extent,
+    draw(
+        format!("local_fs_{tag}.svg"),
+        format!("Local safety factor on the slip surface, {tag} (Fs = {fs:.3})"),
         &fs_cells,
         &[],
         &legend,
+        files,
     )?;
-    files.push(name);
 
     // The principal strain of larger magnitude, per column.
     let major: Vec<f64> = surface
@@ -220,16 +229,14 @@ fn write_maps(
             strain_colour(-largest, largest),
         ),
     ];
-    let name = format!("principal_strain_{tag}.svg");
-    cell_map(
-        &dir.join(&name),
-        &format!("Surface principal strain (larger magnitude), {tag}"),
-        extent,
+    draw(
+        format!("principal_strain_{tag}.svg"),
+        format!("Surface principal strain (larger magnitude), {tag}"),
         &strain_cells,
         &[],
         &legend,
+        files,
     )?;
-    files.push(name);
 
     let longest = surface
         .iter()
@@ -251,16 +258,14 @@ fn write_maps(
         .collect();
     let outline: Vec<MapCell> = (0..local.len()).map(|k| cell(k, (235, 235, 235))).collect();
     let legend = vec![(format!("longest {:.2} mm", longest * 1e3), (235, 235, 235))];
-    let name = format!("displacement_{tag}.svg");
-    cell_map(
-        &dir.join(&name),
-        &format!("Surface displacement vectors (horizontal), {tag}"),
-        extent,
+    draw(
+        format!("displacement_{tag}.svg"),
+        format!("Surface displacement vectors (horizontal), {tag}"),
         &outline,
         &arrows,
         &legend,
+        files,
     )?;
-    files.push(name);
 
     let rows_csv: Vec<Vec<f64>> = model
         .columns
