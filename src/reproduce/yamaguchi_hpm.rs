@@ -540,6 +540,53 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     }
 
     // Layer refinement of the representative slope.
+    // How the elastic stress-ratio Fs depends on the slip springs and ν.
+    let _ = writeln!(report, "## Sensitivity of the elastic static Fs (values, no checks)\n\n| variant | HPM elastic Fs |\n|---|---|");
+    for (variant, m) in [
+        ("as above", material),
+        (
+            "slip k_s = 10 MPa/m",
+            HpmMaterial {
+                slip_shear_stiffness: Some(10.0e6),
+                ..material
+            },
+        ),
+        (
+            "slip k_s = 1 GPa/m",
+            HpmMaterial {
+                slip_shear_stiffness: Some(1.0e9),
+                ..material
+            },
+        ),
+        (
+            "ν = 0",
+            HpmMaterial {
+                poisson_ratio: 0.0,
+                ..material
+            },
+        ),
+    ] {
+        let m = HpmModel::new(&grids, &m, &settings)?;
+        let f = HpmSolver::new(&m)?
+            .elastic(&m, &static_load)?
+            .safety_factor(&m);
+        let _ = writeln!(report, "| {variant} | {f:.4} |");
+    }
+    // Where the shear of the elastic static run goes.
+    let (mut magnitude, mut resultant) = (0.0, nalgebra::Vector3::zeros());
+    for (spring, t) in model.slip.iter().zip(&results[0].1.tractions) {
+        let p = &spring.point;
+        magnitude += t.shear_magnitude() * p.point.area;
+        resultant += (p.s * t.shear[0] + p.t * t.shear[1]) * p.point.area;
+    }
+    let _ = writeln!(
+        report,
+        "\nElastic static run: Σ|τ|A = {magnitude:.4e} N, while the resultant of the shear forces ΣτA has a horizontal part of {:.4e} N and a vertical part of {:.4e} N (weight {:.4e} N): much of the shear the stress ratio counts carries weight or squeezes the flanks rather than resists the slide, and the stiffer the slip springs in shear, the more of it.\n",
+        resultant.xy().norm(),
+        resultant.z,
+        model.total_weight()
+    );
+
     let _ = writeln!(report, "## Layer refinement (elastic, static)\n\n| layers | DOF | Fs | largest surface displacement (mm) |\n|---|---|---|---|");
     let mut refinement = Vec::new();
     for layers in [3, 6, 12] {
