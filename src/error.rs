@@ -154,6 +154,37 @@ pub enum DismechError {
         /// What is wrong.
         message: String,
     },
+    /// A cell of a grid file cannot be used (no data inside the slide, a
+    /// water table missing over a column, ...).
+    #[error("{file}, grid row {row}, column {column}: {message}")]
+    GridCell {
+        /// The file (or the name given to the raster).
+        file: String,
+        /// Grid row, from 0 at the top (north) as in the file.
+        row: usize,
+        /// Grid column, from 0 at the left (west).
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Two grid files do not lie on the same grid.
+    #[error("{file} does not lie on the grid of {reference}: {message}")]
+    GridMismatch {
+        /// The file that differs.
+        file: String,
+        /// The file whose grid is the reference.
+        reference: String,
+        /// What differs.
+        message: String,
+    },
+    /// No cell has its slip surface below the ground surface.
+    #[error("no valid column: the slip surface of {slip} lies nowhere below the ground surface of {ground}")]
+    NoValidColumn {
+        /// The ground-surface file.
+        ground: String,
+        /// The slip-surface file.
+        slip: String,
+    },
     /// A polygon block is not a valid simple polygon.
     #[error("block {block} is not a valid polygon: {reason}")]
     InvalidPolygon {

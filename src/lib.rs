@@ -20,7 +20,7 @@
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
 //! | implicit DDA (003) | `Polygon` (6-DOF block) | penalty Coulomb with return mapping; the law's consistent tangent ([`contact::ContactResponse::tangent`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + Newton | pieces ready |
 //! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
-//! | HPM slope stability (001) | `Column` (3D) | penalty springs, Mohr–Coulomb on the slip surface: [`contact::ContactLaw`]`<3>` | none (load steps) | [`solve::SparseDirectSolver`] (faer LLᵀ) | pieces ready |
+//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | faer sparse LLᵀ factorised once ([`hpm::BlockMatrix`]), initial-stiffness iteration | [`hpm`] |
 //!
 //! ## Data flow of one step
 //! 1. **Scene** ([`scene`]): bodies (shape, pose, velocities, mass), frame
@@ -54,6 +54,7 @@ pub mod contact;
 pub mod dem;
 pub mod error;
 pub mod grid;
+pub mod hpm;
 pub mod integrate;
 pub mod limit;
 pub mod math;

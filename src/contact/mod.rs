@@ -23,6 +23,7 @@ pub mod dispatch;
 pub mod ellipse;
 mod geometry;
 mod law;
+mod mohr_coulomb;
 mod rigid_plastic;
 mod spring_dashpot;
 
@@ -30,5 +31,6 @@ pub use geometry::{moment_about, relative_increment, ContactGeometry};
 pub use law::{
     ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
 };
+pub use mohr_coulomb::MohrCoulombSpring;
 pub use rigid_plastic::RigidPlastic;
 pub use spring_dashpot::{Damping, NormalStiffness, SpringDashpotCoulomb, SpringState};

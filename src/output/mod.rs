@@ -2,6 +2,7 @@
 //! `summary.json` of a reproduction, CSV tables and SVG plots.
 
 mod atomic;
+pub mod map;
 pub mod plot;
 mod summary;
 

@@ -34,7 +34,7 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(188, 189, 34),
 ];
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> DismechError {
+pub(super) fn plot_error(path: &Path, e: impl std::fmt::Display) -> DismechError {
     DismechError::Output {
         path: path.display().to_string(),
         message: format!("plotting failed: {e}"),

@@ -7,6 +7,7 @@ pub mod fill_patterns;
 pub mod katsuki1990;
 mod random;
 pub mod yamada2000;
+pub mod yamaguchi_hpm;
 
 use std::path::PathBuf;
 
@@ -23,7 +24,7 @@ pub struct StudyOptions {
 }
 
 /// The studies that exist, by name.
-pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000"];
+pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000", "yamaguchi-hpm"];
 
 /// Run the study `name` (or every study for `all`).
 pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
@@ -37,6 +38,7 @@ fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
     match name {
         "katsuki1990" => katsuki1990::reproduce(options),
         "yamada2000" => yamada2000::reproduce(options),
+        "yamaguchi-hpm" => yamaguchi_hpm::reproduce(options),
         other => Err(DismechError::UnknownStudy(
             other.to_string(),
             STUDIES.join(", "),

@@ -51,6 +51,26 @@ impl Column {
         })
     }
 
+    /// The lower-left corner `(x0, y0)` of the cell.
+    pub fn origin(&self) -> (f64, f64) {
+        (self.x0, self.y0)
+    }
+
+    /// Side of the cell (m).
+    pub fn size(&self) -> f64 {
+        self.size
+    }
+
+    /// Corner heights of the bottom face, in the order of [`Column::new`].
+    pub fn bottom(&self) -> [f64; 4] {
+        self.bottom
+    }
+
+    /// Corner heights of the top face, in the order of [`Column::new`].
+    pub fn top(&self) -> [f64; 4] {
+        self.top
+    }
+
     /// Height of a bilinear face at local coordinates (ξ, η) ∈ [0, 1]².
     fn bilinear(corners: &[f64; 4], xi: f64, eta: f64) -> f64 {
         corners[0] * (1.0 - xi) * (1.0 - eta)

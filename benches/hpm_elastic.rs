@@ -1,0 +1,78 @@
+//! Speed and memory of one elastic HPM solve at the size of issue 5: a
+//! 100 × 100-column slope (10 m cells) with 5 layers, 50 000 elements and
+//! 600 000 DOF. A timed run rather than a criterion loop (one solve takes
+//! seconds); it prints the time of each stage, the stored entries of the
+//! stiffness and the peak resident memory of the process.
+//!
+//! Run: `cargo bench --bench hpm_elastic` (optionally `-- 60 3` for a
+//! 60 × 60-column grid with 3 layers).
+
+use std::time::Instant;
+
+use dismech::grid::Raster;
+use dismech::hpm::{
+    HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
+};
+
+/// Peak resident memory (VmHWM) of this process, in MiB, where /proc has it.
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let n = args.first().copied().unwrap_or(100);
+    let layers = args.get(1).copied().unwrap_or(5);
+    let d = 10.0;
+    let side = n as f64 * d;
+    // A 15° slope facing −y with a slide 5 to 25 m deep over the whole grid.
+    let ground = Raster::from_fn(n, n, 0.0, 0.0, d, |_, y| Some(0.27 * y))?;
+    let slip = Raster::from_fn(n, n, 0.0, 0.0, d, |x, y| {
+        let bowl =
+            (std::f64::consts::PI * x / side).sin() * (std::f64::consts::PI * y / side).sin();
+        Some(0.27 * y - 5.0 - 20.0 * bowl)
+    })?;
+    let grids = SlopeGrids::new(
+        NamedRaster::new("ground", ground),
+        NamedRaster::new("slip", slip),
+        None,
+    )?;
+    let settings = HpmSettings {
+        layers,
+        ..HpmSettings::default()
+    };
+    let t0 = Instant::now();
+    let model = HpmModel::new(&grids, &HpmMaterial::paper(), &settings)?;
+    let t1 = Instant::now();
+    let solver = HpmSolver::new(&model)?;
+    let t2 = Instant::now();
+    let result = solver.elastic(&model, &Seismic::none())?;
+    let t3 = Instant::now();
+    println!(
+        "HPM elastic, {n} x {n} columns, {layers} layers: {} elements, {} DOF, {} stored entries of the lower triangle of K",
+        model.elements.len(),
+        model.dof(),
+        solver.factor().matrix_entries()
+    );
+    println!(
+        "model {:.2} s; assembly + symbolic + numeric Cholesky (faer, {:?}) {:.2} s; loads + solve + tractions {:.2} s; total {:.2} s",
+        (t1 - t0).as_secs_f64(),
+        faer::get_global_parallelism(),
+        (t2 - t1).as_secs_f64(),
+        (t3 - t2).as_secs_f64(),
+        (t3 - t0).as_secs_f64()
+    );
+    println!(
+        "{} stored entries of the Cholesky factor L (faer, AMD ordering); Fs = {:.4}; peak resident memory {:?} MiB",
+        solver.factor().factor_entries(),
+        result.safety_factor(&model),
+        peak_memory_mib()
+    );
+    Ok(())
+}

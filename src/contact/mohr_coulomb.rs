@@ -1,0 +1,190 @@
+//! A cohesive Mohr–Coulomb penalty spring without tension: the slip-surface
+//! springs of HPM slope analysis (paper 001, §4(4) and §5).
+//!
+//! The spring works on tractions (Pa) and relative displacements (m), per
+//! unit area of the surface it represents. Per evaluation, with the
+//! increment `Δu = [Δu_n (approaching), Δu_s, Δu_t]`:
+//!
+//! * elastic predictor `e ← e + diag(k_n, k_s, k_s) Δu`;
+//! * no tension: if `e_n < 0` the spring opens and carries nothing;
+//! * Mohr–Coulomb: if `‖(e_s, e_t)‖ > c + e_n tan φ` the shear traction is
+//!   returned radially onto the limit (return mapping), the rest is plastic
+//!   slip.
+//!
+//! Evaluated once from a zero state with the total relative displacement as
+//! the increment, it is the total-displacement form used by the
+//! nonlinear HPM solve (one load step).
+
+use nalgebra::{SMatrix, SVector};
+
+use super::law::{
+    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+};
+use super::spring_dashpot::{SpringState, SpringVector};
+use crate::error::{require_non_negative, require_positive, Result};
+
+/// The cohesive Mohr–Coulomb spring with no tension, in 3D (normal and two
+/// tangents).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MohrCoulombSpring {
+    normal_stiffness: f64,
+    shear_stiffness: f64,
+    strength: Strength,
+}
+
+impl MohrCoulombSpring {
+    /// A spring with stiffnesses `k_n`, `k_s = k_t` (Pa/m), cohesion `c`
+    /// (Pa) and friction coefficient `tan φ`.
+    pub fn new(
+        normal_stiffness: f64,
+        shear_stiffness: f64,
+        cohesion: f64,
+        friction: f64,
+    ) -> Result<Self> {
+        Ok(Self {
+            normal_stiffness: require_positive("slip normal stiffness k_n", normal_stiffness)?,
+            shear_stiffness: require_positive("slip shear stiffness k_s", shear_stiffness)?,
+            strength: Strength {
+                cohesion: require_non_negative("cohesion c", cohesion)?,
+                friction: require_non_negative("friction coefficient tan(phi)", friction)?,
+            },
+        })
+    }
+
+    /// Evaluate from a zero state with the total relative displacement
+    /// `[approach, along s, along t]` as the increment (the one-step,
+    /// total-displacement form).
+    pub fn evaluate_total(&self, delta: [f64; 3]) -> ContactResponse<3, SpringState<3>> {
+        let input = ContactInput {
+            overlap: delta[0],
+            increment: SVector::from(delta),
+            dt: 1.0,
+            is_new: false,
+            pair: PairProperties {
+                curvature_radius_a: f64::INFINITY,
+                curvature_radius_b: f64::INFINITY,
+                width: 1.0,
+                mass_a: f64::INFINITY,
+                mass_b: f64::INFINITY,
+            },
+        };
+        self.evaluate(&input, &SpringState::default())
+    }
+
+    /// The same spring with its strength replaced (strength reduction).
+    pub fn with_strength(self, strength: Strength) -> Self {
+        Self { strength, ..self }
+    }
+}
+
+impl ContactLaw<3> for MohrCoulombSpring {
+    type State = SpringState<3>;
+
+    fn evaluate(
+        &self,
+        input: &ContactInput<3>,
+        state: &Self::State,
+    ) -> ContactResponse<3, Self::State> {
+        let (k_n, k_s) = (self.normal_stiffness, self.shear_stiffness);
+        let du = input.increment;
+        let mut spring = SVector::<f64, 3>::new(
+            state.spring.0[0] + k_n * du[0],
+            state.spring.0[1] + k_s * du[1],
+            state.spring.0[2] + k_s * du[2],
+        );
+        if spring[0] < 0.0 {
+            return ContactResponse {
+                force: SVector::zeros(),
+                spring_force: SVector::zeros(),
+                tangent: SMatrix::zeros(),
+                regime: Regime::Open,
+                state: SpringState::default(),
+            };
+        }
+        let mut tangent = SMatrix::<f64, 3, 3>::from_diagonal(&SVector::from([k_n, k_s, k_s]));
+        let shear = spring[1].hypot(spring[2]);
+        let limit = self.strength.cohesion + self.strength.friction * spring[0];
+        let regime = if shear > limit {
+            let scale = limit / shear;
+            let d = [spring[1] / shear, spring[2] / shear];
+            for i in 0..2 {
+                spring[i + 1] *= scale;
+                tangent[(i + 1, 0)] = self.strength.friction * k_n * d[i];
+                for j in 0..2 {
+                    let identity = if i == j { 1.0 } else { 0.0 };
+                    tangent[(i + 1, j + 1)] = k_s * scale * (identity - d[i] * d[j]);
+                }
+            }
+            Regime::Slip
+        } else {
+            Regime::Stick
+        };
+        ContactResponse {
+            force: spring,
+            spring_force: spring,
+            tangent,
+            regime,
+            state: SpringState {
+                spring: SpringVector(spring),
+            },
+        }
+    }
+
+    fn strength(&self) -> Option<Strength> {
+        Some(self.strength)
+    }
+
+    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
+        Some(StiffnessBound {
+            normal: self.normal_stiffness,
+            shear: self.shear_stiffness,
+            normal_damping: 0.0,
+            shear_damping: 0.0,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mohr_coulomb_spring_caps_shear_at_cohesion_plus_friction_and_opens_in_tension() {
+        let law = MohrCoulombSpring::new(10.0, 5.0, 2.0, 0.5).unwrap();
+        // Stick: within the limit 2 + 0.5·10 = 7.
+        let r = law.evaluate_total([1.0, 0.6, 0.8]);
+        assert_eq!(r.regime, Regime::Stick);
+        assert_eq!(r.force, SVector::from([10.0, 3.0, 4.0]));
+        // Slip: trial shear 15 capped to 7 along the trial direction.
+        let r = law.evaluate_total([1.0, 1.8, 2.4]);
+        assert_eq!(r.regime, Regime::Slip);
+        assert!((r.force[1].hypot(r.force[2]) - 7.0).abs() < 1e-12);
+        assert!((r.force[1] / r.force[2] - 0.75).abs() < 1e-12);
+        // Tension: nothing carried, cohesion included.
+        let r = law.evaluate_total([-0.1, 0.1, 0.0]);
+        assert_eq!(r.regime, Regime::Open);
+        assert_eq!(r.force, SVector::<f64, 3>::zeros());
+        assert!(MohrCoulombSpring::new(1.0, 1.0, -1.0, 0.5).is_err());
+    }
+
+    #[test]
+    fn mohr_coulomb_tangent_matches_finite_differences_in_slip() {
+        let law = MohrCoulombSpring::new(10.0, 5.0, 2.0, 0.5).unwrap();
+        let du = [1.0, 1.8, -2.4];
+        let r = law.evaluate_total(du);
+        let h = 1e-7;
+        for j in 0..3 {
+            let mut p = du;
+            p[j] += h;
+            let f = law.evaluate_total(p).force;
+            for i in 0..3 {
+                let fd = (f[i] - r.force[i]) / h;
+                assert!(
+                    (fd - r.tangent[(i, j)]).abs() < 1e-5,
+                    "({i},{j}): {fd} vs {}",
+                    r.tangent[(i, j)]
+                );
+            }
+        }
+    }
+}

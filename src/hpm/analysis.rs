@@ -1,0 +1,380 @@
+//! Elastic and nonlinear HPM analyses of a slope model, and what they give:
+//! the slip-spring tractions, the global and local safety factors, surface
+//! displacements and surface principal strains (paper 001, §5).
+//!
+//! * **Elastic**: one sparse Cholesky solve of eq. (4); the slip springs
+//!   are linear and may carry tension.
+//! * **Nonlinear**: the slip springs follow [`MohrCoulombSpring`] (c, φ,
+//!   return mapping, no tension). The global equations are solved by the
+//!   initial-stiffness method with Aitken's relaxation: the elastic
+//!   stiffness, factorised once, is applied to the out-of-balance force
+//!   `F − F_int(U)` and the correction scaled by Aitken's factor until
+//!   `‖F − F_int‖ ≤ tol ‖F‖` (Euclidean norms over all DOFs); the load is
+//!   applied in one step. A run that does not reach the tolerance within
+//!   the iteration limit reports [`Convergence::NotConverged`] with its
+//!   last residual: there is no equilibrium it could find.
+//!
+//! **Safety factors** (the paper does not define them; we use the usual
+//! definition for spring methods): global
+//! `Fs = Σ (c + σ tan φ) A / Σ |τ| A` over all slip springs, and the local
+//! factor of a column the same ratio over the springs under it; σ is the
+//! normal traction (compression positive) and `|τ| = √(τ_s² + τ_t²)`.
+
+use nalgebra::Vector3;
+
+use super::element::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
+use super::material::Seismic;
+use super::model::{HpmModel, SlipSpring};
+use super::stiffness::{BlockMatrix, CholeskyFactor};
+use crate::contact::{MohrCoulombSpring, Regime, Strength};
+use crate::error::Result;
+
+/// Iteration limits of the nonlinear solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NonlinearSettings {
+    /// Relative out-of-balance force accepted as equilibrium.
+    pub tolerance: f64,
+    /// Iteration limit.
+    pub max_iterations: usize,
+}
+
+impl Default for NonlinearSettings {
+    /// `tol = 1e-6`, 3000 iterations.
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-6,
+            max_iterations: 3000,
+        }
+    }
+}
+
+/// Whether a solve reached equilibrium.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Convergence {
+    /// Direct solve or converged iteration.
+    Converged {
+        /// Iterations (0 for the elastic solve, whose residual is that of
+        /// the direct solve).
+        iterations: usize,
+        /// Final relative out-of-balance force.
+        residual: f64,
+    },
+    /// The iteration limit was reached.
+    NotConverged {
+        /// Iterations made.
+        iterations: usize,
+        /// The last relative out-of-balance force.
+        residual: f64,
+    },
+}
+
+impl Convergence {
+    /// Whether equilibrium was found.
+    pub fn converged(&self) -> bool {
+        matches!(self, Convergence::Converged { .. })
+    }
+}
+
+/// The state of one slip spring after a solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringTraction {
+    /// Normal traction σ (Pa, compression positive).
+    pub normal: f64,
+    /// Shear traction along (s, t) (Pa), resisting the slip of the soil.
+    pub shear: [f64; 2],
+    /// Open, stick or slip (the elastic analysis reports stick or, in
+    /// tension, open with its tension kept).
+    pub regime: Regime,
+}
+
+impl SpringTraction {
+    /// `|τ|`.
+    pub fn shear_magnitude(&self) -> f64 {
+        self.shear[0].hypot(self.shear[1])
+    }
+}
+
+/// What a surface column shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    /// Centre of the top face (m).
+    pub position: nalgebra::Point3<f64>,
+    /// Its displacement (m).
+    pub displacement: Vector3<f64>,
+    /// Principal strains (ε1 ≥ ε2) of the horizontal strain of the top
+    /// element, tension positive.
+    pub principal: [f64; 2],
+    /// Angle of the ε1 direction from +x (radians).
+    pub angle: f64,
+}
+
+/// The outcome of an analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HpmResult {
+    /// Displacements, 12 per element.
+    pub displacements: Vec<f64>,
+    /// Tractions of the slip springs, in the order of [`HpmModel::slip`].
+    pub tractions: Vec<SpringTraction>,
+    /// Whether equilibrium was found.
+    pub convergence: Convergence,
+}
+
+/// An elastic stiffness factorised once, for all the analyses of a model.
+#[derive(Debug)]
+pub struct HpmSolver {
+    stiffness: BlockMatrix,
+    factor: CholeskyFactor,
+}
+
+impl HpmSolver {
+    /// Assemble and factorise the elastic stiffness of `model`.
+    pub fn new(model: &HpmModel) -> Result<Self> {
+        let stiffness = model.stiffness();
+        let factor = stiffness.factorize()?;
+        Ok(Self { stiffness, factor })
+    }
+
+    /// The factorised stiffness.
+    pub fn factor(&self) -> &CholeskyFactor {
+        &self.factor
+    }
+
+    /// Elastic analysis: one solve of eq. (4).
+    pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
+        seismic.validate()?;
+        self.elastic_with_loads(model, &model.loads(seismic))
+    }
+
+    /// Elastic analysis under the load vector `f` (12 generalised forces
+    /// per element, conjugate to the DOFs of eq. 2).
+    pub fn elastic_with_loads(&self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
+        let u = self.factor.solve(f)?;
+        let ku = self.stiffness.multiply(&u);
+        let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
+        let residual = norm(&out) / norm(f);
+        let tractions = model
+            .slip
+            .iter()
+            .map(|s| {
+                let d = model.slip_displacement(s, &u);
+                SpringTraction {
+                    normal: s.normal_stiffness * d[0],
+                    shear: [s.shear_stiffness * d[1], s.shear_stiffness * d[2]],
+                    regime: if d[0] < 0.0 {
+                        Regime::Open
+                    } else {
+                        Regime::Stick
+                    },
+                }
+            })
+            .collect();
+        Ok(HpmResult {
+            displacements: u,
+            tractions,
+            convergence: Convergence::Converged {
+                iterations: 0,
+                residual,
+            },
+        })
+    }
+
+    /// Nonlinear analysis with the slip strength divided by `reduction`
+    /// (`c / F`, `tan φ / F`; 1 for the material's own strength).
+    pub fn nonlinear(
+        &self,
+        model: &HpmModel,
+        seismic: &Seismic,
+        reduction: f64,
+        settings: &NonlinearSettings,
+    ) -> Result<HpmResult> {
+        seismic.validate()?;
+        crate::error::require_positive("strength reduction factor", reduction)?;
+        let strength = Strength {
+            cohesion: model.material.cohesion / reduction,
+            friction: model.material.friction() / reduction,
+        };
+        let laws: Vec<MohrCoulombSpring> = model
+            .slip
+            .iter()
+            .map(|s| s.law.with_strength(strength))
+            .collect();
+        let f = model.loads(seismic);
+        let f_norm = norm(&f);
+        let mut u = vec![0.0; f.len()];
+        let mut iterations = 0;
+        let mut relaxation = 1.0;
+        let mut last_correction: Option<Vec<f64>> = None;
+        loop {
+            let (residual, tractions) = self.out_of_balance(model, &laws, &f, &u);
+            let relative = norm(&residual) / f_norm;
+            let done = relative <= settings.tolerance;
+            if done || iterations >= settings.max_iterations {
+                let convergence = if done {
+                    Convergence::Converged {
+                        iterations,
+                        residual: relative,
+                    }
+                } else {
+                    Convergence::NotConverged {
+                        iterations,
+                        residual: relative,
+                    }
+                };
+                return Ok(HpmResult {
+                    displacements: u,
+                    tractions,
+                    convergence,
+                });
+            }
+            let du = self.factor.solve(&residual)?;
+            // Aitken's relaxation of the fixed-point iteration
+            // u ← u + K⁻¹ r(u): ω_k = −ω_{k−1} d_{k−1}·(d_k − d_{k−1}) / ‖d_k − d_{k−1}‖².
+            if let Some(previous) = &last_correction {
+                let diff: Vec<f64> = du.iter().zip(previous).map(|(a, b)| a - b).collect();
+                let denominator = dot(&diff, &diff);
+                if denominator > 0.0 {
+                    relaxation = (-relaxation * dot(previous, &diff) / denominator)
+                        .clamp(MIN_RELAXATION, MAX_RELAXATION);
+                }
+            }
+            for (ui, d) in u.iter_mut().zip(&du) {
+                *ui += relaxation * d;
+            }
+            last_correction = Some(du);
+            iterations += 1;
+        }
+    }
+
+    /// `F − F_int(U)` and the slip tractions, where `F_int` is the elastic
+    /// `K U` less what the slip springs cannot carry.
+    fn out_of_balance(
+        &self,
+        model: &HpmModel,
+        laws: &[MohrCoulombSpring],
+        f: &[f64],
+        u: &[f64],
+    ) -> (Vec<f64>, Vec<SpringTraction>) {
+        let ku = self.stiffness.multiply(u);
+        let mut r: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
+        let mut tractions = Vec::with_capacity(model.slip.len());
+        for (spring, law) in model.slip.iter().zip(laws) {
+            let d = model.slip_displacement(spring, u);
+            let response = law.evaluate_total([d[0], d[1], d[2]]);
+            let (force, regime) = (response.force, response.regime);
+            let elastic = Vector3::new(
+                spring.normal_stiffness * d[0],
+                spring.shear_stiffness * d[1],
+                spring.shear_stiffness * d[2],
+            );
+            let excess = elastic - Vector3::new(force[0], force[1], force[2]);
+            if excess.norm() > 0.0 {
+                add_spring_force(model, spring, &excess, &mut r);
+            }
+            tractions.push(SpringTraction {
+                normal: force[0],
+                shear: [force[1], force[2]],
+                regime,
+            });
+        }
+        (r, tractions)
+    }
+}
+
+/// Add `A Nᵀ Rᵀ local` of a slip spring into `r` (the internal force of
+/// local tractions `local`, eqs. 27–29).
+fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>, r: &mut [f64]) {
+    let p = &spring.point;
+    let global = (p.point.normal * local[0] + p.s * local[1] + p.t * local[2]) * p.point.area;
+    let e = &model.elements[spring.element];
+    let n = super::element::shape_matrix(&e.centre, &p.point.position);
+    let contribution = n.transpose() * global;
+    for (k, value) in contribution.iter().enumerate() {
+        r[ELEMENT_DOF * spring.element + k] += value;
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn norm(v: &[f64]) -> f64 {
+    dot(v, v).sqrt()
+}
+
+/// Bounds of Aitken's relaxation factor.
+const MIN_RELAXATION: f64 = 0.1;
+const MAX_RELAXATION: f64 = 10.0;
+
+impl HpmResult {
+    /// Global safety factor `Σ (c + σ tan φ) A / Σ |τ| A` with the
+    /// material's own c and φ.
+    pub fn safety_factor(&self, model: &HpmModel) -> f64 {
+        let (num, den) = self.strength_and_shear(model);
+        num.iter().sum::<f64>() / den.iter().sum::<f64>()
+    }
+
+    /// Local safety factor of each column (same ratio over its springs);
+    /// infinite where the springs carry no shear.
+    pub fn local_safety_factors(&self, model: &HpmModel) -> Vec<f64> {
+        let (num, den) = self.strength_and_shear(model);
+        num.iter()
+            .zip(&den)
+            .map(|(n, d)| if *d > 0.0 { n / d } else { f64::INFINITY })
+            .collect()
+    }
+
+    /// `Σ (c + σ tan φ) A` and `Σ |τ| A` per column.
+    fn strength_and_shear(&self, model: &HpmModel) -> (Vec<f64>, Vec<f64>) {
+        let mut num = vec![0.0; model.columns.len()];
+        let mut den = vec![0.0; model.columns.len()];
+        let (c, mu) = (model.material.cohesion, model.material.friction());
+        for (s, t) in model.slip.iter().zip(&self.tractions) {
+            let a = s.point.point.area;
+            num[s.column] += (c + t.normal * mu) * a;
+            den[s.column] += t.shear_magnitude() * a;
+        }
+        (num, den)
+    }
+
+    /// Displacement and principal strains at the top of each column.
+    pub fn surface(&self, model: &HpmModel) -> Vec<SurfacePoint> {
+        model
+            .columns
+            .iter()
+            .map(|column| {
+                let e = column.elements.end - 1;
+                let element = &model.elements[e];
+                let dofs = ElementDofs::from_column_slice(
+                    &self.displacements[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)],
+                );
+                let (x0, y0) = column.shape.origin();
+                let half = 0.5 * column.shape.size();
+                let position =
+                    nalgebra::Point3::new(x0 + half, y0 + half, column.shape.top_at(0.5, 0.5));
+                let strain = strain_tensor(&dofs);
+                let (exx, eyy, exy) = (strain[(0, 0)], strain[(1, 1)], strain[(0, 1)]);
+                let centre = 0.5 * (exx + eyy);
+                let radius = (0.25 * (exx - eyy) * (exx - eyy) + exy * exy).sqrt();
+                SurfacePoint {
+                    position,
+                    displacement: displacement_at(&element.centre, &dofs, &position),
+                    principal: [centre + radius, centre - radius],
+                    angle: 0.5 * (2.0 * exy).atan2(exx - eyy),
+                }
+            })
+            .collect()
+    }
+
+    /// Share of the slip-surface area whose springs are slipping or open.
+    pub fn yielded_area_fraction(&self, model: &HpmModel) -> f64 {
+        let total: f64 = model.slip.iter().map(|s| s.point.point.area).sum();
+        let yielded: f64 = model
+            .slip
+            .iter()
+            .zip(&self.tractions)
+            .filter(|(_, t)| t.regime != Regime::Stick)
+            .map(|(s, _)| s.point.point.area)
+            .sum();
+        yielded / total
+    }
+}

@@ -1,0 +1,84 @@
+//! Hovland's 3D column method (1977) on the same grid data: the simplified
+//! method HPM is meant to match (paper 001, §1, its ref. 1).
+//!
+//! Each column is a rigid prism whose base is the slip surface at the cell
+//! centre (the bilinear surface of eq. 23 and its slopes there), with the
+//! column's weight W (the sum of the HPM element weights, eqs. 5–10) and
+//! the seismic force `k_h W` of eqs. (11)–(13); forces between columns are
+//! neglected. With `w` the column's load vector, `n` the base normal
+//! pointing into the ground and `d` the unit vector along the base in the
+//! sliding direction (the horizontal direction given, lifted onto the base):
+//! `N = w · n`, `T = w · d`, `A` the true base area and
+//! `Fs = Σ (c A + N tan φ) / Σ T`.
+
+use nalgebra::Vector3;
+
+use super::material::Seismic;
+use super::model::HpmModel;
+use crate::error::{require_finite, Result};
+
+/// One column's terms in Hovland's sums.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HovlandColumn {
+    /// Base normal force N (N).
+    pub normal: f64,
+    /// Driving force T along the sliding direction (N).
+    pub driving: f64,
+    /// Base area A (m²).
+    pub area: f64,
+}
+
+/// Hovland's safety factor and the column terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hovland {
+    /// `Σ (c A + N tan φ) / Σ T`.
+    pub safety_factor: f64,
+    /// Terms, in the order of [`HpmModel::columns`].
+    pub columns: Vec<HovlandColumn>,
+}
+
+/// Hovland's method for the columns of `model`, sliding horizontally
+/// towards `direction_deg` (degrees from +x, counter-clockwise).
+pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Result<Hovland> {
+    seismic.validate()?;
+    require_finite("sliding direction (degrees)", direction_deg)?;
+    let (dx, dy) = (
+        direction_deg.to_radians().cos(),
+        direction_deg.to_radians().sin(),
+    );
+    let (sx, sy) = seismic.unit();
+    let (c, mu) = (model.material.cohesion, model.material.friction());
+    let d = model.grid.2;
+    let columns: Vec<HovlandColumn> = model
+        .columns
+        .iter()
+        .map(|column| {
+            let z = column.shape.bottom();
+            let zx = 0.5 * ((z[1] - z[0]) + (z[2] - z[3])) / d;
+            let zy = 0.5 * ((z[3] - z[0]) + (z[2] - z[1])) / d;
+            let weight: f64 = model.elements[column.elements.clone()]
+                .iter()
+                .map(|e| e.weight)
+                .sum();
+            let w = Vector3::new(
+                seismic.coefficient * weight * sx,
+                seismic.coefficient * weight * sy,
+                -weight,
+            );
+            let root = (1.0 + zx * zx + zy * zy).sqrt();
+            let n = Vector3::new(zx, zy, -1.0) / root;
+            let along = Vector3::new(dx, dy, zx * dx + zy * dy).normalize();
+            HovlandColumn {
+                normal: w.dot(&n),
+                driving: w.dot(&along),
+                area: d * d * root,
+            }
+        })
+        .collect();
+    let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
+    let driving: f64 = columns.iter().map(|k| k.driving).sum();
+    Ok(Hovland {
+        safety_factor: resisting / driving,
+        columns,
+    })
+}

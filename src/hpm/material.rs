@@ -1,0 +1,162 @@
+//! Material, loads and discretisation settings of an HPM slope analysis
+//! (paper 001, §3–§5), validated once when built.
+
+use crate::error::{require_non_negative, require_positive, DismechError, Result};
+
+/// One averaged material for the whole slope (§3: "平均的な値"), and the
+/// slip-surface springs and strength.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HpmMaterial {
+    /// Young's modulus E of the soil (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson's ratio ν, in [0, 0.5).
+    pub poisson_ratio: f64,
+    /// Cohesion c on the slip surface (Pa).
+    pub cohesion: f64,
+    /// Friction angle φ on the slip surface (degrees, in [0, 90)).
+    pub friction_angle_deg: f64,
+    /// Unit weight γ_t above the water table (N/m³).
+    pub unit_weight: f64,
+    /// Submerged unit weight γ_sub below the water table (N/m³).
+    pub submerged_unit_weight: f64,
+    /// Modulus E_slip of the slip-surface springs (eq. 30), giving
+    /// `k_n = (1 − ν) E_slip / ((1 + ν)(1 − 2ν) h_I)` (Pa/m).
+    pub slip_modulus: f64,
+    /// Shear stiffness `k_s = k_t` of the slip-surface springs (Pa/m); `None`
+    /// takes `E_slip / ((1 + ν) h_I)` of eq. (30).
+    pub slip_shear_stiffness: Option<f64>,
+}
+
+impl HpmMaterial {
+    /// The material of the paper's §5: E = 1 GPa, ν = 0.2, c = 4.22 kN/m²,
+    /// φ = 22°, γ_t = 18 kN/m³ (γ_sub = 8 kN/m³, not used by the paper's
+    /// example, which has no water table), E_slip = E and k_s = 100 MPa/m.
+    pub fn paper() -> Self {
+        Self {
+            youngs_modulus: 1.0e9,
+            poisson_ratio: 0.2,
+            cohesion: 4.22e3,
+            friction_angle_deg: 22.0,
+            unit_weight: 18.0e3,
+            submerged_unit_weight: 8.0e3,
+            slip_modulus: 1.0e9,
+            slip_shear_stiffness: Some(100.0e6),
+        }
+    }
+
+    /// Check every value; errors name the offending one.
+    pub fn validate(&self) -> Result<()> {
+        require_positive("Young's modulus E", self.youngs_modulus)?;
+        let nu = self.poisson_ratio;
+        if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
+            return Err(DismechError::InvalidParameter {
+                name: "Poisson's ratio nu",
+                value: nu,
+                requirement: "must lie in [0, 0.5)",
+            });
+        }
+        require_non_negative("cohesion c", self.cohesion)?;
+        let phi = self.friction_angle_deg;
+        if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
+            return Err(DismechError::InvalidParameter {
+                name: "friction angle phi (degrees)",
+                value: phi,
+                requirement: "must lie in [0, 90)",
+            });
+        }
+        require_positive("unit weight gamma_t", self.unit_weight)?;
+        require_positive(
+            "submerged unit weight gamma_sub",
+            self.submerged_unit_weight,
+        )?;
+        require_positive("slip-surface modulus E_slip", self.slip_modulus)?;
+        if let Some(k) = self.slip_shear_stiffness {
+            require_positive("slip-surface shear stiffness k_s", k)?;
+        }
+        Ok(())
+    }
+
+    /// tan φ.
+    pub fn friction(&self) -> f64 {
+        self.friction_angle_deg.to_radians().tan()
+    }
+
+    /// `(1 − ν) / ((1 + ν)(1 − 2ν))` and `1 / (1 + ν)`: the factors of E'/h in
+    /// `k_n` and `k_s = k_t` (eq. 16, with the errata's form of `k_n`).
+    pub fn spring_factors(&self) -> (f64, f64) {
+        let nu = self.poisson_ratio;
+        (
+            (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            1.0 / (1.0 + nu),
+        )
+    }
+}
+
+/// The static seismic load of eqs. (11)–(13): `H = k_h W` in the horizontal
+/// direction at `direction_deg` counter-clockwise from +x.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seismic {
+    /// Design horizontal seismic coefficient k_h.
+    pub coefficient: f64,
+    /// Direction θ of the force (degrees from +x, counter-clockwise).
+    pub direction_deg: f64,
+}
+
+impl Seismic {
+    /// No seismic load.
+    pub fn none() -> Self {
+        Self {
+            coefficient: 0.0,
+            direction_deg: 0.0,
+        }
+    }
+
+    /// Check the values.
+    pub fn validate(&self) -> Result<()> {
+        require_non_negative("seismic coefficient k_h", self.coefficient)?;
+        crate::error::require_finite("seismic direction (degrees)", self.direction_deg)?;
+        Ok(())
+    }
+
+    /// Unit horizontal vector of the force, `(cos θ, sin θ)`.
+    pub fn unit(&self) -> (f64, f64) {
+        let t = self.direction_deg.to_radians();
+        (t.cos(), t.sin())
+    }
+}
+
+/// How the columns are discretised.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HpmSettings {
+    /// Layers per column of equal thickness: bottom, middle and top, so at
+    /// least 3 (§3, Fig. 7).
+    pub layers: usize,
+    /// Penalty factor p of eq. (17), `E' = p E` for the springs between
+    /// elements.
+    pub penalty: f64,
+}
+
+impl Default for HpmSettings {
+    /// Three layers and p = 100.
+    fn default() -> Self {
+        Self {
+            layers: 3,
+            penalty: 100.0,
+        }
+    }
+}
+
+impl HpmSettings {
+    /// Check the values.
+    pub fn validate(&self) -> Result<()> {
+        if self.layers < 3 {
+            return Err(DismechError::InvalidParameter {
+                name: "layers per column",
+                value: self.layers as f64,
+                requirement: "must be >= 3 (bottom, at least one middle, top)",
+            });
+        }
+        require_positive("penalty factor p", self.penalty)?;
+        Ok(())
+    }
+}

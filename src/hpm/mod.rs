@@ -1,0 +1,59 @@
+//! HPM slope stability on grid columns (paper 001: Yamaguchi, Takeuchi &
+//! Hamasaki, *Simplified 3D slope stability analysis by HPM*).
+//!
+//! The Hybrid-type Penalty Method discretises the slide into elements with
+//! independent linear displacement fields (eq. 2) tied together by penalty
+//! springs on their faces (eqs. 3–4). Here the elements come from the same
+//! data as a simplified column method: ground surface, slip surface and
+//! water table on a regular grid ([`SlopeGrids`], ESRI ASCII files or
+//! rasters built in code). Each valid column is split into layers of equal
+//! thickness (§3), so that the model gives displacements and strains as
+//! well as a safety factor.
+//!
+//! | concept | file | paper |
+//! |---|---|---|
+//! | grids, valid columns, corner heights | `grids.rs` | §3, §5, eq. 23 |
+//! | material, seismic load, settings | `material.rs` | eqs. 11–13, 16–17, 30 |
+//! | 12-DOF element | `element.rs` | eqs. 2, 23–25 |
+//! | faces and Gauss points | `face.rs` | eqs. 14–28 |
+//! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
+//! | stiffness blocks, sparse Cholesky | `stiffness.rs` | eq. 4 |
+//! | elastic and nonlinear analyses, Fs | `analysis.rs` | §5 |
+//! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
+//! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
+//!
+//! Composition: the element is a [`crate::shape::Column`] layer, the slip
+//! springs a [`crate::contact::MohrCoulombSpring`] (a
+//! [`crate::contact::ContactLaw`]`<3>`), the global solve a faer sparse
+//! Cholesky factor reused by the nonlinear iteration.
+//!
+//! Choices where the paper is silent or garbled (also in the reproduction
+//! report): the errata's `k_n = (1 − ν) E' / ((1 + ν)(1 − 2ν) h)`; p = 100
+//! by default; the `(s, t, n)` frame made orthonormal; the global safety
+//! factor `Σ (c + σ tan φ) A / Σ |τ| A`; corner heights interpolated from
+//! the cell-centre values of the rasters.
+
+mod analysis;
+mod element;
+mod face;
+mod grids;
+mod hovland;
+mod material;
+mod model;
+mod stiffness;
+mod strength_reduction;
+
+pub use analysis::{
+    Convergence, HpmResult, HpmSolver, NonlinearSettings, SpringTraction, SurfacePoint,
+};
+pub use element::{
+    displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
+    ELEMENT_DOF,
+};
+pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
+pub use grids::{NamedRaster, SlopeGrids};
+pub use hovland::{hovland, Hovland, HovlandColumn};
+pub use material::{HpmMaterial, HpmSettings, Seismic};
+pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
+pub use stiffness::{BlockMatrix, CholeskyFactor};
+pub use strength_reduction::{strength_reduction, StrengthReduction};

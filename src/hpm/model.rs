@@ -1,0 +1,325 @@
+//! An HPM slope model built from the grids: columns split into layers
+//! (§3, Fig. 7), elements, the penalty springs between them (eqs. 14–22),
+//! the slip-surface springs (eqs. 23–30), the element weights (eqs. 5–10)
+//! and the assembled stiffness of eq. (4).
+//!
+//! Spring constants (eq. 16 with the errata's `k_n`):
+//! `k_n = (1 − ν) E' / ((1 + ν)(1 − 2ν) h)`, `k_s = k_t = E' / ((1 + ν) h)`,
+//! with `E' = p E` (eq. 17) between elements and `E' = E_slip` (eq. 30) on
+//! the slip surface. `h` is the cell size for side faces (eq. 16); for the
+//! face between two layers it is the vertical distance between the two
+//! centroids (our reading of `h = h_i + h_ii`: the distances from each
+//! centroid to the face); on the slip surface it is the mean thickness
+//! `h_I` of the bottom element.
+
+use nalgebra::{Point3, Vector3};
+
+use super::element::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
+use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
+use super::grids::SlopeGrids;
+use super::material::{HpmMaterial, HpmSettings, Seismic};
+use super::stiffness::BlockMatrix;
+use crate::contact::MohrCoulombSpring;
+use crate::error::Result;
+use crate::shape::Column;
+
+/// One element: a layer of a column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Element {
+    /// Index of its column in [`HpmModel::columns`].
+    pub column: usize,
+    /// Layer, 0 at the bottom.
+    pub layer: usize,
+    /// The hexahedron.
+    pub shape: Column,
+    /// Centroid: the reference point of the rigid motion (eq. 2).
+    pub centre: Point3<f64>,
+    /// Volume (m³).
+    pub volume: f64,
+    /// Weight W_I (N), eqs. (8)–(10).
+    pub weight: f64,
+}
+
+/// One valid column of the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridColumn {
+    /// Grid row (0 at the top of the file) and column.
+    pub cell: (usize, usize),
+    /// Its elements, bottom first.
+    pub elements: std::ops::Range<usize>,
+    /// The whole column (slip surface to ground surface).
+    pub shape: Column,
+}
+
+/// A face between two elements with its penalty springs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Interface {
+    /// The element on the side the normal leaves.
+    pub a: usize,
+    /// The element the normal points into.
+    pub b: usize,
+    /// Gauss points (normal from a to b).
+    pub points: Vec<FacePoint>,
+    /// Normal stiffness k_n (Pa/m).
+    pub normal_stiffness: f64,
+    /// Shear stiffness k_s = k_t (Pa/m).
+    pub shear_stiffness: f64,
+}
+
+/// A slip-surface spring: one Gauss point under a bottom element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlipSpring {
+    /// The bottom element above it.
+    pub element: usize,
+    /// Its column.
+    pub column: usize,
+    /// Position, frame and area.
+    pub point: SlipPoint,
+    /// Its law (stiffness and strength).
+    pub law: MohrCoulombSpring,
+    /// k_n (Pa/m).
+    pub normal_stiffness: f64,
+    /// k_s = k_t (Pa/m).
+    pub shear_stiffness: f64,
+}
+
+/// The discretised slope.
+#[derive(Debug, Clone)]
+pub struct HpmModel {
+    /// The material.
+    pub material: HpmMaterial,
+    /// The settings it was built with.
+    pub settings: HpmSettings,
+    /// Valid columns.
+    pub columns: Vec<GridColumn>,
+    /// Elements, column by column, bottom first.
+    pub elements: Vec<Element>,
+    /// Faces between elements.
+    pub interfaces: Vec<Interface>,
+    /// Slip-surface springs.
+    pub slip: Vec<SlipSpring>,
+    /// Grid rows and columns, and cell size.
+    pub grid: (usize, usize, f64),
+}
+
+/// Mean of four corner heights (eqs. 5–7).
+fn mean(z: &[f64; 4]) -> f64 {
+    0.25 * z.iter().sum::<f64>()
+}
+
+/// Weight of an element, eqs. (8)–(10).
+fn element_weight(
+    material: &HpmMaterial,
+    shape: &Column,
+    water: Option<&[f64; 4]>,
+    cell_area: f64,
+) -> f64 {
+    let (hu, hd) = (mean(&shape.top()), mean(&shape.bottom()));
+    let (gt, gs) = (material.unit_weight, material.submerged_unit_weight);
+    let body = match water.map(mean) {
+        None => gt * (hu - hd),
+        Some(hw) if hw <= hd => gt * (hu - hd),
+        Some(hw) if hw >= hu => gs * (hu - hd),
+        Some(hw) => gs * (hw - hd) + gt * (hu - hw),
+    };
+    body * cell_area
+}
+
+impl HpmModel {
+    /// Build the model; validates the material and settings.
+    pub fn new(grids: &SlopeGrids, material: &HpmMaterial, settings: &HpmSettings) -> Result<Self> {
+        material.validate()?;
+        settings.validate()?;
+        let raster = &grids.ground().raster;
+        let (rows, grid_columns, d) = (raster.rows(), raster.columns(), raster.cell_size());
+        let (x_ll, y_ll) = raster.lower_left();
+        let layers = settings.layers;
+        let (fn_, fs) = material.spring_factors();
+        let e_pen = settings.penalty * material.youngs_modulus;
+        let friction = material.friction();
+
+        let mut columns = Vec::new();
+        let mut elements = Vec::new();
+        let mut slip = Vec::new();
+        let mut index = vec![usize::MAX; rows * grid_columns];
+        for (r, c) in grids.valid_cells() {
+            let (ground, slip_z, water) = grids.corners(r, c);
+            let origin = (x_ll + c as f64 * d, y_ll + (rows - r - 1) as f64 * d);
+            let shape = Column::new(origin.0, origin.1, d, slip_z, ground)?;
+            if shape.volume() <= 0.0 {
+                // Zero thickness at every corner: nothing to analyse.
+                continue;
+            }
+            let k = columns.len();
+            index[r * grid_columns + c] = k;
+            let first = elements.len();
+            for (layer, part) in shape.layers(layers)?.into_iter().enumerate() {
+                elements.push(Element {
+                    column: k,
+                    layer,
+                    centre: part.centroid(),
+                    volume: part.volume(),
+                    weight: element_weight(material, &part, water.as_ref(), d * d),
+                    shape: part,
+                });
+            }
+            // Slip springs under the bottom element (eqs. 27–30).
+            let bottom = &elements[first];
+            let h = mean(&bottom.shape.top()) - mean(&bottom.shape.bottom());
+            let k_n = fn_ * material.slip_modulus / h;
+            let k_s = material
+                .slip_shear_stiffness
+                .unwrap_or(fs * material.slip_modulus / h);
+            let law = MohrCoulombSpring::new(k_n, k_s, material.cohesion, friction)?;
+            for point in bilinear_face(origin, d, &slip_z) {
+                slip.push(SlipSpring {
+                    element: first,
+                    column: k,
+                    point,
+                    law,
+                    normal_stiffness: k_n,
+                    shear_stiffness: k_s,
+                });
+            }
+            columns.push(GridColumn {
+                cell: (r, c),
+                elements: first..elements.len(),
+                shape,
+            });
+        }
+
+        let mut interfaces = Vec::new();
+        // Between layers (eqs. 20–22): the normal of the shared bilinear face
+        // points up, from the lower element into the upper.
+        for column in &columns {
+            for e in column.elements.start..column.elements.end - 1 {
+                let (lower, upper) = (&elements[e], &elements[e + 1]);
+                let h = upper.centre.z - lower.centre.z;
+                let points = bilinear_face(lower.shape.origin(), d, &lower.shape.top())
+                    .into_iter()
+                    .map(|p| FacePoint {
+                        normal: -p.point.normal,
+                        ..p.point
+                    })
+                    .collect();
+                interfaces.push(Interface {
+                    a: e,
+                    b: e + 1,
+                    points,
+                    normal_stiffness: fn_ * e_pen / h,
+                    shear_stiffness: fs * e_pen / h,
+                });
+            }
+        }
+        // Side faces between the same layer of neighbouring columns (eqs. 14–19).
+        for (k, column) in columns.iter().enumerate() {
+            let (r, c) = column.cell;
+            let east = (c + 1 < grid_columns).then(|| index[r * grid_columns + c + 1]);
+            let north = (r > 0).then(|| index[(r - 1) * grid_columns + c]);
+            for (neighbour, side) in [(east, Side::East), (north, Side::North)] {
+                let Some(other) = neighbour.filter(|&o| o != usize::MAX) else {
+                    continue;
+                };
+                for layer in 0..layers {
+                    let (a, b) = (
+                        columns[k].elements.start + layer,
+                        columns[other].elements.start + layer,
+                    );
+                    let s = &elements[a].shape;
+                    interfaces.push(Interface {
+                        a,
+                        b,
+                        points: side_face(s.origin(), d, &s.bottom(), &s.top(), side),
+                        normal_stiffness: fn_ * e_pen / d,
+                        shear_stiffness: fs * e_pen / d,
+                    });
+                }
+            }
+        }
+        Ok(Self {
+            material: *material,
+            settings: *settings,
+            columns,
+            elements,
+            interfaces,
+            slip,
+            grid: (rows, grid_columns, d),
+        })
+    }
+
+    /// Number of unknowns (12 per element).
+    pub fn dof(&self) -> usize {
+        ELEMENT_DOF * self.elements.len()
+    }
+
+    /// The elastic stiffness of eq. (4): element stiffnesses (eq. 25),
+    /// penalty springs between elements (eqs. 18, 19, 22) and the elastic
+    /// slip springs (eq. 22, slip).
+    pub fn stiffness(&self) -> BlockMatrix {
+        let mut k = self.free_stiffness();
+        for spring in &self.slip {
+            let e = &self.elements[spring.element];
+            let p = &spring.point.point;
+            let ks =
+                spring_matrix(&p.normal, spring.normal_stiffness, spring.shear_stiffness) * p.area;
+            let n = shape_matrix(&e.centre, &p.position);
+            k.diagonal[spring.element] += n.transpose() * ks * n;
+        }
+        k
+    }
+
+    /// The stiffness of the elements and the springs between them, without
+    /// the slip springs: singular (six rigid-body modes of the slide).
+    pub fn free_stiffness(&self) -> BlockMatrix {
+        let d = elasticity(self.material.youngs_modulus, self.material.poisson_ratio);
+        let mut k = BlockMatrix::zeros(self.elements.len());
+        for (e, element) in self.elements.iter().enumerate() {
+            k.diagonal[e] += element_stiffness(element.volume, &d);
+        }
+        for face in &self.interfaces {
+            let (ea, eb) = (&self.elements[face.a], &self.elements[face.b]);
+            let mut coupling = Block::zeros();
+            for p in &face.points {
+                let ks =
+                    spring_matrix(&p.normal, face.normal_stiffness, face.shear_stiffness) * p.area;
+                let na = shape_matrix(&ea.centre, &p.position);
+                let nb = shape_matrix(&eb.centre, &p.position);
+                k.diagonal[face.a] += na.transpose() * ks * na;
+                k.diagonal[face.b] += nb.transpose() * ks * nb;
+                coupling -= na.transpose() * ks * nb;
+            }
+            k.coupling.push((face.a, face.b, coupling));
+        }
+        k
+    }
+
+    /// The load vector: weights W_I (eqs. 8–10) and the seismic force
+    /// `k_h W_I (cos θ, sin θ)` (eqs. 11–13), at each element's centroid.
+    pub fn loads(&self, seismic: &Seismic) -> Vec<f64> {
+        let (cx, cy) = seismic.unit();
+        let mut f = vec![0.0; self.dof()];
+        for (e, element) in self.elements.iter().enumerate() {
+            let h = seismic.coefficient * element.weight;
+            f[ELEMENT_DOF * e] = h * cx;
+            f[ELEMENT_DOF * e + 1] = h * cy;
+            f[ELEMENT_DOF * e + 2] = -element.weight;
+        }
+        f
+    }
+
+    /// Total weight of the slide (N).
+    pub fn total_weight(&self) -> f64 {
+        self.elements.iter().map(|e| e.weight).sum()
+    }
+
+    /// The relative displacement `[approach along n, along s, along t]` of
+    /// a slip spring (eq. 27) for the displacements `u`.
+    pub fn slip_displacement(&self, spring: &SlipSpring, u: &[f64]) -> Vector3<f64> {
+        let e = &self.elements[spring.element];
+        let dofs = &u[ELEMENT_DOF * spring.element..ELEMENT_DOF * (spring.element + 1)];
+        let n = shape_matrix(&e.centre, &spring.point.point.position);
+        let disp = n * super::element::ElementDofs::from_column_slice(dofs);
+        let p = &spring.point;
+        Vector3::new(p.point.normal.dot(&disp), p.s.dot(&disp), p.t.dot(&disp))
+    }
+}

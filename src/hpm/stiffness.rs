@@ -1,0 +1,209 @@
+//! The global HPM stiffness of eq. (4) as 12 × 12 blocks, and its sparse
+//! Cholesky factor (faer).
+//!
+//! Elements couple only through faces, so the matrix is kept as one
+//! diagonal block per element and one off-diagonal block per pair of
+//! elements sharing a face. The compressed lower triangle is built
+//! directly from the blocks (no triplet list), analysed and factorised
+//! once; the factor is kept for the repeated solves of the nonlinear
+//! iteration.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::prelude::Reborrow;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::{Col, Side};
+
+use super::element::{Block, ElementDofs, ELEMENT_DOF};
+use crate::solve::SolveError;
+
+/// A symmetric block-sparse matrix: `diagonal[e]` and `coupling` blocks
+/// `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockMatrix {
+    /// Diagonal blocks, one per element.
+    pub diagonal: Vec<Block>,
+    /// Off-diagonal blocks `(a, b, K_ab)`, one per pair of elements.
+    pub coupling: Vec<(usize, usize, Block)>,
+}
+
+impl BlockMatrix {
+    /// A zero matrix for `elements` elements.
+    pub fn zeros(elements: usize) -> Self {
+        Self {
+            diagonal: vec![Block::zeros(); elements],
+            coupling: Vec::new(),
+        }
+    }
+
+    /// Dimension (12 × elements).
+    pub fn dimension(&self) -> usize {
+        ELEMENT_DOF * self.diagonal.len()
+    }
+
+    /// `y = K x`.
+    pub fn multiply(&self, x: &[f64]) -> Vec<f64> {
+        let block = |v: &[f64], e: usize| {
+            ElementDofs::from_column_slice(&v[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)])
+        };
+        let mut y = vec![0.0; x.len()];
+        let add = |y: &mut [f64], e: usize, v: ElementDofs| {
+            for (k, value) in v.iter().enumerate() {
+                y[ELEMENT_DOF * e + k] += value;
+            }
+        };
+        for (e, d) in self.diagonal.iter().enumerate() {
+            add(&mut y, e, d * block(x, e));
+        }
+        for (a, b, k) in &self.coupling {
+            add(&mut y, *a, k * block(x, *b));
+            add(&mut y, *b, k.transpose() * block(x, *a));
+        }
+        y
+    }
+
+    /// The lower triangle in compressed-column form.
+    fn lower_csc(&self) -> Result<SparseColMat<usize, f64>, SolveError> {
+        let elements = self.diagonal.len();
+        let n = self.dimension();
+        // Blocks of block-column b below the diagonal: (row element, block, transposed?).
+        let mut below: Vec<Vec<(usize, usize, bool)>> = vec![Vec::new(); elements];
+        for (k, (a, b, _)) in self.coupling.iter().enumerate() {
+            if a > b {
+                below[*b].push((*a, k, false));
+            } else {
+                below[*a].push((*b, k, true));
+            }
+        }
+        for list in &mut below {
+            list.sort_unstable();
+        }
+        let nnz: usize = below
+            .iter()
+            .map(|l| l.len() * ELEMENT_DOF * ELEMENT_DOF)
+            .sum::<usize>()
+            + elements * ELEMENT_DOF * (ELEMENT_DOF + 1) / 2;
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(nnz);
+        let mut values = Vec::with_capacity(nnz);
+        col_ptr.push(0usize);
+        for (b, list) in below.iter().enumerate() {
+            for q in 0..ELEMENT_DOF {
+                for p in q..ELEMENT_DOF {
+                    row_idx.push(ELEMENT_DOF * b + p);
+                    values.push(self.diagonal[b][(p, q)]);
+                }
+                for &(a, k, transposed) in list {
+                    let block = &self.coupling[k].2;
+                    for p in 0..ELEMENT_DOF {
+                        row_idx.push(ELEMENT_DOF * a + p);
+                        values.push(if transposed {
+                            block[(q, p)]
+                        } else {
+                            block[(p, q)]
+                        });
+                    }
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Ok(SparseColMat::new(symbolic, values))
+    }
+
+    /// Factorise `K = L Lᵀ`: faer's sparse Cholesky with its
+    /// approximate-minimum-degree ordering, supernodal where it pays, on
+    /// faer's global parallelism.
+    pub fn factorize(&self) -> Result<CholeskyFactor, SolveError> {
+        let matrix = self.lower_csc()?;
+        let failed = |what: &str, e: &dyn std::fmt::Debug| {
+            SolveError::Factorization(format!("{what} failed: {e:?}"))
+        };
+        let symbolic = factorize_symbolic_cholesky(
+            matrix.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|e| failed("symbolic Cholesky analysis", &e))?;
+        let par = faer::get_global_parallelism();
+        let mut values = vec![0.0; symbolic.len_val()];
+        let mut buffer = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|e| failed("allocating the Cholesky workspace", &e))?;
+        symbolic
+            .factorize_numeric_llt::<f64>(
+                &mut values,
+                matrix.rb(),
+                Side::Lower,
+                Default::default(),
+                par,
+                MemStack::new(&mut buffer),
+                Default::default(),
+            )
+            .map_err(|e| failed("sparse Cholesky (stiffness not positive definite)", &e))?;
+        Ok(CholeskyFactor {
+            symbolic,
+            values,
+            stored: matrix.compute_nnz(),
+        })
+    }
+}
+
+/// A sparse Cholesky factor of the stiffness, reused for many solves.
+#[derive(Debug)]
+pub struct CholeskyFactor {
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+    stored: usize,
+}
+
+impl CholeskyFactor {
+    /// Solve `K x = b`.
+    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>, SolveError> {
+        let n = self.symbolic.nrows();
+        if b.len() != n {
+            return Err(SolveError::DimensionMismatch {
+                what: "right-hand side length",
+                expected: n,
+                found: b.len(),
+            });
+        }
+        // One right-hand side: the triangular solves run sequentially (the
+        // factorisation uses faer's global parallelism).
+        let par = faer::Par::Seq;
+        let mut buffer = MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, par))
+            .map_err(|e| {
+                SolveError::Factorization(format!("allocating the solve workspace failed: {e:?}"))
+            })?;
+        let mut x = Col::<f64>::from_fn(n, |i| b[i]);
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            faer::Conj::No,
+            x.as_mat_mut(),
+            par,
+            MemStack::new(&mut buffer),
+        );
+        let x: Vec<f64> = x.iter().copied().collect();
+        if let Some((index, &value)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(SolveError::NonFinite {
+                what: "stiffness solve",
+                index,
+                value,
+            });
+        }
+        Ok(x)
+    }
+
+    /// Number of stored entries of the lower triangle of K.
+    pub fn matrix_entries(&self) -> usize {
+        self.stored
+    }
+
+    /// Number of stored entries of the Cholesky factor L.
+    pub fn factor_entries(&self) -> usize {
+        self.values.len()
+    }
+}

@@ -1,0 +1,81 @@
+//! The strength-reduction safety factor (beyond paper 001): the largest
+//! factor F by which c and tan φ of the slip surface can be divided while
+//! the nonlinear HPM solve still finds equilibrium.
+//!
+//! F is bracketed by stepping up from 1 (or down, if the material's own
+//! strength already fails) and then bisected; "no equilibrium" is a
+//! [`Convergence::NotConverged`] of the nonlinear solve within its
+//! iteration limit, so F depends (weakly) on that limit, which the result
+//! reports.
+
+use super::analysis::{Convergence, HpmSolver, NonlinearSettings};
+use super::material::Seismic;
+use super::model::HpmModel;
+use crate::error::{require_positive, Result};
+
+/// The outcome of a strength-reduction search.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrengthReduction {
+    /// Largest factor found with equilibrium.
+    pub safety_factor: f64,
+    /// Smallest factor found without equilibrium.
+    pub failed_at: f64,
+    /// Every factor tried and whether it converged, in order.
+    pub trials: Vec<(f64, Convergence)>,
+}
+
+/// Search the strength-reduction factor to a bracket of relative width
+/// `resolution`.
+pub fn strength_reduction(
+    solver: &HpmSolver,
+    model: &HpmModel,
+    seismic: &Seismic,
+    settings: &NonlinearSettings,
+    resolution: f64,
+) -> Result<StrengthReduction> {
+    require_positive("strength-reduction resolution", resolution)?;
+    let mut trials = Vec::new();
+    let converges = |f: f64, trials: &mut Vec<(f64, Convergence)>| -> Result<bool> {
+        let r = solver.nonlinear(model, seismic, f, settings)?;
+        trials.push((f, r.convergence));
+        Ok(r.convergence.converged())
+    };
+    let step = 1.25;
+    let (mut lo, mut hi) = (1.0, 1.0);
+    if converges(1.0, &mut trials)? {
+        loop {
+            hi = lo * step;
+            if !converges(hi, &mut trials)? {
+                break;
+            }
+            lo = hi;
+            if lo > 1e3 {
+                break;
+            }
+        }
+    } else {
+        loop {
+            lo = hi / step;
+            if converges(lo, &mut trials)? {
+                break;
+            }
+            hi = lo;
+            if hi < 1e-3 {
+                break;
+            }
+        }
+    }
+    while hi / lo - 1.0 > resolution {
+        let mid = (lo * hi).sqrt();
+        if converges(mid, &mut trials)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(StrengthReduction {
+        safety_factor: lo,
+        failed_at: hi,
+        trials,
+    })
+}

@@ -1,0 +1,537 @@
+//! HPM slope analysis (paper 001) against exact solutions: a slab on a
+//! planar slip surface (global equilibrium fixes Fs), the patch test of
+//! uniform stress, layer refinement, and the errors bad input gets.
+
+use dismech::error::DismechError;
+use dismech::grid::{parse_esri_ascii, Raster};
+use dismech::hpm::*;
+use nalgebra::{Matrix3, Point3, Vector3};
+
+/// A slab of vertical thickness `thickness` on the plane dipping at `dip`
+/// degrees towards the horizontal direction `towards` (degrees from +x),
+/// over `rows × columns` cells of 10 m; optional water table at `water`
+/// above the slip surface.
+fn slab(
+    rows: usize,
+    columns: usize,
+    dip: f64,
+    towards: f64,
+    thickness: f64,
+    water: Option<f64>,
+) -> SlopeGrids {
+    let (tx, ty) = (towards.to_radians().cos(), towards.to_radians().sin());
+    let slope = dip.to_radians().tan();
+    // Height falls along the dip direction.
+    let plane = move |x: f64, y: f64| 500.0 - slope * (x * tx + y * ty);
+    let raster = |offset: f64| {
+        Raster::from_fn(columns, rows, 0.0, 0.0, 10.0, move |x, y| {
+            Some(plane(x, y) + offset)
+        })
+        .unwrap()
+    };
+    SlopeGrids::new(
+        NamedRaster::new("ground", raster(thickness)),
+        NamedRaster::new("slip", raster(0.0)),
+        water.map(|h| NamedRaster::new("water", raster(h))),
+    )
+    .unwrap()
+}
+
+struct Exact {
+    weight: f64,
+    area: f64,
+}
+
+fn exact_slab(
+    rows: usize,
+    columns: usize,
+    dip: f64,
+    m: &HpmMaterial,
+    h: f64,
+    hw: Option<f64>,
+) -> Exact {
+    let plan = (rows * columns) as f64 * 100.0;
+    let per_area = match hw {
+        None => m.unit_weight * h,
+        Some(w) => m.submerged_unit_weight * w + m.unit_weight * (h - w),
+    };
+    Exact {
+        weight: per_area * plan,
+        area: plan / dip.to_radians().cos(),
+    }
+}
+
+/// `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))`.
+fn exact_fs(e: &Exact, m: &HpmMaterial, dip: f64, kh: f64) -> f64 {
+    let (s, c) = dip.to_radians().sin_cos();
+    (m.cohesion * e.area + e.weight * (c - kh * s) * m.friction()) / (e.weight * (s + kh * c))
+}
+
+fn material() -> HpmMaterial {
+    HpmMaterial {
+        cohesion: 10.0e3,
+        ..HpmMaterial::paper()
+    }
+}
+
+#[test]
+fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submerged() {
+    let m = material();
+    // (dip, towards, k_h, water height above the slip surface)
+    let cases = [
+        (25.0, 270.0, 0.0, None),
+        (18.0, 225.0, 0.0, None),
+        (25.0, 270.0, 0.15, None),
+        (30.0, 0.0, 0.15, None),
+        (25.0, 270.0, 0.0, Some(3.0)),
+        (20.0, 200.0, 0.1, Some(6.5)),
+    ];
+    let (rows, columns, h) = (5, 7, 8.0);
+    for (dip, towards, kh, hw) in cases {
+        let grids = slab(rows, columns, dip, towards, h, hw);
+        let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+        let exact_w = exact_slab(rows, columns, dip, &m, h, hw);
+        assert!((model.total_weight() - exact_w.weight).abs() < 1e-9 * exact_w.weight);
+        let seismic = Seismic {
+            coefficient: kh,
+            direction_deg: towards,
+        };
+        let exact = exact_fs(&exact_w, &m, dip, kh);
+        let solver = HpmSolver::new(&model).unwrap();
+        let elastic = solver.elastic(&model, &seismic).unwrap();
+        let fs = elastic.safety_factor(&model);
+        let hov = hovland(&model, &seismic, towards).unwrap().safety_factor;
+        eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM {fs:.5}, Hovland {hov:.5}");
+        assert!((fs / exact - 1.0).abs() < 0.01, "HPM {fs} vs exact {exact}");
+        assert!(
+            (hov / exact - 1.0).abs() < 1e-9,
+            "Hovland {hov} vs exact {exact}"
+        );
+    }
+}
+
+#[test]
+fn planar_slab_slip_springs_balance_the_load_exactly() {
+    // Global equilibrium: the slip tractions sum to the applied load.
+    let m = material();
+    let grids = slab(4, 6, 22.0, 250.0, 6.0, Some(2.0));
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction_deg: 250.0,
+    };
+    let r = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let mut reaction = Vector3::zeros();
+    for (s, t) in model.slip.iter().zip(&r.tractions) {
+        let p = &s.point;
+        // Force of the ground on the soil: against n (into the ground), s, t.
+        reaction -=
+            (p.point.normal * t.normal + p.s * t.shear[0] + p.t * t.shear[1]) * p.point.area;
+    }
+    let f = model.loads(&seismic);
+    let applied: Vector3<f64> = (0..model.elements.len())
+        .map(|e| Vector3::new(f[12 * e], f[12 * e + 1], f[12 * e + 2]))
+        .sum();
+    assert!(
+        (reaction + applied).norm() < 1e-8 * applied.norm(),
+        "{reaction} vs {applied}"
+    );
+}
+
+#[test]
+fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
+    let m = HpmMaterial {
+        cohesion: 5.0e3,
+        ..HpmMaterial::paper()
+    };
+    let (rows, columns, dip, h) = (4, 5, 20.0, 6.0);
+    let grids = slab(rows, columns, dip, 270.0, h, None);
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let exact = exact_fs(&exact_slab(rows, columns, dip, &m, h, None), &m, dip, 0.0);
+    let solver = HpmSolver::new(&model).unwrap();
+    let settings = NonlinearSettings::default();
+    let r = solver
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
+    assert!(r.convergence.converged(), "{:?}", r.convergence);
+    assert!((r.safety_factor(&model) / exact - 1.0).abs() < 0.01);
+    let srf = strength_reduction(&solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
+    eprintln!(
+        "exact {exact:.4}; strength reduction in [{:.4}, {:.4}]",
+        srf.safety_factor, srf.failed_at
+    );
+    // The uniform slab fails everywhere at once, at F = Fs: the bracket holds it.
+    assert!(
+        srf.safety_factor <= exact * 1.001 && srf.failed_at >= exact * 0.98,
+        "{srf:?}"
+    );
+}
+
+#[test]
+fn a_slab_that_cannot_stand_reports_non_convergence_with_its_residual() {
+    let m = HpmMaterial {
+        cohesion: 0.0,
+        friction_angle_deg: 15.0,
+        ..HpmMaterial::paper()
+    };
+    let grids = slab(3, 4, 25.0, 270.0, 5.0, None);
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let settings = NonlinearSettings {
+        max_iterations: 200,
+        ..NonlinearSettings::default()
+    };
+    let r = HpmSolver::new(&model)
+        .unwrap()
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
+    match r.convergence {
+        Convergence::NotConverged {
+            iterations,
+            residual,
+        } => {
+            assert_eq!(iterations, 200);
+            assert!(residual > settings.tolerance);
+        }
+        other => panic!("a slab at tan φ / tan β = 0.57 converged: {other:?}"),
+    }
+}
+
+/// Gauss points of every outer face of a box model, with outward normals.
+fn outer_faces(model: &HpmModel) -> Vec<(usize, FacePoint)> {
+    let (rows, columns, d) = model.grid;
+    let mut out = Vec::new();
+    for column in &model.columns {
+        let (r, c) = column.cell;
+        for e in column.elements.clone() {
+            let s = &model.elements[e].shape;
+            let (x0, y0) = s.origin();
+            let (b, t) = (s.bottom(), s.top());
+            let mut push = |pts: Vec<FacePoint>, flip: bool| {
+                for p in pts {
+                    let normal = if flip { -p.normal } else { p.normal };
+                    out.push((e, FacePoint { normal, ..p }));
+                }
+            };
+            if c + 1 == columns {
+                push(side_face((x0, y0), d, &b, &t, Side::East), false);
+            }
+            if c == 0 {
+                push(side_face((x0 - d, y0), d, &b, &t, Side::East), true);
+            }
+            if r == 0 {
+                push(side_face((x0, y0), d, &b, &t, Side::North), false);
+            }
+            if r + 1 == rows {
+                push(side_face((x0, y0 - d), d, &b, &t, Side::North), true);
+            }
+            if e + 1 == column.elements.end {
+                let top: Vec<FacePoint> = bilinear_face((x0, y0), d, &t)
+                    .into_iter()
+                    .map(|p| p.point)
+                    .collect();
+                push(top, true);
+            }
+            if e == column.elements.start {
+                let bottom: Vec<FacePoint> = bilinear_face((x0, y0), d, &b)
+                    .into_iter()
+                    .map(|p| p.point)
+                    .collect();
+                push(bottom, false);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn patch_test_uniform_stress_gives_the_exact_uniform_strain_in_every_element() {
+    let m = HpmMaterial::paper();
+    let flat = |z: f64| Raster::from_fn(3, 3, 0.0, 0.0, 10.0, move |_, _| Some(z)).unwrap();
+    let grids = SlopeGrids::new(
+        NamedRaster::new("ground", flat(12.0)),
+        NamedRaster::new("slip", flat(0.0)),
+        None,
+    )
+    .unwrap();
+    let model = HpmModel::new(
+        &grids,
+        &m,
+        &HpmSettings {
+            layers: 4,
+            penalty: 100.0,
+        },
+    )
+    .unwrap();
+    // A uniform stress with every component present (Pa).
+    let sigma = Matrix3::new(-50e3, 8e3, 5e3, 8e3, -30e3, -4e3, 5e3, -4e3, -120e3);
+    let mut f = vec![0.0; model.dof()];
+    for (e, p) in outer_faces(&model) {
+        let traction = sigma * p.normal * p.area;
+        let n = shape_matrix(&model.elements[e].centre, &p.position);
+        let g = n.transpose() * traction;
+        for k in 0..12 {
+            f[12 * e + k] += g[k];
+        }
+    }
+    // Self-equilibrated tractions on every outer face; the rigid-body modes
+    // are removed by holding element 0 (its reaction is zero: the load is
+    // balanced and the exact solution has no rotation).
+    let mut k = model.free_stiffness();
+    let hold = 1e3 * k.diagonal[0].diagonal().amax();
+    for i in 0..6 {
+        k.diagonal[0][(i, i)] += hold;
+    }
+    let u = k.factorize().unwrap().solve(&f).unwrap();
+    // Exact strain ε = D⁻¹ σ (engineering shear).
+    let d = elasticity(m.youngs_modulus, m.poisson_ratio);
+    let s6 = nalgebra::SVector::<f64, 6>::from([
+        sigma[(0, 0)],
+        sigma[(1, 1)],
+        sigma[(2, 2)],
+        sigma[(1, 2)],
+        sigma[(0, 2)],
+        sigma[(0, 1)],
+    ]);
+    let exact = d.try_inverse().unwrap() * s6;
+    for e in 0..model.elements.len() {
+        for k in 0..6 {
+            let got = u[12 * e + 6 + k];
+            assert!(
+                (got - exact[k]).abs() <= 1e-8 * exact.amax(),
+                "element {e} strain {k}: {got} vs {}",
+                exact[k]
+            );
+        }
+    }
+    // Element 0 is held with no reaction: the interface springs carry the
+    // whole load, so its translation and rotation stay zero.
+    for (i, held) in u.iter().take(6).enumerate() {
+        assert!(
+            held.abs() * hold <= 1e-8 * sigma.amax() * 100.0,
+            "reaction at DOF {i}"
+        );
+    }
+}
+
+/// A bowl-shaped slide (ellipsoidal slip surface) on a plane slope.
+fn bowl() -> SlopeGrids {
+    let ground = Raster::from_fn(9, 11, 0.0, 0.0, 10.0, |_, y| Some(0.4 * y)).unwrap();
+    let slip = Raster::from_fn(9, 11, 0.0, 0.0, 10.0, |x, y| {
+        let q = ((x - 45.0) / 40.0).powi(2) + ((y - 55.0) / 50.0).powi(2);
+        let g = 0.4 * y;
+        Some(if q < 1.0 {
+            (g - 12.0 * (1.0 - q).sqrt()).min(g)
+        } else {
+            g
+        })
+    })
+    .unwrap();
+    SlopeGrids::new(
+        NamedRaster::new("ground", ground),
+        NamedRaster::new("slip", slip),
+        None,
+    )
+    .unwrap()
+}
+
+#[test]
+fn layer_refinement_3_6_12_converges_in_fs_and_top_displacement() {
+    let m = HpmMaterial::paper();
+    let grids = bowl();
+    let mut fs = Vec::new();
+    let mut top = Vec::new();
+    for layers in [3, 6, 12] {
+        let model = HpmModel::new(
+            &grids,
+            &m,
+            &HpmSettings {
+                layers,
+                penalty: 100.0,
+            },
+        )
+        .unwrap();
+        let r = HpmSolver::new(&model)
+            .unwrap()
+            .elastic(&model, &Seismic::none())
+            .unwrap();
+        fs.push(r.safety_factor(&model));
+        let surface = r.surface(&model);
+        top.push(
+            surface
+                .iter()
+                .map(|p| p.displacement.norm())
+                .fold(0.0, f64::max),
+        );
+    }
+    eprintln!("layers 3, 6, 12: Fs {fs:?}, largest surface displacement {top:?} m");
+    let change = |v: &[f64], k: usize| (v[k + 1] - v[k]).abs() / v[k + 1].abs();
+    assert!(change(&fs, 1) < change(&fs, 0), "Fs {fs:?}");
+    assert!(
+        change(&top, 1) < change(&top, 0),
+        "top displacement {top:?}"
+    );
+}
+
+const GRID: &str = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";
+
+fn named(name: &str, values: &str) -> NamedRaster {
+    NamedRaster::new(
+        name,
+        parse_esri_ascii(&format!("{GRID}{values}"), name).unwrap(),
+    )
+}
+
+#[test]
+fn bad_grids_get_typed_errors_naming_file_row_and_column() {
+    let ground = || named("ground.asc", "10 10 10\n10 10 10\n10 10 10\n");
+    // A different grid.
+    let other = NamedRaster::new(
+        "slip.asc",
+        parse_esri_ascii(
+            "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 1 1\n1 1 1\n1 1 1\n",
+            "slip.asc",
+        )
+        .unwrap(),
+    );
+    match SlopeGrids::new(ground(), other, None).unwrap_err() {
+        DismechError::GridMismatch {
+            file, reference, ..
+        } => {
+            assert_eq!(
+                (file.as_str(), reference.as_str()),
+                ("slip.asc", "ground.asc")
+            )
+        }
+        e => panic!("{e}"),
+    }
+    // A hole in the slip surface inside the slide.
+    let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
+    match SlopeGrids::new(ground(), holed, None).unwrap_err() {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
+            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1))
+        }
+        e => panic!("{e}"),
+    }
+    // No ground data where the slip surface is given.
+    let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
+    match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
+            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1))
+        }
+        e => panic!("{e}"),
+    }
+    // Water table missing over a valid column.
+    let w = named("water.asc", "1 1 1\n1 1 -9999\n1 1 1\n");
+    match SlopeGrids::new(
+        ground(),
+        named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"),
+        Some(w),
+    )
+    .unwrap_err()
+    {
+        DismechError::GridCell {
+            file, row, column, ..
+        } => {
+            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2))
+        }
+        e => panic!("{e}"),
+    }
+    // Slip surface above the ground everywhere.
+    let high = named("slip.asc", "11 11 11\n11 11 11\n11 11 11\n");
+    assert!(matches!(
+        SlopeGrids::new(ground(), high, None).unwrap_err(),
+        DismechError::NoValidColumn { .. }
+    ));
+    // NaN in a file is refused with its line and column.
+    let nan = parse_esri_ascii(&format!("{GRID}1 1 1\n1 NaN 1\n1 1 1\n"), "slip.asc").unwrap_err();
+    assert!(
+        matches!(
+            nan,
+            DismechError::GridFormat {
+                line: 8,
+                column: 3,
+                ..
+            }
+        ),
+        "{nan}"
+    );
+}
+
+#[test]
+fn bad_material_values_are_refused_with_their_name_and_value() {
+    let grids = slab(2, 2, 20.0, 270.0, 5.0, None);
+    for (m, name) in [
+        (
+            HpmMaterial {
+                poisson_ratio: 0.5,
+                ..HpmMaterial::paper()
+            },
+            "Poisson's ratio nu",
+        ),
+        (
+            HpmMaterial {
+                cohesion: -1.0,
+                ..HpmMaterial::paper()
+            },
+            "cohesion c",
+        ),
+        (
+            HpmMaterial {
+                friction_angle_deg: 90.0,
+                ..HpmMaterial::paper()
+            },
+            "friction angle phi (degrees)",
+        ),
+        (
+            HpmMaterial {
+                friction_angle_deg: -1.0,
+                ..HpmMaterial::paper()
+            },
+            "friction angle phi (degrees)",
+        ),
+    ] {
+        match HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap_err() {
+            DismechError::InvalidParameter { name: got, .. } => assert_eq!(got, name),
+            e => panic!("{e}"),
+        }
+    }
+    assert!(HpmModel::new(
+        &grids,
+        &HpmMaterial::paper(),
+        &HpmSettings {
+            layers: 2,
+            penalty: 100.0
+        }
+    )
+    .is_err());
+}
+
+#[test]
+fn shape_matrix_moves_a_point_rigidly_for_rotation_dofs() {
+    let c = Point3::new(0.0, 0.0, 0.0);
+    let mut u = ElementDofs::zeros();
+    u[5] = 1e-3; // rotation about z
+    let d = displacement_at(&c, &u, &Point3::new(2.0, 0.0, 0.0));
+    assert!((d - Vector3::new(0.0, 2e-3, 0.0)).norm() < 1e-15);
+}
+
+#[test]
+fn shipped_slope_grids_are_the_reproduction_slope() {
+    let (ground, slip) = dismech::reproduce::yamaguchi_hpm::representative_slope().unwrap();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data");
+    assert_eq!(
+        dismech::grid::read_esri_ascii(&dir.join("hpm_ground.asc")).unwrap(),
+        ground
+    );
+    assert_eq!(
+        dismech::grid::read_esri_ascii(&dir.join("hpm_slip.asc")).unwrap(),
+        slip
+    );
+}
