@@ -51,6 +51,7 @@
 
 pub mod broad_phase;
 pub mod contact;
+pub mod dda;
 pub mod dem;
 pub mod error;
 pub mod grid;

@@ -3,6 +3,7 @@
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
 pub mod ellipse_pairs;
+pub mod hashimoto_dda;
 pub mod katsuki1990;
 mod random;
 pub mod yamada2000;
@@ -22,7 +23,7 @@ pub struct StudyOptions {
 }
 
 /// The studies that exist, by name.
-pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000"];
+pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000", "hashimoto-dda"];
 
 /// Run the study `name` (or every study for `all`).
 pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
@@ -36,6 +37,7 @@ fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
     match name {
         "katsuki1990" => katsuki1990::reproduce(options),
         "yamada2000" => yamada2000::reproduce(options),
+        "hashimoto-dda" => hashimoto_dda::reproduce(options),
         other => Err(DismechError::UnknownStudy(
             other.to_string(),
             STUDIES.join(", "),
