@@ -25,7 +25,7 @@ struct Cli {
 enum Command {
     /// Reproduce a paper's examples and compare with its numbers.
     Reproduce {
-        /// Study name (katsuki1990, yamada2000) or `all`.
+        /// Study name (katsuki1990, yamada2000, hashimoto-dda) or `all`.
         study: String,
         /// Output folder; each study writes into OUT/<study>/.
         #[arg(long, default_value = "results")]

@@ -149,3 +149,326 @@ proptest! {
         }
     }
 }
+
+fn rotated(points: &[(f64, f64)], angle: f64, shift: Vec2) -> Vec<Point> {
+    let (c, s) = (angle.cos(), angle.sin());
+    points
+        .iter()
+        .map(|&(x, y)| Point::new(c * x - s * y + shift.x, s * x + c * y + shift.y))
+        .collect()
+}
+
+/// A single block under a uniform stress applied as edge tractions
+/// `t = σ n` takes exactly the strain `D⁻¹ σ` (one static step; the rigid
+/// unknowns held), for a convex and a concave block.
+#[test]
+fn patch_test_uniform_stress_gives_the_exact_strain() {
+    let shapes: [Vec<Point>; 2] = [
+        rotated(
+            &[(0.0, 0.0), (2.0, 0.1), (2.3, 1.2), (0.8, 1.9), (-0.4, 0.9)],
+            0.0,
+            Vec2::zeros(),
+        ),
+        rotated(
+            &[
+                (0.0, 0.0),
+                (2.0, 0.0),
+                (2.0, 1.0),
+                (1.0, 1.0),
+                (1.0, 2.0),
+                (0.0, 2.0),
+            ],
+            0.3,
+            Vec2::new(5.0, -1.0),
+        ),
+    ];
+    let sigma = [2.0e6, -1.0e6, 0.7e6];
+    for vertices in shapes {
+        let mut block = Block::new(&vertices, material(), 0).unwrap();
+        for e in 0..block.vertex_count() {
+            let (a, b) = (block.vertex(e), block.vertex(e + 1));
+            let t = b - a;
+            let n = Vec2::new(t.y, -t.x) / t.norm();
+            let traction = Vec2::new(
+                sigma[0] * n.x + sigma[2] * n.y,
+                sigma[2] * n.x + sigma[1] * n.y,
+            );
+            block.edge_tractions.push((e, traction));
+        }
+        let rigid = [true, true, true, false, false, false];
+        block.prescribed = Some(Prescribed {
+            mask: rigid,
+            motion: std::sync::Arc::new(|_| [0.0; 6]),
+        });
+        let d = block.elastic_matrix();
+        let exact = d.try_inverse().unwrap() * nalgebra::Vector3::from(sigma);
+        let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+        let settings = DdaSettings {
+            gravity: Vec2::zeros(),
+            dynamic: false,
+            ..DdaSettings::default()
+        };
+        let mut model = DdaModel::new(vec![block], law, settings).unwrap();
+        // A long step makes the inertia term of static DDA vanish (c_a = 2/Δt²).
+        let report = model.advance(1e3).unwrap();
+        assert_eq!(report.status, StepStatus::Converged);
+        let strain = model.blocks()[0]
+            .displacement
+            .fixed_rows::<3>(3)
+            .into_owned();
+        for k in 0..3 {
+            assert!(
+                (strain[k] - exact[k]).abs() <= 1e-9 * exact.norm(),
+                "{strain} vs {exact}"
+            );
+        }
+        let stress = model.blocks()[0].stress;
+        for k in 0..3 {
+            assert!((stress[k] - sigma[k]).abs() <= 1e-6 * 2e6, "{stress}");
+        }
+    }
+}
+
+/// A block on a fixed plane inclined at β, starting in normal equilibrium:
+/// acceleration along the slope after the start-up transient.
+fn incline_acceleration(beta_deg: f64, phi_deg: f64) -> (f64, f64) {
+    let beta = beta_deg.to_radians();
+    let p = 1e9;
+    let m = material();
+    let g = 9.8;
+    let weight = m.density * 0.5 * g;
+    let settle = 0.5 * weight * beta.cos() / p;
+    let n = Vec2::new(-beta.sin(), beta.cos());
+    let mut base = Block::new(
+        &rotated(
+            &[(-3.0, -0.5), (3.0, -0.5), (3.0, 0.0), (-3.0, 0.0)],
+            beta,
+            Vec2::zeros(),
+        ),
+        m,
+        0,
+    )
+    .unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    let block = Block::new(
+        &rotated(
+            &[(-0.5, 0.0), (0.5, 0.0), (0.5, 0.5), (-0.5, 0.5)],
+            beta,
+            -n * settle,
+        ),
+        m,
+        1,
+    )
+    .unwrap();
+    let law = PenaltyCoulomb::new(
+        p,
+        phi_deg.to_radians().tan(),
+        FrictionIntegration::ReturnMapping,
+    )
+    .unwrap();
+    let settings = DdaSettings {
+        gravity: Vec2::new(0.0, -g),
+        overlap_tolerance: 1e-4,
+        ..DdaSettings::default()
+    };
+    let mut model = DdaModel::new(vec![base, block], law, settings).unwrap();
+    let down = -Vec2::new(beta.cos(), beta.sin());
+    let mut samples = Vec::new();
+    for step in 1..=300 {
+        let report = model.advance(1e-3).unwrap();
+        assert_eq!(report.status, StepStatus::Converged);
+        if step == 100 || step == 300 {
+            let b = &model.blocks()[1];
+            samples.push((
+                Vec2::new(b.velocity[0], b.velocity[1]).dot(&down),
+                Vec2::new(b.displacement[0], b.displacement[1]).dot(&down),
+            ));
+        }
+    }
+    ((samples[1].0 - samples[0].0) / 0.2, samples[1].1)
+}
+
+#[test]
+fn block_on_incline_slides_with_g_sin_minus_cos_tan_phi_above_phi() {
+    let (beta, phi) = (40.0f64, 30.0f64);
+    let (a, _) = incline_acceleration(beta, phi);
+    let (b, f) = (beta.to_radians(), phi.to_radians());
+    let exact = 9.8 * (b.sin() - b.cos() * f.tan());
+    assert!((a - exact).abs() <= 1e-3 * exact, "a = {a}, exact {exact}");
+}
+
+#[test]
+fn block_on_incline_sticks_below_phi() {
+    let (a, s) = incline_acceleration(20.0, 30.0);
+    // The elastic shear displacement is m g sin β / (2 p) ≈ 1.8e-6 m.
+    let elastic = 2200.0 * 0.5 * 9.8 * 20f64.to_radians().sin() / 2e9;
+    assert!(s.abs() <= 3.0 * elastic, "moved {s} m down the slope");
+    assert!(a.abs() <= 1e-3, "acceleration {a}");
+}
+
+/// The event-driven rigid solution against a brute-force integration with
+/// a step of 1 µs.
+#[test]
+fn rigid_sliding_block_solution_matches_a_fine_time_integration() {
+    let mu = 36.4f64.to_radians().tan();
+    let g = 9.8;
+    let shaking = Shaking::study(mu);
+    let (a, w) = (shaking.amplitude, shaking.omega());
+    let h = 1e-6;
+    let steps = (shaking.duration / h) as usize;
+    let (mut s, mut v) = (0.0f64, 0.0f64);
+    let mut times = Vec::new();
+    let mut brute = Vec::new();
+    for k in 0..steps {
+        let t = k as f64 * h;
+        let drive = a * w * w * (w * t).sin();
+        let accel = if v != 0.0 {
+            drive - v.signum() * mu * g
+        } else if drive.abs() > mu * g {
+            drive - drive.signum() * mu * g
+        } else {
+            0.0
+        };
+        let v_new = v + h * accel;
+        v = if v != 0.0 && v_new * v < 0.0 {
+            0.0
+        } else {
+            v_new
+        };
+        s += h * v;
+        if (k + 1) % 1000 == 0 {
+            times.push((k + 1) as f64 * h);
+            brute.push(s);
+        }
+    }
+    let exact = rigid_sliding_block(&shaking, mu, g, &times);
+    let peak = exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(peak > 0.01, "the block slides: peak {peak}");
+    let err = exact
+        .iter()
+        .zip(&brute)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(err <= 1e-4 * peak, "max difference {err}");
+}
+
+#[test]
+fn bad_blocks_and_laws_are_refused_naming_the_block() {
+    let bow_tie = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 1.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 1.0),
+    ];
+    assert!(matches!(
+        Block::new(&bow_tie, material(), 4),
+        Err(DismechError::InvalidPolygon { block: 4, .. })
+    ));
+    let flat = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(2.0, 0.0),
+    ];
+    assert!(matches!(
+        Block::new(&flat, material(), 2),
+        Err(DismechError::InvalidPolygon { block: 2, .. })
+    ));
+    let mut clockwise = rect(0.0, 0.0, 1.0, 1.0);
+    clockwise.reverse();
+    assert!(matches!(
+        Block::new(&clockwise, material(), 1),
+        Err(DismechError::InvalidPolygon { block: 1, .. })
+    ));
+    let incompressible = BlockMaterial {
+        poisson_ratio: 0.5,
+        ..material()
+    };
+    assert!(matches!(
+        Block::new(&rect(0.0, 0.0, 1.0, 1.0), incompressible, 3),
+        Err(DismechError::InvalidBlock {
+            block: 3,
+            name: "Poisson's ratio",
+            ..
+        })
+    ));
+    for p in [0.0, -1.0, f64::NAN] {
+        assert!(matches!(
+            PenaltyCoulomb::new(p, 0.5, FrictionIntegration::ReturnMapping),
+            Err(DismechError::InvalidParameter { .. })
+        ));
+    }
+    // Block 1 sinks 1 cm into block 0.
+    let blocks = vec![
+        Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap(),
+        Block::new(&rect(-0.5, -0.01, 0.5, 0.5), material(), 1).unwrap(),
+    ];
+    let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+    match DdaModel::new(blocks, law, DdaSettings::default()) {
+        Err(DismechError::BlocksOverlap {
+            vertex_block: 1,
+            edge_block: 0,
+            depth,
+            ..
+        }) => {
+            assert!((depth - 0.01).abs() < 1e-12)
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// With no iterations allowed, every step fails: the step is halved down to
+/// the bound and the run stops with a status saying what failed.
+#[test]
+fn a_step_that_cannot_converge_is_reduced_then_reported() {
+    let blocks = vec![
+        {
+            let mut b = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();
+            b.prescribed = Some(Prescribed::fixed());
+            b
+        },
+        Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap(),
+    ];
+    let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+    let settings = DdaSettings {
+        max_newton: 0,
+        max_open_close: 0,
+        min_dt_ratio: 1.0 / 8.0,
+        ..DdaSettings::default()
+    };
+    let mut model = DdaModel::new(blocks, law, settings).unwrap();
+    let report = model.advance(1e-3).unwrap();
+    assert_eq!(report.reductions, 3);
+    match report.status {
+        StepStatus::Failed { dt, time, .. } => {
+            assert!((dt - 1e-3 / 8.0).abs() < 1e-15);
+            assert_eq!(time, 0.0);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(model.time(), 0.0);
+}
+
+/// The sparse analysis is reused while the contact list is unchanged: a
+/// resting block needs one symbolic analysis for many steps.
+#[test]
+fn symbolic_analysis_is_reused_while_the_contacts_are_unchanged() {
+    let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    let p = 1e9;
+    let settle = 0.5 * 2200.0 * 0.5 * 9.8 / p;
+    let block = Block::new(&rect(-0.5, -settle, 0.5, 0.5 - settle), material(), 1).unwrap();
+    let law = PenaltyCoulomb::new(p, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+    let settings = DdaSettings {
+        overlap_tolerance: 1e-4,
+        ..DdaSettings::default()
+    };
+    let mut model = DdaModel::new(vec![base, block], law, settings).unwrap();
+    for _ in 0..50 {
+        assert_eq!(model.advance(1e-3).unwrap().status, StepStatus::Converged);
+    }
+    assert_eq!(model.symbolic_analyses(), 1);
+    let sum: f64 = model.contacts().iter().map(|c| c.force_on_vertex.y).sum();
+    assert!(
+        (sum - 2200.0 * 0.5 * 9.8).abs() <= 1e-6 * 2200.0 * 0.5 * 9.8,
+        "contact forces {sum} against the weight"
+    );
+}

@@ -279,6 +279,9 @@ pub fn run_sliding(
     })
 }
 
+/// A curve of `(x, y)` points.
+pub type Curve = Vec<(f64, f64)>;
+
 /// Normal stress of the direct shear test (Pa).
 pub const SHEAR_NORMAL_STRESS: f64 = 1e6;
 /// Total shear displacement (m).
@@ -320,7 +323,7 @@ pub fn direct_shear_model(integration: FrictionIntegration) -> Result<DdaModel> 
 pub fn run_direct_shear(
     steps: usize,
     integration: FrictionIntegration,
-) -> Result<(Vec<(f64, f64)>, Vec<Vec<f64>>)> {
+) -> Result<(Curve, Vec<Vec<f64>>)> {
     let mut model = direct_shear_model(integration)?;
     let dt = 1.0 / steps as f64;
     let mut curve = vec![(0.0, 0.0)];
@@ -557,6 +560,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     );
     let mut table = String::from("| law | Δt (s) | p = 2e4 kN/m | 2e5 | 2e6 | 2e7 | spread | target |\n|---|---|---|---|---|---|---|---|\n");
     let mut peak_exact = 0.0f64;
+    let mut failures = String::new();
     for integration in integrations() {
         let label = integration.label();
         for dt in TIME_STEPS {
@@ -569,7 +573,10 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                 let run = match run {
                     Ok(run) => run,
                     Err(e) => {
-                        let _ = writeln!(report, "\n{label}, Δt = {dt} s, p = {penalty_kn:e} kN/m did not complete: {e}\n");
+                        let _ = writeln!(
+                            failures,
+                            "- {label}, Δt = {dt} s, p = {penalty_kn:e} kN/m did not complete: {e}"
+                        );
                         checks.push(reported(id, format!("{label}, dt = {dt} s, penalty {penalty_kn:e} kN/m: did not complete ({e})"), None, f64::NAN));
                         errors.push(f64::NAN);
                         continue;
@@ -676,7 +683,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             }
         }
     }
-    let _ = writeln!(report, "{peak_exact:.5} m.\n\n{table}");
+    let _ = writeln!(report, "{peak_exact:.5} m.\n\n{table}\n{failures}");
 
     // Newton convergence: the see-saw, whose contact edge rotates.
     let see_saw = see_saw_residuals(12, 0.05)?;
