@@ -431,10 +431,12 @@ pub const PENALTIES_KN: [f64; 4] = [2e4, 2e5, 2e6, 2e7];
 pub const TIME_STEPS: [f64; 2] = [0.001, 0.01];
 /// Load-step counts of the direct shear test.
 pub const SHEAR_STEPS: [usize; 3] = [20, 50, 200];
+/// Steps and step size of the see-saw of the Newton study.
+pub const SEE_SAW: (usize, f64) = (30, 0.02);
 /// Relative residual below which Newton iterates are at round-off (a
 /// residual of 1e-11 of the contact forces is a displacement error of order
 /// 1e-16 m times the penalty).
-const ROUND_OFF: f64 = 1e-11;
+pub const ROUND_OFF: f64 = 1e-11;
 /// The paper's tolerance on the return-mapping peak shear stress.
 const PEAK_TOLERANCE: f64 = 1e-3;
 
@@ -561,6 +563,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let mut table = String::from("| law | Δt (s) | p = 2e4 kN/m | 2e5 | 2e6 | 2e7 | spread | target |\n|---|---|---|---|---|---|---|---|\n");
     let mut peak_exact = 0.0f64;
     let mut failures = String::new();
+    let mut reduction_lines = String::new();
     for integration in integrations() {
         let label = integration.label();
         for dt in TIME_STEPS {
@@ -587,6 +590,11 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                     histories.extend(run.residuals.iter().cloned());
                 }
                 let e = run.max_rel_error;
+                let _ = writeln!(
+                    reduction_lines,
+                    "- {label}, Δt = {dt} s, p = {penalty_kn:e} kN/m: {}",
+                    run.reductions
+                );
                 errors.push(e);
                 let target = target_error(dt);
                 let verdict = match integration {
@@ -683,10 +691,35 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             }
         }
     }
-    let _ = writeln!(report, "{peak_exact:.5} m.\n\n{table}\n{failures}");
+    let _ = writeln!(
+        report,
+        "{peak_exact:.5} m.\n\n{table}\n{failures}\nTime-step halvings made by the automatic Δt control (bound: Δt/256), per run in the order of the table:\n\n{reduction_lines}"
+    );
+    // Why the softest penalty departs from the rigid solution: in stick the
+    // compliant contacts let the block lag the base by m a_b / (2 p), so slip
+    // starts with a relative velocity m A ω³ / (2 p) that the rigid block
+    // lacks and keeps it while it slides (friction is constant in slip).
+    let mass = sliding_material().density * l * h;
+    let lag: Vec<String> = PENALTIES_KN
+        .iter()
+        .map(|p| {
+            let v = mass * shaking.amplitude * shaking.omega().powi(3) / (2.0 * p * 1e3);
+            let drift = v * 0.5 / shaking.frequency / peak_exact;
+            format!(
+                "{p:e} kN/m: v_lag = {:.2e} m/s, v_lag · T/2 / max|s_exact| = {:.2} %",
+                v,
+                100.0 * drift
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        report,
+        "\nWhere the return-mapping runs miss the paper's targets, the cause is the contact compliance, not the friction integration: the conventional runs at Δt = 0.001 s show the same error at 2e4 kN/m. In stick the penalty springs let the block lag the base by m a_b/(2 p_c), so slip starts with the relative velocity v_lag = m A ω³/(2 p_c) that the rigid block lacks, and keeps it while sliding (the friction force is constant). Its drift over half a period, relative to the peak displacement (an estimate of the error, ∝ (ω/ω_contact)²):\n\n- {}\n",
+        lag.join("\n- ")
+    );
 
     // Newton convergence: the see-saw, whose contact edge rotates.
-    let see_saw = see_saw_residuals(12, 0.05)?;
+    let see_saw = see_saw_residuals(SEE_SAW.0, SEE_SAW.1)?;
     let ratios = log_ratios(&see_saw, ROUND_OFF);
     let orders = convergence_orders(&see_saw, ROUND_OFF);
     let median = |v: &[f64]| {
@@ -694,7 +727,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         sorted.sort_by(|a, b| a.total_cmp(b));
         sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN)
     };
-    let _ = writeln!(report, "\n## Newton–Raphson convergence\n\nRelative residual norms per iteration (the first is at the predictor; iterations continue until the contact states repeat and the residual is at most 1e-10; below {ROUND_OFF:e} the residual is at round-off).\n\nSee-saw (plank 3 m × 0.2 m rocking on the apex of a fixed fulcrum, p_c = 1e8 N/m, Δt = 0.05 s, 12 steps; the contact edge rotates, so the contact is geometrically nonlinear):\n");
+    let _ = writeln!(report, "\n## Newton–Raphson convergence\n\nRelative residual norms per iteration (the first is at the predictor; iterations continue until the contact states repeat and the residual is at most 1e-10; below {ROUND_OFF:e} the residual is at round-off).\n\nSee-saw (plank 3 m × 0.2 m rocking on the apex of a fixed fulcrum, p_c = 1e8 N/m, Δt = {} s, {} steps; the contact edge rotates, so the contact is geometrically nonlinear):\n", SEE_SAW.1, SEE_SAW.0);
     for (k, h) in see_saw.iter().enumerate() {
         let shown: Vec<String> = h.iter().map(|r| format!("{r:.1e}")).collect();
         let _ = writeln!(report, "- step {}: {}", k + 1, shown.join(", "));
