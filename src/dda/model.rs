@@ -701,6 +701,39 @@ impl DdaModel {
         Ok(())
     }
 
+    /// Like [`DdaModel::advance`], for drivers that cannot go on after a
+    /// failed step: a [`StepStatus::Failed`] becomes
+    /// [`DismechError::StepFailed`], which says what failed.
+    pub fn advance_or_stop(&mut self, dt: f64) -> Result<StepReport> {
+        let report = self.advance(dt)?;
+        match report.status {
+            StepStatus::Failed {
+                time,
+                dt,
+                ref reason,
+            } => Err(DismechError::StepFailed {
+                time,
+                dt,
+                reason: reason.to_string(),
+            }),
+            StepStatus::Converged => Ok(report),
+        }
+    }
+
+    /// Total contact force on `block` from the contacts of the last
+    /// accepted step (N/m).
+    pub fn contact_force_on(&self, block: usize) -> Vec2 {
+        self.contacts.iter().fold(Vec2::zeros(), |f, c| {
+            if c.contact.vertex_block == block {
+                f + c.force_on_vertex
+            } else if c.contact.edge_block == block {
+                f - c.force_on_vertex
+            } else {
+                f
+            }
+        })
+    }
+
     /// Advance the model by `dt` (s), in sub-steps if a step has to be
     /// reduced. Misuse (`dt ≤ 0`) is an error; a step that cannot be
     /// completed within the reduction bound is a [`StepStatus::Failed`].

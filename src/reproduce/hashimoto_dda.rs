@@ -21,9 +21,9 @@ use std::sync::Arc;
 use super::StudyOptions;
 use crate::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
-    Prescribed, StepStatus,
+    Prescribed,
 };
-use crate::error::{DismechError, Result};
+use crate::error::Result;
 use crate::math::{Point, Vec2};
 use crate::output::plot::{line_chart, Series};
 use crate::output::{write_atomically, write_csv, Check, Summary};
@@ -249,14 +249,7 @@ pub fn run_sliding(
     let mut reductions = 0;
     let mut residuals = Vec::new();
     for _ in 0..steps {
-        let report = model.advance(dt)?;
-        if let StepStatus::Failed { time, dt, reason } = report.status {
-            return Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            });
-        }
+        let report = model.advance_or_stop(dt)?;
         reductions += report.reductions;
         residuals.push(report.residuals);
         let b = model.blocks();
@@ -329,28 +322,11 @@ pub fn run_direct_shear(
     let mut curve = vec![(0.0, 0.0)];
     let mut residuals = Vec::new();
     for _ in 0..steps {
-        let report = model.advance(dt)?;
-        if let StepStatus::Failed { time, dt, reason } = report.status {
-            return Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            });
-        }
+        let report = model.advance_or_stop(dt)?;
         residuals.push(report.residuals);
-        let force: f64 = model
-            .contacts()
-            .iter()
-            .filter(|c| c.contact.vertex_block == 1)
-            .map(|c| c.force_on_vertex.x)
-            .sum::<f64>()
-            - model
-                .contacts()
-                .iter()
-                .filter(|c| c.contact.vertex_block == 0)
-                .map(|c| c.force_on_vertex.x)
-                .sum::<f64>();
-        curve.push((model.blocks()[1].displacement[0], -force / 1.0));
+        // The shear stress resists the imposed motion over the 1 m length.
+        let force = model.contact_force_on(1);
+        curve.push((model.blocks()[1].displacement[0], -force.x / 1.0));
     }
     Ok((curve, residuals))
 }
@@ -380,14 +356,7 @@ pub fn see_saw_residuals(steps: usize, dt: f64) -> Result<Vec<Vec<f64>>> {
     let mut model = DdaModel::new(vec![base, plank], law, settings)?;
     let mut out = Vec::new();
     for _ in 0..steps {
-        let report = model.advance(dt)?;
-        if let StepStatus::Failed { time, dt, reason } = report.status {
-            return Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            });
-        }
+        let report = model.advance_or_stop(dt)?;
         out.push(report.residuals);
     }
     Ok(out)
