@@ -25,7 +25,12 @@
 //!   (at most `max_open_close`).
 //! * **Newton**: once the set is stable, return mapping iterates to
 //!   `‖R‖ ≤ tol · scale` with the consistent tangent (at most `max_newton`
-//!   iterations). The conventional law has no Newton phase: as in classic
+//!   iterations), with the LOCK/CLOSE states and slip directions unchanged
+//!   between the last two iterates. A backtracking line search on `‖R‖`
+//!   halves a step that does not lower the residual (at most 8 times); it
+//!   stops Newton from cycling between the two slip directions of a contact
+//!   that should stick, which at high penalties would otherwise cost Δt
+//!   reductions. Full steps are recorded in [`StepReport::step_lengths`]. The conventional law has no Newton phase: as in classic
 //!   DDA the step is accepted when the open/closed states no longer change,
 //!   and its tangent has no Hessian terms (the paper's remark after eq. 13).
 //! * **Δt reduction**: a step whose iteration fails, whose solve is
@@ -174,6 +179,9 @@ pub struct StepReport {
     pub smallest_dt: f64,
     /// Relative residual norms of every iteration of the last sub-step.
     pub residuals: Vec<f64>,
+    /// Length (1 = full Newton step) of the update after each residual of
+    /// `residuals` but the last, from the backtracking line search.
+    pub step_lengths: Vec<f64>,
     /// Open–close iterations of the last sub-step.
     pub open_close_iterations: usize,
 }
@@ -195,6 +203,32 @@ pub struct ContactReport {
     pub point: Point,
 }
 
+/// Most halvings of a Newton step in the backtracking line search.
+const LINE_SEARCH: usize = 8;
+
+/// The parts of a step's residual that do not depend on the iterate.
+struct Parts {
+    /// Per block: effective stiffness (elastic + Newmark mass + fixed points).
+    block_k: Vec<Mat6>,
+    /// Per block: force at zero increment.
+    block_f: Vec<Dof6>,
+    /// Prescribed unknowns.
+    mask: Vec<bool>,
+    /// Consistent linearisation (return mapping) or classic.
+    consistent: bool,
+}
+
+/// Residual and contact states at one iterate.
+struct Evaluation {
+    r: Vec<f64>,
+    norm: f64,
+    contact_scale: f64,
+    /// Per contact: 0 open, 1 LOCK, 2 / 3 CLOSE sliding with `t_s ≥ 0` / `< 0`.
+    regimes: Vec<i8>,
+    states: Vec<PenaltyState>,
+    forces: Vec<(f64, f64)>,
+}
+
 /// Result of one trial sub-step.
 struct Trial {
     dt: f64,
@@ -202,6 +236,7 @@ struct Trial {
     states: Vec<PenaltyState>,
     forces: Vec<(f64, f64)>,
     residuals: Vec<f64>,
+    step_lengths: Vec<f64>,
     open_close: usize,
 }
 
@@ -475,95 +510,32 @@ impl DdaModel {
             block_f[fp.block] += t.transpose() * (fp.point - fp.anchor) * fp.stiffness;
         }
 
+        let parts = Parts {
+            block_k,
+            block_f,
+            mask,
+            consistent,
+        };
         let max_iter = self.settings.max_open_close + self.settings.max_newton;
         let mut residuals = Vec::new();
+        let mut step_lengths = Vec::new();
         let mut open_close = 0;
         let mut newton = 0;
         let mut last_open: Option<Vec<bool>> = None;
-        let mut last_slip: Option<Vec<bool>> = None;
+        let mut last_regimes: Option<Vec<i8>> = None;
+        let mut eval = self.assemble(&d, dt, contacts, &parts, true);
         for _ in 0..=max_iter {
-            // Evaluate.
-            let mut r = vec![0.0; n];
-            self.system.dimension = n;
-            self.system.clear_values();
-            let mut contact_scale = 0.0f64;
-            for i in 0..nb {
-                let di = Self::block_dofs(&d, i);
-                let fi = block_f[i] + block_k[i] * di;
-                for a in 0..6 {
-                    r[6 * i + a] += fi[a];
-                    for b in 0..6 {
-                        let (ra, cb) = (6 * i + a, 6 * i + b);
-                        if !mask[ra] && !mask[cb] {
-                            self.system.add(ra, cb, block_k[i][(a, b)]);
-                        }
-                    }
-                    if mask[6 * i + a] {
-                        self.system.add(6 * i + a, 6 * i + a, 1.0);
-                    }
-                }
-            }
-            let mut states = Vec::with_capacity(contacts.len());
-            let mut forces = Vec::with_capacity(contacts.len());
-            let mut open = Vec::with_capacity(contacts.len());
-            let mut slip = Vec::with_capacity(contacts.len());
-            for c in contacts {
-                let (kin, resp) = self.evaluate(c, &d, dt);
-                let (t_n, t_s) = (resp.force[0], resp.force[1]);
-                contact_scale = contact_scale.max(t_n.abs() + t_s.abs());
-                let g_ov: Grad12 = -kin.grad_gap;
-                let force: Grad12 = g_ov * t_n + kin.grad_shear * t_s;
-                let rows = [g_ov, kin.grad_shear];
-                let mut kt = nalgebra::SMatrix::<f64, 12, 12>::zeros();
-                for (p, rp) in rows.iter().enumerate() {
-                    for (q, rq) in rows.iter().enumerate() {
-                        let cpq = resp.tangent[(p, q)];
-                        if cpq != 0.0 {
-                            kt += rp * rq.transpose() * cpq;
-                        }
-                    }
-                }
-                if consistent && resp.regime != Regime::Open {
-                    kt -= kin.hess_gap * t_n;
-                    kt += kin.hess_shear * t_s;
-                }
-                let dofs = |a: usize| {
-                    if a < 6 {
-                        6 * c.vertex_block + a
-                    } else {
-                        6 * c.edge_block + a - 6
-                    }
-                };
-                for a in 0..12 {
-                    r[dofs(a)] += force[a];
-                    for b in 0..12 {
-                        let (ra, cb) = (dofs(a), dofs(b));
-                        if !mask[ra] && !mask[cb] {
-                            self.system.add(ra, cb, kt[(a, b)]);
-                        }
-                    }
-                }
-                open.push(resp.regime == Regime::Open);
-                slip.push(resp.regime == Regime::Slip);
-                states.push(resp.state);
-                forces.push((t_n, t_s));
-            }
-            for (k, m) in mask.iter().enumerate() {
-                if *m {
-                    r[k] = 0.0;
-                }
-            }
-            let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-            let rel = norm / scale.max(contact_scale).max(f64::MIN_POSITIVE);
+            let rel = eval.norm / scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
             residuals.push(rel);
             if !rel.is_finite() {
                 return Err(StepFailure::Solve("non-finite residual".into()));
             }
+            let open: Vec<bool> = eval.regimes.iter().map(|&r| r == 0).collect();
             let settled = last_open.as_ref() == Some(&open);
-            let slip_settled = last_slip.as_ref() == Some(&slip);
             if settled {
                 let done = if consistent {
-                    slip_settled && rel <= self.settings.residual_tolerance
+                    last_regimes.as_ref() == Some(&eval.regimes)
+                        && rel <= self.settings.residual_tolerance
                 } else {
                     true
                 };
@@ -571,9 +543,10 @@ impl DdaModel {
                     return Ok(Trial {
                         dt,
                         d,
-                        states,
-                        forces,
+                        states: eval.states,
+                        forces: eval.forces,
                         residuals,
+                        step_lengths,
                         open_close,
                     });
                 }
@@ -593,8 +566,8 @@ impl DdaModel {
                 }
             }
             last_open = Some(open);
-            last_slip = Some(slip);
-            self.system.rhs.copy_from_slice(&r);
+            last_regimes = Some(eval.regimes.clone());
+            self.system.rhs.copy_from_slice(&eval.r);
             for x in self.system.rhs.iter_mut() {
                 *x = -*x;
             }
@@ -602,14 +575,138 @@ impl DdaModel {
                 .solver
                 .solve(&self.system)
                 .map_err(|e| StepFailure::Solve(e.to_string()))?;
-            for (x, dx) in d.iter_mut().zip(&delta) {
-                *x += dx;
+            // Backtracking on ‖R‖ (return mapping only): a full step that does
+            // not lower the residual is halved, up to `LINE_SEARCH` times, so
+            // that Newton does not cycle between the two slip directions of
+            // a contact that should stick.
+            let mut alpha = 1.0;
+            let mut next = Vec::with_capacity(n);
+            for attempt in 0..=LINE_SEARCH {
+                next.clear();
+                next.extend(d.iter().zip(&delta).map(|(x, dx)| x + alpha * dx));
+                if !consistent || attempt == LINE_SEARCH {
+                    break;
+                }
+                let probe = self.assemble(&next, dt, contacts, &parts, false);
+                if probe.norm < (1.0 - 1e-4 * alpha) * eval.norm || eval.norm == 0.0 {
+                    break;
+                }
+                alpha *= 0.5;
             }
+            // The step reached (accepted, or the last halving) is taken.
+            step_lengths.push(alpha);
+            std::mem::swap(&mut d, &mut next);
+            eval = self.assemble(&d, dt, contacts, &parts, true);
         }
         Err(StepFailure::NewtonNotConverged {
             iterations: newton,
             residual: residuals.last().copied().unwrap_or(f64::NAN),
         })
+    }
+
+    /// Residual (and, with `matrix`, the tangent in `self.system`) at the
+    /// iterate `d`.
+    fn assemble(
+        &mut self,
+        d: &[f64],
+        dt: f64,
+        contacts: &[VertexEdge],
+        parts: &Parts,
+        matrix: bool,
+    ) -> Evaluation {
+        let nb = self.blocks.len();
+        let n = 6 * nb;
+        let mask = &parts.mask;
+        let mut r = vec![0.0; n];
+        if matrix {
+            self.system.dimension = n;
+            self.system.clear_values();
+        }
+        for i in 0..nb {
+            let k = &parts.block_k[i];
+            let fi = parts.block_f[i] + k * Self::block_dofs(d, i);
+            for a in 0..6 {
+                r[6 * i + a] += fi[a];
+                if !matrix {
+                    continue;
+                }
+                for b in 0..6 {
+                    let (ra, cb) = (6 * i + a, 6 * i + b);
+                    if !mask[ra] && !mask[cb] {
+                        self.system.add(ra, cb, k[(a, b)]);
+                    }
+                }
+                if mask[6 * i + a] {
+                    self.system.add(6 * i + a, 6 * i + a, 1.0);
+                }
+            }
+        }
+        let mut eval = Evaluation {
+            r: Vec::new(),
+            norm: 0.0,
+            contact_scale: 0.0,
+            regimes: Vec::with_capacity(contacts.len()),
+            states: Vec::with_capacity(contacts.len()),
+            forces: Vec::with_capacity(contacts.len()),
+        };
+        for c in contacts {
+            let (kin, resp) = self.evaluate(c, d, dt);
+            let (t_n, t_s) = (resp.force[0], resp.force[1]);
+            eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
+            let g_ov: Grad12 = -kin.grad_gap;
+            let force: Grad12 = g_ov * t_n + kin.grad_shear * t_s;
+            let dofs = |a: usize| {
+                if a < 6 {
+                    6 * c.vertex_block + a
+                } else {
+                    6 * c.edge_block + a - 6
+                }
+            };
+            for a in 0..12 {
+                r[dofs(a)] += force[a];
+            }
+            eval.regimes.push(match resp.regime {
+                Regime::Open => 0,
+                Regime::Stick => 1,
+                Regime::Slip if t_s >= 0.0 => 2,
+                Regime::Slip => 3,
+            });
+            eval.states.push(resp.state);
+            eval.forces.push((t_n, t_s));
+            if !matrix {
+                continue;
+            }
+            let rows = [g_ov, kin.grad_shear];
+            let mut kt = nalgebra::SMatrix::<f64, 12, 12>::zeros();
+            for (p, rp) in rows.iter().enumerate() {
+                for (q, rq) in rows.iter().enumerate() {
+                    let cpq = resp.tangent[(p, q)];
+                    if cpq != 0.0 {
+                        kt += rp * rq.transpose() * cpq;
+                    }
+                }
+            }
+            if parts.consistent && resp.regime != Regime::Open {
+                kt -= kin.hess_gap * t_n;
+                kt += kin.hess_shear * t_s;
+            }
+            for a in 0..12 {
+                for b in 0..12 {
+                    let (ra, cb) = (dofs(a), dofs(b));
+                    if !mask[ra] && !mask[cb] {
+                        self.system.add(ra, cb, kt[(a, b)]);
+                    }
+                }
+            }
+        }
+        for (k, m) in mask.iter().enumerate() {
+            if *m {
+                r[k] = 0.0;
+            }
+        }
+        eval.norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        eval.r = r;
+        eval
     }
 
     /// Largest motion over the increment `d` of a vertex near a neighbouring
@@ -750,6 +847,7 @@ impl DdaModel {
             reductions: 0,
             smallest_dt: dt,
             residuals: Vec::new(),
+            step_lengths: Vec::new(),
             open_close_iterations: 0,
         };
         while end - self.time > 1e-12 * dt {
@@ -772,6 +870,7 @@ impl DdaModel {
                     report.substeps += 1;
                     report.smallest_dt = report.smallest_dt.min(h);
                     report.residuals = trial.residuals;
+                    report.step_lengths = trial.step_lengths;
                     report.open_close_iterations = trial.open_close;
                     self.current_dt = (2.0 * self.current_dt).min(dt);
                 }
