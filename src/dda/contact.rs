@@ -29,7 +29,9 @@
 //! candidates the edge the contact had in the previous step is kept;
 //! otherwise the one with the largest `g_n` (for a vertex inside, the
 //! shallowest penetration — the edge it entered through; for a vertex near
-//! a corner, vertex–vertex, the edge it would cross first).
+//! a corner, vertex–vertex, the edge it would cross first). Both blocks'
+//! vertices are tested against the other's edges, so where two corners meet
+//! each may hold a contact on the other's edge; no rule merges the two.
 
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 
