@@ -310,25 +310,36 @@ pub fn direct_shear_model(integration: FrictionIntegration) -> Result<DdaModel> 
     DdaModel::new(vec![lower, upper], law, settings)
 }
 
-/// Shear stress–shear displacement curve of the direct shear test in
-/// `steps` load steps: `(displacement m, stress Pa)`, and the residual
-/// histories.
-pub fn run_direct_shear(
-    steps: usize,
-    integration: FrictionIntegration,
-) -> Result<(Curve, Vec<Vec<f64>>)> {
+/// One direct shear run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShearRun {
+    /// `(shear displacement m, shear stress Pa)` after each step.
+    pub curve: Curve,
+    /// Vertical contact force on the upper block after each step (N/m).
+    pub normal: Vec<f64>,
+    /// Residual histories of the steps.
+    pub residuals: Vec<Vec<f64>>,
+}
+
+/// The direct shear test in `steps` load steps.
+pub fn run_direct_shear(steps: usize, integration: FrictionIntegration) -> Result<ShearRun> {
     let mut model = direct_shear_model(integration)?;
     let dt = 1.0 / steps as f64;
-    let mut curve = vec![(0.0, 0.0)];
-    let mut residuals = Vec::new();
+    let mut run = ShearRun {
+        curve: vec![(0.0, 0.0)],
+        normal: vec![0.0],
+        residuals: Vec::new(),
+    };
     for _ in 0..steps {
         let report = model.advance_or_stop(dt)?;
-        residuals.push(report.residuals);
+        run.residuals.push(report.residuals);
         // The shear stress resists the imposed motion over the 1 m length.
         let force = model.contact_force_on(1);
-        curve.push((model.blocks()[1].displacement[0], -force.x / 1.0));
+        run.curve
+            .push((model.blocks()[1].displacement[0], -force.x / 1.0));
+        run.normal.push(force.y);
     }
-    Ok((curve, residuals))
+    Ok(run)
 }
 
 /// Residual histories of a see-saw: a plank 3 m × 0.2 m (edge block)
@@ -436,20 +447,28 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let mut histories: Vec<Vec<f64>> = Vec::new();
 
     // Verification 1: direct shear.
-    report.push_str("## Direct shear (Figs. 6–7)\n\nLower block 2 m × 0.5 m fixed; upper block 1 m × 0.5 m on its middle, horizontal displacement and rotation imposed, 1 MPa on its top edge; E = 1 GPa, ν = 0.2, p_c = 10 GN/m, φ = 30°; static DDA (velocities reset after every step), no gravity. Shear stress = horizontal contact force on the upper block / 1 m, in the equilibrium of each step.\n\n| law | steps | peak τ / (σ tan φ) | paper |\n|---|---|---|---|\n");
+    report.push_str("## Direct shear (Figs. 6–7)\n\nLower block 2 m × 0.5 m fixed; upper block 1 m × 0.5 m on its middle, horizontal displacement and rotation imposed, 1 MPa on its top edge; E = 1 GPa, ν = 0.2, p_c = 10 GN/m, φ = 30°; static DDA (velocities reset after every step), no gravity. Shear stress = horizontal contact force on the upper block / 1 m, in the equilibrium of each step (for the conventional law, before the pull-back of the next step). The normal force N differs from 1 MN because the 1 MPa traction acts on the deformed top edge.\n\n| law | steps | peak τ / (σ tan φ) | N / (1 MPa × 1 m) at the peak | peak τ / (N tan φ) | paper |\n|---|---|---|---|---|---|\n");
     for integration in integrations() {
         let mut series = Vec::new();
         for steps in SHEAR_STEPS {
-            let (curve, residuals) = run_direct_shear(steps, integration)?;
+            let run = run_direct_shear(steps, integration)?;
+            let curve = run.curve;
             if integration == FrictionIntegration::ReturnMapping {
-                histories.extend(residuals);
+                histories.extend(run.residuals);
             }
-            let peak = curve.iter().map(|p| p.1).fold(0.0, f64::max) / strength;
+            let (at, peak) =
+                curve
+                    .iter()
+                    .enumerate()
+                    .fold((0, 0.0), |b, (k, p)| if p.1 > b.1 { (k, p.1) } else { b });
+            let peak = peak / strength;
+            let normal_ratio = run.normal[at] / SHEAR_NORMAL_STRESS;
             let label = integration.label();
             let id = format!("shear.peak_over_strength.{label}.steps{steps}");
             let _ = writeln!(
                 report,
-                "| {label} | {steps} | {peak:.5} | {} |",
+                "| {label} | {steps} | {peak:.5} | {normal_ratio:.6} | {:.6} | {} |",
+                peak / normal_ratio,
                 if label == "rm" {
                     "≈ 1 (Fig. 7b)"
                 } else {
