@@ -28,6 +28,10 @@
 //! * blocks are in plane stress by default (classic DDA);
 //! * within a step the displacement field is the linear one of eq. (14),
 //!   so a rotation `r₀` stretches a block slightly, as in classic DDA;
+//! * the density is kept as a block deforms, so its mass follows its area
+//!   (as in classic DDA);
+//! * the static analysis of classic DDA keeps the inertia term in the
+//!   equations and resets velocities after every step;
 //! * the shear reference point `x₀'` is the material point of the edge
 //!   under the vertex at the start of each step, and the shear force is
 //!   carried from step to step as contact history.
