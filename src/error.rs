@@ -193,6 +193,42 @@ pub enum DismechError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A DDA block has an invalid material value.
+    #[error("block {block}: invalid {name} = {value}: {requirement}")]
+    InvalidBlock {
+        /// Index of the block.
+        block: usize,
+        /// The parameter.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy.
+        requirement: &'static str,
+    },
+    /// Two DDA blocks overlap at the start by more than the tolerance.
+    #[error("vertex {vertex} of block {vertex_block} lies {depth:.3e} m inside block {edge_block} at the start, more than the tolerance {tolerance:.3e} m")]
+    BlocksOverlap {
+        /// Block owning the vertex.
+        vertex_block: usize,
+        /// The vertex.
+        vertex: usize,
+        /// Block it penetrates.
+        edge_block: usize,
+        /// Depth of the penetration.
+        depth: f64,
+        /// Largest penetration accepted at the start.
+        tolerance: f64,
+    },
+    /// A DDA step could not be completed even at the smallest time step.
+    #[error("DDA step failed at t = {time:.6} s with dt = {dt:.3e} s: {reason}; reduce the time step or the contact penalty")]
+    StepFailed {
+        /// Time reached.
+        time: f64,
+        /// The smallest step tried.
+        dt: f64,
+        /// What failed.
+        reason: String,
+    },
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

@@ -18,7 +18,7 @@
 //! | method (paper) | Shape | ContactLaw | Integrator | GlobalSolver | status |
 //! |---|---|---|---|---|---|
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
-//! | implicit DDA (003) | `Polygon` (6-DOF block) | penalty Coulomb with return mapping; the law's consistent tangent ([`contact::ContactResponse::tangent`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + Newton | pieces ready |
+//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`contact::ContactResponse::tangent`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + open–close + Newton | [`dda`] |
 //! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
 //! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | faer sparse LLᵀ factorised once ([`hpm::BlockMatrix`]), initial-stiffness iteration | [`hpm`] |
 //!
@@ -51,6 +51,7 @@
 
 pub mod broad_phase;
 pub mod contact;
+pub mod dda;
 pub mod dem;
 pub mod error;
 pub mod grid;

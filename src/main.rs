@@ -25,7 +25,7 @@ struct Cli {
 enum Command {
     /// Reproduce a paper's examples and compare with its numbers.
     Reproduce {
-        /// Study name (katsuki1990, yamada2000, yamaguchi-hpm) or `all`.
+        /// Study name (katsuki1990, yamada2000, hashimoto-dda, yamaguchi-hpm) or `all`.
         study: String,
         /// Output folder; each study writes into OUT/<study>/.
         #[arg(long, default_value = "results")]
@@ -147,6 +147,16 @@ fn main() -> ExitCode {
                                 c.computed,
                                 paper,
                                 c.tolerance
+                            );
+                        }
+                        for v in &s.values {
+                            let paper = v
+                                .paper
+                                .map(|p| format!("{p}"))
+                                .unwrap_or_else(|| "-".into());
+                            println!(
+                                "  [value] {:<33} computed {:>12.6e}  paper {:>8}",
+                                v.id, v.computed, paper
                             );
                         }
                         println!("  written to {}", out.join(&s.study).display());

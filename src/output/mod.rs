@@ -7,4 +7,4 @@ pub mod plot;
 mod summary;
 
 pub use atomic::{write_atomically, write_csv};
-pub use summary::{Check, Summary};
+pub use summary::{Check, Reported, Summary};

@@ -26,6 +26,25 @@ pub struct Check {
     pub passed: bool,
 }
 
+/// A number a study reports beside the paper's without a pass/fail
+/// judgement: where the paper sets no target for it, or where the target is
+/// not met and the description (and the study's report) says so. Unlike a
+/// [`Check`], it never makes `reproduce` fail.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reported {
+    /// Stable identifier, e.g. `sliding.max_rel_error.rm.dt0.001.penalty2e4`.
+    pub id: String,
+    /// What it is, and how it compares with the paper, in words.
+    pub description: String,
+    /// The paper's value or target, if the paper gives one.
+    pub paper: Option<f64>,
+    /// The value computed in this run (NaN, written `null`, when the run
+    /// did not complete).
+    pub computed: f64,
+    /// Unit of `paper` and `computed` (`"-"` for ratios).
+    pub unit: String,
+}
+
 /// The summary of one study.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
@@ -35,6 +54,8 @@ pub struct Summary {
     pub paper: String,
     /// The checks.
     pub checks: Vec<Check>,
+    /// Values reported without a judgement.
+    pub values: Vec<Reported>,
     /// Files written by the study (relative to the study folder).
     pub files: Vec<String>,
 }
@@ -43,6 +64,11 @@ impl Summary {
     /// Whether every check passed.
     pub fn all_passed(&self) -> bool {
         self.checks.iter().all(|c| c.passed)
+    }
+
+    /// The reported value with id `id`.
+    pub fn value(&self, id: &str) -> Option<&Reported> {
+        self.values.iter().find(|v| v.id == id)
     }
 
     /// The check with id `id`.

@@ -4,6 +4,7 @@
 
 pub mod ellipse_pairs;
 pub mod fill_patterns;
+pub mod hashimoto_dda;
 pub mod katsuki1990;
 mod random;
 pub mod yamada2000;
@@ -24,7 +25,12 @@ pub struct StudyOptions {
 }
 
 /// The studies that exist, by name.
-pub const STUDIES: &[&str] = &["katsuki1990", "yamada2000", "yamaguchi-hpm"];
+pub const STUDIES: &[&str] = &[
+    "katsuki1990",
+    "yamada2000",
+    "hashimoto-dda",
+    "yamaguchi-hpm",
+];
 
 /// Run the study `name` (or every study for `all`).
 pub fn run(name: &str, options: &StudyOptions) -> Result<Vec<Summary>> {
@@ -38,6 +44,7 @@ fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
     match name {
         "katsuki1990" => katsuki1990::reproduce(options),
         "yamada2000" => yamada2000::reproduce(options),
+        "hashimoto-dda" => hashimoto_dda::reproduce(options),
         "yamaguchi-hpm" => yamaguchi_hpm::reproduce(options),
         other => Err(DismechError::UnknownStudy(
             other.to_string(),

@@ -504,6 +504,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         study: "yamada2000".into(),
         paper: PAPER.into(),
         checks,
+        values: Vec::new(),
         files,
     };
     summary.write(&dir)?;

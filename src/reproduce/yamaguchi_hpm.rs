@@ -657,6 +657,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         study: "yamaguchi-hpm".into(),
         paper: PAPER.into(),
         checks,
+        values: Vec::new(),
         files,
     };
     summary.write(&dir)?;

@@ -42,7 +42,7 @@ use crate::error::Result;
 use crate::integrate::ExplicitEuler;
 use crate::math::{Point, Vec2};
 use crate::output::plot::{line_chart, Series};
-use crate::output::{write_atomically, write_csv, Check, Summary};
+use crate::output::{write_atomically, write_csv, Check, Reported, Summary};
 use crate::scene::{Frame, Scene};
 
 /// File name of the paper.
@@ -380,7 +380,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     spinner.set_message(
         "katsuki1990: Examples 2 and 3 (patterns A-E settle, then take the back pressure)",
     );
-    let (example_checks, report) = examples_2_and_3(&dir, 1.0, &mut files)?;
+    let (example_checks, values, report) = examples_2_and_3(&dir, 1.0, &mut files)?;
     checks.extend(example_checks);
     spinner.finish_and_clear();
     write_atomically(&dir.join("report.md"), report.as_bytes())?;
@@ -389,6 +389,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         study: "katsuki1990".into(),
         paper: PAPER.into(),
         checks,
+        values,
         files,
     };
     summary.write(&dir)?;
@@ -493,12 +494,13 @@ fn write_example1_outputs(
 
 /// Examples 2 and 3 at `scale` (see [`Pattern::layout`]): settle patterns
 /// A–E (two at a time), measure Example 2 on A–D, load all five with the
-/// back pressure; returns the checks and the Markdown report.
+/// back pressure; returns the checks, the reported values and the Markdown
+/// report.
 pub fn examples_2_and_3(
     dir: &Path,
     scale: f64,
     files: &mut Vec<String>,
-) -> Result<(Vec<Check>, String)> {
+) -> Result<(Vec<Check>, Vec<Reported>, String)> {
     use rayon::prelude::*;
     let patterns: Vec<Pattern> = EXAMPLE2.iter().copied().chain([PATTERN_E]).collect();
     let settled: Vec<PatternRun> = patterns
@@ -509,10 +511,15 @@ pub fn examples_2_and_3(
         .par_iter()
         .map(|run| Ok((run.pattern, run_back_pressure(run, |_, _| {})?)))
         .collect::<Result<_>>()?;
-    let mut checks = shape_anisotropy::example2_outputs(dir, &settled[..EXAMPLE2.len()], files)?;
+    let (mut checks, values) =
+        shape_anisotropy::example2_outputs(dir, &settled[..EXAMPLE2.len()], files)?;
     let (ex3_checks, ex3_table) = back_pressure::example3_outputs(dir, &loaded, files)?;
     checks.extend(ex3_checks);
-    Ok((checks, report(&settled[..EXAMPLE2.len()], &ex3_table)))
+    Ok((
+        checks,
+        values,
+        report(&settled[..EXAMPLE2.len()], &ex3_table),
+    ))
 }
 
 /// The Markdown report of Examples 2 and 3.

@@ -1,0 +1,229 @@
+//! The penalty Coulomb law of DDA in its two friction integrations (paper
+//! 003, §2.(2), eqs. 7–10 and Fig. 1), behind [`ContactLaw`]`<2>`.
+//!
+//! Normal: `t_n = p_c ⟨−g_n⟩` (eq. 7), no tension. Shear: the elastic part of
+//! the shear displacement carries `t_s = p_c g_s^e` (eq. 8) with the same
+//! penalty, limited by Coulomb's `|t_s| ≤ μ t_n`.
+//!
+//! * [`FrictionIntegration::ReturnMapping`] integrates eq. (9) by backward
+//!   Euler: trial `t_s* = t_s,n + p_c Δg_s`; if `f = |t_s*| − μ t_n ≤ 0` the
+//!   contact is in LOCK and `t_s = t_s*`, else it is in CLOSE (slip) and
+//!   `t_s = μ t_n sgn t_s*` (eq. 10). The consistent tangent
+//!   `∂(t_n, t_s)/∂(Δg_n, Δg_s)` is `[[p, 0], [0, p]]` in LOCK and
+//!   `[[p, 0], [μ p sgn t_s*, 0]]` in CLOSE — the unsymmetric slip tangent
+//!   that eqs. (12)–(13) express in virtual-work form (derived after
+//!   Wriggers (2006), penalty friction with return mapping).
+//! * [`FrictionIntegration::Conventional`] is the treatment of classic DDA
+//!   that the paper criticises (Fig. 1): the shear regime of a step is the
+//!   one the contact ended the previous step in. In LOCK the shear spring is
+//!   linear and *uncapped* during the step; if it ends above `μ t_n` it is
+//!   pulled back to `μ t_n` only in the stored state, so the excess becomes
+//!   an unbalanced force of the next step. In slide the friction force is
+//!   `μ t_n,n sgn`, a known load from the previous step's normal force; the
+//!   contact returns to LOCK when the relative motion reverses.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::contact::{
+    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+};
+use crate::error::{require_non_negative, require_positive, Result};
+
+/// How the friction law is integrated over a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FrictionIntegration {
+    /// Classic DDA: shear capped at the next step (paper 003 Fig. 1).
+    Conventional,
+    /// Implicit backward-Euler return mapping (paper 003 eqs. 9–10).
+    ReturnMapping,
+}
+
+impl FrictionIntegration {
+    /// Short label: `conv` or `rm`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Conventional => "conv",
+            Self::ReturnMapping => "rm",
+        }
+    }
+}
+
+/// History of a DDA contact, kept from one accepted step to the next.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PenaltyState {
+    /// Normal force `t_n` (N/m, ≥ 0) at the end of the step.
+    pub normal: f64,
+    /// Shear force `t_s` at the end of the step (after any pull-back).
+    pub shear: f64,
+    /// LOCK (`Stick`), CLOSE in slip (`Slip`) or `Open`.
+    pub regime: Option<Regime>,
+}
+
+/// The penalty Coulomb law of DDA.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PenaltyCoulomb {
+    penalty: f64,
+    friction: f64,
+    integration: FrictionIntegration,
+}
+
+impl PenaltyCoulomb {
+    /// A law with penalty `p_c` (N/m per m, > 0), friction coefficient
+    /// `μ = tan φ` (≥ 0) and the chosen integration.
+    pub fn new(penalty: f64, friction: f64, integration: FrictionIntegration) -> Result<Self> {
+        require_positive("contact penalty p_c", penalty)?;
+        require_non_negative("friction coefficient mu", friction)?;
+        Ok(Self {
+            penalty,
+            friction,
+            integration,
+        })
+    }
+
+    /// The penalty `p_c`.
+    pub fn penalty(&self) -> f64 {
+        self.penalty
+    }
+
+    /// The friction coefficient μ.
+    pub fn friction(&self) -> f64 {
+        self.friction
+    }
+
+    /// The integration in use.
+    pub fn integration(&self) -> FrictionIntegration {
+        self.integration
+    }
+
+    fn return_mapping(&self, t_n: f64, input: &ContactInput<2>, state: &PenaltyState) -> Out {
+        let p = self.penalty;
+        let trial = state.shear + p * input.increment[1];
+        let limit = self.friction * t_n;
+        if trial.abs() <= limit {
+            Out {
+                shear: trial,
+                d_shear: [0.0, p],
+                stored: trial,
+                regime: Regime::Stick,
+            }
+        } else {
+            let sign = trial.signum();
+            Out {
+                shear: limit * sign,
+                d_shear: [self.friction * p * sign, 0.0],
+                stored: limit * sign,
+                regime: Regime::Slip,
+            }
+        }
+    }
+
+    fn conventional(&self, t_n: f64, input: &ContactInput<2>, state: &PenaltyState) -> Out {
+        let p = self.penalty;
+        let limit = self.friction * t_n;
+        match state.regime {
+            Some(Regime::Slip) => {
+                // Sliding: friction from the previous normal force, a known
+                // load for the whole step; back to LOCK at the next step if
+                // the relative motion reversed.
+                let sign = state.shear.signum();
+                let shear = self.friction * state.normal * sign;
+                let (stored, regime) = if sign * input.increment[1] >= 0.0 {
+                    (limit * sign, Regime::Slip)
+                } else {
+                    (shear.clamp(-limit, limit), Regime::Stick)
+                };
+                Out {
+                    shear,
+                    d_shear: [0.0, 0.0],
+                    stored,
+                    regime,
+                }
+            }
+            _ => {
+                // LOCK: linear spring, capped only in the stored state.
+                let trial = state.shear + p * input.increment[1];
+                let (stored, regime) = if trial.abs() > limit {
+                    (limit * trial.signum(), Regime::Slip)
+                } else {
+                    (trial, Regime::Stick)
+                };
+                Out {
+                    shear: trial,
+                    d_shear: [0.0, p],
+                    stored,
+                    regime,
+                }
+            }
+        }
+    }
+}
+
+/// Shear part of one evaluation.
+struct Out {
+    shear: f64,
+    /// `∂t_s/∂(Δg_n approach, Δg_s)`.
+    d_shear: [f64; 2],
+    stored: f64,
+    regime: Regime,
+}
+
+impl ContactLaw<2> for PenaltyCoulomb {
+    type State = PenaltyState;
+
+    /// `input.overlap` is `−g_n` of the current iterate and
+    /// `input.increment[1]` the shear increment `Δg_s` of the step; the
+    /// returned force is `[t_n, t_s]`.
+    fn evaluate(
+        &self,
+        input: &ContactInput<2>,
+        state: &PenaltyState,
+    ) -> ContactResponse<2, PenaltyState> {
+        if input.overlap <= 0.0 {
+            return ContactResponse {
+                force: SVector::zeros(),
+                spring_force: SVector::zeros(),
+                tangent: SMatrix::zeros(),
+                regime: Regime::Open,
+                state: PenaltyState {
+                    normal: 0.0,
+                    shear: 0.0,
+                    regime: Some(Regime::Open),
+                },
+            };
+        }
+        let t_n = self.penalty * input.overlap;
+        let out = match self.integration {
+            FrictionIntegration::ReturnMapping => self.return_mapping(t_n, input, state),
+            FrictionIntegration::Conventional => self.conventional(t_n, input, state),
+        };
+        let force = SVector::<f64, 2>::new(t_n, out.shear);
+        let tangent = SMatrix::<f64, 2, 2>::new(self.penalty, 0.0, out.d_shear[0], out.d_shear[1]);
+        ContactResponse {
+            force,
+            spring_force: force,
+            tangent,
+            regime: out.regime,
+            state: PenaltyState {
+                normal: t_n,
+                shear: out.stored,
+                regime: Some(out.regime),
+            },
+        }
+    }
+
+    fn strength(&self) -> Option<Strength> {
+        Some(Strength {
+            cohesion: 0.0,
+            friction: self.friction,
+        })
+    }
+
+    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
+        Some(StiffnessBound {
+            normal: self.penalty,
+            shear: self.penalty,
+            normal_damping: 0.0,
+            shear_damping: 0.0,
+        })
+    }
+}
