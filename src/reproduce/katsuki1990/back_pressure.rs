@@ -22,7 +22,7 @@ use crate::error::Result;
 use crate::integrate::ExplicitEuler;
 use crate::math::Vec2;
 use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check};
+use crate::output::{write_csv, Check, Reported};
 use crate::reproduce::fill_patterns::back_pressure_scene;
 
 /// The uniform back storage sand pressure (Pa).
@@ -150,6 +150,17 @@ fn paper_shape(name: &str) -> &'static str {
     }
 }
 
+/// The centroid height ratio of the paper's description: 1/3 for the
+/// triangular distributions, 1/2 for the uniform one, none for C (only
+/// "larger at the upper part").
+fn paper_centroid(name: &str) -> Option<f64> {
+    match name {
+        "A" | "B" | "D" => Some(1.0 / 3.0),
+        "E" => Some(0.5),
+        _ => None,
+    }
+}
+
 /// How a front-wall distribution reads from its centroid height ratio.
 pub fn shape_of(centroid_ratio: f64) -> &'static str {
     if centroid_ratio < 0.42 {
@@ -161,14 +172,15 @@ pub fn shape_of(centroid_ratio: f64) -> &'static str {
     }
 }
 
-/// Checks, CSV files and plots of Example 3; also returns the rows of the
-/// report table. File names are pushed to `files`.
+/// Checks, reported values, CSV files and plots of Example 3; also returns
+/// the rows of the report table. File names are pushed to `files`.
 pub(super) fn example3_outputs(
     dir: &Path,
     runs: &[(Pattern, BackPressureRun)],
     files: &mut Vec<String>,
-) -> Result<(Vec<Check>, Vec<String>)> {
+) -> Result<(Vec<Check>, Vec<Reported>, Vec<String>)> {
     let mut checks = Vec::new();
+    let mut values = Vec::new();
     let mut table = Vec::new();
     let mut rows = Vec::new();
     let mut contact_rows = Vec::new();
@@ -201,6 +213,17 @@ pub(super) fn example3_outputs(
             passed: (vertical - 1.0).abs() <= 0.005,
         });
         let centroid = run.front_centroid_ratio();
+        values.push(Reported {
+            id: format!("ex3.front_centroid.{name}"),
+            description: format!(
+                "pattern {name}: height of the resultant front-wall force / H under back pressure (1/3 triangular, 1/2 uniform); reads as {}; paper: {}",
+                shape_of(centroid),
+                paper_shape(name)
+            ),
+            paper: paper_centroid(name),
+            computed: centroid,
+            unit: "-".into(),
+        });
         let lower = run.front_lower_half_share();
         let front = run.reaction_of("front").x.abs() / run.applied;
         table.push(format!(
@@ -282,5 +305,5 @@ pub(super) fn example3_outputs(
         &series,
     )?;
     files.push("ex3_front_pressure.svg".into());
-    Ok((checks, table))
+    Ok((checks, values, table))
 }

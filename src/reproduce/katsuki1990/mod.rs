@@ -511,10 +511,11 @@ pub fn examples_2_and_3(
         .par_iter()
         .map(|run| Ok((run.pattern, run_back_pressure(run, |_, _| {})?)))
         .collect::<Result<_>>()?;
-    let (mut checks, values) =
+    let (mut checks, mut values) =
         shape_anisotropy::example2_outputs(dir, &settled[..EXAMPLE2.len()], files)?;
-    let (ex3_checks, ex3_table) = back_pressure::example3_outputs(dir, &loaded, files)?;
+    let (ex3_checks, ex3_values, ex3_table) = back_pressure::example3_outputs(dir, &loaded, files)?;
     checks.extend(ex3_checks);
+    values.extend(ex3_values);
     Ok((
         checks,
         values,
