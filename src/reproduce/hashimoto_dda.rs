@@ -1,7 +1,8 @@
 //! Hashimoto, Koyama & Kikumoto, *Development of DDA incorporating implicit
 //! integration of friction law* (paper 003): the direct shear test (§3.(1),
 //! Figs. 6–7), the sliding block under shaking (§3.(2), Figs. 8–11) against
-//! the exact rigid sliding-block solution (Newmark 1965), and the
+//! the exact rigid sliding-block solution (Newmark 1965) and the exact
+//! solution of the same block on an elastic–plastic contact spring, and the
 //! convergence order of Newton–Raphson.
 //!
 //! Choices where the figures are missing (stated in the report as well):
