@@ -100,9 +100,24 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
         let solver = HpmSolver::new(&model).unwrap();
         let elastic = solver.elastic(&model, &seismic).unwrap();
         let fs = elastic.safety_factor(&model);
+        let sliding = elastic.sliding_safety_factor(&model);
         let hov = hovland(&model, &seismic, towards).unwrap().safety_factor;
-        eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM {fs:.5}, Hovland {hov:.5}");
+        eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM stress ratio {fs:.5}, HPM along the sliding direction {sliding:.5}, Hovland {hov:.5}");
         assert!((fs / exact - 1.0).abs() < 0.01, "HPM {fs} vs exact {exact}");
+        // The resultant shear of the springs balances the load's component
+        // along the plane, which points down the dip.
+        let (hx, hy) = elastic.sliding_direction(&model).unwrap();
+        let (tx, ty) = (towards.to_radians().cos(), towards.to_radians().sin());
+        assert!(
+            (hx * ty - hy * tx).abs() < 1e-9 && hx * tx + hy * ty > 0.0,
+            "sliding direction ({hx}, {hy}) vs ({tx}, {ty})"
+        );
+        // Along that direction the sums are those of global equilibrium.
+        assert!(
+            (sliding / exact - 1.0).abs() < 1e-6,
+            "HPM along the sliding direction {sliding} vs exact {exact}"
+        );
+        assert!(sliding >= fs * (1.0 - 1e-12));
         assert!(
             (hov / exact - 1.0).abs() < 1e-9,
             "Hovland {hov} vs exact {exact}"
@@ -158,6 +173,7 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
         .unwrap();
     assert!(r.convergence.converged(), "{:?}", r.convergence);
     assert!((r.safety_factor(&model) / exact - 1.0).abs() < 0.01);
+    assert!((r.sliding_safety_factor(&model) / exact - 1.0).abs() < 0.01);
     let srf = strength_reduction(&solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
     eprintln!(
         "exact {exact:.4}; strength reduction in [{:.4}, {:.4}]",

@@ -30,8 +30,10 @@
 //! Choices where the paper is silent or garbled (also in the reproduction
 //! report): the errata's `k_n = (1 − ν) E' / ((1 + ν)(1 − 2ν) h)`; p = 100
 //! by default; the `(s, t, n)` frame made orthonormal; the global safety
-//! factor `Σ (c + σ tan φ) A / Σ |τ| A`; corner heights interpolated from
-//! the cell-centre values of the rasters.
+//! factor, as the stress ratio `Σ (c + σ tan φ) A / Σ |τ| A` and, after
+//! Hovland's assumption of one sliding direction, as
+//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`); corner heights
+//! interpolated from the cell-centre values of the rasters.
 
 mod analysis;
 mod element;
