@@ -391,6 +391,59 @@ fn layer_refinement_3_6_12_converges_in_fs_and_top_displacement() {
     );
 }
 
+#[test]
+fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
+    let m = HpmMaterial::paper();
+    let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction_deg: 270.0,
+    };
+    let direct = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let settings = dismech::solve::CgSettings {
+        relative_tolerance: 1e-10,
+        max_iterations: 20_000,
+    };
+    let iterative = HpmIterativeSolver::new(&model, settings)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let Convergence::Converged {
+        iterations,
+        residual,
+    } = iterative.convergence
+    else {
+        panic!("PCG did not converge: {:?}", iterative.convergence);
+    };
+    let difference: f64 = direct
+        .displacements
+        .iter()
+        .zip(&iterative.displacements)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
+    let size: f64 = direct
+        .displacements
+        .iter()
+        .map(|a| a * a)
+        .sum::<f64>()
+        .sqrt();
+    eprintln!(
+        "PCG: {iterations} iterations, residual {residual:e}, relative difference from Cholesky {:e}",
+        difference / size
+    );
+    assert!(residual <= 1e-9, "{residual}");
+    assert!(difference <= 1e-6 * size, "{}", difference / size);
+    let (a, b) = (
+        direct.safety_factor(&model),
+        iterative.safety_factor(&model),
+    );
+    assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
+}
+
 const GRID: &str = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";
 
 fn named(name: &str, values: &str) -> NamedRaster {

@@ -49,6 +49,7 @@ use super::model::{HpmModel, SlipSpring};
 use super::stiffness::{BlockMatrix, CholeskyFactor};
 use crate::contact::{MohrCoulombSpring, Regime, Strength};
 use crate::error::Result;
+use crate::solve::{conjugate_gradient, BlockJacobi, CgSettings};
 
 /// Iteration limits of the nonlinear solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -150,7 +151,11 @@ pub struct HpmSolver {
 impl HpmSolver {
     /// Assemble and factorise the elastic stiffness of `model`.
     pub fn new(model: &HpmModel) -> Result<Self> {
-        let stiffness = model.stiffness();
+        Self::from_stiffness(model.stiffness())
+    }
+
+    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
+    pub fn from_stiffness(stiffness: BlockMatrix) -> Result<Self> {
         let factor = stiffness.factorize()?;
         Ok(Self { stiffness, factor })
     }
@@ -170,33 +175,7 @@ impl HpmSolver {
     /// per element, conjugate to the DOFs of eq. 2).
     pub fn elastic_with_loads(&self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
         let u = self.factor.solve(f)?;
-        let ku = self.stiffness.multiply(&u);
-        let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
-        let residual = norm(&out) / norm(f);
-        let tractions = model
-            .slip
-            .iter()
-            .map(|s| {
-                let d = model.slip_displacement(s, &u);
-                SpringTraction {
-                    normal: s.normal_stiffness * d[0],
-                    shear: [s.shear_stiffness * d[1], s.shear_stiffness * d[2]],
-                    regime: if d[0] < 0.0 {
-                        Regime::Open
-                    } else {
-                        Regime::Stick
-                    },
-                }
-            })
-            .collect();
-        Ok(HpmResult {
-            displacements: u,
-            tractions,
-            convergence: Convergence::Converged {
-                iterations: 0,
-                residual,
-            },
-        })
+        Ok(elastic_result(model, &self.stiffness, f, u, 0, true))
     }
 
     /// Nonlinear analysis with the slip strength divided by `reduction`
@@ -301,6 +280,98 @@ impl HpmSolver {
     }
 }
 
+/// The elastic stiffness of a model with a block-Jacobi preconditioner of
+/// one dense block per grid column (all its layers), for elastic analyses
+/// by preconditioned conjugate gradients instead of a sparse Cholesky
+/// factor: memory grows with the stiffness, not with the factor's fill.
+#[derive(Debug)]
+pub struct HpmIterativeSolver {
+    stiffness: BlockMatrix,
+    preconditioner: BlockJacobi,
+    /// Stopping rule of the conjugate gradients.
+    pub settings: CgSettings,
+}
+
+impl HpmIterativeSolver {
+    /// Assemble the stiffness of `model` and factorise its column blocks.
+    pub fn new(model: &HpmModel, settings: CgSettings) -> Result<Self> {
+        let stiffness = model.stiffness();
+        let groups: Vec<_> = model.columns.iter().map(|c| c.elements.clone()).collect();
+        let preconditioner = BlockJacobi::new(stiffness.group_blocks(&groups))?;
+        Ok(Self {
+            stiffness,
+            preconditioner,
+            settings,
+        })
+    }
+
+    /// Elastic analysis: eq. (4) solved by PCG. The convergence reports the
+    /// PCG iterations and the relative residual `‖F − K U‖ / ‖F‖`
+    /// recomputed from the returned U; `NotConverged` if PCG stopped at its
+    /// iteration limit.
+    pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
+        seismic.validate()?;
+        let f = model.loads(seismic);
+        let solution =
+            conjugate_gradient(&self.stiffness, &self.preconditioner, &f, &self.settings)?;
+        Ok(elastic_result(
+            model,
+            &self.stiffness,
+            &f,
+            solution.x,
+            solution.iterations,
+            solution.converged,
+        ))
+    }
+}
+
+/// The elastic result of displacements `u` under loads `f`: the slip
+/// tractions of linear springs (tension kept, reported as open) and the
+/// relative residual `‖f − K u‖ / ‖f‖`.
+fn elastic_result(
+    model: &HpmModel,
+    stiffness: &BlockMatrix,
+    f: &[f64],
+    u: Vec<f64>,
+    iterations: usize,
+    converged: bool,
+) -> HpmResult {
+    let ku = stiffness.multiply(&u);
+    let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
+    let residual = norm(&out) / norm(f);
+    let tractions = model
+        .slip
+        .iter()
+        .map(|s| {
+            let d = model.slip_displacement(s, &u);
+            SpringTraction {
+                normal: s.normal_stiffness * d[0],
+                shear: [s.shear_stiffness * d[1], s.shear_stiffness * d[2]],
+                regime: if d[0] < 0.0 {
+                    Regime::Open
+                } else {
+                    Regime::Stick
+                },
+            }
+        })
+        .collect();
+    let convergence = if converged {
+        Convergence::Converged {
+            iterations,
+            residual,
+        }
+    } else {
+        Convergence::NotConverged {
+            iterations,
+            residual,
+        }
+    };
+    HpmResult {
+        displacements: u,
+        tractions,
+        convergence,
+    }
+}
 /// Add `A Nᵀ Rᵀ local` of a slip spring into `r` (the internal force of
 /// local tractions `local`, eqs. 27–29).
 fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>, r: &mut [f64]) {
