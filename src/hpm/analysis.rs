@@ -312,8 +312,12 @@ impl HpmIterativeSolver {
     pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
         seismic.validate()?;
         let f = model.loads(seismic);
-        let solution =
-            conjugate_gradient(&self.stiffness, &self.preconditioner, &f, &self.settings)?;
+        let solution = conjugate_gradient(
+            &self.stiffness.rows(),
+            &self.preconditioner,
+            &f,
+            &self.settings,
+        )?;
         Ok(elastic_result(
             model,
             &self.stiffness,

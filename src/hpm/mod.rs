@@ -61,5 +61,5 @@ pub use grids::{NamedRaster, SlopeGrids};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
-pub use stiffness::{BlockMatrix, CholeskyFactor, FactorTimings};
+pub use stiffness::{BlockMatrix, BlockRows, CholeskyFactor, FactorTimings};
 pub use strength_reduction::{strength_reduction, StrengthReduction};

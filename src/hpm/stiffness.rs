@@ -20,6 +20,7 @@ use std::time::{Duration, Instant};
 use std::ops::Range;
 
 use nalgebra::DMatrix;
+use rayon::prelude::*;
 
 use super::element::{Block, ElementDofs, ELEMENT_DOF};
 use crate::solve::{LinearOperator, SolveError};
@@ -97,6 +98,42 @@ impl BlockMatrix {
     }
 }
 
+/// A [`BlockMatrix`] by block rows: `rows[a]` lists `(b, k, transposed)`,
+/// the coupling block `k` of row a with column b (`K_ab`, stored as
+/// `K_baᵀ` when `transposed`). Its product runs over the rows in parallel
+/// (rayon).
+#[derive(Debug, Clone)]
+pub struct BlockRows<'a> {
+    matrix: &'a BlockMatrix,
+    rows: Vec<Vec<(usize, usize, bool)>>,
+}
+
+impl LinearOperator for BlockRows<'_> {
+    fn dimension(&self) -> usize {
+        self.matrix.dimension()
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        let block =
+            |e: usize| ElementDofs::from_column_slice(&x[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)]);
+        y.par_chunks_mut(ELEMENT_DOF)
+            .zip(&self.rows)
+            .enumerate()
+            .for_each(|(a, (out, row))| {
+                let mut sum = self.matrix.diagonal[a] * block(a);
+                for &(b, k, transposed) in row {
+                    let coupling = &self.matrix.coupling[k].2;
+                    if transposed {
+                        sum += coupling.tr_mul(&block(b));
+                    } else {
+                        sum += coupling * block(b);
+                    }
+                }
+                out.copy_from_slice(sum.as_slice());
+            });
+    }
+}
+
 impl LinearOperator for BlockMatrix {
     fn dimension(&self) -> usize {
         BlockMatrix::dimension(self)
@@ -124,6 +161,17 @@ impl LinearOperator for BlockMatrix {
 }
 
 impl BlockMatrix {
+    /// The blocks of K arranged by block row, for parallel products
+    /// ([`BlockRows`]).
+    pub fn rows(&self) -> BlockRows<'_> {
+        let mut rows: Vec<Vec<(usize, usize, bool)>> = vec![Vec::new(); self.diagonal.len()];
+        for (k, (a, b, _)) in self.coupling.iter().enumerate() {
+            rows[*a].push((*b, k, false));
+            rows[*b].push((*a, k, true));
+        }
+        BlockRows { matrix: self, rows }
+    }
+
     /// The lower triangle in compressed-column form.
     fn lower_csc(&self) -> Result<SparseColMat<usize, f64>, SolveError> {
         let elements = self.diagonal.len();

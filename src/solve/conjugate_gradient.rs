@@ -20,13 +20,14 @@
 //!
 //! [`BlockJacobi`] partitions the unknowns into consecutive blocks, takes
 //! the dense diagonal block of `K` on each, and applies the inverse of
-//! each block (dense Cholesky). Choosing blocks that hold strongly coupled
+//! each block (from its dense Cholesky factor), the blocks in parallel. Choosing blocks that hold strongly coupled
 //! unknowns (for HPM, all the elements of one grid column) removes those
 //! couplings from the condition number that PCG sees.
 
 use std::marker::PhantomData;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVectorView, DVectorViewMut};
+use rayon::prelude::*;
 
 use super::{GlobalSolver, SolveError};
 
@@ -207,8 +208,9 @@ pub fn conjugate_gradient<A: LinearOperator + ?Sized, M: Preconditioner + ?Sized
 pub struct BlockJacobi {
     /// First unknown of each block.
     offsets: Vec<usize>,
-    /// Lower Cholesky factor of each block.
-    factors: Vec<DMatrix<f64>>,
+    /// Inverse of each block (from its Cholesky factor), applied as a
+    /// dense product.
+    inverses: Vec<DMatrix<f64>>,
 }
 
 impl BlockJacobi {
@@ -218,7 +220,7 @@ impl BlockJacobi {
     /// naming its index.
     pub fn new(blocks: Vec<DMatrix<f64>>) -> Result<Self, SolveError> {
         let mut offsets = Vec::with_capacity(blocks.len());
-        let mut factors = Vec::with_capacity(blocks.len());
+        let mut inverses = Vec::with_capacity(blocks.len());
         let mut start = 0;
         for (index, block) in blocks.into_iter().enumerate() {
             if !block.is_square() {
@@ -235,11 +237,11 @@ impl BlockJacobi {
                 ))
             })?;
             offsets.push(start);
-            factors.push(factor.unpack());
+            inverses.push(factor.inverse());
             start += size;
         }
         offsets.push(start);
-        Ok(Self { offsets, factors })
+        Ok(Self { offsets, inverses })
     }
 
     /// Number of unknowns covered.
@@ -249,20 +251,31 @@ impl BlockJacobi {
 }
 
 impl Preconditioner for BlockJacobi {
+    /// `z_k = K_kk⁻¹ r_k`, the blocks in parallel (rayon).
     fn apply(&self, r: &[f64], z: &mut [f64]) {
-        for (k, l) in self.factors.iter().enumerate() {
-            let (a, b) = (self.offsets[k], self.offsets[k + 1]);
-            let mut v = DVector::from_column_slice(&r[a..b]);
-            l.solve_lower_triangular_mut(&mut v);
-            l.tr_solve_lower_triangular_mut(&mut v);
-            z[a..b].copy_from_slice(v.as_slice());
+        let mut parts = Vec::with_capacity(self.inverses.len());
+        let mut rest = z;
+        for k in 0..self.inverses.len() {
+            let (part, tail) = rest.split_at_mut(self.offsets[k + 1] - self.offsets[k]);
+            parts.push(part);
+            rest = tail;
         }
+        parts
+            .into_par_iter()
+            .zip(&self.inverses)
+            .zip(&self.offsets)
+            .for_each(|((part, inverse), &a)| {
+                let v = DVectorView::from_slice(&r[a..a + part.len()], part.len());
+                let mut out = DVectorViewMut::from_slice(part, v.len());
+                out.gemv(1.0, inverse, &v, 0.0);
+            });
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::DVector;
 
     struct Dense(DMatrix<f64>);
 
