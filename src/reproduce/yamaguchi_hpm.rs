@@ -102,6 +102,24 @@ fn planar_exact(m: &HpmMaterial, dip: f64, plan: f64, thickness: f64, kh: f64) -
     (m.cohesion * plan / c + w * (c - kh * s) * m.friction()) / (w * (s + kh * c))
 }
 
+/// The paper's trends as ratios of the Fs in `fs` whose keys start with
+/// `prefix` (`""` for the stress ratio, `"sliding."` along the sliding
+/// direction), beside the paper's ratios and Hovland's.
+fn trends(fs: &std::collections::BTreeMap<String, f64>, prefix: &str) -> String {
+    let f = |key: &str| fs[&format!("{prefix}{key}")];
+    format!(
+        "nonlinear / elastic static = {:.4} (paper 1.747 / 1.764 = {:.4}); seismic / static elastic = {:.4} (paper {:.4}), nonlinear = {:.4} (paper {:.4}); Hovland / elastic HPM = {:.4} static, {:.4} seismic.",
+        f("nonlinear.static") / f("elastic.static"),
+        1.747 / 1.764,
+        f("elastic.seismic") / f("elastic.static"),
+        1.104 / 1.764,
+        f("nonlinear.seismic") / f("nonlinear.static"),
+        1.155 / 1.747,
+        fs["hovland.static"] / f("elastic.static"),
+        fs["hovland.seismic"] / f("elastic.seismic"),
+    )
+}
+
 /// The paper's Fs for `key` (`elastic.static`, …; Table 2), NaN if none.
 fn paper_fs(key: &str) -> f64 {
     PAPER_FS
@@ -461,15 +479,8 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     }
     let _ = writeln!(
         report,
-        "\nPaper trends as values: nonlinear / elastic static = {:.4} (paper 1.747 / 1.764 = {:.4}); seismic / static elastic = {:.4} (paper {:.4}), nonlinear = {:.4} (paper {:.4}); Hovland / elastic HPM = {:.4} static, {:.4} seismic.",
-        fs["nonlinear.static"] / fs["elastic.static"],
-        1.747 / 1.764,
-        fs["elastic.seismic"] / fs["elastic.static"],
-        1.104 / 1.764,
-        fs["nonlinear.seismic"] / fs["nonlinear.static"],
-        1.155 / 1.747,
-        fs["hovland.static"] / fs["elastic.static"],
-        fs["hovland.seismic"] / fs["elastic.seismic"],
+        "\nPaper trends as values (stress ratio): {}",
+        trends(&fs, "")
     );
     let _ = writeln!(
         report,
@@ -506,15 +517,8 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     }
     let _ = writeln!(
         report,
-        "\nAlong the sliding direction: nonlinear / elastic static = {:.4} (paper {:.4}); seismic / static elastic = {:.4} (paper {:.4}), nonlinear = {:.4} (paper {:.4}); Hovland / elastic HPM = {:.4} static, {:.4} seismic.",
-        fs["sliding.nonlinear.static"] / fs["sliding.elastic.static"],
-        1.747 / 1.764,
-        fs["sliding.elastic.seismic"] / fs["sliding.elastic.static"],
-        1.104 / 1.764,
-        fs["sliding.nonlinear.seismic"] / fs["sliding.nonlinear.static"],
-        1.155 / 1.747,
-        fs["hovland.static"] / fs["sliding.elastic.static"],
-        fs["hovland.seismic"] / fs["sliding.elastic.seismic"],
+        "\nAlong the sliding direction: {}",
+        trends(&fs, "sliding.")
     );
     let _ = writeln!(
         report,

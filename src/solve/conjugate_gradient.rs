@@ -166,7 +166,7 @@ pub fn conjugate_gradient<A: LinearOperator + ?Sized, M: Preconditioner + ?Sized
     for iteration in 0..settings.max_iterations {
         operator.apply(&p, &mut kp);
         let curvature = dot(&p, &kp);
-        if !(curvature > 0.0) {
+        if curvature.is_nan() || curvature <= 0.0 {
             return Err(SolveError::NonPositive {
                 what: "curvature pᵀKp (matrix not positive definite)",
                 index: iteration,
