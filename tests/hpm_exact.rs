@@ -100,9 +100,24 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
         let solver = HpmSolver::new(&model).unwrap();
         let elastic = solver.elastic(&model, &seismic).unwrap();
         let fs = elastic.safety_factor(&model);
+        let sliding = elastic.sliding_safety_factor(&model);
         let hov = hovland(&model, &seismic, towards).unwrap().safety_factor;
-        eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM {fs:.5}, Hovland {hov:.5}");
+        eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM stress ratio {fs:.5}, HPM along the sliding direction {sliding:.5}, Hovland {hov:.5}");
         assert!((fs / exact - 1.0).abs() < 0.01, "HPM {fs} vs exact {exact}");
+        // The resultant shear of the springs balances the load's component
+        // along the plane, which points down the dip.
+        let (hx, hy) = elastic.sliding_direction(&model).unwrap();
+        let (tx, ty) = (towards.to_radians().cos(), towards.to_radians().sin());
+        assert!(
+            (hx * ty - hy * tx).abs() < 1e-9 && hx * tx + hy * ty > 0.0,
+            "sliding direction ({hx}, {hy}) vs ({tx}, {ty})"
+        );
+        // Along that direction the sums are those of global equilibrium.
+        assert!(
+            (sliding / exact - 1.0).abs() < 1e-6,
+            "HPM along the sliding direction {sliding} vs exact {exact}"
+        );
+        assert!(sliding >= fs * (1.0 - 1e-12));
         assert!(
             (hov / exact - 1.0).abs() < 1e-9,
             "Hovland {hov} vs exact {exact}"
@@ -158,6 +173,7 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
         .unwrap();
     assert!(r.convergence.converged(), "{:?}", r.convergence);
     assert!((r.safety_factor(&model) / exact - 1.0).abs() < 0.01);
+    assert!((r.sliding_safety_factor(&model) / exact - 1.0).abs() < 0.01);
     let srf = strength_reduction(&solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
     eprintln!(
         "exact {exact:.4}; strength reduction in [{:.4}, {:.4}]",
@@ -373,6 +389,59 @@ fn layer_refinement_3_6_12_converges_in_fs_and_top_displacement() {
         change(&top, 1) < change(&top, 0),
         "top displacement {top:?}"
     );
+}
+
+#[test]
+fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
+    let m = HpmMaterial::paper();
+    let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction_deg: 270.0,
+    };
+    let direct = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let settings = dismech::solve::CgSettings {
+        relative_tolerance: 1e-10,
+        max_iterations: 20_000,
+    };
+    let iterative = HpmIterativeSolver::new(&model, settings)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let Convergence::Converged {
+        iterations,
+        residual,
+    } = iterative.convergence
+    else {
+        panic!("PCG did not converge: {:?}", iterative.convergence);
+    };
+    let difference: f64 = direct
+        .displacements
+        .iter()
+        .zip(&iterative.displacements)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
+    let size: f64 = direct
+        .displacements
+        .iter()
+        .map(|a| a * a)
+        .sum::<f64>()
+        .sqrt();
+    eprintln!(
+        "PCG: {iterations} iterations, residual {residual:e}, relative difference from Cholesky {:e}",
+        difference / size
+    );
+    assert!(residual <= 1e-9, "{residual}");
+    assert!(difference <= 1e-6 * size, "{}", difference / size);
+    let (a, b) = (
+        direct.safety_factor(&model),
+        iterative.safety_factor(&model),
+    );
+    assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
 }
 
 const GRID: &str = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";

@@ -14,11 +14,32 @@
 //!   the iteration limit reports [`Convergence::NotConverged`] with its
 //!   last residual: there is no equilibrium it could find.
 //!
-//! **Safety factors** (the paper does not define them; we use the usual
-//! definition for spring methods): global
-//! `Fs = Σ (c + σ tan φ) A / Σ |τ| A` over all slip springs, and the local
-//! factor of a column the same ratio over the springs under it; σ is the
-//! normal traction (compression positive) and `|τ| = √(τ_s² + τ_t²)`.
+//! **Safety factors.** The paper states Fs for each run (§5, Table 2) but
+//! not its formula; two definitions are offered.
+//!
+//! * *Stress ratio* ([`HpmResult::safety_factor`], the usual definition for
+//!   spring methods): `Fs = Σ (c + σ tan φ) A / Σ |τ| A` over all slip
+//!   springs, and the local factor of a column the same ratio over the
+//!   springs under it; σ is the normal traction (compression positive) and
+//!   `|τ| = √(τ_s² + τ_t²)`. Every spring's shear counts as driving,
+//!   whatever its direction.
+//! * *Along the sliding direction* ([`HpmResult::sliding_safety_factor`]):
+//!   `Fs = Σ (c + σ tan φ) A / Σ (τ · d_i) A`, where `τ = τ_s s + τ_t t` is
+//!   the shear traction vector of a spring and `d_i` the unit tangent of
+//!   the slip surface at the spring whose plan projection points along one
+//!   horizontal sliding direction `ĥ` of the whole slide (the tangent plane
+//!   cut by the vertical plane through `ĥ`). `ĥ` is the plan direction of
+//!   the resultant shear force `Σ τ A` of the springs. This is the
+//!   assumption of Hovland's column method (ref. 1; [`crate::hpm::hovland()`]):
+//!   the slide moves as one body in one plan direction, and only the shear
+//!   along it drives; shear across it (which the springs carry where the
+//!   slide is squeezed laterally on a curved surface) resists nothing and
+//!   drives nothing. Since `τ · d_i ≤ |τ|`, this Fs is never below the
+//!   stress ratio. On a plane every `d_i` is the same `d`, so the
+//!   denominator is `(Σ τ A) · d`, the driving component of the resultant
+//!   the slide's equilibrium fixes: both definitions reduce to the exact
+//!   `(cA + N tan φ) / T` of a planar slab when the springs carry the
+//!   load along d (tested in `tests/hpm_exact.rs`).
 
 use nalgebra::Vector3;
 
@@ -28,6 +49,7 @@ use super::model::{HpmModel, SlipSpring};
 use super::stiffness::{BlockMatrix, CholeskyFactor};
 use crate::contact::{MohrCoulombSpring, Regime, Strength};
 use crate::error::Result;
+use crate::solve::{conjugate_gradient, BlockJacobi, CgSettings};
 
 /// Iteration limits of the nonlinear solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,7 +151,11 @@ pub struct HpmSolver {
 impl HpmSolver {
     /// Assemble and factorise the elastic stiffness of `model`.
     pub fn new(model: &HpmModel) -> Result<Self> {
-        let stiffness = model.stiffness();
+        Self::from_stiffness(model.stiffness())
+    }
+
+    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
+    pub fn from_stiffness(stiffness: BlockMatrix) -> Result<Self> {
         let factor = stiffness.factorize()?;
         Ok(Self { stiffness, factor })
     }
@@ -149,33 +175,7 @@ impl HpmSolver {
     /// per element, conjugate to the DOFs of eq. 2).
     pub fn elastic_with_loads(&self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
         let u = self.factor.solve(f)?;
-        let ku = self.stiffness.multiply(&u);
-        let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
-        let residual = norm(&out) / norm(f);
-        let tractions = model
-            .slip
-            .iter()
-            .map(|s| {
-                let d = model.slip_displacement(s, &u);
-                SpringTraction {
-                    normal: s.normal_stiffness * d[0],
-                    shear: [s.shear_stiffness * d[1], s.shear_stiffness * d[2]],
-                    regime: if d[0] < 0.0 {
-                        Regime::Open
-                    } else {
-                        Regime::Stick
-                    },
-                }
-            })
-            .collect();
-        Ok(HpmResult {
-            displacements: u,
-            tractions,
-            convergence: Convergence::Converged {
-                iterations: 0,
-                residual,
-            },
-        })
+        Ok(elastic_result(model, &self.stiffness, f, u, 0, true))
     }
 
     /// Nonlinear analysis with the slip strength divided by `reduction`
@@ -280,6 +280,102 @@ impl HpmSolver {
     }
 }
 
+/// The elastic stiffness of a model with a block-Jacobi preconditioner of
+/// one dense block per grid column (all its layers), for elastic analyses
+/// by preconditioned conjugate gradients instead of a sparse Cholesky
+/// factor: memory grows with the stiffness, not with the factor's fill.
+#[derive(Debug)]
+pub struct HpmIterativeSolver {
+    stiffness: BlockMatrix,
+    preconditioner: BlockJacobi,
+    /// Stopping rule of the conjugate gradients.
+    pub settings: CgSettings,
+}
+
+impl HpmIterativeSolver {
+    /// Assemble the stiffness of `model` and factorise its column blocks.
+    pub fn new(model: &HpmModel, settings: CgSettings) -> Result<Self> {
+        let stiffness = model.stiffness();
+        let groups: Vec<_> = model.columns.iter().map(|c| c.elements.clone()).collect();
+        let preconditioner = BlockJacobi::new(stiffness.group_blocks(&groups))?;
+        Ok(Self {
+            stiffness,
+            preconditioner,
+            settings,
+        })
+    }
+
+    /// Elastic analysis: eq. (4) solved by PCG. The convergence reports the
+    /// PCG iterations and the relative residual `‖F − K U‖ / ‖F‖`
+    /// recomputed from the returned U; `NotConverged` if PCG stopped at its
+    /// iteration limit.
+    pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
+        seismic.validate()?;
+        let f = model.loads(seismic);
+        let solution = conjugate_gradient(
+            &self.stiffness.rows(),
+            &self.preconditioner,
+            &f,
+            &self.settings,
+        )?;
+        Ok(elastic_result(
+            model,
+            &self.stiffness,
+            &f,
+            solution.x,
+            solution.iterations,
+            solution.converged,
+        ))
+    }
+}
+
+/// The elastic result of displacements `u` under loads `f`: the slip
+/// tractions of linear springs (tension kept, reported as open) and the
+/// relative residual `‖f − K u‖ / ‖f‖`.
+fn elastic_result(
+    model: &HpmModel,
+    stiffness: &BlockMatrix,
+    f: &[f64],
+    u: Vec<f64>,
+    iterations: usize,
+    converged: bool,
+) -> HpmResult {
+    let ku = stiffness.multiply(&u);
+    let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
+    let residual = norm(&out) / norm(f);
+    let tractions = model
+        .slip
+        .iter()
+        .map(|s| {
+            let d = model.slip_displacement(s, &u);
+            SpringTraction {
+                normal: s.normal_stiffness * d[0],
+                shear: [s.shear_stiffness * d[1], s.shear_stiffness * d[2]],
+                regime: if d[0] < 0.0 {
+                    Regime::Open
+                } else {
+                    Regime::Stick
+                },
+            }
+        })
+        .collect();
+    let convergence = if converged {
+        Convergence::Converged {
+            iterations,
+            residual,
+        }
+    } else {
+        Convergence::NotConverged {
+            iterations,
+            residual,
+        }
+    };
+    HpmResult {
+        displacements: u,
+        tractions,
+        convergence,
+    }
+}
 /// Add `A Nᵀ Rᵀ local` of a slip spring into `r` (the internal force of
 /// local tractions `local`, eqs. 27–29).
 fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>, r: &mut [f64]) {
@@ -291,6 +387,11 @@ fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>,
     for (k, value) in contribution.iter().enumerate() {
         r[ELEMENT_DOF * spring.element + k] += value;
     }
+}
+
+/// The shear traction of a slip spring as a vector, `τ_s s + τ_t t`.
+fn shear_vector(spring: &SlipSpring, traction: &SpringTraction) -> Vector3<f64> {
+    spring.point.s * traction.shear[0] + spring.point.t * traction.shear[1]
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -311,6 +412,53 @@ impl HpmResult {
     pub fn safety_factor(&self, model: &HpmModel) -> f64 {
         let (num, den) = self.strength_and_shear(model);
         num.iter().sum::<f64>() / den.iter().sum::<f64>()
+    }
+
+    /// Plan direction `ĥ = (h_x, h_y)` (unit) of the resultant shear force
+    /// `Σ (τ_s s + τ_t t) A` of the slip springs: the direction the slide
+    /// pushes the ground, along which it slides. `None` when the resultant
+    /// has no horizontal component.
+    pub fn sliding_direction(&self, model: &HpmModel) -> Option<(f64, f64)> {
+        let resultant: Vector3<f64> = model
+            .slip
+            .iter()
+            .zip(&self.tractions)
+            .map(|(s, t)| shear_vector(s, t) * s.point.point.area)
+            .sum();
+        let plan = resultant.x.hypot(resultant.y);
+        (plan > 0.0).then(|| (resultant.x / plan, resultant.y / plan))
+    }
+
+    /// Global safety factor along the sliding direction,
+    /// `Σ (c + σ tan φ) A / Σ (τ · d_i) A` with `d_i` the unit tangent of
+    /// the slip surface over the plan direction
+    /// [`HpmResult::sliding_direction`] (Hovland's assumption; see the
+    /// module documentation). NaN when the springs carry no horizontal
+    /// shear resultant.
+    pub fn sliding_safety_factor(&self, model: &HpmModel) -> f64 {
+        match self.sliding_direction(model) {
+            Some(plan) => self.safety_factor_along(model, plan),
+            None => f64::NAN,
+        }
+    }
+
+    /// `Σ (c + σ tan φ) A / Σ (τ · d_i) A` for the horizontal sliding
+    /// direction `plan` (need not be unit), `d_i` the unit tangent of the
+    /// slip surface at spring i whose plan projection points along `plan`.
+    pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> f64 {
+        let (c, mu) = (model.material.cohesion, model.material.friction());
+        // The vertical plane through `plan` has normal m = ĥ × e_z.
+        let m = Vector3::new(plan.1, -plan.0, 0.0);
+        let h = Vector3::new(plan.0, plan.1, 0.0);
+        let (mut num, mut den) = (0.0, 0.0);
+        for (s, t) in model.slip.iter().zip(&self.tractions) {
+            let a = s.point.point.area;
+            let along = s.point.point.normal.cross(&m);
+            let along = along.normalize() * along.dot(&h).signum();
+            num += (c + t.normal * mu) * a;
+            den += shear_vector(s, t).dot(&along) * a;
+        }
+        num / den
     }
 
     /// Local safety factor of each column (same ratio over its springs);

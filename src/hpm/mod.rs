@@ -25,13 +25,18 @@
 //! Composition: the element is a [`crate::shape::Column`] layer, the slip
 //! springs a [`crate::contact::MohrCoulombSpring`] (a
 //! [`crate::contact::ContactLaw`]`<3>`), the global solve a faer sparse
-//! Cholesky factor reused by the nonlinear iteration.
+//! Cholesky factor reused by the nonlinear iteration, or, for the elastic
+//! analysis of large slopes, [`HpmIterativeSolver`]: conjugate gradients
+//! ([`crate::solve::ConjugateGradientSolver`]) preconditioned by one dense
+//! block per grid column.
 //!
 //! Choices where the paper is silent or garbled (also in the reproduction
 //! report): the errata's `k_n = (1 − ν) E' / ((1 + ν)(1 − 2ν) h)`; p = 100
 //! by default; the `(s, t, n)` frame made orthonormal; the global safety
-//! factor `Σ (c + σ tan φ) A / Σ |τ| A`; corner heights interpolated from
-//! the cell-centre values of the rasters.
+//! factor, as the stress ratio `Σ (c + σ tan φ) A / Σ |τ| A` and, after
+//! Hovland's assumption of one sliding direction, as
+//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`); corner heights
+//! interpolated from the cell-centre values of the rasters.
 
 mod analysis;
 mod element;
@@ -44,7 +49,8 @@ mod stiffness;
 mod strength_reduction;
 
 pub use analysis::{
-    Convergence, HpmResult, HpmSolver, NonlinearSettings, SpringTraction, SurfacePoint,
+    Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
+    SurfacePoint,
 };
 pub use element::{
     displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
@@ -55,5 +61,5 @@ pub use grids::{NamedRaster, SlopeGrids};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
-pub use stiffness::{BlockMatrix, CholeskyFactor};
+pub use stiffness::{BlockMatrix, BlockRows, CholeskyFactor, FactorTimings};
 pub use strength_reduction::{strength_reduction, StrengthReduction};

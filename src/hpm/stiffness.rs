@@ -15,9 +15,15 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Col, Side};
+use std::time::{Duration, Instant};
+
+use std::ops::Range;
+
+use nalgebra::DMatrix;
+use rayon::prelude::*;
 
 use super::element::{Block, ElementDofs, ELEMENT_DOF};
-use crate::solve::SolveError;
+use crate::solve::{LinearOperator, SolveError};
 
 /// A symmetric block-sparse matrix: `diagonal[e]` and `coupling` blocks
 /// `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied).
@@ -45,23 +51,125 @@ impl BlockMatrix {
 
     /// `y = K x`.
     pub fn multiply(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; x.len()];
+        self.apply(x, &mut y);
+        y
+    }
+
+    /// The dense diagonal blocks of K over consecutive groups of elements
+    /// (`groups` in order, covering all elements): the blocks of a
+    /// [`crate::solve::BlockJacobi`] preconditioner. For HPM the group of a grid column
+    /// holds its layers, which the stiff penalty springs between layers
+    /// (eqs. 20–22) couple.
+    pub fn group_blocks(&self, groups: &[Range<usize>]) -> Vec<DMatrix<f64>> {
+        let mut group_of = vec![0; self.diagonal.len()];
+        let mut blocks: Vec<DMatrix<f64>> = groups
+            .iter()
+            .enumerate()
+            .map(|(g, range)| {
+                group_of[range.clone()].fill(g);
+                let m = ELEMENT_DOF * range.len();
+                let mut block = DMatrix::zeros(m, m);
+                for e in range.clone() {
+                    let i = ELEMENT_DOF * (e - range.start);
+                    block
+                        .view_mut((i, i), (ELEMENT_DOF, ELEMENT_DOF))
+                        .copy_from(&self.diagonal[e]);
+                }
+                block
+            })
+            .collect();
+        for (a, b, k) in &self.coupling {
+            let g = group_of[*a];
+            if group_of[*b] != g {
+                continue;
+            }
+            let start = groups[g].start;
+            let (i, j) = (ELEMENT_DOF * (a - start), ELEMENT_DOF * (b - start));
+            let block = &mut blocks[g];
+            block
+                .view_mut((i, j), (ELEMENT_DOF, ELEMENT_DOF))
+                .copy_from(k);
+            block
+                .view_mut((j, i), (ELEMENT_DOF, ELEMENT_DOF))
+                .copy_from(&k.transpose());
+        }
+        blocks
+    }
+}
+
+/// A [`BlockMatrix`] by block rows: `rows[a]` lists `(b, k, transposed)`,
+/// the coupling block `k` of row a with column b (`K_ab`, stored as
+/// `K_baᵀ` when `transposed`). Its product runs over the rows in parallel
+/// (rayon).
+#[derive(Debug, Clone)]
+pub struct BlockRows<'a> {
+    matrix: &'a BlockMatrix,
+    rows: Vec<Vec<(usize, usize, bool)>>,
+}
+
+impl LinearOperator for BlockRows<'_> {
+    fn dimension(&self) -> usize {
+        self.matrix.dimension()
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        let block =
+            |e: usize| ElementDofs::from_column_slice(&x[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)]);
+        y.par_chunks_mut(ELEMENT_DOF)
+            .zip(&self.rows)
+            .enumerate()
+            .for_each(|(a, (out, row))| {
+                let mut sum = self.matrix.diagonal[a] * block(a);
+                for &(b, k, transposed) in row {
+                    let coupling = &self.matrix.coupling[k].2;
+                    if transposed {
+                        sum += coupling.tr_mul(&block(b));
+                    } else {
+                        sum += coupling * block(b);
+                    }
+                }
+                out.copy_from_slice(sum.as_slice());
+            });
+    }
+}
+
+impl LinearOperator for BlockMatrix {
+    fn dimension(&self) -> usize {
+        BlockMatrix::dimension(self)
+    }
+
+    /// `y = K x`, block by block.
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
         let block = |v: &[f64], e: usize| {
             ElementDofs::from_column_slice(&v[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)])
         };
-        let mut y = vec![0.0; x.len()];
         let add = |y: &mut [f64], e: usize, v: ElementDofs| {
             for (k, value) in v.iter().enumerate() {
                 y[ELEMENT_DOF * e + k] += value;
             }
         };
+        y.fill(0.0);
         for (e, d) in self.diagonal.iter().enumerate() {
-            add(&mut y, e, d * block(x, e));
+            add(y, e, d * block(x, e));
         }
         for (a, b, k) in &self.coupling {
-            add(&mut y, *a, k * block(x, *b));
-            add(&mut y, *b, k.transpose() * block(x, *a));
+            add(y, *a, k * block(x, *b));
+            add(y, *b, k.transpose() * block(x, *a));
         }
-        y
+    }
+}
+
+impl BlockMatrix {
+    /// The blocks of K arranged by block row, for parallel products
+    /// ([`BlockRows`]).
+    pub fn rows(&self) -> BlockRows<'_> {
+        let mut rows: Vec<Vec<(usize, usize, bool)>> = vec![Vec::new(); self.diagonal.len()];
+        for (k, (a, b, _)) in self.coupling.iter().enumerate() {
+            rows[*a].push((*b, k, false));
+            rows[*b].push((*a, k, true));
+        }
+        BlockRows { matrix: self, rows }
     }
 
     /// The lower triangle in compressed-column form.
@@ -117,7 +225,9 @@ impl BlockMatrix {
     /// approximate-minimum-degree ordering, supernodal where it pays, on
     /// faer's global parallelism.
     pub fn factorize(&self) -> Result<CholeskyFactor, SolveError> {
+        let start = Instant::now();
         let matrix = self.lower_csc()?;
+        let compressed = Instant::now();
         let failed = |what: &str, e: &dyn std::fmt::Debug| {
             SolveError::Factorization(format!("{what} failed: {e:?}"))
         };
@@ -128,6 +238,7 @@ impl BlockMatrix {
             Default::default(),
         )
         .map_err(|e| failed("symbolic Cholesky analysis", &e))?;
+        let analysed = Instant::now();
         let par = faer::get_global_parallelism();
         let mut values = vec![0.0; symbolic.len_val()];
         let mut buffer = MemBuffer::try_new(
@@ -145,12 +256,29 @@ impl BlockMatrix {
                 Default::default(),
             )
             .map_err(|e| failed("sparse Cholesky (stiffness not positive definite)", &e))?;
+        let timings = FactorTimings {
+            compress: compressed - start,
+            symbolic: analysed - compressed,
+            numeric: analysed.elapsed(),
+        };
         Ok(CholeskyFactor {
             symbolic,
             values,
             stored: matrix.compute_nnz(),
+            timings,
         })
     }
+}
+
+/// Wall-clock times of the stages of [`BlockMatrix::factorize`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FactorTimings {
+    /// Blocks to the compressed lower triangle.
+    pub compress: Duration,
+    /// Ordering (AMD) and symbolic factorisation.
+    pub symbolic: Duration,
+    /// Numeric factorisation.
+    pub numeric: Duration,
 }
 
 /// A sparse Cholesky factor of the stiffness, reused for many solves.
@@ -159,6 +287,7 @@ pub struct CholeskyFactor {
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
     stored: usize,
+    timings: FactorTimings,
 }
 
 impl CholeskyFactor {
@@ -200,6 +329,11 @@ impl CholeskyFactor {
     /// Number of stored entries of the lower triangle of K.
     pub fn matrix_entries(&self) -> usize {
         self.stored
+    }
+
+    /// How long the stages of the factorisation took.
+    pub fn timings(&self) -> FactorTimings {
+        self.timings
     }
 
     /// Number of stored entries of the Cholesky factor L.

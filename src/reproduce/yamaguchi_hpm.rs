@@ -4,6 +4,8 @@
 //! Reproduced here:
 //! * the exact check the method must pass: a slab on a planar slip surface,
 //!   static and with `k_h` towards the toe (global equilibrium fixes Fs);
+//! * both definitions of the global Fs (stress ratio, and along the
+//!   sliding direction after Hovland; see [`crate::hpm`]) for every case;
 //! * the paper's §5 material on a representative slope (its Fig. 10 is
 //!   missing): 10 m grid, 24 × 32 cells, ground
 //!   `z = 0.25 clamp(y, 40, 280) + 0.0015 (x − 120)²` (a 14° slope facing
@@ -31,7 +33,7 @@ use crate::hpm::{
     NamedRaster, NonlinearSettings, Seismic, SlopeGrids,
 };
 use crate::output::map::{cell_map, Arrow, MapCell};
-use crate::output::{write_atomically, write_csv, Check, Summary};
+use crate::output::{write_atomically, write_csv, Check, Reported, Summary};
 
 /// File name of the paper.
 pub const PAPER: &str = "001_1ec0b7ca8d44c520.txt";
@@ -98,6 +100,32 @@ fn planar_exact(m: &HpmMaterial, dip: f64, plan: f64, thickness: f64, kh: f64) -
     let (s, c) = dip.to_radians().sin_cos();
     let w = m.unit_weight * thickness * plan;
     (m.cohesion * plan / c + w * (c - kh * s) * m.friction()) / (w * (s + kh * c))
+}
+
+/// The paper's trends as ratios of the Fs in `fs` whose keys start with
+/// `prefix` (`""` for the stress ratio, `"sliding."` along the sliding
+/// direction), beside the paper's ratios and Hovland's.
+fn trends(fs: &std::collections::BTreeMap<String, f64>, prefix: &str) -> String {
+    let f = |key: &str| fs[&format!("{prefix}{key}")];
+    format!(
+        "nonlinear / elastic static = {:.4} (paper 1.747 / 1.764 = {:.4}); seismic / static elastic = {:.4} (paper {:.4}), nonlinear = {:.4} (paper {:.4}); Hovland / elastic HPM = {:.4} static, {:.4} seismic.",
+        f("nonlinear.static") / f("elastic.static"),
+        1.747 / 1.764,
+        f("elastic.seismic") / f("elastic.static"),
+        1.104 / 1.764,
+        f("nonlinear.seismic") / f("nonlinear.static"),
+        1.155 / 1.747,
+        fs["hovland.static"] / f("elastic.static"),
+        fs["hovland.seismic"] / f("elastic.seismic"),
+    )
+}
+
+/// The paper's Fs for `key` (`elastic.static`, …; Table 2), NaN if none.
+fn paper_fs(key: &str) -> f64 {
+    PAPER_FS
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map_or(f64::NAN, |p| p.1)
 }
 
 fn check(
@@ -331,12 +359,13 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         direction_deg: TOE_DIRECTION_DEG,
     };
     let mut checks = Vec::new();
+    let mut values = Vec::new();
     let mut files = Vec::new();
     let mut report =
         String::from("# Yamaguchi, Takeuchi & Hamasaki: HPM slope stability on grid columns\n\n");
 
     // The planar slab: the exact check.
-    let _ = writeln!(report, "## Planar slab (exact by global equilibrium)\n\n6 × 8 cells of 10 m, 8 m thick, dip 20° towards −y, the paper's material, {} layers, p = {}.\n\n| case | exact | HPM elastic | ratio | Hovland | ratio |\n|---|---|---|---|---|---|", settings.layers, settings.penalty);
+    let _ = writeln!(report, "## Planar slab (exact by global equilibrium)\n\n6 × 8 cells of 10 m, 8 m thick, dip 20° towards −y, the paper's material, {} layers, p = {}. HPM's Fs as the stress ratio Σ(c + σ tan φ)A / Σ|τ|A (the `fs_over_exact` checks) and along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A (reported values `fs_sliding_over_exact`).\n\n| case | exact | HPM elastic, stress ratio | ratio | HPM elastic, along the sliding direction | ratio | Hovland | ratio |\n|---|---|---|---|---|---|---|---|", settings.layers, settings.penalty);
     let dip = 20.0;
     let (grids, plan, thickness) = planar_slab(dip)?;
     let model = HpmModel::new(&grids, &material, &settings)?;
@@ -346,14 +375,24 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         ("planar_seismic", &seismic, SEISMIC_COEFFICIENT),
     ] {
         let exact = planar_exact(&material, dip, plan, thickness, kh);
-        let fs = solver.elastic(&model, load)?.safety_factor(&model);
+        let elastic = solver.elastic(&model, load)?;
+        let fs = elastic.safety_factor(&model);
+        let sliding = elastic.sliding_safety_factor(&model);
         let hov = hovland(&model, load, TOE_DIRECTION_DEG)?.safety_factor;
         let _ = writeln!(
             report,
-            "| {id} (k_h = {kh}) | {exact:.4} | {fs:.4} | {:.5} | {hov:.4} | {:.5} |",
+            "| {id} (k_h = {kh}) | {exact:.4} | {fs:.4} | {:.5} | {sliding:.4} | {:.5} | {hov:.4} | {:.5} |",
             fs / exact,
+            sliding / exact,
             hov / exact
         );
+        values.push(Reported {
+            id: format!("{id}.fs_sliding_over_exact"),
+            description: format!("slab on a planar slip surface (dip {dip}°, k_h = {kh} towards the toe): elastic HPM Fs along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A, over the exact Fs"),
+            paper: Some(1.0),
+            computed: sliding / exact,
+            unit: "-".into(),
+        });
         checks.push(check(
             &format!("{id}.fs_over_exact"),
             format!("slab on a planar slip surface (dip {dip}°, k_h = {kh} towards the toe): elastic HPM Fs over (cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β)); passes within 1 %"),
@@ -400,6 +439,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let hov = hovland(&model, load, TOE_DIRECTION_DEG)?;
         fs.insert(format!("elastic.{case}"), elastic.safety_factor(&model));
         fs.insert(format!("nonlinear.{case}"), nl.safety_factor(&model));
+        fs.insert(
+            format!("sliding.elastic.{case}"),
+            elastic.sliding_safety_factor(&model),
+        );
+        fs.insert(
+            format!("sliding.nonlinear.{case}"),
+            nl.sliding_safety_factor(&model),
+        );
         fs.insert(format!("hovland.{case}"), hov.safety_factor);
         write_maps(
             &dir,
@@ -415,13 +462,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
 
     let _ = writeln!(report, "| case | paper | HPM elastic | HPM nonlinear (status) | Hovland | columns with local Fs ≤ 1, elastic / nonlinear | slip-surface area slipping or open, nonlinear |\n|---|---|---|---|---|---|---|");
     for (case, elastic, nl) in &results {
-        let paper = |a: &str| {
-            PAPER_FS
-                .iter()
-                .find(|(k, _)| *k == format!("{a}.{case}"))
-                .map(|p| p.1)
-                .unwrap_or(f64::NAN)
-        };
+        let paper = |a: &str| paper_fs(&format!("{a}.{case}"));
         let _ = writeln!(
             report,
             "| {case} | {:.3} / {:.3} | {:.4} | {:.4} ({:?}) | {:.4} | {:.1} % / {:.1} % | {:.1} % |",
@@ -438,15 +479,46 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     }
     let _ = writeln!(
         report,
-        "\nPaper trends as values: nonlinear / elastic static = {:.4} (paper 1.747 / 1.764 = {:.4}); seismic / static elastic = {:.4} (paper {:.4}), nonlinear = {:.4} (paper {:.4}); Hovland / elastic HPM = {:.4} static, {:.4} seismic.",
-        fs["nonlinear.static"] / fs["elastic.static"],
-        1.747 / 1.764,
-        fs["elastic.seismic"] / fs["elastic.static"],
-        1.104 / 1.764,
-        fs["nonlinear.seismic"] / fs["nonlinear.static"],
-        1.155 / 1.747,
-        fs["hovland.static"] / fs["elastic.static"],
-        fs["hovland.seismic"] / fs["elastic.seismic"],
+        "\nPaper trends as values (stress ratio): {}",
+        trends(&fs, "")
+    );
+    let _ = writeln!(
+        report,
+        "\n### Two definitions of the global Fs\n\nThe paper does not state its formula. The table above and the `slope.fs.elastic|nonlinear.*` checks use the stress ratio Σ(c + σ tan φ)A / Σ|τ|A, which counts every spring's shear as driving. Below beside it, Hovland's assumption of one plan sliding direction ĥ (the plan direction of the springs' resultant shear force Σ τ A): Σ(c + σ tan φ)A / Σ(τ·d_i)A, with d_i the unit tangent of the slip surface at each spring over ĥ (reported values `slope.fs_sliding.*`).\n\n| case | paper elastic / nonlinear | stress ratio, elastic / nonlinear | along the sliding direction, elastic / nonlinear | ĥ (degrees from +x), elastic / nonlinear | Hovland |\n|---|---|---|---|---|---|"
+    );
+    for (case, elastic, nl) in &results {
+        let angle = |r: &HpmResult| {
+            r.sliding_direction(&model)
+                .map_or(f64::NAN, |(x, y)| y.atan2(x).to_degrees())
+        };
+        let _ = writeln!(
+            report,
+            "| {case} | {:.3} / {:.3} | {:.4} / {:.4} | {:.4} / {:.4} | {:.1} / {:.1} | {:.4} |",
+            paper_fs(&format!("elastic.{case}")),
+            paper_fs(&format!("nonlinear.{case}")),
+            fs[&format!("elastic.{case}")],
+            fs[&format!("nonlinear.{case}")],
+            fs[&format!("sliding.elastic.{case}")],
+            fs[&format!("sliding.nonlinear.{case}")],
+            angle(elastic),
+            angle(nl),
+            fs[&format!("hovland.{case}")],
+        );
+        for analysis in ["elastic", "nonlinear"] {
+            let key = format!("{analysis}.{case}");
+            values.push(Reported {
+                id: format!("slope.fs_sliding.{key}"),
+                description: format!("representative slope, {analysis} HPM, {case}: Fs along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A (the check slope.fs.{key} is the stress ratio Σ(c + σ tan φ)A / Σ|τ|A = {:.4}); the paper's value is for its own slope of the missing Fig. 10", fs[&key]),
+                paper: Some(paper_fs(&key)),
+                computed: fs[&format!("sliding.{key}")],
+                unit: "-".into(),
+            });
+        }
+    }
+    let _ = writeln!(
+        report,
+        "\nAlong the sliding direction: {}",
+        trends(&fs, "sliding.")
     );
     let _ = writeln!(
         report,
@@ -649,7 +721,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             c.passed
         );
     }
-    let _ = writeln!(report, "\n## Choices where the paper is silent\n\n- Fig. 10 is missing: the slope above is ours, so its Fs are not the paper's numbers; the paper's are shown beside them for the trends.\n- k_n = (1 − ν)E'/((1 + ν)(1 − 2ν)h) (errata), k_s = k_t = E'/((1 + ν)h), p = {} (not given in the paper); h = cell size between columns, the distance between centroids between layers, the bottom element's mean thickness h_I on the slip surface.\n- Global Fs = Σ(c + σ tan φ)A / Σ|τ|A over the slip springs (2 × 2 Gauss points per column); local Fs the same per column.\n- The (s, t, n) frame of eqs. (25)–(26) is made orthonormal (t by Gram–Schmidt against s).\n- Nonlinear: Mohr–Coulomb with no tension on the slip springs, one load step, initial-stiffness iteration with Aitken's relaxation to a relative out-of-balance force of {:e} within {} iterations; the strength-reduction factor is bracketed to 2 % and depends on that iteration limit.\n- k_h = 0.15 (the paper prints 1.5).\n", settings.penalty, nonlinear.tolerance, nonlinear.max_iterations);
+    let _ = writeln!(report, "\n## Choices where the paper is silent\n\n- Fig. 10 is missing: the slope above is ours, so its Fs are not the paper's numbers; the paper's are shown beside them for the trends.\n- k_n = (1 − ν)E'/((1 + ν)(1 − 2ν)h) (errata), k_s = k_t = E'/((1 + ν)h), p = {} (not given in the paper); h = cell size between columns, the distance between centroids between layers, the bottom element's mean thickness h_I on the slip surface.\n- Global Fs = Σ(c + σ tan φ)A / Σ|τ|A over the slip springs (2 × 2 Gauss points per column), the definition of the `slope.fs.*` and `*.fs_over_exact` checks; local Fs the same per column. Beside it, Fs along the sliding direction Σ(c + σ tan φ)A / Σ(τ·d_i)A (Hovland's one sliding direction; values `*.fs_sliding*`).\n- The (s, t, n) frame of eqs. (25)–(26) is made orthonormal (t by Gram–Schmidt against s).\n- Nonlinear: Mohr–Coulomb with no tension on the slip springs, one load step, initial-stiffness iteration with Aitken's relaxation to a relative out-of-balance force of {:e} within {} iterations; the strength-reduction factor is bracketed to 2 % and depends on that iteration limit.\n- k_h = 0.15 (the paper prints 1.5).\n", settings.penalty, nonlinear.tolerance, nonlinear.max_iterations);
     write_atomically(&dir.join("report.md"), report.as_bytes())?;
     files.push("report.md".into());
 
@@ -657,7 +729,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         study: "yamaguchi-hpm".into(),
         paper: PAPER.into(),
         checks,
-        values: Vec::new(),
+        values,
         files,
     };
     summary.write(&dir)?;

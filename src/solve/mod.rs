@@ -5,6 +5,7 @@
 //! |---|---|---|
 //! | explicit DEM (paper 000) | diagonal (lumped) mass, `M a = f` | [`LumpedMassSolver`] |
 //! | implicit DDA (003), HPM (001) | sparse stiffness `K Δd = r` | [`SparseDirectSolver`] (faer, symbolic analysis reused) |
+//! | large SPD stiffness (HPM, 001) | `K x = b` through products `K p` | [`ConjugateGradientSolver`] (PCG, [`BlockJacobi`]) |
 //! | rigid-plastic limit analysis (002) | linear program | [`LinearProgramSolver`] (Clarabel) |
 //!
 //! Each solver implements [`GlobalSolver`]: it owns its workspace (a
@@ -14,10 +15,15 @@
 //! reported in the solution's status or as a `SolveError` variant that names
 //! what happened, never as a panic.
 
+mod conjugate_gradient;
 mod linear_program;
 mod lumped_mass;
 mod sparse_direct;
 
+pub use conjugate_gradient::{
+    conjugate_gradient, BlockJacobi, CgSettings, CgSolution, CgSystem, ConjugateGradientSolver,
+    LinearOperator, Preconditioner,
+};
 pub use linear_program::{LinearProgram, LinearProgramSolution, LinearProgramSolver, LpStatus};
 pub use lumped_mass::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
 pub use sparse_direct::{Factorization, SparseDirectSolver, SparseSystem};
