@@ -133,7 +133,7 @@ fn front_profile(
     sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>,
     pressure: f64,
 ) -> Vec<(f64, f64)> {
-    super::wall_pressure_profile(sim, "front", 0.14)
+    super::wall_pressure_profile(sim, "front", 2.0 * super::patterns::EQUIVALENT_RADIUS)
         .into_iter()
         .map(|(h, p)| (h, p / pressure))
         .collect()
@@ -161,7 +161,9 @@ fn paper_centroid(name: &str) -> Option<f64> {
     }
 }
 
-/// How a front-wall distribution reads from its centroid height ratio.
+/// How a front-wall distribution reads from its centroid height ratio:
+/// below 0.42 (nearer the triangle's 1/3 than the uniform 1/2) triangular,
+/// up to 0.58 close to uniform, above that larger at the upper part.
 pub fn shape_of(centroid_ratio: f64) -> &'static str {
     if centroid_ratio < 0.42 {
         "triangular, larger at the bottom"
