@@ -1,15 +1,17 @@
 //! Exact two-body checks of the explicit DEM, bad-input handling, and the
 //! equilibrium of a settled filling.
 
-use dismech::contact::{
-    ContactLaw, Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb,
-};
+use dismech::contact::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb};
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
 use dismech::math::{Point, Vec2};
 use dismech::reproduce::katsuki1990::{self, FillConfig};
 use dismech::scene::{Frame, Scene};
+
+mod common;
+
+use common::settle;
 
 const G: f64 = 9.81;
 
@@ -21,22 +23,6 @@ fn single_disc_scene(radius: f64, centre: Point) -> Scene {
     let mut scene = Scene::new(Frame::open_box(4.0, 2.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
     scene.add_circle(centre, radius, 2690.0).unwrap();
     scene
-}
-
-fn settle<L: ContactLaw<2>>(scene: Scene, law: L, dt: f64) -> DemSimulation<L> {
-    let settings = DemSettings {
-        dt,
-        ..DemSettings::default()
-    };
-    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
-    let criterion = RestCriterion {
-        kinetic_to_released_ratio: 1e-10,
-        unbalanced_force_ratio: 1e-8,
-        ..RestCriterion::default()
-    };
-    let outcome = sim.run_to_rest(&criterion, |_, _| {}).unwrap();
-    assert_eq!(outcome.status, RunStatus::AtRest);
-    sim
 }
 
 #[test]

@@ -11,6 +11,10 @@ use dismech::reproduce::fill_patterns::Layout;
 use dismech::reproduce::katsuki1990::{run_back_pressure, run_pattern, EXAMPLE2, PATTERN_E};
 use dismech::scene::{Frame, Scene};
 
+mod common;
+
+use common::settle;
+
 #[test]
 fn external_force_is_carried_by_the_wall_it_pushes_on() {
     // A disc on a frictionless floor pushed against the right wall by a
@@ -23,18 +27,7 @@ fn external_force_is_carried_by_the_wall_it_pushes_on() {
     scene.set_external_force(0, Vec2::new(force, 0.0)).unwrap();
     let law = SpringDashpotCoulomb::new(NormalStiffness::Constant(k), 0.25, 0.0, Damping::Critical)
         .unwrap();
-    let settings = DemSettings {
-        dt: 1e-4,
-        ..DemSettings::default()
-    };
-    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
-    let criterion = RestCriterion {
-        kinetic_to_released_ratio: 1e-10,
-        unbalanced_force_ratio: 1e-8,
-        ..RestCriterion::default()
-    };
-    let outcome = sim.run_to_rest(&criterion, |_, _| {}).unwrap();
-    assert_eq!(outcome.status, RunStatus::AtRest);
+    let sim = settle(scene, law, 1e-4);
     let right = sim.scene().frame.index_of("right").unwrap();
     let load = sim.wall_load(right);
     approx::assert_relative_eq!(load.x, force, max_relative = 1e-6);

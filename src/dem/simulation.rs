@@ -155,21 +155,16 @@ pub struct DemSimulation<L: ContactLaw<2>, I: Integrator = ExplicitEuler> {
 /// See [`DemSimulation::frame_reach`]. Without walls the reach is the
 /// whole plane.
 fn frame_reach(scene: &Scene) -> Aabb2 {
-    let walls = scene.frame.walls();
-    if walls.is_empty() {
+    let Some(walls) = scene.frame.bounding_box() else {
         return Aabb2 {
             min: Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
             max: Point::new(f64::INFINITY, f64::INFINITY),
         };
-    }
-    let mut reach = Aabb2::from_corners(walls[0].start, walls[0].end);
-    for w in walls {
-        reach = reach.merged(&Aabb2::from_corners(w.start, w.end));
-    }
-    let size = (reach.max.x - reach.min.x).max(reach.max.y - reach.min.y);
+    };
+    let size = (walls.max.x - walls.min.x).max(walls.max.y - walls.min.y);
     Aabb2 {
-        min: Point::new(reach.min.x - size, reach.min.y - size),
-        max: Point::new(reach.max.x + size, f64::INFINITY),
+        min: Point::new(walls.min.x - size, walls.min.y - size),
+        max: Point::new(walls.max.x + size, f64::INFINITY),
     }
 }
 

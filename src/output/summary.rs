@@ -76,6 +76,15 @@ impl Summary {
         self.checks.iter().find(|c| c.id == id)
     }
 
+    /// Write the study's Markdown `report` as `dir/report.md`, list it in
+    /// `files`, then write `summary.json`; each file atomically.
+    pub fn write_with_report(mut self, dir: &Path, report: &str) -> Result<Self> {
+        write_atomically(&dir.join("report.md"), report.as_bytes())?;
+        self.files.push("report.md".into());
+        self.write(dir)?;
+        Ok(self)
+    }
+
     /// Write `summary.json` into `dir` atomically.
     pub fn write(&self, dir: &Path) -> Result<()> {
         let path = dir.join("summary.json");

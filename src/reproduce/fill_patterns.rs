@@ -162,16 +162,8 @@ pub fn wall_pressures(
     };
     let width = scene
         .frame
-        .walls()
-        .iter()
-        .flat_map(|s| [s.start.x, s.end.x])
-        .fold(f64::NEG_INFINITY, f64::max)
-        - scene
-            .frame
-            .walls()
-            .iter()
-            .flat_map(|s| [s.start.x, s.end.x])
-            .fold(f64::INFINITY, f64::min);
+        .bounding_box()
+        .map_or(f64::NAN, |b| b.max.x - b.min.x);
     let sigma_v_max = scene.total_weight() / width;
     let (contacts, spacing) = wall_normal_forces(sim, w, default_spacing);
     contacts
@@ -355,12 +347,7 @@ pub fn back_pressure_scene(
         .start
         .x
         .max(old.frame.walls()[left].end.x);
-    let right_x = old
-        .frame
-        .walls()
-        .iter()
-        .flat_map(|s| [s.start.x, s.end.x])
-        .fold(f64::NEG_INFINITY, f64::max);
+    let right_x = old.frame.bounding_box().map_or(back_x, |b| b.max.x);
     let top = fill_height + lid_gap;
     let frame = Frame::from_walls(vec![
         (

@@ -27,7 +27,7 @@ use crate::dda::{
 use crate::error::Result;
 use crate::math::{Point, Vec2};
 use crate::output::plot::{line_chart, Series};
-use crate::output::{write_atomically, write_csv, Check, Reported, Summary};
+use crate::output::{write_csv, Check, Reported, Summary};
 
 /// File name of the paper.
 pub const PAPER: &str = "003_44afb82d0aa81811.txt";
@@ -890,17 +890,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         tolerance: 0.2,
         passed: order >= 1.8,
     });
-    write_atomically(&dir.join("report.md"), report.as_bytes())?;
-    files.push("report.md".into());
-    let summary = Summary {
+    Summary {
         study: "hashimoto-dda".into(),
         paper: PAPER.into(),
         checks,
         values,
         files,
-    };
-    summary.write(&dir)?;
-    Ok(summary)
+    }
+    .write_with_report(&dir, &report)
 }
 
 /// The contact-compliance section: the return-mapping error at Δt = 1 ms

@@ -27,7 +27,7 @@ use crate::math::Vec2;
 use crate::math::{perp, Point};
 use crate::output::plot::mechanism_picture;
 use crate::output::plot::{line_chart, Series};
-use crate::output::{write_atomically, write_csv, Check, Summary};
+use crate::output::{write_csv, Check, Summary};
 use crate::reproduce::katsuki1990;
 use crate::scene::{Frame, Scene};
 use crate::solve::LinearProgramSolver;
@@ -498,17 +498,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         tolerance: 1e-6,
         passed: max_gap <= 1e-6,
     });
-    write_atomically(&dir.join("report.md"), report.as_bytes())?;
-    files.push("report.md".into());
-    let summary = Summary {
+    Summary {
         study: "yamada2000".into(),
         paper: PAPER.into(),
         checks,
         values: Vec::new(),
         files,
-    };
-    summary.write(&dir)?;
-    Ok(summary)
+    }
+    .write_with_report(&dir, &report)
 }
 
 /// One computed N_c(s) curve.

@@ -33,7 +33,7 @@ use crate::hpm::{
     NamedRaster, NonlinearSettings, Seismic, SlopeGrids,
 };
 use crate::output::map::{cell_map, Arrow, MapCell};
-use crate::output::{write_atomically, write_csv, Check, Reported, Summary};
+use crate::output::{write_csv, Check, Reported, Summary};
 
 /// File name of the paper.
 pub const PAPER: &str = "001_1ec0b7ca8d44c520.txt";
@@ -722,16 +722,12 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         );
     }
     let _ = writeln!(report, "\n## Choices where the paper is silent\n\n- Fig. 10 is missing: the slope above is ours, so its Fs are not the paper's numbers; the paper's are shown beside them for the trends.\n- k_n = (1 − ν)E'/((1 + ν)(1 − 2ν)h) (errata), k_s = k_t = E'/((1 + ν)h), p = {} (not given in the paper); h = cell size between columns, the distance between centroids between layers, the bottom element's mean thickness h_I on the slip surface.\n- Global Fs = Σ(c + σ tan φ)A / Σ|τ|A over the slip springs (2 × 2 Gauss points per column), the definition of the `slope.fs.*` and `*.fs_over_exact` checks; local Fs the same per column. Beside it, Fs along the sliding direction Σ(c + σ tan φ)A / Σ(τ·d_i)A (Hovland's one sliding direction; values `*.fs_sliding*`).\n- The (s, t, n) frame of eqs. (25)–(26) is made orthonormal (t by Gram–Schmidt against s).\n- Nonlinear: Mohr–Coulomb with no tension on the slip springs, one load step, initial-stiffness iteration with Aitken's relaxation to a relative out-of-balance force of {:e} within {} iterations; the strength-reduction factor is bracketed to 2 % and depends on that iteration limit.\n- k_h = 0.15 (the paper prints 1.5).\n", settings.penalty, nonlinear.tolerance, nonlinear.max_iterations);
-    write_atomically(&dir.join("report.md"), report.as_bytes())?;
-    files.push("report.md".into());
-
-    let summary = Summary {
+    Summary {
         study: "yamaguchi-hpm".into(),
         paper: PAPER.into(),
         checks,
         values,
         files,
-    };
-    summary.write(&dir)?;
-    Ok(summary)
+    }
+    .write_with_report(&dir, &report)
 }

@@ -1,7 +1,7 @@
 //! A rigid frame: a chain of wall segments.
 
 use crate::error::{require_positive, DismechError, Result};
-use crate::math::Point;
+use crate::math::{Aabb2, Point};
 use crate::shape::Segment;
 
 /// Walls joined end to end, material on their left (a frame is drawn
@@ -80,6 +80,15 @@ impl Frame {
     /// The walls.
     pub fn walls(&self) -> &[Segment] {
         &self.walls
+    }
+
+    /// The box spanned by the walls, `None` for a frame without walls.
+    pub fn bounding_box(&self) -> Option<Aabb2> {
+        let boxes = self
+            .walls
+            .iter()
+            .map(|w| Aabb2::from_corners(w.start, w.end));
+        boxes.reduce(|a, b| a.merged(&b))
     }
 
     /// The name of wall `i` (`None` if there is no such wall).

@@ -73,36 +73,37 @@ impl BackPressureRun {
         self.wall_reaction().y / self.sim.scene().total_weight()
     }
 
+    /// `(height, normal force)` of each contact of the front wall.
+    fn front_forces(&self) -> Vec<(f64, f64)> {
+        let Some(front) = self.sim.scene().frame.index_of("front") else {
+            return Vec::new();
+        };
+        self.sim
+            .contacts()
+            .iter()
+            .filter(|c| c.target == ContactTarget::Wall(front))
+            .map(|c| (c.point.y, c.force_on_target.x))
+            .collect()
+    }
+
     /// Height of the centroid of the front-wall normal force over the
     /// filling height (1/3 triangular growing with depth, 1/2 uniform).
     pub fn front_centroid_ratio(&self) -> f64 {
-        let Some(front) = self.sim.scene().frame.index_of("front") else {
-            return f64::NAN;
-        };
-        let (mut moment, mut total) = (0.0, 0.0);
-        for c in self.sim.contacts() {
-            if c.target == ContactTarget::Wall(front) {
-                moment += c.force_on_target.x * c.point.y;
-                total += c.force_on_target.x;
-            }
-        }
+        let forces = self.front_forces();
+        let moment: f64 = forces.iter().map(|(y, f)| y * f).sum();
+        let total: f64 = forces.iter().map(|(_, f)| f).sum();
         moment / total / self.fill_height
     }
 
     /// Share of the front-wall normal force carried by its lower half.
     pub fn front_lower_half_share(&self) -> f64 {
-        let Some(front) = self.sim.scene().frame.index_of("front") else {
-            return f64::NAN;
-        };
-        let (mut lower, mut total) = (0.0, 0.0);
-        for c in self.sim.contacts() {
-            if c.target == ContactTarget::Wall(front) {
-                total += c.force_on_target.x;
-                if c.point.y < 0.5 * self.fill_height {
-                    lower += c.force_on_target.x;
-                }
-            }
-        }
+        let forces = self.front_forces();
+        let lower: f64 = forces
+            .iter()
+            .filter(|(y, _)| *y < 0.5 * self.fill_height)
+            .map(|(_, f)| f)
+            .sum();
+        let total: f64 = forces.iter().map(|(_, f)| f).sum();
         lower / total
     }
 }

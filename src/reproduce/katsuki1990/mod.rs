@@ -42,7 +42,7 @@ use crate::error::Result;
 use crate::integrate::ExplicitEuler;
 use crate::math::{Point, Vec2};
 use crate::output::plot::{line_chart, Series};
-use crate::output::{write_atomically, write_csv, Check, Reported, Summary};
+use crate::output::{write_csv, Check, Reported, Summary};
 use crate::scene::{Frame, Scene};
 
 /// File name of the paper.
@@ -383,17 +383,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let (example_checks, values, report) = examples_2_and_3(&dir, 1.0, &mut files)?;
     checks.extend(example_checks);
     spinner.finish_and_clear();
-    write_atomically(&dir.join("report.md"), report.as_bytes())?;
-    files.push("report.md".into());
-    let summary = Summary {
+    Summary {
         study: "katsuki1990".into(),
         paper: PAPER.into(),
         checks,
         values,
         files,
-    };
-    summary.write(&dir)?;
-    Ok(summary)
+    }
+    .write_with_report(&dir, &report)
 }
 
 fn write_example1_outputs(
