@@ -114,14 +114,6 @@ pub enum DismechError {
         /// Released potential energy plus initial kinetic energy.
         available: f64,
     },
-    /// A method was given an integrator of the wrong kind.
-    #[error("the {method} needs an {needed} integrator")]
-    IncompatibleIntegrator {
-        /// The method.
-        method: &'static str,
-        /// The kind it needs (`explicit` or `implicit`).
-        needed: &'static str,
-    },
     /// A contact was declared between bodies that do not touch.
     #[error("contact {contact} (element {body} with {partner}) is declared but the surfaces are {gap:.3e} m apart (negative: overlapping); they must touch within {tolerance:.1e} m")]
     ContactNotTouching {

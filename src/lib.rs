@@ -10,7 +10,7 @@
 //! | pair geometry | [`contact::dispatch::contact_2d`] (one routine per shape pair) | [`contact`] |
 //! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
 //! | contact force and history | [`contact::ContactLaw`] | [`contact`] |
-//! | time stepping | [`integrate::Integrator`] | [`integrate`] |
+//! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
 //! | global solve | [`solve::GlobalSolver`] | [`solve`] |
 //!
 //! ## The four methods as compositions
@@ -18,7 +18,7 @@
 //! | method (paper) | Shape | ContactLaw | Integrator | GlobalSolver | status |
 //! |---|---|---|---|---|---|
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
-//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`contact::ContactResponse::tangent`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + open–close + Newton | [`dda`] |
+//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + open–close + Newton | [`dda`] |
 //! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
 //! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | faer sparse LLᵀ factorised once ([`hpm::BlockMatrix`]), initial-stiffness iteration | [`hpm`] |
 //!
@@ -57,6 +57,7 @@ pub mod error;
 pub mod grid;
 pub mod hpm;
 pub mod integrate;
+pub mod law;
 pub mod limit;
 pub mod math;
 pub mod output;

@@ -2,9 +2,11 @@
 //! geometry and kinematics that feed it.
 
 use dismech::contact::dispatch::contact_2d;
-use dismech::contact::{
-    relative_increment, ContactInput, ContactLaw, Damping, NormalStiffness, PairProperties, Regime,
-    SpringDashpotCoulomb, SpringState,
+use dismech::contact::relative_increment;
+use dismech::law::{
+    conformance, ContactInput, ContactLaw, Damping, FrictionIntegration, MohrCoulombSpring,
+    NormalStiffness, PairProperties, PenaltyCoulomb, PenaltyState, Regime, SpringDashpotCoulomb,
+    SpringState, TangentLaw,
 };
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::shape::{AnyShape2, Circle};
@@ -93,7 +95,7 @@ proptest! {
         input.is_new = false;
         let law = law(constant, damping, 0.4);
         let s = state(e_n, e_s);
-        let r = law.evaluate(&input, &s);
+        let (r, tangent) = law.evaluate_with_tangent(&input, &s);
         let h = 1e-7;
         for j in 0..2 {
             let mut plus = input;
@@ -113,9 +115,9 @@ proptest! {
                 let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
                 // Round-off of the difference quotient: ε |f| / h.
                 let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
-                let scale = 1.0 + r.tangent[(i, j)].abs() + fd.abs();
-                prop_assert!((fd - r.tangent[(i, j)]).abs() <= 1e-6 * scale + roundoff,
-                    "d f{} / d u{}: analytic {} vs fd {}", i, j, r.tangent[(i, j)], fd);
+                let scale = 1.0 + tangent[(i, j)].abs() + fd.abs();
+                prop_assert!((fd - tangent[(i, j)]).abs() <= 1e-6 * scale + roundoff,
+                    "d f{} / d u{}: analytic {} vs fd {}", i, j, tangent[(i, j)], fd);
             }
         }
     }
@@ -237,7 +239,7 @@ proptest! {
         };
         let mut s = SpringState::<3>::default();
         s.spring.0 = nalgebra::Vector3::new(e_n, e_s[0], e_s[1]);
-        let r = law.evaluate(&input, &s);
+        let (r, tangent) = law.evaluate_with_tangent(&input, &s);
         let shear = (r.spring_force[1].powi(2) + r.spring_force[2].powi(2)).sqrt();
         prop_assert!(shear <= 0.4 * r.spring_force[0] * (1.0 + 1e-12) + 1e-12);
         let h = 1e-7;
@@ -254,10 +256,73 @@ proptest! {
             for i in 0..3 {
                 let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
                 let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
-                let scale = 1.0 + r.tangent[(i, j)].abs() + fd.abs();
-                prop_assert!((fd - r.tangent[(i, j)]).abs() <= 1e-5 * scale + roundoff,
-                    "3D d f{} / d u{} in {:?}: analytic {} vs fd {}", i, j, r.regime, r.tangent[(i, j)], fd);
+                let scale = 1.0 + tangent[(i, j)].abs() + fd.abs();
+                prop_assert!((fd - tangent[(i, j)]).abs() <= 1e-5 * scale + roundoff,
+                    "3D d f{} / d u{} in {:?}: analytic {} vs fd {}", i, j, r.regime, tangent[(i, j)], fd);
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Every law of the crate passes the conformance suite (no tension,
+    /// open without overlap, within its strength, tangent = central
+    /// differences, pure): the spring–dashpot law in 2D and 3D, the DDA
+    /// penalty law with return mapping, and the HPM slip spring.
+    #[test]
+    fn every_law_passes_the_conformance_suite(
+        overlap in 1e-6f64..2e-3, du in prop::array::uniform3(-1e-3f64..1e-3),
+        e_n in 0.0f64..2e4, e_s in prop::array::uniform2(-2e4f64..2e4), mu in 0.0f64..1.5,
+        constant in any::<bool>(), damping in any::<bool>(), is_new in any::<bool>()
+    ) {
+        let sd = law(constant, damping, mu);
+        let input2 = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new, pair: pair(0.01) };
+        let violations = conformance::check_all(&sd, &input2, &state(e_n, e_s[0]));
+        prop_assert!(violations.is_empty(), "spring-dashpot 2D: {:?}", violations);
+        prop_assert!(conformance::open_without_overlap(&sd, &input2, &state(e_n, e_s[0])).is_ok());
+
+        let input3 = ContactInput::<3> { overlap, increment: nalgebra::Vector3::new(du[0] * 0.1, du[1], du[2]), dt: 1e-4, is_new, pair: pair(0.01) };
+        let mut s3 = SpringState::<3>::default();
+        s3.spring.0 = nalgebra::Vector3::new(e_n, e_s[0], e_s[1]);
+        let violations = conformance::check_all(&sd, &input3, &s3);
+        prop_assert!(violations.is_empty(), "spring-dashpot 3D: {:?}", violations);
+
+        let penalty = PenaltyCoulomb::new(1e7, mu, FrictionIntegration::ReturnMapping).unwrap();
+        let ps = PenaltyState { normal: e_n, shear: e_s[0], regime: Some(Regime::Stick) };
+        let violations = conformance::check_all(&penalty, &input2, &ps);
+        prop_assert!(violations.is_empty(), "penalty Coulomb: {:?}", violations);
+        prop_assert!(conformance::open_without_overlap(&penalty, &input2, &ps).is_ok());
+
+        // The slip spring follows its own displacement history: its normal
+        // spring before the step is k_n (overlap − Δu_n).
+        let mc = MohrCoulombSpring::new(1e7, 4e6, 2e3, mu).unwrap();
+        let mut mc_state = s3;
+        mc_state.spring.0[0] = 1e7 * (overlap - input3.increment[0]);
+        let violations = conformance::check_all(&mc, &input3, &mc_state);
+        prop_assert!(violations.is_empty(), "Mohr-Coulomb spring: {:?}", violations);
+    }
+}
+
+/// The conventional DDA friction (paper 003 Fig. 1) lets the shear exceed
+/// the Coulomb limit within a step: the conformance check of the strength
+/// catches it, as it should.
+#[test]
+fn conformance_catches_the_conventional_overshoot() {
+    let law = PenaltyCoulomb::new(1e7, 0.5, FrictionIntegration::Conventional).unwrap();
+    let input = ContactInput {
+        overlap: 1e-4,
+        increment: Vector2::new(0.0, 1e-3),
+        dt: 1e-3,
+        is_new: false,
+        pair: PairProperties::rigid(),
+    };
+    let state = PenaltyState {
+        normal: 1e3,
+        shear: 0.0,
+        regime: Some(Regime::Stick),
+    };
+    let violation = conformance::within_strength(&law, &input, &state).unwrap_err();
+    assert_eq!(violation.check, "within_strength");
 }

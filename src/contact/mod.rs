@@ -22,15 +22,12 @@ pub mod circle_segment;
 pub mod dispatch;
 pub mod ellipse;
 mod geometry;
-mod law;
-mod mohr_coulomb;
-mod rigid_plastic;
-mod spring_dashpot;
 
 pub use geometry::{moment_about, relative_increment, ContactGeometry};
-pub use law::{
-    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+// The laws live in their own slot, `crate::law`; re-exported here for the
+// code that names them through `contact`.
+pub use crate::law::{
+    BoundedStiffness, ContactInput, ContactLaw, ContactResponse, Damping, MohrCoulombSpring,
+    NormalStiffness, PairProperties, Regime, RigidPlastic, SpringDashpotCoulomb, SpringState,
+    StiffnessBound, Strength, StrengthLaw, Tangent, TangentLaw,
 };
-pub use mohr_coulomb::MohrCoulombSpring;
-pub use rigid_plastic::RigidPlastic;
-pub use spring_dashpot::{Damping, NormalStiffness, SpringDashpotCoulomb, SpringState};

@@ -9,7 +9,7 @@
 //! |---|---|---|
 //! | block: displacement field, stiffness, inertia, loads | [`block`] | eqs. (1)–(2), (14)–(16) |
 //! | vertex–edge contact: gap, shear, variations | [`contact`] | eqs. (17)–(35) |
-//! | friction: conventional and return mapping | [`friction`] | eqs. (7)–(10), Fig. 1 |
+//! | friction: conventional and return mapping | [`crate::law::PenaltyCoulomb`] | eqs. (7)–(10), Fig. 1 |
 //! | assembly, open–close, Newton, Newmark, Δt control | [`model`] | eqs. (11)–(13), §2.(5), Fig. 5 |
 //!
 //! The pieces are the crate's generic ones: [`crate::shape::Polygon`] for
@@ -38,12 +38,11 @@
 
 pub mod block;
 pub mod contact;
-pub mod friction;
 pub mod model;
 
+pub use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 pub use block::{Block, BlockMaterial, Motion, PlaneState, Prescribed};
 pub use contact::{Kinematics, VertexEdge};
-pub use friction::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 pub use model::{
     ContactReport, DdaModel, DdaSettings, FixedPoint, StepFailure, StepReport, StepStatus,
 };

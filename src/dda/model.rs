@@ -47,11 +47,11 @@ use nalgebra::SVector;
 
 use super::block::{Block, Dof6, Mat6};
 use super::contact::{closest_edge, penetration_depth, Grad12, Kinematics, VertexEdge};
-use super::friction::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 use crate::broad_phase::CellGrid;
-use crate::contact::{ContactInput, ContactLaw, PairProperties, Regime};
 use crate::error::{require_positive, DismechError, Result};
-use crate::integrate::{Integrator, Newmark};
+use crate::integrate::{ImplicitIntegrator, Newmark};
+use crate::law::{ContactInput, ContactResponse, PairProperties, Regime, Tangent};
+use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState, TangentLaw};
 use crate::math::{Aabb2, Point, Vec2};
 use crate::shape::Shape2;
 use crate::solve::{Factorization, GlobalSolver, SparseDirectSolver, SparseSystem};
@@ -426,7 +426,7 @@ impl DdaModel {
         c: &VertexEdge,
         d: &[f64],
         dt: f64,
-    ) -> (Kinematics, crate::contact::ContactResponse<2, PenaltyState>) {
+    ) -> (Kinematics, ContactResponse<2, PenaltyState>, Tangent<2>) {
         let kin = c.kinematics(
             &self.blocks,
             &Self::block_dofs(d, c.vertex_block),
@@ -448,8 +448,8 @@ impl DdaModel {
                     * self.blocks[c.edge_block].material().density,
             },
         };
-        let response = self.law.evaluate(&input, &old);
-        (kin, response)
+        let (response, tangent) = self.law.evaluate_with_tangent(&input, &old);
+        (kin, response, tangent)
     }
 
     /// One trial sub-step of size `dt` from the current state.
@@ -472,7 +472,7 @@ impl DdaModel {
                 }
             }
         }
-        let coeffs = self.integrator.implicit_coefficients(dt);
+        let coeffs = Some(self.integrator.coefficients(dt));
         // Predictor for the free unknowns: the motion at constant
         // acceleration, Δd = Δt v₀ + ½ Δt² a₀.
         for (i, b) in self.blocks.iter().enumerate() {
@@ -650,7 +650,7 @@ impl DdaModel {
             forces: Vec::with_capacity(contacts.len()),
         };
         for c in contacts {
-            let (kin, resp) = self.evaluate(c, d, dt);
+            let (kin, resp, tangent) = self.evaluate(c, d, dt);
             let (t_n, t_s) = (resp.force[0], resp.force[1]);
             eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
             let g_ov: Grad12 = -kin.grad_gap;
@@ -680,7 +680,7 @@ impl DdaModel {
             let mut kt = nalgebra::SMatrix::<f64, 12, 12>::zeros();
             for (p, rp) in rows.iter().enumerate() {
                 for (q, rq) in rows.iter().enumerate() {
-                    let cpq = resp.tangent[(p, q)];
+                    let cpq = tangent[(p, q)];
                     if cpq != 0.0 {
                         kt += rp * rq.transpose() * cpq;
                     }
@@ -753,8 +753,7 @@ impl DdaModel {
             for k in 0..6 {
                 if self.settings.dynamic {
                     let (mut v, mut a) = (b.velocity[k], b.acceleration[k]);
-                    self.integrator
-                        .finish_implicit(trial.dt, di[k], &mut v, &mut a);
+                    self.integrator.finish(trial.dt, di[k], &mut v, &mut a);
                     b.velocity[k] = v;
                     b.acceleration[k] = a;
                 } else {

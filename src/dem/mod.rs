@@ -6,9 +6,9 @@
 //! | candidate pairs | [`crate::broad_phase::CellGrid`] |
 //! | pair geometry | [`crate::contact::dispatch::contact_2d`] |
 //! | relative motion at the contact | [`crate::contact::relative_increment`] |
-//! | contact force and history | any [`crate::contact::ContactLaw<2>`], e.g. [`crate::contact::SpringDashpotCoulomb`] |
+//! | contact force and history | any [`crate::law::ContactLaw<2>`] with a [`crate::law::BoundedStiffness`], e.g. [`crate::contact::SpringDashpotCoulomb`] |
 //! | `M a = f` | [`crate::solve::LumpedSystem`] (diagonal mass) |
-//! | time step | any explicit [`crate::integrate::Integrator`], e.g. [`crate::integrate::ExplicitEuler`] |
+//! | time step | any [`crate::integrate::ExplicitIntegrator`], e.g. [`crate::integrate::ExplicitEuler`] |
 //!
 //! Per step: contact forces from the positions and the previous step's
 //! increments, accelerations from forces plus gravity (paper 000 eqs.

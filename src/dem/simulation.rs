@@ -5,12 +5,10 @@ use std::collections::HashMap;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
 use crate::contact::dispatch::contact_2d;
-use crate::contact::{
-    moment_about, relative_increment, ContactGeometry, ContactInput, ContactLaw, PairProperties,
-    Regime,
-};
+use crate::contact::{moment_about, relative_increment, ContactGeometry};
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
-use crate::integrate::{ExplicitEuler, Integrator};
+use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
+use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties, Regime};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
@@ -127,7 +125,7 @@ pub struct ContactRecord {
 /// An explicit DEM simulation: a scene, a contact law and an integrator,
 /// plus the workspaces of the loop.
 #[derive(Debug)]
-pub struct DemSimulation<L: ContactLaw<2>, I: Integrator = ExplicitEuler> {
+pub struct DemSimulation<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEuler> {
     scene: Scene,
     law: L,
     integrator: I,
@@ -168,22 +166,15 @@ fn frame_reach(scene: &Scene) -> Aabb2 {
     }
 }
 
-impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
-    /// Set up a run: validates the settings, the integrator (must be
-    /// explicit), the initial overlaps and the time step against the stable
-    /// limit.
-    pub fn new(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
+impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
+    /// Set up a run: validates the settings, the initial overlaps and (when
+    /// `settings.check_stability`) the time step against the stable limit
+    /// estimated from the law's stiffness bound.
+    pub fn new(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self>
+    where
+        L: BoundedStiffness<2>,
+    {
         require_positive("time step dt", settings.dt)?;
-        require_non_negative(
-            "initial_overlap_tolerance",
-            settings.initial_overlap_tolerance,
-        )?;
-        if !integrator.is_explicit() {
-            return Err(DismechError::IncompatibleIntegrator {
-                method: "explicit DEM",
-                needed: "explicit",
-            });
-        }
         if settings.check_stability {
             let limit = critical_time_step(&scene, &law);
             if settings.dt > limit.dt {
@@ -194,6 +185,35 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
                 });
             }
         }
+        Self::build(scene, law, integrator, settings)
+    }
+
+    /// Set up a run with a law that has no stiffness bound: the stable-step
+    /// check cannot be made, and the caller takes responsibility for
+    /// `settings.dt` (the run still stops if the energy blows up).
+    /// `settings.check_stability` must be `false`, to say so explicitly.
+    pub fn with_unchecked_time_step(
+        scene: Scene,
+        law: L,
+        integrator: I,
+        settings: DemSettings,
+    ) -> Result<Self> {
+        if settings.check_stability {
+            return Err(DismechError::InvalidParameter {
+                name: "check_stability (the law has no stiffness bound)",
+                value: 1.0,
+                requirement: "must be false: set it to false to take responsibility for dt",
+            });
+        }
+        Self::build(scene, law, integrator, settings)
+    }
+
+    fn build(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
+        require_positive("time step dt", settings.dt)?;
+        require_non_negative(
+            "initial_overlap_tolerance",
+            settings.initial_overlap_tolerance,
+        )?;
         let n = scene.particles.len();
         let mut mass = Vec::with_capacity(3 * n);
         for p in &scene.particles {
@@ -481,8 +501,7 @@ impl<L: ContactLaw<2>, I: Integrator> DemSimulation<L, I> {
             for d in 0..3 {
                 dx[d] = self
                     .integrator
-                    .explicit_step(dt, self.acceleration[3 * i + d], &mut velocity[d])
-                    .unwrap_or(0.0);
+                    .step(dt, self.acceleration[3 * i + d], &mut velocity[d]);
             }
             p.velocity = Vec2::new(velocity[0], velocity[1]);
             p.angular_velocity = velocity[2];

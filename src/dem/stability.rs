@@ -1,6 +1,6 @@
 //! The stable time step of the explicit scheme.
 
-use crate::contact::{ContactLaw, PairProperties};
+use crate::law::{BoundedStiffness, PairProperties};
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
 
@@ -34,7 +34,7 @@ pub fn oscillator_limit(stiffness: f64, mass: f64, damping: f64) -> f64 {
 /// The law's largest stiffness is used (for eq. 19 at the widest contact).
 /// A particle with several contacts is stiffer than one contact: the run
 /// also watches the energy and stops if it grows.
-pub fn critical_time_step<L: ContactLaw<2>>(scene: &Scene, law: &L) -> StabilityLimit {
+pub fn critical_time_step<L: BoundedStiffness<2>>(scene: &Scene, law: &L) -> StabilityLimit {
     let mut best = StabilityLimit {
         dt: f64::INFINITY,
         governing: "no contact mode".into(),
@@ -68,9 +68,7 @@ pub fn critical_time_step<L: ContactLaw<2>>(scene: &Scene, law: &L) -> Stability
                 mass_a: p.mass,
                 mass_b: partner_mass,
             };
-            let Some(bound) = law.stiffness_bound(&pair) else {
-                continue;
-            };
+            let bound = law.stiffness_bound(&pair);
             for (mode, k, m, eta) in [
                 ("normal", bound.normal, rel_mass, bound.normal_damping),
                 (

@@ -1,6 +1,6 @@
 //! The explicit Euler scheme of the DEM.
 
-use super::{ImplicitCoefficients, Integrator};
+use super::ExplicitIntegrator;
 
 /// Semi-implicit (symplectic) Euler, the DEM convention: first the velocity,
 /// then the position with the *new* velocity,
@@ -14,17 +14,9 @@ use super::{ImplicitCoefficients, Integrator};
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ExplicitEuler;
 
-impl Integrator for ExplicitEuler {
-    fn is_explicit(&self) -> bool {
-        true
-    }
-
-    fn explicit_step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> Option<f64> {
+impl ExplicitIntegrator for ExplicitEuler {
+    fn step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> f64 {
         *velocity += dt * acceleration;
-        Some(dt * *velocity)
-    }
-
-    fn implicit_coefficients(&self, _dt: f64) -> Option<ImplicitCoefficients> {
-        None
+        dt * *velocity
     }
 }

@@ -1,30 +1,34 @@
-//! Time integrators: advance the state of the degrees of freedom over a step.
+//! The integrator slot: how a step advances the degrees of freedom.
 //!
-//! | scheme | kind | used by |
+//! | scheme | trait | used by |
 //! |---|---|---|
-//! | [`ExplicitEuler`] (semi-implicit / symplectic Euler) | explicit | ellipse and circle DEM (paper 000) |
-//! | [`Newmark`] (β, γ) | implicit | DDA (paper 003: β = 0.5, γ = 1) |
+//! | [`ExplicitEuler`] (semi-implicit / symplectic Euler) | [`ExplicitIntegrator`] | explicit dynamics: ellipse and circle DEM (paper 000), polygon DEM |
+//! | [`Newmark`] (β, γ of the user's choice) | [`ImplicitIntegrator`] | implicit dynamics: DDA (paper 003: β = ½, γ = 1), the trapezoidal rule (β = ¼, γ = ½) |
+//! | [`QuasiStatic`] | [`ImplicitIntegrator`] | quasi-static penalty analyses (no inertia) |
+//! | [`Restarting`] | [`ImplicitIntegrator`] | "static" DDA: a scheme whose velocities are reset after every step |
 //!
-//! Quasi-static methods (HPM load steps, the LP limit state) use no
-//! integrator.
+//! The limit state of a rigid-plastic LP uses no integrator.
 //!
 //! An explicit scheme advances each DOF from the acceleration at the start
 //! of the step. An implicit scheme gives instead the linear map from the
 //! step's displacement increment `Δd` to the end-of-step acceleration and
 //! velocity, `a₁ = c_a Δd − (a_v v₀ + a_a a₀)`, `v₁ = c_v Δd − (…)`, which the
 //! global assembly turns into an effective mass term `c_a M` and an inertia
-//! load; after the solve, [`Integrator::finish_implicit`] updates `v` and
-//! `a`.
+//! load; after the solve, [`ImplicitIntegrator::finish`] updates `v` and
+//! `a`. A driver names the kind it needs in its bounds, so an implicit
+//! scheme handed to an explicit driver (or the reverse) does not compile.
 
 mod explicit_euler;
 mod newmark;
+mod quasi_static;
 
 pub use explicit_euler::ExplicitEuler;
 pub use newmark::Newmark;
+pub use quasi_static::{QuasiStatic, Restarting};
 
 /// Coefficients of an implicit scheme for one step of size `dt`:
-/// `a₁ = acceleration_per_increment · Δd − acceleration_history(v₀, a₀)` and
-/// `v₁ = velocity_per_increment · Δd − velocity_history(v₀, a₀)`.
+/// `a₁ = acceleration_per_increment · Δd − acceleration_from_velocity · v₀
+/// − acceleration_from_acceleration · a₀` and likewise for `v₁`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImplicitCoefficients {
     /// `∂a₁/∂Δd`: the factor of the effective mass term.
@@ -41,31 +45,44 @@ pub struct ImplicitCoefficients {
     pub velocity_from_acceleration: f64,
 }
 
-/// A time-stepping scheme for second-order equations `M a = f`.
-pub trait Integrator {
-    /// Whether the scheme is explicit (needs only `M⁻¹ f`).
-    fn is_explicit(&self) -> bool;
-
-    /// Explicit step of one DOF: given the acceleration at the start of the
-    /// step, update the velocity in place and return the displacement
-    /// increment. Implicit schemes return `None`.
-    fn explicit_step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> Option<f64>;
-
-    /// The implicit scheme's coefficients for a step `dt`; `None` for an
-    /// explicit scheme.
-    fn implicit_coefficients(&self, dt: f64) -> Option<ImplicitCoefficients>;
-
-    /// After an implicit solve: end-of-step velocity and acceleration of one
-    /// DOF from its increment `Δd`. Explicit schemes leave them unchanged.
-    fn finish_implicit(&self, dt: f64, increment: f64, velocity: &mut f64, acceleration: &mut f64) {
-        if let Some(c) = self.implicit_coefficients(dt) {
-            let (v0, a0) = (*velocity, *acceleration);
-            *acceleration = c.acceleration_per_increment * increment
-                - c.acceleration_from_velocity * v0
-                - c.acceleration_from_acceleration * a0;
-            *velocity = c.velocity_per_increment * increment
-                - c.velocity_from_velocity * v0
-                - c.velocity_from_acceleration * a0;
+impl ImplicitCoefficients {
+    /// All zero: no inertia and no rate (quasi-static).
+    pub fn zero() -> Self {
+        Self {
+            acceleration_per_increment: 0.0,
+            acceleration_from_velocity: 0.0,
+            acceleration_from_acceleration: 0.0,
+            velocity_per_increment: 0.0,
+            velocity_from_velocity: 0.0,
+            velocity_from_acceleration: 0.0,
         }
+    }
+}
+
+/// An explicit scheme for `M a = f`: each DOF advances from the
+/// acceleration at the start of the step.
+pub trait ExplicitIntegrator {
+    /// Advance one DOF: update the velocity in place and return the
+    /// displacement increment of the step.
+    fn step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> f64;
+}
+
+/// An implicit scheme for `M a = f`: the step's equations are solved for
+/// the displacement increment, with the inertia expressed through it.
+pub trait ImplicitIntegrator {
+    /// The scheme's coefficients for a step `dt`.
+    fn coefficients(&self, dt: f64) -> ImplicitCoefficients;
+
+    /// After the solve: end-of-step velocity and acceleration of one DOF
+    /// from its increment `Δd`.
+    fn finish(&self, dt: f64, increment: f64, velocity: &mut f64, acceleration: &mut f64) {
+        let c = self.coefficients(dt);
+        let (v0, a0) = (*velocity, *acceleration);
+        *acceleration = c.acceleration_per_increment * increment
+            - c.acceleration_from_velocity * v0
+            - c.acceleration_from_acceleration * a0;
+        *velocity = c.velocity_per_increment * increment
+            - c.velocity_from_velocity * v0
+            - c.velocity_from_acceleration * a0;
     }
 }

@@ -1,6 +1,6 @@
 //! The Newmark-β family of implicit schemes.
 
-use super::{ImplicitCoefficients, Integrator};
+use super::{ImplicitCoefficients, ImplicitIntegrator};
 use crate::error::{DismechError, Result};
 
 /// Newmark's scheme:
@@ -53,29 +53,33 @@ impl Newmark {
     }
 }
 
-impl Integrator for Newmark {
-    fn is_explicit(&self) -> bool {
-        false
+impl Newmark {
+    /// β.
+    pub fn beta(&self) -> f64 {
+        self.beta
     }
 
-    fn explicit_step(&self, _dt: f64, _acceleration: f64, _velocity: &mut f64) -> Option<f64> {
-        None
+    /// γ.
+    pub fn gamma(&self) -> f64 {
+        self.gamma
     }
+}
 
-    fn implicit_coefficients(&self, dt: f64) -> Option<ImplicitCoefficients> {
+impl ImplicitIntegrator for Newmark {
+    fn coefficients(&self, dt: f64) -> ImplicitCoefficients {
         let (b, g) = (self.beta, self.gamma);
         let ca = 1.0 / (b * dt * dt);
         let av = 1.0 / (b * dt);
         let aa = 0.5 / b - 1.0;
         // v₁ = v₀ + Δt(1−γ)a₀ + Δt γ a₁, with a₁ substituted.
-        Some(ImplicitCoefficients {
+        ImplicitCoefficients {
             acceleration_per_increment: ca,
             acceleration_from_velocity: av,
             acceleration_from_acceleration: aa,
             velocity_per_increment: g * dt * ca,
             velocity_from_velocity: g * dt * av - 1.0,
             velocity_from_acceleration: g * dt * aa - dt * (1.0 - g),
-        })
+        }
     }
 }
 
@@ -88,12 +92,12 @@ mod tests {
     fn oscillate(scheme: &Newmark, steps: usize, dt: f64) -> (f64, f64) {
         let (m, k) = (1.0, 4.0 * std::f64::consts::PI * std::f64::consts::PI);
         let (mut d, mut v, mut a) = (1.0, 0.0, -k);
-        let c = scheme.implicit_coefficients(dt).unwrap();
+        let c = scheme.coefficients(dt);
         for _ in 0..steps {
             let rhs = -k * d
                 + m * (c.acceleration_from_velocity * v + c.acceleration_from_acceleration * a);
             let dd = rhs / (k + c.acceleration_per_increment * m);
-            scheme.finish_implicit(dt, dd, &mut v, &mut a);
+            scheme.finish(dt, dd, &mut v, &mut a);
             d += dd;
         }
         (d, 0.5 * m * v * v + 0.5 * k * d * d)

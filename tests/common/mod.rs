@@ -1,14 +1,18 @@
 //! Helpers shared by the DEM test files.
 
-use dismech::contact::ContactLaw;
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
+use dismech::law::{BoundedStiffness, ContactLaw};
 use dismech::scene::Scene;
 
 /// Run `scene` with `law` and time step `dt` until it is at rest by a
 /// strict criterion (kinetic / released energy below 1e-10, unbalanced
 /// force below 1e-8 of the weight); fails the test otherwise.
-pub fn settle<L: ContactLaw<2>>(scene: Scene, law: L, dt: f64) -> DemSimulation<L> {
+pub fn settle<L: ContactLaw<2> + BoundedStiffness<2>>(
+    scene: Scene,
+    law: L,
+    dt: f64,
+) -> DemSimulation<L> {
     let settings = DemSettings {
         dt,
         ..DemSettings::default()

@@ -1,4 +1,16 @@
-//! The [`ContactLaw`] trait: relative motion at a contact → contact force.
+//! What a contact law is given, what it returns, and the capabilities a law
+//! may have: a force ([`ContactLaw`]), a consistent tangent
+//! ([`TangentLaw`]), a linear strength ([`StrengthLaw`]) and a stiffness
+//! bound for the explicit stable step ([`BoundedStiffness`]).
+//!
+//! A driver states in its trait bounds which capabilities it needs, so a
+//! law missing one is a compile error, not a run-time surprise:
+//!
+//! | driver | needs |
+//! |---|---|
+//! | explicit dynamics | [`ContactLaw`] + [`BoundedStiffness`] (or an explicit opt-out of the stability check) |
+//! | implicit dynamics | [`TangentLaw`] |
+//! | limit analysis | [`StrengthLaw`] |
 
 use nalgebra::{SMatrix, SVector};
 
@@ -15,6 +27,20 @@ pub struct PairProperties {
     pub mass_a: f64,
     /// Mass of B.
     pub mass_b: f64,
+}
+
+impl PairProperties {
+    /// A pair of flat rigid surfaces of infinite mass: for laws that use
+    /// neither curvature nor mass (penalty laws, slip springs).
+    pub fn rigid() -> Self {
+        Self {
+            curvature_radius_a: f64::INFINITY,
+            curvature_radius_b: f64::INFINITY,
+            width: 0.0,
+            mass_a: f64::INFINITY,
+            mass_b: f64::INFINITY,
+        }
+    }
 }
 
 /// One evaluation of a law: the state of the contact and the step's motion.
@@ -54,22 +80,27 @@ pub enum Regime {
 
 /// The result of one evaluation.
 ///
-/// `force[0]` is the compressive normal force (≥ 0) and `force[1..]` the
-/// shear force resisting the relative tangential motion: the force on B is
-/// `force[0] n − force[1] t` and A receives the opposite.
+/// `force[0]` is the compressive normal force (≥ 0 for a law without
+/// tension) and `force[1..]` the shear force resisting the relative
+/// tangential motion: the force on B is `force[0] n − force[1] t` and A
+/// receives the opposite.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactResponse<const D: usize, S> {
     /// Local force components (see above).
     pub force: SVector<f64, D>,
     /// Spring (elastic) part of `force`, without dashpots.
     pub spring_force: SVector<f64, D>,
-    /// Consistent tangent `∂force/∂increment`; unsymmetric in slip.
-    pub tangent: SMatrix<f64, D, D>,
     /// Open, stick or slip.
     pub regime: Regime,
     /// The history state to keep if the step is accepted.
     pub state: S,
 }
+
+/// The consistent tangent `∂force/∂increment` of one evaluation
+/// (unsymmetric in slip). Derivatives with respect to the approach
+/// `Δu_n` take the overlap as moving with it (`∂overlap/∂Δu_n = 1`), as it
+/// does when a driver varies the bodies' motion.
+pub type Tangent<const D: usize> = SMatrix<f64, D, D>;
 
 /// Linear strength of a contact, `|t_s| ≤ cohesion + friction · t_n`: the
 /// admissible set a limit analysis (LP) imposes, and the yield function of a
@@ -80,6 +111,15 @@ pub struct Strength {
     pub cohesion: f64,
     /// Friction coefficient μ = tan φ.
     pub friction: f64,
+}
+
+impl Strength {
+    /// The shear the contact can carry under the normal force `normal`:
+    /// `c + μ t_n` (written `c + μ t_n` so that `c = 0` gives `μ t_n`
+    /// exactly).
+    pub fn limit(&self, normal: f64) -> f64 {
+        self.cohesion + self.friction * normal
+    }
 }
 
 /// The largest stiffnesses and dashpots a law may show for a pair; the
@@ -96,7 +136,8 @@ pub struct StiffnessBound {
     pub shear_damping: f64,
 }
 
-/// A constitutive law for one contact.
+/// A constitutive law for one contact: relative motion and history to
+/// force.
 ///
 /// `evaluate` is a pure function of the input and the previous state: the
 /// caller keeps the returned state only when the step is accepted, so that
@@ -105,21 +146,41 @@ pub trait ContactLaw<const D: usize> {
     /// History carried from step to step (spring forces, elastic slip).
     type State: Clone + Default + std::fmt::Debug + Send + Sync;
 
-    /// Force, tangent and new state for one step.
+    /// Force and new state for one step.
     fn evaluate(
         &self,
         input: &ContactInput<D>,
         state: &Self::State,
     ) -> ContactResponse<D, Self::State>;
+}
 
-    /// The law's linear strength, if it has one.
-    fn strength(&self) -> Option<Strength> {
-        None
-    }
+/// A law with a consistent tangent, as implicit (Newton) drivers need.
+pub trait TangentLaw<const D: usize>: ContactLaw<D> {
+    /// Force, new state and the tangent `∂force/∂increment` of one step.
+    /// The response equals [`ContactLaw::evaluate`]'s.
+    fn evaluate_with_tangent(
+        &self,
+        input: &ContactInput<D>,
+        state: &Self::State,
+    ) -> (ContactResponse<D, Self::State>, Tangent<D>);
+}
 
-    /// Upper bounds of stiffness and damping for the pair, for the explicit
-    /// stability limit; `None` for laws without springs (rigid-plastic).
-    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
-        None
+/// A law with a linear strength `|t_s| ≤ c + μ t_n`, as a limit analysis
+/// needs (the LP's admissible set).
+pub trait StrengthLaw {
+    /// The strength.
+    fn strength(&self) -> Strength;
+
+    /// Whether the contact may open (carries no tension). A bilateral
+    /// contact (cohesive, never opening) answers `false`.
+    fn may_open(&self) -> bool {
+        true
     }
+}
+
+/// A law whose stiffness and damping are bounded for a pair, so that the
+/// explicit scheme's stable step can be estimated.
+pub trait BoundedStiffness<const D: usize>: ContactLaw<D> {
+    /// Upper bounds of stiffness and damping for the pair.
+    fn stiffness_bound(&self, pair: &PairProperties) -> StiffnessBound;
 }

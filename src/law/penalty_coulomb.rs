@@ -22,10 +22,12 @@
 //!   `μ t_n,n sgn`, a known load from the previous step's normal force; the
 //!   contact returns to LOCK when the relative motion reverses.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 
-use crate::contact::{
-    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+use super::coulomb::{project_shear, shear_step};
+use super::traits::{
+    BoundedStiffness, ContactInput, ContactLaw, ContactResponse, PairProperties, Regime,
+    StiffnessBound, Strength, StrengthLaw, Tangent, TangentLaw,
 };
 use crate::error::{require_non_negative, require_positive, Result};
 
@@ -95,31 +97,29 @@ impl PenaltyCoulomb {
         self.integration
     }
 
+    fn strength_of(&self) -> Strength {
+        Strength {
+            cohesion: 0.0,
+            friction: self.friction,
+        }
+    }
+
+    /// Backward-Euler return mapping: the Coulomb core.
     fn return_mapping(&self, t_n: f64, input: &ContactInput<2>, state: &PenaltyState) -> Out {
         let p = self.penalty;
-        let trial = state.shear + p * input.increment[1];
-        let limit = self.friction * t_n;
-        if trial.abs() <= limit {
-            Out {
-                shear: trial,
-                d_shear: [0.0, p],
-                stored: trial,
-                regime: Regime::Stick,
-            }
-        } else {
-            let sign = trial.signum();
-            Out {
-                shear: limit * sign,
-                d_shear: [self.friction * p * sign, 0.0],
-                stored: limit * sign,
-                regime: Regime::Slip,
-            }
+        let previous = SVector::<f64, 2>::new(0.0, state.shear);
+        let step = shear_step(&self.strength_of(), p, &previous, &input.increment, t_n, p);
+        Out {
+            shear: step.force[1],
+            d_shear: [step.tangent[(1, 0)], step.tangent[(1, 1)]],
+            stored: step.force[1],
+            regime: step.regime,
         }
     }
 
     fn conventional(&self, t_n: f64, input: &ContactInput<2>, state: &PenaltyState) -> Out {
         let p = self.penalty;
-        let limit = self.friction * t_n;
+        let limit = self.strength_of().limit(t_n);
         match state.regime {
             Some(Regime::Slip) => {
                 // Sliding: friction from the previous normal force, a known
@@ -140,13 +140,15 @@ impl PenaltyCoulomb {
                 }
             }
             _ => {
-                // LOCK: linear spring, capped only in the stored state.
+                // LOCK: linear spring, capped only in the stored state (the
+                // core's projection).
                 let trial = state.shear + p * input.increment[1];
-                let (stored, regime) = if trial.abs() > limit {
-                    (limit * trial.signum(), Regime::Slip)
+                let regime = if trial.abs() > limit {
+                    Regime::Slip
                 } else {
-                    (trial, Regime::Stick)
+                    Regime::Stick
                 };
+                let stored = project_shear(&SVector::<f64, 2>::new(0.0, trial), limit)[1];
                 Out {
                     shear: trial,
                     d_shear: [0.0, p],
@@ -155,6 +157,45 @@ impl PenaltyCoulomb {
                 }
             }
         }
+    }
+
+    /// One evaluation with its tangent `∂(t_n, t_s)/∂(Δg_n, Δg_s)`.
+    fn respond(
+        &self,
+        input: &ContactInput<2>,
+        state: &PenaltyState,
+    ) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
+        if input.overlap <= 0.0 {
+            let open = ContactResponse {
+                force: SVector::zeros(),
+                spring_force: SVector::zeros(),
+                regime: Regime::Open,
+                state: PenaltyState {
+                    normal: 0.0,
+                    shear: 0.0,
+                    regime: Some(Regime::Open),
+                },
+            };
+            return (open, Tangent::zeros());
+        }
+        let t_n = self.penalty * input.overlap;
+        let out = match self.integration {
+            FrictionIntegration::ReturnMapping => self.return_mapping(t_n, input, state),
+            FrictionIntegration::Conventional => self.conventional(t_n, input, state),
+        };
+        let force = SVector::<f64, 2>::new(t_n, out.shear);
+        let tangent = Tangent::<2>::new(self.penalty, 0.0, out.d_shear[0], out.d_shear[1]);
+        let response = ContactResponse {
+            force,
+            spring_force: force,
+            regime: out.regime,
+            state: PenaltyState {
+                normal: t_n,
+                shear: out.stored,
+                regime: Some(out.regime),
+            },
+        };
+        (response, tangent)
     }
 }
 
@@ -178,52 +219,33 @@ impl ContactLaw<2> for PenaltyCoulomb {
         input: &ContactInput<2>,
         state: &PenaltyState,
     ) -> ContactResponse<2, PenaltyState> {
-        if input.overlap <= 0.0 {
-            return ContactResponse {
-                force: SVector::zeros(),
-                spring_force: SVector::zeros(),
-                tangent: SMatrix::zeros(),
-                regime: Regime::Open,
-                state: PenaltyState {
-                    normal: 0.0,
-                    shear: 0.0,
-                    regime: Some(Regime::Open),
-                },
-            };
-        }
-        let t_n = self.penalty * input.overlap;
-        let out = match self.integration {
-            FrictionIntegration::ReturnMapping => self.return_mapping(t_n, input, state),
-            FrictionIntegration::Conventional => self.conventional(t_n, input, state),
-        };
-        let force = SVector::<f64, 2>::new(t_n, out.shear);
-        let tangent = SMatrix::<f64, 2, 2>::new(self.penalty, 0.0, out.d_shear[0], out.d_shear[1]);
-        ContactResponse {
-            force,
-            spring_force: force,
-            tangent,
-            regime: out.regime,
-            state: PenaltyState {
-                normal: t_n,
-                shear: out.stored,
-                regime: Some(out.regime),
-            },
-        }
+        self.respond(input, state).0
     }
+}
 
-    fn strength(&self) -> Option<Strength> {
-        Some(Strength {
-            cohesion: 0.0,
-            friction: self.friction,
-        })
+impl TangentLaw<2> for PenaltyCoulomb {
+    fn evaluate_with_tangent(
+        &self,
+        input: &ContactInput<2>,
+        state: &PenaltyState,
+    ) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
+        self.respond(input, state)
     }
+}
 
-    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
-        Some(StiffnessBound {
+impl StrengthLaw for PenaltyCoulomb {
+    fn strength(&self) -> Strength {
+        self.strength_of()
+    }
+}
+
+impl BoundedStiffness<2> for PenaltyCoulomb {
+    fn stiffness_bound(&self, _pair: &PairProperties) -> StiffnessBound {
+        StiffnessBound {
             normal: self.penalty,
             shear: self.penalty,
             normal_damping: 0.0,
             shear_damping: 0.0,
-        })
+        }
     }
 }

@@ -29,10 +29,12 @@
 //! For D = 3 the shear part is a 2-vector and the slip cap scales it to
 //! `‖e_s‖ = μ e_n`.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 
-use super::law::{
-    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
+use super::coulomb::shear_step;
+use super::traits::{
+    BoundedStiffness, ContactInput, ContactLaw, ContactResponse, PairProperties, Regime,
+    StiffnessBound, Strength, StrengthLaw, Tangent, TangentLaw,
 };
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 
@@ -204,23 +206,21 @@ fn effective_radii(pair: &PairProperties) -> (f64, f64) {
     }
 }
 
-impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
-    type State = SpringState<D>;
-
-    fn evaluate(
+impl SpringDashpotCoulomb {
+    /// One evaluation with its consistent tangent.
+    fn respond<const D: usize>(
         &self,
         input: &ContactInput<D>,
         state: &SpringState<D>,
-    ) -> ContactResponse<D, SpringState<D>> {
+    ) -> (ContactResponse<D, SpringState<D>>, Tangent<D>) {
         let open = ContactResponse {
             force: SVector::zeros(),
             spring_force: SVector::zeros(),
-            tangent: SMatrix::zeros(),
             regime: Regime::Open,
             state: SpringState::default(),
         };
         if input.overlap <= 0.0 {
-            return open;
+            return (open, Tangent::zeros());
         }
         let k_n = self.normal_stiffness(&input.pair);
         let k_s = self.stiffness_ratio * k_n;
@@ -229,7 +229,7 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
         let elastic_normal_increment = if input.is_new { input.overlap } else { du[0] };
         let e_n = state.spring.0[0] + k_n * elastic_normal_increment;
         if e_n < 0.0 {
-            return open;
+            return (open, Tangent::zeros());
         }
         let rate = 1.0 / input.dt;
         let d_n = eta_n * du[0] * rate;
@@ -241,86 +241,82 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
             0.0
         };
 
-        let mut spring = SVector::<f64, D>::zeros();
-        let mut force = SVector::<f64, D>::zeros();
-        let mut tangent = SMatrix::<f64, D, D>::zeros();
+        // Shear: the Coulomb core (eq. 18); no shear dashpot in slip.
+        let strength = Strength {
+            cohesion: 0.0,
+            friction: self.friction,
+        };
+        let shear = shear_step(&strength, k_s, &state.spring.0, &du, e_n, k_n);
+        let mut spring = shear.force;
+        let mut force = shear.force;
+        let mut tangent = shear.tangent;
         spring[0] = e_n;
         force[0] = f_n;
         tangent[(0, 0)] = normal_tangent;
-
-        // Shear trial: elastic predictor.
-        let mut shear_norm2 = 0.0;
-        for i in 1..D {
-            spring[i] = state.spring.0[i] + k_s * du[i];
-            shear_norm2 += spring[i] * spring[i];
-        }
-        let shear_norm = shear_norm2.sqrt();
-        let limit = self.friction * e_n;
-        let regime = if shear_norm > limit {
-            // Return to the Coulomb limit (eq. 18); no shear dashpot in slip.
-            let scale = if shear_norm > 0.0 {
-                limit / shear_norm
-            } else {
-                0.0
-            };
-            let direction: SVector<f64, D> = if shear_norm > 0.0 {
-                spring / shear_norm
-            } else {
-                SVector::zeros()
-            };
-            for i in 1..D {
-                spring[i] *= scale;
-                force[i] = spring[i];
-                // ∂f_s/∂Δu_n = μ k_n d (d: direction of the trial shear).
-                if !input.is_new {
-                    tangent[(i, 0)] = self.friction * k_n * direction[i];
-                }
-                // ∂f_s/∂Δu_s = μ e_n k_s (I − d dᵀ) / ‖e_trial‖: zero in 2D.
-                for j in 1..D {
-                    let identity = if i == j { 1.0 } else { 0.0 };
-                    tangent[(i, j)] = k_s * scale * (identity - direction[i] * direction[j]);
-                }
-            }
-            Regime::Slip
-        } else {
+        if shear.regime == Regime::Stick {
             for i in 1..D {
                 force[i] = spring[i] + eta_s * du[i] * rate;
                 tangent[(i, i)] = k_s + eta_s * rate;
             }
-            Regime::Stick
-        };
-        ContactResponse {
+        }
+        let response = ContactResponse {
             force,
             spring_force: spring,
-            tangent,
-            regime,
+            regime: shear.regime,
             state: SpringState {
                 spring: SpringVector(spring),
             },
-        }
+        };
+        (response, tangent)
     }
+}
 
-    fn strength(&self) -> Option<Strength> {
-        Some(Strength {
+impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
+    type State = SpringState<D>;
+
+    fn evaluate(
+        &self,
+        input: &ContactInput<D>,
+        state: &SpringState<D>,
+    ) -> ContactResponse<D, SpringState<D>> {
+        self.respond(input, state).0
+    }
+}
+
+impl<const D: usize> TangentLaw<D> for SpringDashpotCoulomb {
+    fn evaluate_with_tangent(
+        &self,
+        input: &ContactInput<D>,
+        state: &SpringState<D>,
+    ) -> (ContactResponse<D, SpringState<D>>, Tangent<D>) {
+        self.respond(input, state)
+    }
+}
+
+impl StrengthLaw for SpringDashpotCoulomb {
+    fn strength(&self) -> Strength {
+        Strength {
             cohesion: 0.0,
             friction: self.friction,
-        })
+        }
     }
+}
 
+impl<const D: usize> BoundedStiffness<D> for SpringDashpotCoulomb {
     /// For eq. (19), the largest `k_n` is reached at the largest contact
     /// width, `B = 2 min(r1, r2)`.
-    fn stiffness_bound(&self, pair: &PairProperties) -> Option<StiffnessBound> {
+    fn stiffness_bound(&self, pair: &PairProperties) -> StiffnessBound {
         let widest = PairProperties {
             width: f64::INFINITY,
             ..*pair
         };
         let k_n = self.normal_stiffness(&widest);
         let (eta_n, eta_s) = self.damping_coefficients(k_n, pair);
-        Some(StiffnessBound {
+        StiffnessBound {
             normal: k_n,
             shear: self.stiffness_ratio * k_n,
             normal_damping: eta_n,
             shear_damping: eta_s,
-        })
+        }
     }
 }

@@ -15,12 +15,14 @@
 //! the increment, it is the total-displacement form used by the
 //! nonlinear HPM solve (one load step).
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 
-use super::law::{
-    ContactInput, ContactLaw, ContactResponse, PairProperties, Regime, StiffnessBound, Strength,
-};
+use super::coulomb::shear_step;
 use super::spring_dashpot::{SpringState, SpringVector};
+use super::traits::{
+    BoundedStiffness, ContactInput, ContactLaw, ContactResponse, PairProperties, Regime,
+    StiffnessBound, Strength, StrengthLaw, Tangent, TangentLaw,
+};
 use crate::error::{require_non_negative, require_positive, Result};
 
 /// The cohesive Mohr–Coulomb spring with no tension, in 3D (normal and two
@@ -55,25 +57,62 @@ impl MohrCoulombSpring {
     /// `[approach, along s, along t]` as the increment (the one-step,
     /// total-displacement form).
     pub fn evaluate_total(&self, delta: [f64; 3]) -> ContactResponse<3, SpringState<3>> {
-        let input = ContactInput {
+        self.respond(&Self::total_input(delta), &SpringState::default())
+            .0
+    }
+
+    /// The input of the total-displacement form: `delta` as the increment
+    /// from a zero state.
+    pub fn total_input(delta: [f64; 3]) -> ContactInput<3> {
+        ContactInput {
             overlap: delta[0],
             increment: SVector::from(delta),
             dt: 1.0,
             is_new: false,
-            pair: PairProperties {
-                curvature_radius_a: f64::INFINITY,
-                curvature_radius_b: f64::INFINITY,
-                width: 1.0,
-                mass_a: f64::INFINITY,
-                mass_b: f64::INFINITY,
-            },
-        };
-        self.evaluate(&input, &SpringState::default())
+            pair: PairProperties::rigid(),
+        }
     }
 
     /// The same spring with its strength replaced (strength reduction).
     pub fn with_strength(self, strength: Strength) -> Self {
         Self { strength, ..self }
+    }
+}
+
+impl MohrCoulombSpring {
+    /// One evaluation with its consistent tangent: the normal spring
+    /// without tension, then the Coulomb core.
+    fn respond(
+        &self,
+        input: &ContactInput<3>,
+        state: &SpringState<3>,
+    ) -> (ContactResponse<3, SpringState<3>>, Tangent<3>) {
+        let (k_n, k_s) = (self.normal_stiffness, self.shear_stiffness);
+        let du = input.increment;
+        let e_n = state.spring.0[0] + k_n * du[0];
+        if e_n < 0.0 {
+            let open = ContactResponse {
+                force: SVector::zeros(),
+                spring_force: SVector::zeros(),
+                regime: Regime::Open,
+                state: SpringState::default(),
+            };
+            return (open, Tangent::zeros());
+        }
+        let shear = shear_step(&self.strength, k_s, &state.spring.0, &du, e_n, k_n);
+        let mut spring = shear.force;
+        spring[0] = e_n;
+        let mut tangent = shear.tangent;
+        tangent[(0, 0)] = k_n;
+        let response = ContactResponse {
+            force: spring,
+            spring_force: spring,
+            regime: shear.regime,
+            state: SpringState {
+                spring: SpringVector(spring),
+            },
+        };
+        (response, tangent)
     }
 }
 
@@ -85,62 +124,34 @@ impl ContactLaw<3> for MohrCoulombSpring {
         input: &ContactInput<3>,
         state: &Self::State,
     ) -> ContactResponse<3, Self::State> {
-        let (k_n, k_s) = (self.normal_stiffness, self.shear_stiffness);
-        let du = input.increment;
-        let mut spring = SVector::<f64, 3>::new(
-            state.spring.0[0] + k_n * du[0],
-            state.spring.0[1] + k_s * du[1],
-            state.spring.0[2] + k_s * du[2],
-        );
-        if spring[0] < 0.0 {
-            return ContactResponse {
-                force: SVector::zeros(),
-                spring_force: SVector::zeros(),
-                tangent: SMatrix::zeros(),
-                regime: Regime::Open,
-                state: SpringState::default(),
-            };
-        }
-        let mut tangent = SMatrix::<f64, 3, 3>::from_diagonal(&SVector::from([k_n, k_s, k_s]));
-        let shear = spring[1].hypot(spring[2]);
-        let limit = self.strength.cohesion + self.strength.friction * spring[0];
-        let regime = if shear > limit {
-            let scale = limit / shear;
-            let d = [spring[1] / shear, spring[2] / shear];
-            for i in 0..2 {
-                spring[i + 1] *= scale;
-                tangent[(i + 1, 0)] = self.strength.friction * k_n * d[i];
-                for j in 0..2 {
-                    let identity = if i == j { 1.0 } else { 0.0 };
-                    tangent[(i + 1, j + 1)] = k_s * scale * (identity - d[i] * d[j]);
-                }
-            }
-            Regime::Slip
-        } else {
-            Regime::Stick
-        };
-        ContactResponse {
-            force: spring,
-            spring_force: spring,
-            tangent,
-            regime,
-            state: SpringState {
-                spring: SpringVector(spring),
-            },
-        }
+        self.respond(input, state).0
     }
+}
 
-    fn strength(&self) -> Option<Strength> {
-        Some(self.strength)
+impl TangentLaw<3> for MohrCoulombSpring {
+    fn evaluate_with_tangent(
+        &self,
+        input: &ContactInput<3>,
+        state: &Self::State,
+    ) -> (ContactResponse<3, Self::State>, Tangent<3>) {
+        self.respond(input, state)
     }
+}
 
-    fn stiffness_bound(&self, _pair: &PairProperties) -> Option<StiffnessBound> {
-        Some(StiffnessBound {
+impl StrengthLaw for MohrCoulombSpring {
+    fn strength(&self) -> Strength {
+        self.strength
+    }
+}
+
+impl BoundedStiffness<3> for MohrCoulombSpring {
+    fn stiffness_bound(&self, _pair: &PairProperties) -> StiffnessBound {
+        StiffnessBound {
             normal: self.normal_stiffness,
             shear: self.shear_stiffness,
             normal_damping: 0.0,
             shear_damping: 0.0,
-        })
+        }
     }
 }
 
@@ -171,7 +182,8 @@ mod tests {
     fn mohr_coulomb_tangent_matches_finite_differences_in_slip() {
         let law = MohrCoulombSpring::new(10.0, 5.0, 2.0, 0.5).unwrap();
         let du = [1.0, 1.8, -2.4];
-        let r = law.evaluate_total(du);
+        let (r, tangent) =
+            law.evaluate_with_tangent(&MohrCoulombSpring::total_input(du), &SpringState::default());
         let h = 1e-7;
         for j in 0..3 {
             let mut p = du;
@@ -180,9 +192,9 @@ mod tests {
             for i in 0..3 {
                 let fd = (f[i] - r.force[i]) / h;
                 assert!(
-                    (fd - r.tangent[(i, j)]).abs() < 1e-5,
+                    (fd - tangent[(i, j)]).abs() < 1e-5,
                     "({i},{j}): {fd} vs {}",
-                    r.tangent[(i, j)]
+                    tangent[(i, j)]
                 );
             }
         }

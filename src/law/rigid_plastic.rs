@@ -2,16 +2,14 @@
 //! rigid bodies, a contact that keeps contact (or, unilaterally, may open),
 //! and a shear force bounded by a strength, `|T| ≤ C + N tan φ`.
 
-use nalgebra::{SMatrix, SVector};
-
-use super::law::{ContactInput, ContactLaw, ContactResponse, Regime, Strength};
+use super::traits::{Strength, StrengthLaw};
 use crate::error::{require_non_negative, DismechError, Result};
 
 /// A rigid-plastic contact: cohesion `C`, friction angle `φ`, and whether it
 /// may open.
 ///
 /// In a limit analysis the law gives the LP its admissible set
-/// ([`ContactLaw::strength`]) and its flow rule: slip `Ṡ` dissipates
+/// ([`StrengthLaw::strength`]) and its flow rule: slip `Ṡ` dissipates
 /// `C |Ṡ|` (eq. 15); with friction the flow is associated, so slip comes
 /// with dilation `|Ṡ| tan φ` and the dissipation stays `C |Ṡ|`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,42 +67,20 @@ impl RigidPlastic {
     }
 }
 
-impl<const D: usize> ContactLaw<D> for RigidPlastic {
-    type State = ();
-
-    /// The flow rule of eq. (14) for the shear part, for a cohesive
-    /// contact: `T = C sign(Ṡ)` while slipping; a stuck contact
-    /// (`Ṡ = 0`) may carry any `|T| ≤ C`, reported as 0. The normal force of
-    /// a rigid contact is a reaction, not a function of the motion: it is
-    /// found by the LP, so it is reported as 0 here.
-    fn evaluate(&self, input: &ContactInput<D>, _state: &()) -> ContactResponse<D, ()> {
-        let mut force = SVector::<f64, D>::zeros();
-        let mut slip2 = 0.0;
-        for i in 1..D {
-            slip2 += input.increment[i] * input.increment[i];
-        }
-        let slip = slip2.sqrt();
-        let regime = if slip > 0.0 {
-            for i in 1..D {
-                force[i] = self.cohesion * input.increment[i] / slip;
-            }
-            Regime::Slip
-        } else {
-            Regime::Stick
-        };
-        ContactResponse {
-            force,
-            spring_force: SVector::zeros(),
-            tangent: SMatrix::zeros(),
-            regime,
-            state: (),
+/// The admissible set of eq. (13): `|T| ≤ C + N tan φ`; a unilateral
+/// contact may open. A rigid-plastic contact has no force–displacement
+/// relation (its forces are reactions found by the LP), so it is a
+/// [`StrengthLaw`] and not a [`super::ContactLaw`]: the dynamic drivers
+/// refuse it at compile time.
+impl StrengthLaw for RigidPlastic {
+    fn strength(&self) -> Strength {
+        Strength {
+            cohesion: self.cohesion,
+            friction: self.friction(),
         }
     }
 
-    fn strength(&self) -> Option<Strength> {
-        Some(Strength {
-            cohesion: self.cohesion,
-            friction: self.friction(),
-        })
+    fn may_open(&self) -> bool {
+        self.unilateral
     }
 }

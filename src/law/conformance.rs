@@ -1,0 +1,234 @@
+//! Checks every contact law of this crate passes, written once and generic
+//! over the law, so that a law of one's own can be checked the same way.
+//!
+//! Each check takes a law, one input and one history state and returns
+//! `Err(Violation)` saying what failed; drive them with random inputs (the
+//! crate's own tests use `proptest`):
+//!
+//! ```
+//! use dismech::law::{conformance, ContactInput, PairProperties, PenaltyCoulomb,
+//!                    FrictionIntegration, PenaltyState};
+//! use nalgebra::Vector2;
+//! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+//! let input = ContactInput { overlap: 1e-4, increment: Vector2::new(1e-5, 2e-5), dt: 1e-3,
+//!                            is_new: false, pair: PairProperties::rigid() };
+//! let state = PenaltyState { normal: 9e3, shear: 2e3, regime: None };
+//! assert!(conformance::check_all(&law, &input, &state).is_empty());
+//! assert!(conformance::open_without_overlap(&law, &input, &state).is_ok());
+//! ```
+//!
+//! | check | property |
+//! |---|---|
+//! | [`no_tension`] | a law that may open never pulls: `t_n ≥ 0` |
+//! | [`open_without_overlap`] | no overlap, no force, regime `Open` |
+//! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip |
+//! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force |
+//! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s |
+
+use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
+
+/// A failed check: which one, and what was seen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Violation {
+    /// Name of the check.
+    pub check: &'static str,
+    /// What was seen, with the values.
+    pub detail: String,
+}
+
+impl std::fmt::Display for Violation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.check, self.detail)
+    }
+}
+
+fn fail(check: &'static str, detail: String) -> Result<(), Violation> {
+    Err(Violation { check, detail })
+}
+
+/// A law that may open never pulls: `force[0] ≥ 0` and `spring_force[0] ≥ 0`.
+pub fn no_tension<L: ContactLaw<D>, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation> {
+    let r = law.evaluate(input, state);
+    if r.force[0] < 0.0 || r.spring_force[0] < 0.0 {
+        return fail(
+            "no_tension",
+            format!(
+                "normal force {} (spring {}) is tensile",
+                r.force[0], r.spring_force[0]
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// Without overlap there is no force and the regime is `Open`. (What an
+/// open contact keeps as history is the law's business: the DDA law
+/// records that it opened.)
+pub fn open_without_overlap<L: ContactLaw<D>, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation> {
+    let mut apart = *input;
+    apart.overlap = -input.overlap.abs().max(f64::MIN_POSITIVE);
+    let r = law.evaluate(&apart, state);
+    if r.regime != Regime::Open || r.force.iter().any(|f| *f != 0.0) {
+        return fail(
+            "open_without_overlap",
+            format!(
+                "overlap {} gives force {:?} in regime {:?}",
+                apart.overlap,
+                r.force.as_slice(),
+                r.regime
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// The spring part of the shear stays within the strength,
+/// `‖t_s‖ ≤ c + μ t_n` (relative round-off `1e-12`), and lies on it in slip.
+pub fn within_strength<L: ContactLaw<D> + StrengthLaw, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation> {
+    let r = law.evaluate(input, state);
+    if r.regime == Regime::Open {
+        return Ok(());
+    }
+    let limit = law.strength().limit(r.spring_force[0]);
+    let shear = (1..D)
+        .map(|i| r.spring_force[i] * r.spring_force[i])
+        .sum::<f64>()
+        .sqrt();
+    if shear > limit * (1.0 + 1e-12) + 1e-12 {
+        return fail(
+            "within_strength",
+            format!("|t_s| = {shear} exceeds c + mu t_n = {limit}"),
+        );
+    }
+    if r.regime == Regime::Slip && (shear - limit).abs() > 1e-9 * (1.0 + limit) {
+        return fail(
+            "within_strength",
+            format!("slipping with |t_s| = {shear} off the limit {limit}"),
+        );
+    }
+    Ok(())
+}
+
+/// The consistent tangent equals central differences of the force with
+/// respect to each increment component (step `h`), wherever the
+/// difference does not straddle a kink (a change of regime, or a force
+/// clamped to zero on one side only). An approach increment moves the
+/// overlap with it (`∂overlap/∂Δu_n = 1`), as it does in a driver. The
+/// tolerance is `relative · (1 + |analytic| + |fd|)` plus the round-off
+/// `1e-15 |f| / h`.
+pub fn tangent_matches_finite_differences<L: TangentLaw<D>, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+    h: f64,
+    relative: f64,
+) -> Result<(), Violation> {
+    let (r, tangent) = law.evaluate_with_tangent(input, state);
+    if r.regime == Regime::Open {
+        return Ok(());
+    }
+    for j in 0..D {
+        let (mut plus, mut minus) = (*input, *input);
+        plus.increment[j] += h;
+        minus.increment[j] -= h;
+        if j == 0 {
+            plus.overlap += h;
+            minus.overlap -= h;
+        }
+        let (rp, rm) = (law.evaluate(&plus, state), law.evaluate(&minus, state));
+        let clamped = |f: f64| f == 0.0;
+        let kink = rp.regime != r.regime
+            || rm.regime != r.regime
+            || (0..D).any(|i| clamped(rp.force[i]) != clamped(rm.force[i]));
+        if kink {
+            continue;
+        }
+        for i in 0..D {
+            let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
+            let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
+            let scale = 1.0 + tangent[(i, j)].abs() + fd.abs();
+            if (fd - tangent[(i, j)]).abs() > relative * scale + roundoff {
+                return fail(
+                    "tangent_matches_finite_differences",
+                    format!(
+                        "d force[{i}] / d increment[{j}] in {:?}: analytic {} vs difference {fd}",
+                        r.regime,
+                        tangent[(i, j)]
+                    ),
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `evaluate` is a pure function: two calls agree, and agree with
+/// `evaluate_with_tangent`.
+pub fn pure<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation>
+where
+    L: TangentLaw<D>,
+    L::State: PartialEq,
+{
+    let first = law.evaluate(input, state);
+    let second = law.evaluate(input, state);
+    let (third, _) = law.evaluate_with_tangent(input, state);
+    let same = |a: &ContactResponse<D, L::State>, b: &ContactResponse<D, L::State>| a == b;
+    if !same(&first, &second) || !same(&first, &third) {
+        return fail(
+            "pure",
+            format!("two evaluations differ: {first:?} / {second:?} / {third:?}"),
+        );
+    }
+    Ok(())
+}
+
+/// The checks every law must pass on one input: [`no_tension`] (when the
+/// law [`StrengthLaw::may_open`]), [`within_strength`],
+/// [`tangent_matches_finite_differences`] (`h = 1e-7 · (|increment| +
+/// |overlap|)`, relative tolerance `1e-6`) and [`pure`]. Returns the
+/// violations (empty when the law passes). [`open_without_overlap`] is
+/// separate: it holds for laws that detect contact by the overlap, not for
+/// springs that follow their own displacement history.
+pub fn check_all<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Vec<Violation>
+where
+    L: TangentLaw<D> + StrengthLaw,
+    L::State: PartialEq,
+{
+    let size = input.increment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let h = 1e-7 * (size + input.overlap.abs()).max(f64::MIN_POSITIVE);
+    let mut out = Vec::new();
+    let mut record = |r: Result<(), Violation>| {
+        if let Err(v) = r {
+            out.push(v);
+        }
+    };
+    if law.may_open() {
+        record(no_tension(law, input, state));
+    }
+    record(within_strength(law, input, state));
+    record(tangent_matches_finite_differences(
+        law, input, state, h, 1e-6,
+    ));
+    record(pure(law, input, state));
+    out
+}
