@@ -131,8 +131,9 @@ pub enum DismechError {
     /// A driving plate has no contact.
     #[error("the moving support `{0}` touches no element")]
     PlateTouchesNothing(String),
-    /// A limit analysis needs exactly one moving support.
-    #[error("a limit analysis needs exactly one moving support (plate); found {0}")]
+    /// A limit analysis needs exactly one driver: one moving support, or a
+    /// live load and no moving support.
+    #[error("a limit analysis needs exactly one driver: one moving support (plate), or a live load and no moving support; found {0} moving supports")]
     DrivingSupportCount(usize),
     /// A grid file (ESRI ASCII raster) is malformed.
     #[error("{file}, line {line}, column {column}: {message}")]

@@ -59,6 +59,7 @@ pub mod hpm;
 pub mod integrate;
 pub mod law;
 pub mod limit;
+pub mod lp;
 pub mod math;
 pub mod output;
 pub mod reproduce;

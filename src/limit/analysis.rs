@@ -1,9 +1,9 @@
 //! Assembly of the kinematic LP and its solution.
 
-use super::model::{LimitModel, Partner};
+use super::model::{LimitModel, LiveLoad, Partner};
 use crate::error::{DismechError, Result};
+use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
-use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
 
 /// How a limit analysis ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,8 +26,9 @@ pub enum LimitStatus {
 pub struct LimitResult {
     /// Outcome.
     pub status: LimitStatus,
-    /// Limit load on the plate, along its velocity (N per m); `None` unless
-    /// the status is [`LimitStatus::Collapse`].
+    /// Limit load on the plate, along its velocity (N per m), or the
+    /// multiplier λ of the live load; `None` unless the status is
+    /// [`LimitStatus::Collapse`].
     pub load: Option<f64>,
     /// Upper bound: the minimum of the kinematic LP (dissipation minus the
     /// power of known loads, divided by the plate speed).
@@ -62,18 +63,44 @@ struct ContactColumns {
     shear_row: Option<usize>,
 }
 
+/// What drives a collapse: a support moving at `speed`, or a live load
+/// whose multiplier is sought.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Driver {
+    /// Support `plate` moves at `speed` along its velocity.
+    Plate {
+        /// The support.
+        plate: usize,
+        /// Its speed.
+        speed: f64,
+    },
+    /// The live load's power is normalised to 1.
+    Live(LiveLoad),
+}
+
+impl Driver {
+    /// The speed the kinematic optimum is divided by (1 for a live load).
+    fn speed(&self) -> f64 {
+        match self {
+            Driver::Plate { speed, .. } => *speed,
+            Driver::Live(_) => 1.0,
+        }
+    }
+}
+
 /// The kinematic LP of a model and where its unknowns sit.
 struct KinematicLp {
     lp: LinearProgram,
     dof: Vec<usize>,
     columns: Vec<ContactColumns>,
-    plate: usize,
-    speed: f64,
+    driver: Driver,
+    /// Row of the live load's power normalisation.
+    live_row: Option<usize>,
 }
 
 /// Assemble the kinematic LP of `model`.
 fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
-    let (plate, speed) = driving_plate(model)?;
+    let driver = driver(model)?;
 
     // Velocity unknowns: u, v (and θ̇ for rolling elements) per element.
     let mut dof = Vec::with_capacity(model.bodies().len());
@@ -139,24 +166,43 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
             }
         }
     }
+    // A live load: its power on the mechanism is normalised to one.
+    let live_row = match driver {
+        Driver::Live(live) => {
+            let b = &model.bodies()[live.body];
+            let k = dof[live.body];
+            let mut row = vec![(k, live.force.x), (k + 1, live.force.y)];
+            if b.rotates {
+                row.push((k + 2, cross(&(live.point - b.centre), &live.force)));
+            }
+            Some(lp.add_equality(&row, 1.0))
+        }
+        Driver::Plate { .. } => None,
+    };
     Ok(KinematicLp {
         lp,
         dof,
         columns,
-        plate,
-        speed,
+        driver,
+        live_row,
     })
 }
 
-/// Build and solve the kinematic LP of `model` with `solver`.
-pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
+/// Build and solve the kinematic LP of `model` with any LP solver.
+///
+/// # Errors
+/// A model without exactly one driver (one moving support, or a live load
+/// and no moving support), a plate touching nothing, or a solver that
+/// refuses the LP.
+pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitResult> {
     let KinematicLp {
         lp,
         dof,
         columns,
-        plate,
-        speed,
+        driver,
+        live_row,
     } = build_kinematic_lp(model)?;
+    let speed = driver.speed();
     let n = lp.num_variables;
     let lp_size = lp.size();
     let solution = solver.solve(&lp)?;
@@ -186,30 +232,38 @@ pub fn analyse(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<L
         return Ok(result);
     }
     read_mechanism(model, &dof, &columns, &solution.x, &mut result);
-    let plate_direction = model.supports()[plate].velocity / speed;
     let mut plate_force = Vec2::zeros();
     for (c, contact) in contacts.iter().enumerate() {
         let cols = columns[c];
         // Dual multipliers → contact forces (see the module docs of
-        // `solve::linear_program` for the sign convention).
+        // `crate::lp` for the sign convention).
         result.normal_force[c] = -solution.equality_duals[cols.normal_row];
         if let Some(r) = cols.shear_row {
             result.shear_force[c] = solution.equality_duals[r];
         }
-        if contact.partner == Partner::Support(plate) {
-            plate_force +=
-                contact.normal * result.normal_force[c] - contact.tangent() * result.shear_force[c];
+        if let Driver::Plate { plate, .. } = driver {
+            if contact.partner == Partner::Support(plate) {
+                plate_force += contact.normal * result.normal_force[c]
+                    - contact.tangent() * result.shear_force[c];
+            }
         }
     }
-    // The load that drives the plate balances the elements' push on it.
-    result.static_load = -plate_force.dot(&plate_direction);
+    result.static_load = match (driver, live_row) {
+        // The load that drives the plate balances the elements' push on it.
+        (Driver::Plate { plate, speed }, _) => {
+            -plate_force.dot(&(model.supports()[plate].velocity / speed))
+        }
+        // The multiplier of the normalisation row (dual objective −y·1).
+        (Driver::Live(_), Some(row)) => -solution.equality_duals[row],
+        (Driver::Live(_), None) => f64::NAN,
+    };
     result.load = Some(result.kinematic_load);
     Ok(result)
 }
 
-/// The one moving support (the plate) of a model and its speed; errors
-/// when there is not exactly one or it touches nothing.
-pub(super) fn driving_plate(model: &LimitModel) -> Result<(usize, f64)> {
+/// What drives the collapse of `model`: its live load (then no support
+/// may move), or its one moving support (which must touch something).
+pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
     let drivers: Vec<usize> = model
         .supports()
         .iter()
@@ -217,6 +271,12 @@ pub(super) fn driving_plate(model: &LimitModel) -> Result<(usize, f64)> {
         .filter(|(_, s)| s.velocity.norm() > 0.0)
         .map(|(i, _)| i)
         .collect();
+    if let Some(live) = model.live_load() {
+        if !drivers.is_empty() {
+            return Err(DismechError::DrivingSupportCount(drivers.len()));
+        }
+        return Ok(Driver::Live(*live));
+    }
     if drivers.len() != 1 {
         return Err(DismechError::DrivingSupportCount(drivers.len()));
     }
@@ -230,7 +290,10 @@ pub(super) fn driving_plate(model: &LimitModel) -> Result<(usize, f64)> {
             model.supports()[plate].name.clone(),
         ));
     }
-    Ok((plate, model.supports()[plate].velocity.norm()))
+    Ok(Driver::Plate {
+        plate,
+        speed: model.supports()[plate].velocity.norm(),
+    })
 }
 
 /// Element velocities, slips and openings of an LP solution `x`.
@@ -310,18 +373,19 @@ pub struct Uniqueness {
 /// that optimal face. An interior-point solver returns a point inside the
 /// face, which may blend several optimal vertex mechanisms; a spread above
 /// `1e-4` (relative to the velocity scale) says the face is not a point.
-pub fn mechanism_uniqueness(
+pub fn mechanism_uniqueness<S: LpSolver>(
     model: &LimitModel,
-    solver: &mut LinearProgramSolver,
+    solver: &mut S,
     result: &LimitResult,
 ) -> Result<Uniqueness> {
     let KinematicLp {
         mut lp,
         dof,
         columns,
-        speed,
+        driver,
         ..
     } = build_kinematic_lp(model)?;
+    let speed = driver.speed();
     let optimum = result.kinematic_load * speed;
     let row: Vec<(usize, f64)> = lp
         .objective

@@ -29,9 +29,12 @@ pub struct PackingLimitSettings {
 }
 
 /// Build the limit-analysis model of a packing: one rigid element per
-/// particle, one support per frame wall, one contact per DEM contact of the
-/// last step (overlapping pairs). Contacts are accepted as touching within
-/// the largest DEM overlap.
+/// particle (of its own shape and pose), one support per frame wall, one
+/// contact per DEM contact point of the last step (every point of a
+/// manifold). Contacts between circles (and of circles with walls) take
+/// their geometry from the circles and must touch within the largest DEM
+/// overlap; contacts of other shapes take the DEM's contact point and
+/// normal.
 pub fn model_from_packing(
     scene: &Scene,
     contacts: &[ContactRecord],
@@ -53,6 +56,16 @@ pub fn model_from_packing(
             .get(i)
             .ok_or(DismechError::NoSuchBody { index: i, count })
     };
+    let wall = |w: usize| {
+        scene
+            .frame
+            .walls()
+            .get(w)
+            .ok_or(DismechError::DegenerateWall {
+                wall: w,
+                reason: "a contact names a wall the frame does not have",
+            })
+    };
     let mut largest_overlap = 0.0f64;
     for c in contacts {
         let a = particle(c.particle)?;
@@ -64,14 +77,7 @@ pub fn model_from_packing(
                     - (b.pose.position - a.pose.position).norm()
             }
             ContactTarget::Wall(w) => {
-                let wall = scene
-                    .frame
-                    .walls()
-                    .get(w)
-                    .ok_or(DismechError::DegenerateWall {
-                        wall: w,
-                        reason: "a contact names a wall the frame does not have",
-                    })?;
+                let wall = wall(w)?;
                 ra - (a.pose.position - wall.start).dot(&wall.inner_normal())
             }
         };
@@ -82,34 +88,60 @@ pub fn model_from_packing(
         1.01 * largest_overlap + 1e-12,
     )?)?;
     for p in &scene.particles {
-        let AnyShape2::Circle(circle) = &p.shape else {
-            return Err(DismechError::UnsupportedPair(
-                "limit analysis",
-                "non-circular particle",
-            ));
+        let i = match &p.shape {
+            AnyShape2::Circle(circle) => {
+                model.add_body(p.pose.position, circle.radius(), settings.rolling)?
+            }
+            other => model.add_shape(other.clone(), p.pose, settings.rolling)?,
         };
-        let i = model.add_body(p.pose.position, circle.radius(), settings.rolling)?;
         if settings.self_weight {
             model.set_load(i, scene.gravity * p.mass)?;
         }
     }
-    for (w, wall) in scene.frame.walls().iter().enumerate() {
-        let normal = wall.inner_normal();
+    for (w, segment) in scene.frame.walls().iter().enumerate() {
+        let normal = segment.inner_normal();
         let velocity = if w == plate { normal } else { normal * 0.0 };
         model.add_support(
             scene.frame.name(w).unwrap_or("wall"),
-            wall.start,
+            segment.start,
             normal,
             velocity,
         )?;
     }
+    let is_circle = |i: usize| matches!(scene.particles[i].shape, AnyShape2::Circle(_));
     for c in contacts {
-        let (partner, law) = match c.target {
-            ContactTarget::Particle(j) => (Partner::Body(j), settings.contact_law),
-            ContactTarget::Wall(w) if w == plate => (Partner::Support(w), settings.plate_law),
-            ContactTarget::Wall(w) => (Partner::Support(w), settings.wall_law),
+        let (partner, law, circles) = match c.target {
+            ContactTarget::Particle(j) => (
+                Partner::Body(j),
+                settings.contact_law,
+                is_circle(c.particle) && is_circle(j),
+            ),
+            ContactTarget::Wall(w) if w == plate => (
+                Partner::Support(w),
+                settings.plate_law,
+                is_circle(c.particle),
+            ),
+            ContactTarget::Wall(w) => (
+                Partner::Support(w),
+                settings.wall_law,
+                is_circle(c.particle),
+            ),
         };
-        model.add_contact(c.particle, partner, law)?;
+        if circles {
+            model.add_contact(c.particle, partner, law)?;
+        } else {
+            // A wall contact's point lies half the overlap inside the wall:
+            // put it on the wall line, where the support is.
+            let point = match c.target {
+                ContactTarget::Wall(w) => {
+                    let segment = wall(w)?;
+                    let n = segment.inner_normal();
+                    c.point - n * (c.point - segment.start).dot(&n)
+                }
+                ContactTarget::Particle(_) => c.point,
+            };
+            model.add_contact_at(c.particle, partner, law, point, c.normal)?;
+        }
     }
     Ok(model)
 }

@@ -1,12 +1,21 @@
-//! Rigid-plastic limit analysis of circular elements by linear programming
-//! (paper 002, Yamada & Tamura 2000), as a composition of generic pieces:
+//! The limit-analysis driver: rigid-plastic collapse of rigid bodies by
+//! linear programming (paper 002, Yamada & Tamura 2000, generalised to
+//! bodies of any shape), generic over the LP solver.
 //!
-//! | piece | here |
+//! | slot | here |
 //! |---|---|
-//! | Shape | circles ([`LimitBody`]) and straight supports ([`Support`]) |
-//! | ContactLaw | [`crate::contact::RigidPlastic`]: admissible forces `|T| ≤ C + N tan φ`, flow rule |
-//! | Integrator | none: the limit state |
-//! | GlobalSolver | [`crate::solve::LinearProgramSolver`] (Clarabel) |
+//! | shape | any [`crate::shape::AnyShape2`] outline ([`LimitBody`]); straight supports ([`Support`]) |
+//! | pair query | the contact points and normals: from circle geometry ([`LimitModel::add_contact`]) or given, e.g. a manifold's points or a DEM packing's contacts ([`LimitModel::add_contact_at`], [`model_from_packing`]) |
+//! | body kinematics | rigid, 3 DOF (or 2 without rotation) |
+//! | contact law | any [`crate::law::StrengthLaw`]: its strength `|T| ≤ c + N tan φ` and whether it may open ([`PlasticContact`]); [`crate::law::RigidPlastic`] is paper 002's |
+//! | integrator | none: the limit state |
+//! | LP solver | any [`crate::lp::LpSolver`], e.g. [`crate::lp::LinearProgramSolver`] (Clarabel) |
+//!
+//! The collapse is driven either by one support moving at a given velocity
+//! (a loading plate: the limit load is the force on it) or by a live load
+//! on a body ([`LimitModel::set_live_load`]: the limit is its multiplier
+//! λ). [`admissibility`] checks the dual contact forces for equilibrium and
+//! strength.
 //!
 //! The kinematic (upper-bound) LP: the unknowns are the element
 //! velocities `q` (u, v and, for rolling elements, θ̇), the slip rates
@@ -16,18 +25,22 @@
 //! contact is split into its normal part (zero for a contact that keeps
 //! contact) and its slip. The objective is the dissipation `Σ C|S|` (eq. 15)
 //! minus the power of known loads (self-weight); with the plate driven at
-//! unit speed its minimum is the limit load `P` (eq. 13). The dual of this
+//! unit speed its minimum is the limit load `P` (eq. 13); with a live load
+//! instead, the live load's power is normalised to one and the minimum is
+//! its multiplier. The dual of this
 //! LP is the static (lower-bound) problem: its multipliers are the contact
 //! forces `N`, `T`, in equilibrium with `P` (eq. 4) and within strength;
 //! equal primal and dual optima certify the limit load.
 
 mod analysis;
+mod equilibrium;
 mod from_dem;
 pub mod lattice;
 mod model;
 mod static_lp;
 
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
+pub use equilibrium::{admissibility, Admissibility};
 pub use from_dem::{model_from_packing, PackingLimitSettings};
-pub use model::{LimitBody, LimitContact, LimitModel, Partner, Support};
+pub use model::{LimitBody, LimitContact, LimitModel, LiveLoad, Partner, PlasticContact, Support};
 pub use static_lp::analyse_static;

@@ -1,20 +1,93 @@
-//! The data of a limit analysis: rigid circles, supports and contacts.
+//! The data of a limit analysis: rigid bodies of any shape, straight
+//! supports, contacts with a strength, and what drives the collapse (a
+//! moving support, or a live load whose multiplier is sought).
 
-use crate::contact::RigidPlastic;
 use crate::error::{require_finite, require_positive, DismechError, Result};
-use crate::math::{perp, Point, Vec2};
+use crate::law::{Strength, StrengthLaw};
+use crate::math::{perp, Point, Pose2, Vec2};
+use crate::shape::{AnyShape2, Circle};
 
-/// A rigid circular element.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A rigid element: its outline placed at its pose (the pose's position is
+/// the reference point of its velocity and of its moments).
+#[derive(Debug, Clone, PartialEq)]
 pub struct LimitBody {
-    /// Centre.
+    /// Reference point (the centroid).
     pub centre: Point,
-    /// Radius.
-    pub radius: f64,
+    /// The outline, in the body frame.
+    pub shape: AnyShape2,
+    /// Orientation of the outline (rad).
+    pub angle: f64,
     /// Whether the element may rotate (rolling model) or not.
     pub rotates: bool,
-    /// Known load on the element (e.g. its weight `m g`), N per m.
+    /// Known load on the element at its reference point (e.g. its weight
+    /// `m g`), N per m.
     pub load: Vec2,
+}
+
+impl LimitBody {
+    /// The pose of the outline.
+    pub fn pose(&self) -> Pose2 {
+        Pose2 {
+            position: self.centre,
+            angle: self.angle,
+        }
+    }
+
+    /// Radius of a circular element, or the largest distance from the
+    /// reference point to the outline otherwise.
+    pub fn radius(&self) -> f64 {
+        self.shape.as_shape().bounding_radius()
+    }
+}
+
+/// What the LP reads of a contact's law: its linear strength
+/// `|T| ≤ c + N tan φ` and whether it may open.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlasticContact {
+    strength: Strength,
+    unilateral: bool,
+}
+
+impl PlasticContact {
+    /// The strength of any law that has one.
+    pub fn of(law: &impl StrengthLaw) -> Self {
+        Self {
+            strength: law.strength(),
+            unilateral: law.may_open(),
+        }
+    }
+
+    /// Cohesion c.
+    pub fn cohesion(&self) -> f64 {
+        self.strength.cohesion
+    }
+
+    /// Friction coefficient tan φ.
+    pub fn friction(&self) -> f64 {
+        self.strength.friction
+    }
+
+    /// Whether the contact may open.
+    pub fn is_unilateral(&self) -> bool {
+        self.unilateral
+    }
+
+    /// Whether the contact resists shear at all.
+    pub fn resists_shear(&self) -> bool {
+        self.strength.cohesion > 0.0 || self.strength.friction > 0.0
+    }
+}
+
+/// A reference load applied at a point of a body, whose multiplier λ at
+/// collapse the analysis finds (the limit load is `λ |force|` along it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LiveLoad {
+    /// The loaded body.
+    pub body: usize,
+    /// The reference force (N per m).
+    pub force: Vec2,
+    /// Where it acts.
+    pub point: Point,
 }
 
 /// A straight rigid support (wall or loading plate): the line through
@@ -48,8 +121,8 @@ pub struct LimitContact {
     pub body: usize,
     /// What it touches (B).
     pub partner: Partner,
-    /// The contact's law.
-    pub law: RigidPlastic,
+    /// The contact's strength.
+    pub law: PlasticContact,
     /// Contact point.
     pub point: Point,
     /// Unit normal from A to B.
@@ -69,6 +142,7 @@ pub struct LimitModel {
     bodies: Vec<LimitBody>,
     supports: Vec<Support>,
     contacts: Vec<LimitContact>,
+    live_load: Option<LiveLoad>,
     tolerance: f64,
 }
 
@@ -81,18 +155,53 @@ impl LimitModel {
         })
     }
 
-    /// Add an element; returns its index.
+    /// Add a circular element; returns its index.
     pub fn add_body(&mut self, centre: Point, radius: f64, rotates: bool) -> Result<usize> {
-        require_finite("element centre x", centre.x)?;
-        require_finite("element centre y", centre.y)?;
         require_positive("element radius", radius)?;
+        let circle = Circle::new(radius)?;
+        self.add_shape(circle.into(), Pose2::new(centre.x, centre.y, 0.0), rotates)
+    }
+
+    /// Add an element of any shape at `pose` (its position is the reference
+    /// point of velocities, loads and moments); returns its index.
+    pub fn add_shape(&mut self, shape: AnyShape2, pose: Pose2, rotates: bool) -> Result<usize> {
+        require_finite("element centre x", pose.position.x)?;
+        require_finite("element centre y", pose.position.y)?;
+        require_finite("element angle", pose.angle)?;
         self.bodies.push(LimitBody {
-            centre,
-            radius,
+            centre: pose.position,
+            shape,
+            angle: pose.angle,
             rotates,
             load: Vec2::zeros(),
         });
         Ok(self.bodies.len() - 1)
+    }
+
+    /// Apply the reference live load `force` at `point` of `body`: the
+    /// analysis then finds the multiplier λ of this load at collapse, and no
+    /// support may move.
+    pub fn set_live_load(&mut self, body: usize, force: Vec2, point: Point) -> Result<()> {
+        let count = self.bodies.len();
+        if body >= count {
+            return Err(DismechError::NoSuchBody { index: body, count });
+        }
+        for (n, v) in [
+            ("live load x", force.x),
+            ("live load y", force.y),
+            ("live load point x", point.x),
+            ("live load point y", point.y),
+        ] {
+            require_finite(n, v)?;
+        }
+        require_positive("live load magnitude", force.norm())?;
+        self.live_load = Some(LiveLoad { body, force, point });
+        Ok(())
+    }
+
+    /// The live load, if one is set.
+    pub fn live_load(&self) -> Option<&LiveLoad> {
+        self.live_load.as_ref()
     }
 
     /// Set the known load (e.g. weight) of element `body`.
@@ -134,25 +243,37 @@ impl LimitModel {
         Ok(self.supports.len() - 1)
     }
 
-    /// Declare a contact of `body` with `partner`; the surfaces must touch.
+    /// Declare a contact of the circular element `body` with `partner` (a
+    /// circular element or a support), its geometry taken from the circles;
+    /// the surfaces must touch. For other shapes give the contact point and
+    /// normal with [`LimitModel::add_contact_at`].
     pub fn add_contact(
         &mut self,
         body: usize,
         partner: Partner,
-        law: RigidPlastic,
+        law: impl StrengthLaw,
     ) -> Result<usize> {
         let index = self.contacts.len();
         let count = self.bodies.len();
-        let a = *self
+        let a = self
             .bodies
             .get(body)
             .ok_or(DismechError::NoSuchBody { index: body, count })?;
+        let circle_of = |b: &LimitBody| match &b.shape {
+            AnyShape2::Circle(c) => Ok(c.radius()),
+            other => Err(DismechError::UnsupportedPair(
+                "limit contact from circle geometry (use add_contact_at)",
+                other.as_shape().kind().name(),
+            )),
+        };
+        let radius_a = circle_of(a)?;
         let (point, normal, gap, name) = match partner {
             Partner::Body(j) => {
                 let b = self
                     .bodies
                     .get(j)
                     .ok_or(DismechError::NoSuchBody { index: j, count })?;
+                let radius_b = circle_of(b)?;
                 let d = b.centre - a.centre;
                 let distance = d.norm();
                 let normal = if distance > 0.0 {
@@ -161,9 +282,9 @@ impl LimitModel {
                     Vec2::x()
                 };
                 (
-                    a.centre + normal * a.radius,
+                    a.centre + normal * radius_a,
                     normal,
-                    distance - a.radius - b.radius,
+                    distance - radius_a - radius_b,
                     format!("element {j}"),
                 )
             }
@@ -174,9 +295,9 @@ impl LimitModel {
                 })?;
                 let distance = (a.centre - support.point).dot(&support.normal);
                 (
-                    a.centre - support.normal * a.radius,
+                    a.centre - support.normal * radius_a,
                     -support.normal,
-                    distance - a.radius,
+                    distance - radius_a,
                     format!("support `{}`", support.name),
                 )
             }
@@ -193,7 +314,69 @@ impl LimitModel {
         self.contacts.push(LimitContact {
             body,
             partner,
-            law,
+            law: PlasticContact::of(&law),
+            point,
+            normal,
+        });
+        Ok(index)
+    }
+
+    /// Declare a contact of `body` with `partner` at `point` with the unit
+    /// `normal` from `body` into `partner` (normalised here): one point of a
+    /// contact manifold, e.g. a corner of a block on a floor or a contact
+    /// of a settled DEM packing. Against a support, the point must lie on
+    /// its line within the model's tolerance and the normal must point into
+    /// the support.
+    pub fn add_contact_at(
+        &mut self,
+        body: usize,
+        partner: Partner,
+        law: impl StrengthLaw,
+        point: Point,
+        normal: Vec2,
+    ) -> Result<usize> {
+        let index = self.contacts.len();
+        let count = self.bodies.len();
+        if body >= count {
+            return Err(DismechError::NoSuchBody { index: body, count });
+        }
+        for (n, v) in [
+            ("contact point x", point.x),
+            ("contact point y", point.y),
+            ("contact normal x", normal.x),
+            ("contact normal y", normal.y),
+        ] {
+            require_finite(n, v)?;
+        }
+        let length = require_positive("contact normal length", normal.norm())?;
+        let normal = normal / length;
+        match partner {
+            Partner::Body(j) if j >= count || j == body => {
+                return Err(DismechError::NoSuchBody { index: j, count });
+            }
+            Partner::Body(_) => {}
+            Partner::Support(s) => {
+                let support = self.supports.get(s).ok_or(DismechError::NoSuchBody {
+                    index: s,
+                    count: self.supports.len(),
+                })?;
+                let gap = (point - support.point).dot(&support.normal);
+                let facing = normal.dot(&support.normal) < 0.0;
+                if gap.abs() > self.tolerance || !facing {
+                    return Err(DismechError::ContactNotTouching {
+                        contact: index,
+                        body,
+                        partner: format!("support `{}`", support.name),
+                        gap,
+                        tolerance: self.tolerance,
+                    });
+                }
+            }
+        }
+        self.contacts.push(LimitContact {
+            body,
+            partner,
+            law: PlasticContact::of(&law),
             point,
             normal,
         });

@@ -5,18 +5,25 @@
 //! interior-point solver finishes faster depends on the model (see the
 //! `limit_lp` benchmark).
 
-use super::analysis::{driving_plate, LimitResult, LimitStatus};
+use super::analysis::{driver, Driver, LimitResult, LimitStatus};
 use super::model::{LimitModel, Partner};
 use crate::error::Result;
+use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
-use crate::solve::{GlobalSolver, LinearProgram, LinearProgramSolver, LpStatus};
 
-/// Solve the static LP of `model`. The mechanism comes from the
-/// multipliers of the equilibrium rows (element velocities); slips and
-/// openings are left at zero.
-pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> Result<LimitResult> {
-    let (plate, speed) = driving_plate(model)?;
-    let direction = model.supports()[plate].velocity / speed;
+/// Solve the static LP of `model` with any LP solver. The mechanism comes
+/// from the multipliers of the equilibrium rows (element velocities);
+/// slips and openings are left at zero.
+///
+/// # Errors
+/// As [`super::analyse`].
+pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitResult> {
+    let driver = driver(model)?;
+    let (plate, speed) = match driver {
+        Driver::Plate { plate, speed } => (Some(plate), speed),
+        Driver::Live(_) => (None, 1.0),
+    };
+    let direction = plate.map_or(Vec2::zeros(), |p| model.supports()[p].velocity / speed);
 
     // Unknowns: P, then N (and T where the contact resists shear) per contact.
     let mut columns = Vec::with_capacity(model.contacts().len());
@@ -52,7 +59,7 @@ pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> R
         add(contact.body, 1.0, &mut rows);
         match contact.partner {
             Partner::Body(b) => add(b, -1.0, &mut rows),
-            Partner::Support(s) if s == plate => {
+            Partner::Support(s) if Some(s) == plate => {
                 // Plate equilibrium along its motion: P + (N n − T t)·d = 0.
                 plate_row.push((col_n, normal.dot(&direction)));
                 if let Some(col_t) = col_t {
@@ -71,6 +78,14 @@ pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> R
             lp.add_inequality(&[(col_t, -1.0), (col_n, -mu)], law.cohesion());
         }
     }
+    // A live load λ f at its point enters the loaded body's equilibrium.
+    if let Driver::Live(live) = driver {
+        let r = live.point - model.bodies()[live.body].centre;
+        let rows_of = &mut rows[live.body];
+        rows_of[0].push((0, live.force.x));
+        rows_of[1].push((0, live.force.y));
+        rows_of[2].push((0, cross(&r, &live.force)));
+    }
     let mut equilibrium_rows = Vec::with_capacity(model.bodies().len());
     for (i, b) in model.bodies().iter().enumerate() {
         let load: [f64; 3] = [b.load.x, b.load.y, 0.0];
@@ -81,7 +96,9 @@ pub fn analyse_static(model: &LimitModel, solver: &mut LinearProgramSolver) -> R
         }
         equilibrium_rows.push(ids);
     }
-    lp.add_equality(&plate_row, 0.0);
+    if plate.is_some() {
+        lp.add_equality(&plate_row, 0.0);
+    }
     let lp_size = lp.size();
     let solution = solver.solve(&lp)?;
     let status = match solution.status {

@@ -567,7 +567,7 @@ fn plot_mechanism(
     let circles: Vec<(Point, f64)> = model
         .bodies()
         .iter()
-        .map(|b| (b.centre, b.radius))
+        .map(|b| (b.centre, b.radius()))
         .collect();
     let (mut lo, mut hi) = (
         Point::new(f64::INFINITY, f64::INFINITY),
@@ -605,7 +605,7 @@ fn plot_mechanism(
         .filter(|(_, s)| s.abs() > 1e-6)
         .map(|(c, _)| c.point)
         .collect();
-    let radius = model.bodies().first().map(|b| b.radius).unwrap_or(1.0);
+    let radius = model.bodies().first().map(|b| b.radius()).unwrap_or(1.0);
     mechanism_picture(path, title, &circles, &lines, &arrows, &marks, 1.6 * radius)
 }
 

@@ -6,7 +6,6 @@
 //! | explicit DEM (paper 000) | diagonal (lumped) mass, `M a = f` | [`LumpedMassSolver`] |
 //! | implicit DDA (003), HPM (001) | sparse stiffness `K Δd = r` | [`SparseDirectSolver`] (faer, symbolic analysis reused) |
 //! | large SPD stiffness (HPM, 001) | `K x = b` through products `K p` | [`ConjugateGradientSolver`] (PCG, [`BlockJacobi`]) |
-//! | rigid-plastic limit analysis (002) | linear program | [`LinearProgramSolver`] (Clarabel) |
 //!
 //! Each solver implements [`GlobalSolver`]: it owns its workspace (a
 //! factorization, an LP solver's settings), takes the assembled system by
@@ -16,7 +15,6 @@
 //! what happened, never as a panic.
 
 mod conjugate_gradient;
-mod linear_program;
 mod lumped_mass;
 mod sparse_direct;
 
@@ -24,7 +22,6 @@ pub use conjugate_gradient::{
     conjugate_gradient, BlockJacobi, CgSettings, CgSolution, CgSystem, ConjugateGradientSolver,
     LinearOperator, Preconditioner,
 };
-pub use linear_program::{LinearProgram, LinearProgramSolution, LinearProgramSolver, LpStatus};
 pub use lumped_mass::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
 pub use sparse_direct::{Factorization, SparseDirectSolver, SparseSystem};
 
@@ -84,3 +81,7 @@ pub enum SolveError {
     #[error("linear program solver error: {0}")]
     LinearProgram(String),
 }
+
+// The LP solver has its own slot, `crate::lp`; re-exported here for the
+// code that names it through `solve`.
+pub use crate::lp::{LinearProgram, LinearProgramSolution, LinearProgramSolver, LpStatus};
