@@ -50,6 +50,7 @@
 #![deny(missing_docs)]
 
 pub mod broad_phase;
+pub mod compositions;
 pub mod contact;
 pub mod dda;
 pub mod dem;
