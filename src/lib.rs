@@ -60,6 +60,7 @@ pub mod integrate;
 pub mod limit;
 pub mod math;
 pub mod output;
+pub mod reference;
 pub mod reproduce;
 pub mod scene;
 pub mod shape;

@@ -9,7 +9,7 @@ use dismech::dda::{
 };
 use dismech::error::DismechError;
 use dismech::math::{Point, Vec2};
-use dismech::reproduce::hashimoto_dda::{rigid_sliding_block, Shaking};
+use dismech::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
 use nalgebra::{SVector, Vector2};
 use proptest::prelude::*;
 
@@ -306,6 +306,12 @@ fn block_on_incline_sticks_below_phi() {
     assert!(a.abs() <= 1e-3, "acceleration {a}");
 }
 
+/// Paper 003's input: f = 2 Hz, peak acceleration 1.5 μ g (g = 9.8 m/s²),
+/// three cycles.
+fn study_shaking(mu: f64) -> Shaking {
+    Shaking::with_peak_acceleration(1.5 * mu * 9.8, 2.0, 3.0)
+}
+
 /// The rigid sliding block (Newmark 1965) by brute force: explicit steps of
 /// 1 µs with stick when the relative velocity changes sign and the drive
 /// stays below μ g. Returns the relative displacement every millisecond
@@ -347,7 +353,7 @@ fn brute_force_sliding(shaking: &Shaking, mu: f64, g: f64) -> (Vec<f64>, Vec<f64
 fn rigid_sliding_block_solution_matches_a_fine_time_integration() {
     let mu = 36.4f64.to_radians().tan();
     let g = 9.8;
-    let shaking = Shaking::study(mu);
+    let shaking = study_shaking(mu);
     let (times, brute) = brute_force_sliding(&shaking, mu, g);
     let exact = rigid_sliding_block(&shaking, mu, g, &times);
     let peak = exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -366,7 +372,7 @@ fn rigid_sliding_block_solution_matches_a_fine_time_integration() {
 fn dda_sliding_block_follows_the_rigid_solution() {
     use dismech::reproduce::hashimoto_dda::{run_sliding, SLIDING_BLOCK};
     let mu = 36.4f64.to_radians().tan();
-    let shaking = Shaking::study(mu);
+    let shaking = study_shaking(mu);
     let (times, brute) = brute_force_sliding(&shaking, mu, 9.8);
     let run = run_sliding(
         2e9,
@@ -417,13 +423,12 @@ fn brute_force_compliant(shaking: &Shaking, mu: f64, g: f64, omega_c: f64) -> Ve
 /// (softest contact of the study, 2 Hz), and its rigid limit `Ω → ∞`.
 #[test]
 fn compliant_sliding_block_matches_a_fine_time_integration() {
-    use dismech::reproduce::hashimoto_dda::{
-        compliant_sliding_block, contact_frequency, SLIDING_BLOCK,
-    };
     let mu = 36.4f64.to_radians().tan();
-    let g = 9.8;
-    let shaking = Shaking::study(mu);
-    let omega_c = contact_frequency(2e7, SLIDING_BLOCK);
+    let g: f64 = 9.8;
+    let shaking = study_shaking(mu);
+    // Ω = √(2 p / m) of a 2 m × 0.25 m block (ρ = 21.56 kN/m³ / g) on its
+    // two corner contacts of penalty p = 2e7 N/m.
+    let omega_c = (2.0 * 2e7 / (21.56e3 / g * 2.0 * 0.25)).sqrt();
     let brute = brute_force_compliant(&shaking, mu, g, omega_c);
     let times: Vec<f64> = (1..=brute.len()).map(|k| k as f64 * 1e-3).collect();
     let exact = compliant_sliding_block(&shaking, mu, g, omega_c, &times);

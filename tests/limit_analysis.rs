@@ -3,9 +3,11 @@
 
 use dismech::contact::RigidPlastic;
 use dismech::error::DismechError;
-use dismech::limit::lattice::{eq32, eq38, two_elements, Lattice};
+use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
 use dismech::math::{Point, Vec2};
+use dismech::reference::lattice_limit_load::{eq32, eq38};
+use dismech::reference::{two_elements, two_elements_limit_load};
 use dismech::solve::LinearProgramSolver;
 use std::f64::consts::SQRT_2;
 
@@ -112,7 +114,7 @@ fn two_element_example_needs_one_plus_root_two_c() {
     assert_eq!(result.status, LimitStatus::Collapse);
     approx::assert_relative_eq!(
         result.load.unwrap(),
-        (1.0 + SQRT_2) * c,
+        two_elements_limit_load(c),
         max_relative = 1e-7
     );
     assert_statically_admissible(&m, &result);

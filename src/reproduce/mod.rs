@@ -2,11 +2,9 @@
 //! library pieces, runs them, compares with the paper and writes its
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
-pub mod ellipse_pairs;
 pub mod fill_patterns;
 pub mod hashimoto_dda;
 pub mod katsuki1990;
-mod random;
 pub mod yamada2000;
 pub mod yamaguchi_hpm;
 

@@ -11,23 +11,24 @@
 
 use std::fmt::Write as _;
 
-use super::random::SplitMix64;
 use super::StudyOptions;
 use crate::contact::RigidPlastic;
 use crate::contact::SpringDashpotCoulomb;
 use crate::dem::{DemSettings, DemSimulation, RunOutcome};
 use crate::error::Result;
 use crate::integrate::ExplicitEuler;
-use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
+use crate::limit::lattice::Lattice;
 use crate::limit::{
     analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,
     PackingLimitSettings, Uniqueness,
 };
-use crate::math::Vec2;
 use crate::math::{perp, Point};
+use crate::math::{SplitMix64, Vec2};
 use crate::output::plot::mechanism_picture;
 use crate::output::plot::{line_chart, Series};
 use crate::output::{write_csv, Check, Summary};
+use crate::reference::lattice_limit_load::{eq20, eq32, eq38};
+use crate::reference::two_elements;
 use crate::reproduce::katsuki1990;
 use crate::scene::{Frame, Scene};
 use crate::solve::LinearProgramSolver;

@@ -34,6 +34,7 @@ use crate::hpm::{
 };
 use crate::output::map::{cell_map, Arrow, MapCell};
 use crate::output::{write_csv, Check, Reported, Summary};
+use crate::reference::PlanarSlab;
 
 /// File name of the paper.
 pub const PAPER: &str = "001_1ec0b7ca8d44c520.txt";
@@ -95,11 +96,17 @@ fn planar_slab(dip: f64) -> Result<(SlopeGrids, f64, f64)> {
     Ok((grids, plan, thickness))
 }
 
-/// `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))`.
+/// The exact Fs of the slab of `plan` area and `thickness` on the plane
+/// dipping at `dip` degrees ([`PlanarSlab`]).
 fn planar_exact(m: &HpmMaterial, dip: f64, plan: f64, thickness: f64, kh: f64) -> f64 {
-    let (s, c) = dip.to_radians().sin_cos();
-    let w = m.unit_weight * thickness * plan;
-    (m.cohesion * plan / c + w * (c - kh * s) * m.friction()) / (w * (s + kh * c))
+    PlanarSlab {
+        cohesion: m.cohesion,
+        friction: m.friction(),
+        weight: m.unit_weight * thickness * plan,
+        plan_area: plan,
+        dip: dip.to_radians(),
+    }
+    .safety_factor(kh)
 }
 
 /// The paper's trends as ratios of the Fs in `fs` whose keys start with

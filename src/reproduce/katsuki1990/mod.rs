@@ -564,9 +564,9 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
 }
 
 /// Robustness of the ellipse contact over 100 000 random pairs against the
-/// independent reference of [`super::ellipse_pairs`].
+/// independent reference of [`crate::reference::ellipse_contact`].
 fn random_pair_checks() -> Vec<Check> {
-    let s = super::ellipse_pairs::random_pair_statistics_parallel(100_000, 2026);
+    let s = crate::reference::ellipse_contact::random_pair_statistics_parallel(100_000, 2026);
     let check = |id: &str, description: &str, computed: f64, tolerance: f64| Check {
         id: id.into(),
         description: description.into(),
