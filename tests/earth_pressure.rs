@@ -7,8 +7,8 @@ use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
 use dismech::math::{Point, Vec2};
-use dismech::reproduce::fill_patterns::Layout;
 use dismech::reproduce::katsuki1990::{run_back_pressure, run_pattern, EXAMPLE2, PATTERN_E};
+use dismech::scene::Layout;
 use dismech::scene::{Frame, Scene};
 
 mod common;

@@ -22,7 +22,7 @@
 
 use super::{DENSITY, STANDARD_GRAVITY};
 use crate::error::Result;
-use crate::reproduce::fill_patterns::Layout;
+use crate::scene::Layout;
 use crate::scene::Scene;
 
 /// Radius of the circle with the area of every particle (m).
