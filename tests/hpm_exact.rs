@@ -590,17 +590,3 @@ fn shape_matrix_moves_a_point_rigidly_for_rotation_dofs() {
     let d = displacement_at(&c, &u, &Point3::new(2.0, 0.0, 0.0));
     assert!((d - Vector3::new(0.0, 2e-3, 0.0)).norm() < 1e-15);
 }
-
-#[test]
-fn shipped_slope_grids_are_the_reproduction_slope() {
-    let (ground, slip) = dismech::reproduce::yamaguchi_hpm::representative_slope().unwrap();
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data");
-    assert_eq!(
-        dismech::grid::read_esri_ascii(&dir.join("hpm_ground.asc")).unwrap(),
-        ground
-    );
-    assert_eq!(
-        dismech::grid::read_esri_ascii(&dir.join("hpm_slip.asc")).unwrap(),
-        slip
-    );
-}

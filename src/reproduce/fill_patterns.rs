@@ -1,4 +1,4 @@
-//! The earth pressure that regular fillings ([`crate::scene::Layout`]) put
+//! The earth pressure that regular fillings ([`dismech::scene::Layout`]) put
 //! on a wall, and the back-pressure stage: paper 000's Examples 2 and 3.
 //!
 //! The earth-pressure coefficient is eq. (23) of the paper,
@@ -11,14 +11,14 @@
 //! the top for `σ_v,max · h / H` to be a vertical stress, so it is read here
 //! as the depth.
 
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{ContactTarget, DemSimulation};
-use crate::error::{DismechError, Result};
-use crate::integrate::ExplicitEuler;
-use crate::math::{Point, Vec2};
-use crate::scene::layout::ellipse_half_extent;
-use crate::scene::{Frame, Scene};
-use crate::shape::AnyShape2;
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{ContactTarget, DemSimulation};
+use dismech::error::{DismechError, Result};
+use dismech::integrate::ExplicitEuler;
+use dismech::math::{Point, Vec2};
+use dismech::scene::layout::ellipse_half_extent;
+use dismech::scene::{Frame, Scene};
+use dismech::shape::AnyShape2;
 
 /// One contact of a side wall with its eq. (23) earth-pressure coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -146,7 +146,7 @@ pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f6
 }
 
 /// The smallest half-size of a particle: semi-minor axis or radius (m).
-fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
+fn smallest_half_size(p: &dismech::scene::Particle) -> f64 {
     match &p.shape {
         AnyShape2::Circle(c) => c.radius(),
         AnyShape2::Ellipse(e) => e.b(),
@@ -155,7 +155,7 @@ fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
 }
 
 /// Half the horizontal and vertical extent of a particle (m).
-fn half_extent(p: &crate::scene::Particle) -> (f64, f64) {
+fn half_extent(p: &dismech::scene::Particle) -> (f64, f64) {
     match &p.shape {
         AnyShape2::Circle(c) => (c.radius(), c.radius()),
         AnyShape2::Ellipse(e) => ellipse_half_extent(e.a(), e.b(), p.pose.angle),
@@ -212,8 +212,8 @@ pub fn back_pressure_scene(
     fill_height: f64,
     lid_gap: f64,
 ) -> Result<Scene> {
-    crate::error::require_finite("back pressure", pressure)?;
-    crate::error::require_non_negative("lid gap", lid_gap)?;
+    dismech::error::require_finite("back pressure", pressure)?;
+    dismech::error::require_non_negative("lid gap", lid_gap)?;
     let old = settled.scene();
     let left = old
         .frame
@@ -232,15 +232,15 @@ pub fn back_pressure_scene(
     let frame = Frame::from_walls(vec![
         (
             "bottom".into(),
-            crate::shape::Segment::new(Point::new(back_x, 0.0), Point::new(right_x, 0.0)),
+            dismech::shape::Segment::new(Point::new(back_x, 0.0), Point::new(right_x, 0.0)),
         ),
         (
             "front".into(),
-            crate::shape::Segment::new(Point::new(right_x, 0.0), Point::new(right_x, top)),
+            dismech::shape::Segment::new(Point::new(right_x, 0.0), Point::new(right_x, top)),
         ),
         (
             "lid".into(),
-            crate::shape::Segment::new(Point::new(right_x, top), Point::new(back_x, top)),
+            dismech::shape::Segment::new(Point::new(right_x, top), Point::new(back_x, top)),
         ),
     ])?;
     let extents: Vec<(f64, f64)> = old.particles.iter().map(half_extent).collect();

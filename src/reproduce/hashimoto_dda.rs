@@ -3,7 +3,7 @@
 //! Figs. 6–7), the sliding block under shaking (§3.(2), Figs. 8–11) against
 //! the exact rigid sliding-block solution (Newmark 1965) and the exact
 //! solution of the same block on an elastic–plastic contact spring (both in
-//! [`crate::reference::sliding_block`]), and the
+//! [`dismech::reference::sliding_block`]), and the
 //! convergence order of Newton–Raphson.
 //!
 //! Choices where the figures are missing (stated in the report as well):
@@ -21,15 +21,15 @@ use std::fmt::Write as _;
 use std::sync::Arc;
 
 use super::StudyOptions;
-use crate::dda::{
+use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
     Prescribed, StepReport,
 };
-use crate::error::Result;
-use crate::math::{Point, Vec2};
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Reported, Summary};
-use crate::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
+use dismech::error::Result;
+use dismech::math::{Point, Vec2};
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
 
 /// File name of the paper.
 pub const PAPER: &str = "003_44afb82d0aa81811.txt";
@@ -793,3 +793,6 @@ fn compliance_section(
     files.push("compliance.svg".into());
     Ok(())
 }
+
+#[cfg(test)]
+mod tests;

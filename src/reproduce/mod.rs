@@ -10,8 +10,8 @@ pub mod yamaguchi_hpm;
 
 use std::path::PathBuf;
 
-use crate::error::{DismechError, Result};
-use crate::output::Summary;
+use dismech::error::{DismechError, Result};
+use dismech::output::Summary;
 
 /// Options shared by every study.
 #[derive(Debug, Clone, PartialEq)]

@@ -34,15 +34,15 @@ pub use shape_anisotropy::{run_pattern, PatternRun};
 use std::path::Path;
 
 use super::StudyOptions;
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{
     critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunOutcome,
 };
-use crate::error::Result;
-use crate::integrate::ExplicitEuler;
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Reported, Summary};
-use crate::scene::{CircleRows, Scene};
+use dismech::error::Result;
+use dismech::integrate::ExplicitEuler;
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::scene::{CircleRows, Scene};
 
 /// File name of the paper.
 pub const PAPER: &str = "000_87caa095a10dc755.txt";
@@ -93,6 +93,7 @@ impl FillConfig {
 
     /// A smaller filling of the same kind (47 circles in a 1.0 m frame) that
     /// runs in a second.
+    #[cfg(test)]
     pub fn reduced() -> Self {
         Self {
             count: 47,
@@ -165,7 +166,7 @@ impl FillEquilibrium {
     }
 }
 
-/// Wall reactions of a DEM run in an [`crate::scene::Frame::open_box`].
+/// Wall reactions of a DEM run in an [`dismech::scene::Frame::open_box`].
 pub fn equilibrium(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>) -> FillEquilibrium {
     let frame = &sim.scene().frame;
     let reaction = |name: &str| {
@@ -544,9 +545,9 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
 }
 
 /// Robustness of the ellipse contact over 100 000 random pairs against the
-/// independent reference of [`crate::reference::ellipse_contact`].
+/// independent reference of [`dismech::reference::ellipse_contact`].
 fn random_pair_checks() -> Vec<Check> {
-    let s = crate::reference::ellipse_contact::random_pair_statistics_parallel(100_000, 2026);
+    let s = dismech::reference::ellipse_contact::random_pair_statistics_parallel(100_000, 2026);
     let check = |id: &str, description: &str, computed: f64, tolerance: f64| Check {
         id: id.into(),
         description: description.into(),
@@ -589,3 +590,6 @@ fn random_pair_checks() -> Vec<Check> {
         ),
     ]
 }
+
+#[cfg(test)]
+mod tests;
