@@ -11,7 +11,7 @@ use dismech::dda::{
     Prescribed, StepStatus,
 };
 use dismech::math::{Point, Vec2};
-use dismech::reproduce::hashimoto_dda::{rigid_sliding_block, Shaking};
+use dismech::reference::{rigid_sliding_block, Shaking};
 
 fn rectangle(x0: f64, y0: f64, x1: f64, y1: f64) -> [Point; 4] {
     [
@@ -33,7 +33,8 @@ fn main() -> Result<(), dismech::error::DismechError> {
     };
     let mu = 36.4f64.to_radians().tan();
     let penalty = 2e9; // 2e6 kN/m
-    let shaking = Shaking::study(mu);
+                       // f = 2 Hz, peak acceleration 1.5 μ g, three cycles.
+    let shaking = Shaking::with_peak_acceleration(1.5 * mu * g, 2.0, 3.0);
     let (a, w) = (shaking.amplitude, shaking.omega());
 
     // Shapes: a base driven by u_b = A sin ωt, a block resting on it in

@@ -43,9 +43,14 @@
 //! Misuse is an `Err` of [`error::DismechError`] naming the offending value;
 //! a run that goes unstable stops with an error saying what to change.
 //!
-//! ## Reproductions
-//! [`reproduce`] runs each paper's examples and compares them with the
-//! paper (`dismech reproduce all`).
+//! ## Exact references and reproductions
+//! [`reference`](mod@reference) holds exact reference solutions (the rigid and compliant
+//! sliding block, the planar slab's Fs, paper 002's two-element example and
+//! closed forms, an independent ellipse contact) that tests, examples and
+//! the reproductions check the methods against. The reproductions of the
+//! papers are clients of this library, in the `dismech` binary
+//! (`dismech reproduce all`): they build their scenes from these pieces,
+//! run them and compare with each paper.
 
 #![deny(missing_docs)]
 
@@ -63,7 +68,7 @@ pub mod limit;
 pub mod lp;
 pub mod math;
 pub mod output;
-pub mod reproduce;
+pub mod reference;
 pub mod scene;
 pub mod shape;
 pub mod solve;

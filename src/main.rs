@@ -1,5 +1,7 @@
 //! The `dismech` command line.
 
+mod reproduce;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -7,8 +9,8 @@ use clap::{Parser, Subcommand};
 use dismech::error::DismechError;
 use dismech::limit::analyse;
 use dismech::limit::lattice::Lattice;
-use dismech::reproduce::{self, StudyOptions};
 use dismech::solve::LinearProgramSolver;
+use reproduce::StudyOptions;
 
 #[derive(Parser)]
 #[command(

@@ -110,3 +110,21 @@ impl Aabb2 {
         }
     }
 }
+
+/// SplitMix64, a small deterministic generator of uniform numbers in
+/// [0, 1): random geometry drawn from a seed is the same on every run and
+/// machine.
+#[derive(Debug, Clone)]
+pub struct SplitMix64(pub u64);
+
+impl SplitMix64 {
+    /// The next number in [0, 1).
+    pub fn next_uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -1,14 +1,14 @@
-//! Examples 2 and 3 of paper 000 at reduced size: the settled patterns and
-//! the back-pressure stage are in equilibrium with their walls, and a
-//! constant external force is carried exactly by the wall it pushes on.
+//! Loads on the walls of the explicit DEM: a constant external force is
+//! carried exactly by the wall it pushes on, a regular layout that would
+//! start overlapping is refused, and a particle pushed out of the frame
+//! stops the run.
 
 use dismech::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
 use dismech::math::{Point, Vec2};
-use dismech::reproduce::fill_patterns::Layout;
-use dismech::reproduce::katsuki1990::{run_back_pressure, run_pattern, EXAMPLE2, PATTERN_E};
+use dismech::scene::Layout;
 use dismech::scene::{Frame, Scene};
 
 mod common;
@@ -71,43 +71,6 @@ fn layout_that_would_start_overlapping_is_refused() {
         }
         other => panic!("expected InvalidParameter, got {other:?}"),
     }
-}
-
-#[test]
-fn upright_ellipse_pattern_at_rest_carries_its_weight_symmetrically() {
-    let d = EXAMPLE2.iter().find(|p| p.name == "D").unwrap();
-    let run = run_pattern(d, 0.5, |_, _| {}).unwrap();
-    assert_eq!(run.outcome.status, RunStatus::AtRest);
-    let ratio = run.equilibrium.vertical_ratio();
-    assert!((ratio - 1.0).abs() <= 0.005, "Σ vertical / W = {ratio}");
-    assert!(run.equilibrium.horizontal_imbalance() <= 0.005);
-    let (left, right, _) = run.k();
-    let (left, right) = (left.unwrap(), right.unwrap());
-    assert!(
-        (left - right).abs() <= 0.05 * left,
-        "mirror-symmetric layout, K left {left} right {right}"
-    );
-}
-
-#[test]
-fn back_pressure_is_carried_by_the_front_wall_bottom_and_lid() {
-    let run = run_pattern(&PATTERN_E, 0.5, |_, _| {}).unwrap();
-    let loaded = run_back_pressure(&run, |_, _| {}).unwrap();
-    assert_eq!(loaded.outcome.status, RunStatus::AtRest);
-    // The applied forces add up to p · H.
-    approx::assert_relative_eq!(
-        loaded.applied,
-        dismech::reproduce::katsuki1990::BACK_PRESSURE * loaded.fill_height,
-        max_relative = 1e-12
-    );
-    let horizontal = loaded.horizontal_imbalance();
-    assert!(horizontal <= 0.005, "|Σ H + p H| / p H = {horizontal}");
-    let vertical = loaded.vertical_ratio();
-    assert!((vertical - 1.0).abs() <= 0.005, "Σ V / W = {vertical}");
-    // The front wall takes most of the back force (friction on the bottom
-    // and the lid the rest).
-    let front = loaded.reaction_of("front").x;
-    assert!(front < -0.5 * loaded.applied, "front reaction {front}");
 }
 
 #[test]

@@ -7,7 +7,7 @@ use dismech::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::math::{rotate, Point, Pose2, Vec2};
-use dismech::reproduce::ellipse_pairs::{random_pair_statistics, touching_distance};
+use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Shape2};
 use proptest::prelude::*;

@@ -3,9 +3,11 @@
 
 use dismech::contact::RigidPlastic;
 use dismech::error::DismechError;
-use dismech::limit::lattice::{eq32, eq38, two_elements, Lattice};
+use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
 use dismech::math::{Point, Vec2};
+use dismech::reference::lattice_limit_load::{eq32, eq38};
+use dismech::reference::{two_elements, two_elements_limit_load};
 use dismech::solve::LinearProgramSolver;
 use std::f64::consts::SQRT_2;
 
@@ -112,7 +114,7 @@ fn two_element_example_needs_one_plus_root_two_c() {
     assert_eq!(result.status, LimitStatus::Collapse);
     approx::assert_relative_eq!(
         result.load.unwrap(),
-        (1.0 + SQRT_2) * c,
+        two_elements_limit_load(c),
         max_relative = 1e-7
     );
     assert_statically_admissible(&m, &result);
@@ -282,7 +284,6 @@ fn settled_disc_converted_from_dem_needs_the_exact_push() {
     use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
     use dismech::integrate::ExplicitEuler;
     use dismech::limit::{model_from_packing, PackingLimitSettings};
-    use dismech::reproduce::katsuki1990::material_law;
     use dismech::scene::{Frame, Scene};
 
     let g = Vec2::new(-5.0, -9.81);
@@ -290,13 +291,12 @@ fn settled_disc_converted_from_dem_needs_the_exact_push() {
     scene
         .add_circle(Point::new(0.2, 0.2), 0.07, 2690.0)
         .unwrap();
-    let mut sim = DemSimulation::new(
-        scene,
-        material_law().unwrap(),
-        ExplicitEuler,
-        DemSettings::default(),
-    )
-    .unwrap();
+    // Paper 000's law with Example 1's material (E = 750 kgf/cm², ν = 0.3,
+    // k_s/k_n = 0.25, μ = 0.577).
+    let law =
+        dismech::contact::SpringDashpotCoulomb::katsuki(750.0 * 9.80665 / 1e-4, 0.3, 0.25, 0.577)
+            .unwrap();
+    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default()).unwrap();
     sim.run_to_rest(&RestCriterion::default(), |_, _| {})
         .unwrap();
     assert_eq!(

@@ -1,13 +1,5 @@
-//! Regular fillings of ellipses or circles in a rigid frame, and the earth
-//! pressure they put on a wall: the scenes of paper 000's Examples 2 and 3.
-//!
-//! A [`Layout`] is a stack of rows of identical particles. The full rows
-//! hold `per_row` particles at a horizontal pitch `width / per_row`; in a
-//! staggered layout every other row holds `per_row − 1` particles shifted
-//! by half a pitch (a running bond, as Example 1's circles), otherwise all
-//! rows are full and the particles stand in vertical stacks. Rows start
-//! `gap` apart, so that the filling starts without contacts and settles
-//! under its own weight.
+//! The earth pressure that regular fillings ([`dismech::scene::Layout`]) put
+//! on a wall, and the back-pressure stage: paper 000's Examples 2 and 3.
 //!
 //! The earth-pressure coefficient is eq. (23) of the paper,
 //! `K = (P_h / d) / (σ_v,max · z / H)`, for every contact of a side wall:
@@ -19,116 +11,14 @@
 //! the top for `σ_v,max · h / H` to be a vertical stress, so it is read here
 //! as the depth.
 
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{ContactTarget, DemSimulation};
-use crate::error::{DismechError, Result};
-use crate::integrate::ExplicitEuler;
-use crate::math::{Point, Vec2};
-use crate::scene::{Frame, Scene};
-use crate::shape::AnyShape2;
-
-/// A regular filling: identical particles in rows (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Layout {
-    /// Inner width of the frame (m).
-    pub width: f64,
-    /// Height of the frame walls (m).
-    pub height: f64,
-    /// Semi-major axis a (m); equal to `semi_minor` for circles.
-    pub semi_major: f64,
-    /// Semi-minor axis b (m).
-    pub semi_minor: f64,
-    /// Angle of the major axis from the horizontal (rad).
-    pub angle: f64,
-    /// Particles in a full row.
-    pub per_row: usize,
-    /// Rows alternate `per_row` and `per_row − 1` particles (running bond)
-    /// instead of all holding `per_row` (stacks).
-    pub staggered: bool,
-    /// Number of rows.
-    pub rows: usize,
-    /// Vertical gap between the rows at the start (m).
-    pub gap: f64,
-    /// Density (kg/m³).
-    pub density: f64,
-}
-
-impl Layout {
-    /// Half the horizontal and vertical extent of one particle (m).
-    pub fn half_extent(&self) -> (f64, f64) {
-        ellipse_half_extent(self.semi_major, self.semi_minor, self.angle)
-    }
-
-    /// Horizontal distance between neighbours in a row (m).
-    pub fn pitch(&self) -> f64 {
-        self.width / self.per_row as f64
-    }
-
-    /// Centres of the particles, row by row from the bottom.
-    pub fn centres(&self) -> Vec<Point> {
-        let (_, half_height) = self.half_extent();
-        let pitch = self.pitch();
-        let mut centres = Vec::new();
-        for row in 0..self.rows {
-            let y = half_height + self.gap + row as f64 * (2.0 * half_height + self.gap);
-            let short = self.staggered && row % 2 == 1;
-            let (count, x0) = if short {
-                (self.per_row - 1, pitch)
-            } else {
-                (self.per_row, 0.5 * pitch)
-            };
-            centres.extend((0..count).map(|k| Point::new(x0 + k as f64 * pitch, y)));
-        }
-        centres
-    }
-
-    /// The scene: the particles at rest in an open box under gravity `g`
-    /// (m/s²). Refuses a layout whose neighbours in a row, or whose end
-    /// particles and the side walls, would overlap at the start.
-    pub fn scene(&self, g: f64) -> Result<Scene> {
-        let (half_width, half_height) = self.half_extent();
-        if self.per_row < 2 {
-            return Err(DismechError::InvalidParameter {
-                name: "particles per row",
-                value: self.per_row as f64,
-                requirement: "at least 2",
-            });
-        }
-        if self.pitch() < 2.0 * half_width {
-            return Err(DismechError::InvalidParameter {
-                name: "row pitch (frame width / particles per row)",
-                value: self.pitch(),
-                requirement: "at least the particle width, so that a row starts without overlaps",
-            });
-        }
-        let top = self.rows as f64 * (2.0 * half_height + self.gap);
-        if top > self.height {
-            return Err(DismechError::InvalidParameter {
-                name: "height of the stacked rows",
-                value: top,
-                requirement: "at most the frame height",
-            });
-        }
-        let mut scene = Scene::new(
-            Frame::open_box(self.width, self.height)?,
-            Vec2::new(0.0, -g),
-        )?;
-        for centre in self.centres() {
-            if self.semi_major == self.semi_minor {
-                scene.add_circle(centre, self.semi_major, self.density)?;
-            } else {
-                scene.add_ellipse(
-                    centre,
-                    self.semi_major,
-                    self.semi_minor,
-                    self.angle,
-                    self.density,
-                )?;
-            }
-        }
-        Ok(scene)
-    }
-}
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{ContactTarget, DemSimulation};
+use dismech::error::{DismechError, Result};
+use dismech::integrate::ExplicitEuler;
+use dismech::math::{Point, Vec2};
+use dismech::scene::layout::ellipse_half_extent;
+use dismech::scene::{Frame, Scene};
+use dismech::shape::AnyShape2;
 
 /// One contact of a side wall with its eq. (23) earth-pressure coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -255,18 +145,8 @@ pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f6
     })
 }
 
-/// Half the horizontal and vertical extent of an ellipse with semi-axes
-/// `a`, `b` whose major axis is at `angle` (rad) from the horizontal.
-fn ellipse_half_extent(a: f64, b: f64, angle: f64) -> (f64, f64) {
-    let (s, c) = angle.sin_cos();
-    (
-        (a * a * c * c + b * b * s * s).sqrt(),
-        (a * a * s * s + b * b * c * c).sqrt(),
-    )
-}
-
 /// The smallest half-size of a particle: semi-minor axis or radius (m).
-fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
+fn smallest_half_size(p: &dismech::scene::Particle) -> f64 {
     match &p.shape {
         AnyShape2::Circle(c) => c.radius(),
         AnyShape2::Ellipse(e) => e.b(),
@@ -275,7 +155,7 @@ fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
 }
 
 /// Half the horizontal and vertical extent of a particle (m).
-fn half_extent(p: &crate::scene::Particle) -> (f64, f64) {
+fn half_extent(p: &dismech::scene::Particle) -> (f64, f64) {
     match &p.shape {
         AnyShape2::Circle(c) => (c.radius(), c.radius()),
         AnyShape2::Ellipse(e) => ellipse_half_extent(e.a(), e.b(), p.pose.angle),
@@ -332,8 +212,8 @@ pub fn back_pressure_scene(
     fill_height: f64,
     lid_gap: f64,
 ) -> Result<Scene> {
-    crate::error::require_finite("back pressure", pressure)?;
-    crate::error::require_non_negative("lid gap", lid_gap)?;
+    dismech::error::require_finite("back pressure", pressure)?;
+    dismech::error::require_non_negative("lid gap", lid_gap)?;
     let old = settled.scene();
     let left = old
         .frame
@@ -352,15 +232,15 @@ pub fn back_pressure_scene(
     let frame = Frame::from_walls(vec![
         (
             "bottom".into(),
-            crate::shape::Segment::new(Point::new(back_x, 0.0), Point::new(right_x, 0.0)),
+            dismech::shape::Segment::new(Point::new(back_x, 0.0), Point::new(right_x, 0.0)),
         ),
         (
             "front".into(),
-            crate::shape::Segment::new(Point::new(right_x, 0.0), Point::new(right_x, top)),
+            dismech::shape::Segment::new(Point::new(right_x, 0.0), Point::new(right_x, top)),
         ),
         (
             "lid".into(),
-            crate::shape::Segment::new(Point::new(right_x, top), Point::new(back_x, top)),
+            dismech::shape::Segment::new(Point::new(right_x, top), Point::new(back_x, top)),
         ),
     ])?;
     let extents: Vec<(f64, f64)> = old.particles.iter().map(half_extent).collect();

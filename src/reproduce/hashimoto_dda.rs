@@ -2,7 +2,8 @@
 //! integration of friction law* (paper 003): the direct shear test (§3.(1),
 //! Figs. 6–7), the sliding block under shaking (§3.(2), Figs. 8–11) against
 //! the exact rigid sliding-block solution (Newmark 1965) and the exact
-//! solution of the same block on an elastic–plastic contact spring, and the
+//! solution of the same block on an elastic–plastic contact spring (both in
+//! [`dismech::reference::sliding_block`]), and the
 //! convergence order of Newton–Raphson.
 //!
 //! Choices where the figures are missing (stated in the report as well):
@@ -20,14 +21,15 @@ use std::fmt::Write as _;
 use std::sync::Arc;
 
 use super::StudyOptions;
-use crate::dda::{
+use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
     Prescribed, StepReport,
 };
-use crate::error::Result;
-use crate::math::{Point, Vec2};
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Reported, Summary};
+use dismech::error::Result;
+use dismech::math::{Point, Vec2};
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
 
 /// File name of the paper.
 pub const PAPER: &str = "003_44afb82d0aa81811.txt";
@@ -35,239 +37,16 @@ pub const PAPER: &str = "003_44afb82d0aa81811.txt";
 /// Gravity used by the paper's unit weight (21.56 kN/m³ ↔ 2200 kg/m³).
 pub const G: f64 = 9.8;
 
-/// The horizontal base shaking `u_b(t) = A sin(2π f t)`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shaking {
-    /// Amplitude A (m).
-    pub amplitude: f64,
-    /// Frequency f (Hz).
-    pub frequency: f64,
-    /// Duration (s).
-    pub duration: f64,
+/// The study's input: f = 2 Hz, peak acceleration 1.5 μ g, three cycles.
+pub fn study_shaking(friction: f64) -> Shaking {
+    shaking_at(friction, 2.0)
 }
 
-impl Shaking {
-    /// Circular frequency ω = 2π f.
-    pub fn omega(&self) -> f64 {
-        std::f64::consts::TAU * self.frequency
-    }
-
-    /// The study's input: f = 2 Hz, peak acceleration 1.5 μ g, three cycles.
-    pub fn study(friction: f64) -> Self {
-        Self::at_frequency(friction, 2.0)
-    }
-
-    /// Three cycles at `frequency` with the study's peak acceleration
-    /// `A ω² = 1.5 μ g`: the rigid solution is then the same curve in the
-    /// phase `ωt`, scaled by `A` (Newmark 1965).
-    pub fn at_frequency(friction: f64, frequency: f64) -> Self {
-        let w = std::f64::consts::TAU * frequency;
-        Self {
-            amplitude: 1.5 * friction * G / (w * w),
-            frequency,
-            duration: 3.0 / frequency,
-        }
-    }
-}
-
-/// Exact relative displacement `s = u_block − u_base` of a rigid block on a
-/// rigid base shaken by `shaking`, with friction coefficient `mu` and
-/// gravity `g` (Newmark 1965), at the given times. The block starts at
-/// rest relative to the base. Event-driven: in slip (`σ = sgn ṡ`),
-/// `s̈ = −σ μ g + A ω² sin ωt` is integrated in closed form, the end of slip
-/// (`ṡ = 0`) is located by bracketing and bisection, and a stick phase ends
-/// in closed form when `|A ω² sin ωt|` exceeds `μ g`.
-pub fn rigid_sliding_block(shaking: &Shaking, mu: f64, g: f64, times: &[f64]) -> Vec<f64> {
-    let (a, w) = (shaking.amplitude, shaking.omega());
-    let r = mu * g;
-    let aw2 = a * w * w;
-    // Segments (t0, s0, sd0, sigma); sigma = 0 for stick.
-    let mut segments: Vec<(f64, f64, f64, f64)> = Vec::new();
-    let t_end = times.iter().copied().fold(0.0, f64::max) + 1e-9;
-    let velocity = |t0: f64, sd0: f64, sigma: f64, t: f64| {
-        sd0 - sigma * r * (t - t0) - a * w * ((w * t).cos() - (w * t0).cos())
-    };
-    let position = |t0: f64, s0: f64, sd0: f64, sigma: f64, t: f64| {
-        s0 + (sd0 + a * w * (w * t0).cos()) * (t - t0)
-            - 0.5 * sigma * r * (t - t0) * (t - t0)
-            - a * ((w * t).sin() - (w * t0).sin())
-    };
-    let (mut t, mut s) = (0.0, 0.0);
-    let mut sigma = 0.0;
-    let pi = std::f64::consts::PI;
-    while t < t_end {
-        segments.push((t, s, 0.0, sigma));
-        if sigma == 0.0 {
-            if aw2 <= r {
-                break;
-            }
-            let theta1 = (r / aw2).asin();
-            let theta = (w * t).rem_euclid(pi);
-            let next = if theta < theta1 {
-                t + (theta1 - theta) / w
-            } else if theta > pi - theta1 {
-                t + (pi - theta + theta1) / w
-            } else {
-                t
-            };
-            t = next;
-            sigma = (w * t).sin().signum();
-            continue;
-        }
-        // Slip from (t, s, ṡ = 0) with sign sigma: find the first ṡ = 0.
-        let h = 1.0 / (shaking.frequency * 4000.0);
-        let (t0, s0) = (t, s);
-        let Some(end) = first_positive(|t| -sigma * velocity(t0, 0.0, sigma, t), t0, h, t_end)
-        else {
-            break;
-        };
-        t = end;
-        s = position(t0, s0, 0.0, sigma, t);
-        sigma = if (aw2 * (w * t).sin()).abs() <= r {
-            0.0
-        } else {
-            (w * t).sin().signum()
-        };
-    }
-    times
-        .iter()
-        .map(|&tq| {
-            let (t0, s0, sd0, sg) = segments[segment_at(&segments, |seg| seg.0, tq)];
-            if sg == 0.0 {
-                s0
-            } else {
-                position(t0, s0, sd0, sg, tq)
-            }
-        })
-        .collect()
-}
-
-/// Index of the segment (ordered by start time `start`) that holds time `t`.
-fn segment_at<S>(segments: &[S], start: impl Fn(&S) -> f64, t: f64) -> usize {
-    segments
-        .partition_point(|seg| start(seg) <= t)
-        .saturating_sub(1)
-}
-
-/// The first time in `(t0, t_end]` at which `f` turns positive, found on
-/// a grid of spacing `h` and refined by bisection to round-off; `None` if
-/// `f ≤ 0` on the whole grid.
-fn first_positive(f: impl Fn(f64) -> f64, t0: f64, h: f64, t_end: f64) -> Option<f64> {
-    let mut lo = t0;
-    let mut hi = t0 + h;
-    while f(hi) <= 0.0 {
-        if hi >= t_end {
-            return None;
-        }
-        lo = hi;
-        hi += h;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if f(mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-        if hi - lo < 1e-15 * (1.0 + hi) {
-            break;
-        }
-    }
-    Some(hi)
-}
-
-/// Exact relative displacement `s = u_block − u_base` of a rigid block of
-/// mass `m` on a rigid base shaken by `shaking`, joined to it by an
-/// elastic–perfectly-plastic shear spring: stiffness `k` with the elastic
-/// part `y = s − s_p` and the Coulomb limit `k |y| ≤ μ m g`. `omega_c` is
-/// the contact's natural frequency `Ω = √(k/m)`; the rigid solution
-/// ([`rigid_sliding_block`]) is its limit `Ω → ∞`.
-///
-/// With `a₀ = A ω²` and `r = μ g`, the block's equation `m ü = −k y` with
-/// `u = u_b + s` reads `s̈ = −Ω² y + a₀ sin ωt`. Event-driven, in closed
-/// form:
-/// * stick (`ṡ_p = 0`): `y = C₁ cos Ω(t−t₀) + C₂ sin Ω(t−t₀) + a₀ sin ωt /
-///   (Ω² − ω²)` (undamped; `Ω ≠ ω`), until `|y|` reaches `r/Ω²`
-///   (located on a grid of 1/64 of the shorter period and bisected);
-/// * slip (`y = σ r/Ω²`, `σ = sgn ṡ`): `s̈ = −σ r + a₀ sin ωt` as in the
-///   rigid case, from the velocity the spring gave the block, until `ṡ = 0`.
-///
-/// The block starts at rest relative to the base with the spring unloaded.
-pub fn compliant_sliding_block(
-    shaking: &Shaking,
-    mu: f64,
-    g: f64,
-    omega_c: f64,
-    times: &[f64],
-) -> Vec<f64> {
-    #[derive(Clone, Copy)]
-    enum Phase {
-        // (s_p, C₁, C₂)
-        Stick(f64, f64, f64),
-        // (s₀, ṡ₀, σ)
-        Slip(f64, f64, f64),
-    }
-    let (w, big) = (shaking.omega(), omega_c);
-    let a0 = shaking.amplitude * w * w;
-    let r = mu * g;
-    let limit = r / (big * big);
-    let k = a0 / (big * big - w * w);
-    let stick_y = |t0: f64, c: (f64, f64), t: f64| {
-        let tau = big * (t - t0);
-        c.0 * tau.cos() + c.1 * tau.sin() + k * (w * t).sin()
-    };
-    let stick_v = |t0: f64, c: (f64, f64), t: f64| {
-        let tau = big * (t - t0);
-        big * (c.1 * tau.cos() - c.0 * tau.sin()) + k * w * (w * t).cos()
-    };
-    let slip_v = |t0: f64, v0: f64, sigma: f64, t: f64| {
-        v0 - sigma * r * (t - t0) - a0 / w * ((w * t).cos() - (w * t0).cos())
-    };
-    let slip_s = |t0: f64, s0: f64, v0: f64, sigma: f64, t: f64| {
-        s0 + (v0 + a0 / w * (w * t0).cos()) * (t - t0)
-            - 0.5 * sigma * r * (t - t0) * (t - t0)
-            - a0 / (w * w) * ((w * t).sin() - (w * t0).sin())
-    };
-    // Stick constants from y and ẏ at t0.
-    let constants =
-        |t0: f64, y0: f64, v0: f64| (y0 - k * (w * t0).sin(), (v0 - k * w * (w * t0).cos()) / big);
-    let h = std::f64::consts::TAU / big.max(w) / 64.0;
-    let t_end = times.iter().copied().fold(0.0, f64::max) + 1e-9;
-    let (c1, c2) = constants(0.0, 0.0, 0.0);
-    let mut segments = vec![(0.0, Phase::Stick(0.0, c1, c2))];
-    loop {
-        let (t0, phase) = segments[segments.len() - 1];
-        let next = match phase {
-            Phase::Stick(sp, c1, c2) => {
-                first_positive(|t| stick_y(t0, (c1, c2), t).abs() - limit, t0, h, t_end).map(|t| {
-                    let y = stick_y(t0, (c1, c2), t);
-                    let v = stick_v(t0, (c1, c2), t);
-                    (t, Phase::Slip(sp + y, v, y.signum()))
-                })
-            }
-            Phase::Slip(s0, v0, sigma) => {
-                first_positive(|t| -sigma * slip_v(t0, v0, sigma, t), t0, h, t_end).map(|t| {
-                    let y = sigma * limit;
-                    let (c1, c2) = constants(t, y, 0.0);
-                    (t, Phase::Stick(slip_s(t0, s0, v0, sigma, t) - y, c1, c2))
-                })
-            }
-        };
-        match next {
-            Some(seg) => segments.push(seg),
-            None => break,
-        }
-    }
-    times
-        .iter()
-        .map(|&tq| {
-            let (t0, phase) = segments[segment_at(&segments, |seg| seg.0, tq)];
-            match phase {
-                Phase::Stick(sp, c1, c2) => sp + stick_y(t0, (c1, c2), tq),
-                Phase::Slip(s0, v0, sigma) => slip_s(t0, s0, v0, sigma, tq),
-            }
-        })
-        .collect()
+/// Three cycles at `frequency` with the study's peak acceleration
+/// `A ω² = 1.5 μ g`: the rigid solution is then the same curve in the
+/// phase `ωt`, scaled by `A` (Newmark 1965).
+pub fn shaking_at(friction: f64, frequency: f64) -> Shaking {
+    Shaking::with_peak_acceleration(1.5 * friction * G, frequency, 3.0)
 }
 
 fn rectangle(x0: f64, y0: f64, x1: f64, y1: f64) -> [Point; 4] {
@@ -422,10 +201,10 @@ pub struct ComplianceCell {
 }
 
 /// Run one cell of the contact-compliance study (return mapping, block
-/// [`SLIDING_BLOCK`], [`Shaking::at_frequency`]).
+/// [`SLIDING_BLOCK`], [`shaking_at`]).
 pub fn compliance_cell(frequency: f64, penalty: f64) -> Result<ComplianceCell> {
     let mu = sliding_friction();
-    let shaking = Shaking::at_frequency(mu, frequency);
+    let shaking = shaking_at(mu, frequency);
     let run = run_sliding(
         penalty,
         COMPLIANCE_DT,
@@ -703,7 +482,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
 
     // Verification 2: sliding block.
     let mu = sliding_friction();
-    let shaking = Shaking::study(mu);
+    let shaking = study_shaking(mu);
     let (l, h) = SLIDING_BLOCK;
     let _ = write!(
         report,
@@ -1014,3 +793,6 @@ fn compliance_section(
     files.push("compliance.svg".into());
     Ok(())
 }
+
+#[cfg(test)]
+mod tests;

@@ -2,18 +2,16 @@
 //! library pieces, runs them, compares with the paper and writes its
 //! numbers, plots and `summary.json` into `OUT/<study>/`.
 
-pub mod ellipse_pairs;
 pub mod fill_patterns;
 pub mod hashimoto_dda;
 pub mod katsuki1990;
-mod random;
 pub mod yamada2000;
 pub mod yamaguchi_hpm;
 
 use std::path::PathBuf;
 
-use crate::error::{DismechError, Result};
-use crate::output::Summary;
+use dismech::error::{DismechError, Result};
+use dismech::output::Summary;
 
 /// Options shared by every study.
 #[derive(Debug, Clone, PartialEq)]

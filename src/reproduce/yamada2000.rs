@@ -6,31 +6,32 @@
 //! the non-rolling U-model against Table 3 and eq. (38) for k = 2 … 10, the
 //! L-model's global cohesion c_G = P / (2 l_L) for growing n against
 //! eq. (20), and unequal lattices m ≠ n (which the authors' simplex could
-//! not solve). The geometry is the lattice of [`crate::limit::lattice`]
+//! not solve). The geometry is the lattice of [`dismech::limit::lattice`]
 //! with R = 1, C_p = 1 and walls 2C_p.
 
 use std::fmt::Write as _;
 
-use super::random::SplitMix64;
 use super::StudyOptions;
-use crate::contact::RigidPlastic;
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{DemSettings, DemSimulation, RunOutcome};
-use crate::error::Result;
-use crate::integrate::ExplicitEuler;
-use crate::limit::lattice::{eq20, eq32, eq38, two_elements, Lattice};
-use crate::limit::{
+use crate::reproduce::katsuki1990;
+use dismech::contact::RigidPlastic;
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
+use dismech::error::Result;
+use dismech::integrate::ExplicitEuler;
+use dismech::limit::lattice::Lattice;
+use dismech::limit::{
     analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,
     PackingLimitSettings, Uniqueness,
 };
-use crate::math::Vec2;
-use crate::math::{perp, Point};
-use crate::output::plot::mechanism_picture;
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Summary};
-use crate::reproduce::katsuki1990;
-use crate::scene::{Frame, Scene};
-use crate::solve::LinearProgramSolver;
+use dismech::math::{perp, Point};
+use dismech::math::{SplitMix64, Vec2};
+use dismech::output::plot::mechanism_picture;
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Summary};
+use dismech::reference::lattice_limit_load::{eq20, eq32, eq38};
+use dismech::reference::two_elements;
+use dismech::scene::{Frame, Scene};
+use dismech::solve::LinearProgramSolver;
 
 /// File name of the paper.
 pub const PAPER: &str = "002_d116351db0f49329.txt";

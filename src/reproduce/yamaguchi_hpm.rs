@@ -5,7 +5,7 @@
 //! * the exact check the method must pass: a slab on a planar slip surface,
 //!   static and with `k_h` towards the toe (global equilibrium fixes Fs);
 //! * both definitions of the global Fs (stress ratio, and along the
-//!   sliding direction after Hovland; see [`crate::hpm`]) for every case;
+//!   sliding direction after Hovland; see [`dismech::hpm`]) for every case;
 //! * the paper's §5 material on a representative slope (its Fig. 10 is
 //!   missing): 10 m grid, 24 × 32 cells, ground
 //!   `z = 0.25 clamp(y, 40, 280) + 0.0015 (x − 120)²` (a 14° slope facing
@@ -26,14 +26,15 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::StudyOptions;
-use crate::error::Result;
-use crate::grid::{write_esri_ascii, Raster};
-use crate::hpm::{
+use dismech::error::Result;
+use dismech::grid::{write_esri_ascii, Raster};
+use dismech::hpm::{
     hovland, strength_reduction, HpmMaterial, HpmModel, HpmResult, HpmSettings, HpmSolver,
     NamedRaster, NonlinearSettings, Seismic, SlopeGrids,
 };
-use crate::output::map::{cell_map, Arrow, MapCell};
-use crate::output::{write_csv, Check, Reported, Summary};
+use dismech::output::map::{cell_map, Arrow, MapCell};
+use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::reference::PlanarSlab;
 
 /// File name of the paper.
 pub const PAPER: &str = "001_1ec0b7ca8d44c520.txt";
@@ -95,11 +96,17 @@ fn planar_slab(dip: f64) -> Result<(SlopeGrids, f64, f64)> {
     Ok((grids, plan, thickness))
 }
 
-/// `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))`.
+/// The exact Fs of the slab of `plan` area and `thickness` on the plane
+/// dipping at `dip` degrees ([`PlanarSlab`]).
 fn planar_exact(m: &HpmMaterial, dip: f64, plan: f64, thickness: f64, kh: f64) -> f64 {
-    let (s, c) = dip.to_radians().sin_cos();
-    let w = m.unit_weight * thickness * plan;
-    (m.cohesion * plan / c + w * (c - kh * s) * m.friction()) / (w * (s + kh * c))
+    PlanarSlab {
+        cohesion: m.cohesion,
+        friction: m.friction(),
+        weight: m.unit_weight * thickness * plan,
+        plan_area: plan,
+        dip: dip.to_radians(),
+    }
+    .safety_factor(kh)
 }
 
 /// The paper's trends as ratios of the Fs in `fs` whose keys start with
@@ -731,3 +738,6 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     }
     .write_with_report(&dir, &report)
 }
+
+#[cfg(test)]
+mod tests;

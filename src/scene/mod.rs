@@ -2,9 +2,11 @@
 //! algorithms that advance them.
 
 mod frame;
+pub mod layout;
 mod particle;
 
 pub use frame::{Frame, JOINT_TOLERANCE};
+pub use layout::{CircleRows, Layout};
 pub use particle::Particle;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};

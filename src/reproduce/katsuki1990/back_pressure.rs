@@ -16,14 +16,14 @@ use std::path::Path;
 use super::patterns::Pattern;
 use super::settle_scene;
 use super::shape_anisotropy::{picture, PatternRun};
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{ContactTarget, DemSimulation, RunOutcome};
-use crate::error::Result;
-use crate::integrate::ExplicitEuler;
-use crate::math::Vec2;
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Reported};
 use crate::reproduce::fill_patterns::back_pressure_scene;
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{ContactTarget, DemSimulation, RunOutcome};
+use dismech::error::Result;
+use dismech::integrate::ExplicitEuler;
+use dismech::math::Vec2;
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Reported};
 
 /// The uniform back storage sand pressure (Pa).
 pub const BACK_PRESSURE: f64 = 100e3;

@@ -34,16 +34,15 @@ pub use shape_anisotropy::{run_pattern, PatternRun};
 use std::path::Path;
 
 use super::StudyOptions;
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{
     critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunOutcome,
 };
-use crate::error::Result;
-use crate::integrate::ExplicitEuler;
-use crate::math::{Point, Vec2};
-use crate::output::plot::{line_chart, Series};
-use crate::output::{write_csv, Check, Reported, Summary};
-use crate::scene::{Frame, Scene};
+use dismech::error::Result;
+use dismech::integrate::ExplicitEuler;
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::scene::{CircleRows, Scene};
 
 /// File name of the paper.
 pub const PAPER: &str = "000_87caa095a10dc755.txt";
@@ -94,6 +93,7 @@ impl FillConfig {
 
     /// A smaller filling of the same kind (47 circles in a 1.0 m frame) that
     /// runs in a second.
+    #[cfg(test)]
     pub fn reduced() -> Self {
         Self {
             count: 47,
@@ -105,39 +105,20 @@ impl FillConfig {
     }
 }
 
-/// The scene of an Example-1-type filling: circles at rest in an open box.
+/// The scene of an Example-1-type filling: circles at rest in an open box
+/// ([`CircleRows`], lowest row 5 mm above the floor).
 pub fn fill_scene(config: &FillConfig) -> Result<Scene> {
-    let mut scene = Scene::new(
-        Frame::open_box(config.width, config.height)?,
-        Vec2::new(0.0, -STANDARD_GRAVITY),
-    )?;
-    let pitch = config.width / config.per_row as f64;
-    let mut placed = 0;
-    let mut row = 0;
-    while placed < config.count {
-        let full = row % 2 == 0;
-        let in_row = if full {
-            config.per_row
-        } else {
-            config.per_row.saturating_sub(1).max(1)
-        };
-        let n = in_row.min(config.count - placed);
-        let y = config.radius + 0.005 + row as f64 * config.row_pitch;
-        // A partial last row is centred on the slots of its row.
-        let first_slot = (in_row - n) / 2;
-        for k in 0..n {
-            let slot = (first_slot + k) as f64;
-            let x = if full {
-                (slot + 0.5) * pitch
-            } else {
-                (slot + 1.0) * pitch
-            };
-            scene.add_circle(Point::new(x, y), config.radius, DENSITY)?;
-        }
-        placed += n;
-        row += 1;
+    CircleRows {
+        count: config.count,
+        radius: config.radius,
+        width: config.width,
+        height: config.height,
+        per_row: config.per_row,
+        row_pitch: config.row_pitch,
+        clearance: 0.005,
+        density: DENSITY,
     }
-    Ok(scene)
+    .scene(STANDARD_GRAVITY)
 }
 
 /// Paper 000's contact law with Example 1's material.
@@ -185,7 +166,7 @@ impl FillEquilibrium {
     }
 }
 
-/// Wall reactions of a DEM run in an [`Frame::open_box`].
+/// Wall reactions of a DEM run in an [`dismech::scene::Frame::open_box`].
 pub fn equilibrium(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>) -> FillEquilibrium {
     let frame = &sim.scene().frame;
     let reaction = |name: &str| {
@@ -564,9 +545,9 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
 }
 
 /// Robustness of the ellipse contact over 100 000 random pairs against the
-/// independent reference of [`super::ellipse_pairs`].
+/// independent reference of [`dismech::reference::ellipse_contact`].
 fn random_pair_checks() -> Vec<Check> {
-    let s = super::ellipse_pairs::random_pair_statistics_parallel(100_000, 2026);
+    let s = dismech::reference::ellipse_contact::random_pair_statistics_parallel(100_000, 2026);
     let check = |id: &str, description: &str, computed: f64, tolerance: f64| Check {
         id: id.into(),
         description: description.into(),
@@ -609,3 +590,6 @@ fn random_pair_checks() -> Vec<Check> {
         ),
     ]
 }
+
+#[cfg(test)]
+mod tests;

@@ -20,10 +20,8 @@
 //! angle ω is smaller. E stacks A's flat ellipses straight above each
 //! other, so that every row is a horizontal column of particles.
 
-use super::{DENSITY, STANDARD_GRAVITY};
-use crate::error::Result;
-use crate::reproduce::fill_patterns::Layout;
-use crate::scene::Scene;
+use super::DENSITY;
+use dismech::scene::Layout;
 
 /// Radius of the circle with the area of every particle (m).
 pub const EQUIVALENT_RADIUS: f64 = 0.07;
@@ -84,11 +82,6 @@ impl Pattern {
         let (_, half_height) = layout.half_extent();
         layout.height = rows as f64 * (2.0 * half_height + ROW_GAP) + 0.1;
         layout
-    }
-
-    /// The scene of [`Pattern::layout`] under standard gravity.
-    pub fn scene(&self, scale: f64) -> Result<Scene> {
-        self.layout(scale).scene(STANDARD_GRAVITY)
     }
 }
 

@@ -19,15 +19,15 @@ use std::path::Path;
 
 use super::patterns::Pattern;
 use super::{equilibrium, settle_scene, FillEquilibrium};
-use crate::contact::SpringDashpotCoulomb;
-use crate::dem::{DemSettings, DemSimulation, RunOutcome};
-use crate::error::Result;
-use crate::integrate::ExplicitEuler;
-use crate::output::plot::{line_chart, outline_picture, scatter_chart, ForceMark, Series};
-use crate::output::{write_csv, Check, Reported};
 use crate::reproduce::fill_patterns::{
     particle_outlines, representative_k, wall_pressures, WallPressure,
 };
+use dismech::contact::SpringDashpotCoulomb;
+use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
+use dismech::error::Result;
+use dismech::integrate::ExplicitEuler;
+use dismech::output::plot::{line_chart, outline_picture, scatter_chart, ForceMark, Series};
+use dismech::output::{write_csv, Check, Reported};
 
 /// A settled pattern and its earth pressure on the side walls.
 #[derive(Debug)]

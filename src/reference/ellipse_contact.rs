@@ -1,5 +1,7 @@
-//! Robustness of the ellipse contact routine over random pairs, against an
-//! independent reference.
+//! An independent reference for the ellipse–ellipse contact routine
+//! ([`crate::contact::ellipse::contact_ellipse_ellipse`]), and its
+//! comparison with the routine over random pairs (paper 000's ellipse
+//! model).
 //!
 //! The reference samples the boundary of ellipse i densely (4096 points),
 //! evaluates the implicit function of ellipse j there, refines every sign
@@ -13,9 +15,8 @@
 //! is found by bisection on the reference, then the pair is moved closer by
 //! an overlap uniform in [−5 %, 20 %] of the smaller b (negative: apart).
 
-use super::random::SplitMix64;
 use crate::contact::ellipse::contact_ellipse_ellipse;
-use crate::math::{Pose2, Vec2};
+use crate::math::{Pose2, SplitMix64, Vec2};
 use crate::shape::Ellipse;
 
 /// Results of a random-pair comparison.
