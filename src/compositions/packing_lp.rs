@@ -65,10 +65,7 @@ const TIME_STEP: f64 = 1e-4;
 fn spread(k: usize) -> (f64, f64) {
     let golden = 0.618_033_988_749_894_9;
     let plastic = 0.754_877_666_246_692_8;
-    (
-        (k as f64 * golden).fract(),
-        (k as f64 * plastic).fract(),
-    )
+    ((k as f64 * golden).fract(), (k as f64 * plastic).fract())
 }
 
 /// Settle the packing under gravity in an open box `per_row · pitch` wide.
@@ -154,7 +151,8 @@ pub fn ellipse_packing_limit(packing: &EllipsePacking) -> Result<PackingLimit> {
     let (sim, _) = settle_ellipses(packing)?;
     let model = packing_limit_model(&sim)?;
     let result = analyse(&model, &mut LinearProgramSolver::default())?;
-    let gap = (result.kinematic_load - result.static_load).abs() / result.kinematic_load.abs().max(1.0);
+    let gap =
+        (result.kinematic_load - result.static_load).abs() / result.kinematic_load.abs().max(1.0);
     Ok(PackingLimit {
         size: (model.bodies().len(), model.contacts().len()),
         admissibility: admissibility(&model, &result),
