@@ -25,7 +25,7 @@ use crate::error::{DismechError, Result};
 use crate::integrate::ExplicitEuler;
 use crate::math::{Point, Vec2};
 use crate::scene::{Frame, Scene};
-use crate::shape::AnyShape2;
+use crate::shape::{AnyShape2, Shape2};
 
 /// A regular filling: identical particles in rows (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -270,6 +270,10 @@ fn smallest_half_size(p: &crate::scene::Particle) -> f64 {
     match &p.shape {
         AnyShape2::Circle(c) => c.radius(),
         AnyShape2::Ellipse(e) => e.b(),
+        AnyShape2::Polygon(polygon) => {
+            let (hx, hy) = half_extent(p);
+            hx.min(hy).min(polygon.bounding_radius())
+        }
         AnyShape2::Segment(_) => f64::INFINITY,
     }
 }
@@ -283,6 +287,10 @@ fn half_extent(p: &crate::scene::Particle) -> (f64, f64) {
             let d = seg.end - seg.start;
             (0.5 * d.x.abs(), 0.5 * d.y.abs())
         }
+        AnyShape2::Polygon(polygon) => {
+            let bb = polygon.aabb(&p.pose);
+            (0.5 * (bb.max.x - bb.min.x), 0.5 * (bb.max.y - bb.min.y))
+        }
     }
 }
 
@@ -293,6 +301,11 @@ pub fn particle_outlines(scene: &Scene) -> Vec<Vec<Point>> {
         .particles
         .iter()
         .filter_map(|p| {
+            if let AnyShape2::Polygon(polygon) = &p.shape {
+                let mut outline: Vec<Point> = polygon.world_vertices(&p.pose).collect();
+                outline.push(outline[0]);
+                return Some(outline);
+            }
             let point = |k: usize| {
                 let t = k as f64 / POINTS as f64 * std::f64::consts::TAU;
                 match &p.shape {
@@ -301,7 +314,7 @@ pub fn particle_outlines(scene: &Scene) -> Vec<Vec<Point>> {
                         p.pose.position.y + c.radius() * t.sin(),
                     )),
                     AnyShape2::Ellipse(e) => Some(e.world_point(&p.pose, t)),
-                    AnyShape2::Segment(_) => None,
+                    AnyShape2::Segment(_) | AnyShape2::Polygon(_) => None,
                 }
             };
             (0..=POINTS).map(point).collect()
