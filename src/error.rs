@@ -186,6 +186,19 @@ pub enum DismechError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// The contact law has no finite response for the contacts a particle
+    /// of this shape makes.
+    #[error("particle {body} is a {shape}: the contact law gives no finite force or stiffness for {contact}; {advice}")]
+    LawUndefinedForShape {
+        /// The particle.
+        body: usize,
+        /// Its shape.
+        shape: &'static str,
+        /// The contact the law was probed with.
+        contact: &'static str,
+        /// What to change.
+        advice: &'static str,
+    },
     /// A DDA block has an invalid material value.
     #[error("block {block}: invalid {name} = {value}: {requirement}")]
     InvalidBlock {

@@ -7,7 +7,7 @@
 //! | piece | trait | family |
 //! |---|---|---|
 //! | geometry of a body | [`shape::Shape`] (+ [`shape::Shape2`] in 2D) | [`shape`] |
-//! | pair geometry | [`contact::dispatch::contact_2d`] (one routine per shape pair) | [`contact`] |
+//! | pair geometry | [`contact::dispatch::contact_manifold_2d`] (one routine per shape pair; several points, named by [`contact::ContactFeatures`], where a face meets a face) | [`contact`] |
 //! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
 //! | contact force and history | [`contact::ContactLaw`] | [`contact`] |
 //! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
@@ -18,6 +18,7 @@
 //! | method (paper) | Shape | ContactLaw | Integrator | GlobalSolver | status |
 //! |---|---|---|---|---|---|
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
+//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`] |
 //! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + open–close + Newton | [`dda`] |
 //! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
 //! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | faer sparse LLᵀ factorised once ([`hpm::BlockMatrix`]), initial-stiffness iteration | [`hpm`] |
@@ -26,8 +27,9 @@
 //! 1. **Scene** ([`scene`]): bodies (shape, pose, velocities, mass), frame
 //!    walls, gravity.
 //! 2. **Broad phase**: candidate pairs from the cell grid.
-//! 3. **Narrow phase**: [`contact::ContactGeometry`] from the dispatcher —
-//!    point, unit normal (A → B), overlap, contact width, radii of curvature.
+//! 3. **Narrow phase**: the [`contact::ContactGeometry`] points of a pair
+//!    from the dispatcher — point, unit normal (A → B), overlap, contact
+//!    width, radii of curvature, features.
 //! 4. **Contact law**: the relative increment
 //!    ([`contact::relative_increment`], rotation included) and the history
 //!    state give forces, tangent and regime.

@@ -6,6 +6,8 @@
 //!
 //! | composition | drivers and pieces | checked against |
 //! |---|---|---|
-//! | [`packing_lp`] | explicit DEM of ellipses → limit analysis ([`crate::limit::model_from_packing`], Clarabel) | equilibrium of the dual, primal = dual |
+//! | [`polygon_incline`]: a rigid rectangle on an incline | [`crate::shape::Polygon`], [`crate::contact::dispatch::contact_manifold_2d`] (polygon–wall, two points), [`crate::law::SpringDashpotCoulomb`] with a constant `k_n`, [`crate::dem::DemSimulation`] | sliding at `g (sin β − μ cos β)`, or at rest for `tan β ≤ μ` |
+//! | [`packing_lp`]: a DEM-settled packing of ellipses | explicit DEM of ellipses → limit analysis ([`crate::limit::model_from_packing`], Clarabel) | equilibrium of the dual, primal = dual |
 
 pub mod packing_lp;
+pub mod polygon_incline;

@@ -1,6 +1,6 @@
 //! Contact between two circles.
 
-use super::ContactGeometry;
+use super::{ContactFeatures, ContactGeometry};
 use crate::math::{Pose2, Vec2};
 use crate::shape::Circle;
 
@@ -45,6 +45,7 @@ pub fn contact_circle_circle(
         width: 2.0 * half_width,
         curvature_radius_a: ra,
         curvature_radius_b: rb,
+        features: ContactFeatures::WHOLE,
     })
 }
 

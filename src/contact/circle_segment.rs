@@ -1,6 +1,6 @@
 //! Contact between a circle and a wall segment.
 
-use super::ContactGeometry;
+use super::{ContactFeatures, ContactGeometry};
 use crate::math::Pose2;
 use crate::shape::{Circle, Segment};
 
@@ -51,5 +51,6 @@ pub fn contact_circle_segment(
         width: 2.0 * half_width,
         curvature_radius_a: r,
         curvature_radius_b: f64::INFINITY,
+        features: ContactFeatures::WHOLE,
     })
 }

@@ -20,7 +20,7 @@
 //! times (two lens-shaped overlaps, possible for elongated ellipses), the
 //! deeper lens is taken.
 
-use super::ContactGeometry;
+use super::{ContactFeatures, ContactGeometry};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::shape::{Ellipse, Segment};
 use nalgebra::Matrix4;
@@ -143,7 +143,7 @@ impl TrigQuadratic {
 }
 
 /// The parametric angle of a body-frame point of `e`.
-fn parametric_angle_of(e: &Ellipse, local: &Point) -> f64 {
+pub(crate) fn parametric_angle_of(e: &Ellipse, local: &Point) -> f64 {
     (local.y / e.b()).atan2(local.x / e.a())
 }
 
@@ -246,6 +246,7 @@ fn lens_geometry(
             j,
             &pose_j.inverse_transform_point(&on_j),
         )),
+        features: ContactFeatures::WHOLE,
     })
 }
 
@@ -265,6 +266,77 @@ fn containment(i: &Ellipse, pose_i: &Pose2, j: &Ellipse, pose_j: &Pose2) -> Cont
         width: 2.0 * i.b().min(j.b()),
         curvature_radius_a: i.b(),
         curvature_radius_b: j.b(),
+        features: ContactFeatures::WHOLE,
+    }
+}
+
+/// An ellipse against a line with material on the ellipse's side, before
+/// any test of where along the line the contact lies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct EllipseLine {
+    /// The unit normal of the line towards the ellipse's side.
+    pub inner: Vec2,
+    /// Signed distance of the ellipse's centre from the line, along `inner`.
+    pub distance: f64,
+    /// Depth of the ellipse's deepest point beyond the line.
+    pub overlap: f64,
+    /// Where the line cuts the ellipse, along the line from its origin.
+    pub crossings: (f64, f64),
+    /// The deepest point, body frame.
+    pub deepest_local: Point,
+}
+
+/// The ellipse `e` at `pose` against the line through `origin` along the
+/// unit `direction`, material on its left (inner normal `perp(direction)`);
+/// `None` when the ellipse does not reach beyond the line.
+pub(crate) fn ellipse_line(
+    e: &Ellipse,
+    pose: &Pose2,
+    origin: &Point,
+    direction: &Vec2,
+) -> Option<EllipseLine> {
+    let inner = perp(direction);
+    let outward = pose.inverse_transform_vector(&(-inner));
+    // Support point of the ellipse in the direction out of the wall.
+    let reach = ((e.a() * outward.x).powi(2) + (e.b() * outward.y).powi(2)).sqrt();
+    let distance = (pose.position - origin).dot(&inner);
+    let overlap = reach - distance;
+    if overlap <= 0.0 {
+        return None;
+    }
+    let crossings = e.line_crossings(pose, origin, direction)?;
+    Some(EllipseLine {
+        inner,
+        distance,
+        overlap,
+        crossings,
+        deepest_local: Point::new(
+            e.a() * e.a() * outward.x / reach,
+            e.b() * e.b() * outward.y / reach,
+        ),
+    })
+}
+
+impl EllipseLine {
+    /// The contact geometry with the point at `along` on the line and the
+    /// contact width `width`; normal from the ellipse into the line.
+    pub(crate) fn geometry(
+        &self,
+        e: &Ellipse,
+        origin: &Point,
+        direction: &Vec2,
+        along: f64,
+        width: f64,
+    ) -> ContactGeometry {
+        ContactGeometry {
+            point: origin + direction * along,
+            normal: -self.inner,
+            overlap: self.overlap,
+            width,
+            curvature_radius_a: e.curvature_radius(parametric_angle_of(e, &self.deepest_local)),
+            curvature_radius_b: f64::INFINITY,
+            features: ContactFeatures::WHOLE,
+        }
     }
 }
 
@@ -282,31 +354,12 @@ pub fn contact_ellipse_segment(
     if length <= 0.0 {
         return None;
     }
-    let inner = wall.inner_normal();
-    let outward = pose.inverse_transform_vector(&(-inner));
-    // Support point of the ellipse in the direction out of the wall.
-    let reach = ((e.a() * outward.x).powi(2) + (e.b() * outward.y).powi(2)).sqrt();
-    let distance = (pose.position - wall.start).dot(&inner);
-    let overlap = reach - distance;
-    if overlap <= 0.0 {
-        return None;
-    }
     let direction = wall.direction();
-    let (s1, s2) = e.line_crossings(pose, &wall.start, &direction)?;
+    let line = ellipse_line(e, pose, &wall.start, &direction)?;
+    let (s1, s2) = line.crossings;
     let midpoint_s = 0.5 * (s1 + s2);
     if !(0.0..=length).contains(&midpoint_s) {
         return None;
     }
-    let deepest_local = Point::new(
-        e.a() * e.a() * outward.x / reach,
-        e.b() * e.b() * outward.y / reach,
-    );
-    Some(ContactGeometry {
-        point: wall.start + direction * midpoint_s,
-        normal: -inner,
-        overlap,
-        width: s2 - s1,
-        curvature_radius_a: e.curvature_radius(parametric_angle_of(e, &deepest_local)),
-        curvature_radius_b: f64::INFINITY,
-    })
+    Some(line.geometry(e, &wall.start, &direction, midpoint_s, s2 - s1))
 }

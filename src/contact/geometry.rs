@@ -1,6 +1,51 @@
-//! The geometry of one contact and the relative kinematics at it.
+//! The geometry of one contact point and the relative kinematics at it.
 
 use crate::math::{cross, perp, Point, Vec2};
+
+/// The part of one body's boundary a contact point belongs to.
+///
+/// Polygons number their vertices counter-clockwise from 0 in the order they
+/// were given, and edge `k` runs from vertex `k` to vertex `k + 1` (the last
+/// edge closes the outline). A wall (segment) is `Edge(0)` from `Vertex(0)`
+/// (its start) to `Vertex(1)` (its end). A smooth body (circle, ellipse) is
+/// always `Whole`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Feature {
+    /// The whole boundary: the body contributes one point to the pair.
+    Whole,
+    /// Vertex `k`.
+    Vertex(usize),
+    /// Edge `k` (from vertex `k` to vertex `k + 1`).
+    Edge(usize),
+}
+
+/// The features of A and B that make one contact point; with the pair of
+/// bodies it names the point across steps, so that a contact law's history
+/// follows it while the bodies slide a little.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ContactFeatures {
+    /// The feature of body A.
+    pub a: Feature,
+    /// The feature of body B.
+    pub b: Feature,
+}
+
+impl ContactFeatures {
+    /// The single point of a pair that has at most one (any pair without a
+    /// polygon).
+    pub const WHOLE: Self = Self {
+        a: Feature::Whole,
+        b: Feature::Whole,
+    };
+
+    /// The same features seen from B.
+    pub fn swapped(self) -> Self {
+        Self {
+            a: self.b,
+            b: self.a,
+        }
+    }
+}
 
 /// The geometry of a contact between body A and body B.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -15,10 +60,13 @@ pub struct ContactGeometry {
     /// Contact width B = |P1P2| (m), used by the stiffness of eq. (19).
     pub width: f64,
     /// Radius of curvature of A's boundary at the contact (m;
-    /// `f64::INFINITY` for a flat wall).
+    /// `f64::INFINITY` for a flat wall or a polygon's edge, 0 at a polygon's
+    /// vertex).
     pub curvature_radius_a: f64,
     /// Radius of curvature of B's boundary at the contact.
     pub curvature_radius_b: f64,
+    /// Which features of A and B make this point.
+    pub features: ContactFeatures,
 }
 
 impl ContactGeometry {
@@ -27,12 +75,14 @@ impl ContactGeometry {
         perp(&self.normal)
     }
 
-    /// The same contact seen from B: the normal flips, radii swap.
+    /// The same contact seen from B: the normal flips, radii and features
+    /// swap; the point, overlap and width stay.
     pub fn flipped(&self) -> Self {
         Self {
             normal: -self.normal,
             curvature_radius_a: self.curvature_radius_b,
             curvature_radius_b: self.curvature_radius_a,
+            features: self.features.swapped(),
             ..*self
         }
     }

@@ -4,7 +4,7 @@
 //! | step | piece |
 //! |---|---|
 //! | candidate pairs | [`crate::broad_phase::CellGrid`] |
-//! | pair geometry | [`crate::contact::dispatch::contact_2d`] |
+//! | pair geometry | [`crate::contact::dispatch::contact_manifold_2d`] (several points for polygons) |
 //! | relative motion at the contact | [`crate::contact::relative_increment`] |
 //! | contact force and history | any [`crate::law::ContactLaw<2>`] with a [`crate::law::BoundedStiffness`], e.g. [`crate::contact::SpringDashpotCoulomb`] |
 //! | `M a = f` | [`crate::solve::LumpedSystem`] (diagonal mass) |
@@ -13,12 +13,23 @@
 //! Per step: contact forces from the positions and the previous step's
 //! increments, accelerations from forces plus gravity (paper 000 eqs.
 //! 20–22), then velocities and positions. The contact history (spring
-//! forces and the overlap) is kept per pair while the pair overlaps. The
-//! shear increment is the relative displacement at the contact point
-//! (rotation included); the normal increment of a continuing contact is
-//! the change of the overlap itself, which stays exact when a non-circular
-//! body rolls and its deepest point moves along its boundary.
+//! forces and the overlap) is kept per contact point, keyed by the particle,
+//! what it touches and the point's [`crate::contact::ContactFeatures`],
+//! while the point exists: a pair of smooth bodies has one point (features
+//! `Whole`), a polygon one per vertex-on-edge contact, and a point whose
+//! features change (a vertex sliding off an edge onto the next) starts a
+//! new history. The shear increment is the relative displacement at the
+//! contact point (rotation included); the normal increment of a continuing
+//! contact is the change of the overlap itself, which stays exact when a
+//! non-circular body rolls and its deepest point moves along its boundary.
+//!
+//! Polygons are rigid bodies (3 DOF) here. Their contact points are vertices
+//! on edges, where paper 000's eq. (19) has no value (radius of curvature 0
+//! at the vertex, contact width 0): [`DemSimulation::new`] refuses a law
+//! whose force or stiffness is not finite there, so polygons take a constant
+//! normal stiffness per point (a face on a face: two points, `2 k_n`).
 
+mod checks;
 mod simulation;
 mod stability;
 

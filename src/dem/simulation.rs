@@ -2,10 +2,11 @@
 
 use std::collections::HashMap;
 
+use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
-use crate::contact::dispatch::contact_2d;
-use crate::contact::{moment_about, relative_increment, ContactGeometry};
+use crate::contact::dispatch::contact_manifold_2d;
+use crate::contact::{moment_about, relative_increment, ContactFeatures, ContactGeometry};
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties, Regime};
@@ -120,7 +121,14 @@ pub struct ContactRecord {
     pub normal: Vec2,
     /// Regime of the law.
     pub regime: Regime,
+    /// The features of A and B that make the point (several points of one
+    /// pair differ by them).
+    pub features: ContactFeatures,
 }
+
+/// What the contact history is kept by: the particle, what it touches and
+/// the features of the contact point.
+type HistoryKey = (usize, ContactTarget, ContactFeatures);
 
 /// An explicit DEM simulation: a scene, a contact law and an integrator,
 /// plus the workspaces of the loop.
@@ -134,9 +142,11 @@ pub struct DemSimulation<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEuler
     time: f64,
     initial_potential: f64,
     initial_kinetic: f64,
-    /// Law state and overlap of each contact at the previous step.
-    history: HashMap<(usize, ContactTarget), (L::State, f64)>,
-    next_history: HashMap<(usize, ContactTarget), (L::State, f64)>,
+    /// Law state and overlap of each contact point at the previous step.
+    history: HashMap<HistoryKey, (L::State, f64)>,
+    next_history: HashMap<HistoryKey, (L::State, f64)>,
+    /// The contact points of the pair being evaluated.
+    manifold: Vec<ContactGeometry>,
     increments: Vec<(Vec2, f64)>,
     grid: CellGrid,
     boxes: Vec<Aabb2>,
@@ -175,6 +185,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
         L: BoundedStiffness<2>,
     {
         require_positive("time step dt", settings.dt)?;
+        check_law_for_polygons(&scene, &law, settings.dt, |pair| finite_bound(&law, pair))?;
         if settings.check_stability {
             let limit = critical_time_step(&scene, &law);
             if settings.dt > limit.dt {
@@ -205,6 +216,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
                 requirement: "must be false: set it to false to take responsibility for dt",
             });
         }
+        check_law_for_polygons(&scene, &law, settings.dt, |_| true)?;
         Self::build(scene, law, integrator, settings)
     }
 
@@ -229,6 +241,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
             initial_kinetic: 0.0,
             history: HashMap::new(),
             next_history: HashMap::new(),
+            manifold: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             grid: CellGrid::new(),
             boxes: Vec::with_capacity(n),
@@ -249,37 +262,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
     }
 
     fn check_initial_overlaps(&mut self) -> Result<()> {
-        let tolerance = self.settings.initial_overlap_tolerance;
         self.update_pairs();
-        for &(a, b) in &self.pairs {
-            let (pa, pb) = (&self.scene.particles[a], &self.scene.particles[b]);
-            if let Some(g) = contact_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose)? {
-                if g.overlap > tolerance {
-                    return Err(DismechError::InitialOverlap {
-                        a,
-                        b,
-                        overlap: g.overlap,
-                        tolerance,
-                    });
-                }
-            }
-        }
-        for (i, p) in self.scene.particles.iter().enumerate() {
-            for (w, wall) in self.scene.frame.walls().iter().enumerate() {
-                let shape = AnyShape2::Segment(*wall);
-                if let Some(g) = contact_2d(&p.shape, &p.pose, &shape, &Pose2::default())? {
-                    if g.overlap > tolerance {
-                        return Err(DismechError::StartsInsideWall {
-                            body: i,
-                            wall: w,
-                            penetration: g.overlap,
-                            tolerance,
-                        });
-                    }
-                }
-            }
-        }
-        Ok(())
+        check_initial_overlaps(
+            &self.scene,
+            &self.pairs,
+            self.settings.initial_overlap_tolerance,
+            &mut self.manifold,
+        )
     }
 
     /// The scene as it is now.
@@ -383,7 +372,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
             &centre_b,
             (&increment_b.0, increment_b.1),
         );
-        let key = (a, target);
+        let key = (a, target, geometry.features);
         let previous = self.history.get(&key);
         // The normal increment is the change of the overlap itself: exact
         // for any shape. (The relative velocity at the chord midpoint misses
@@ -430,6 +419,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
             force_on_target: force_on_b,
             normal: geometry.normal,
             regime: response.regime,
+            features: geometry.features,
         });
     }
 
@@ -445,17 +435,21 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
         self.contacts.clear();
         self.next_history.clear();
 
-        // Particle pairs from the broad phase.
+        // Particle pairs from the broad phase; each contact point of a pair
+        // in the order the manifold gives them.
         self.update_pairs();
+        let mut manifold = std::mem::take(&mut self.manifold);
         for k in 0..self.pairs.len() {
             let (a, b) = self.pairs[k];
             let (pa, pb) = (&self.scene.particles[a], &self.scene.particles[b]);
-            if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose)? {
-                let (centre_b, mass_b) = (pb.pose.position, pb.mass);
+            manifold.clear();
+            contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, &mut manifold)?;
+            let (centre_b, mass_b) = (pb.pose.position, pb.mass);
+            for geometry in &manifold {
                 self.apply_contact(
                     a,
                     ContactTarget::Particle(b),
-                    &geometry,
+                    geometry,
                     centre_b,
                     self.increments[b],
                     mass_b,
@@ -472,12 +466,19 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
                 }
                 let pa = &self.scene.particles[a];
                 let shape = AnyShape2::Segment(wall);
-                if let Some(geometry) = contact_2d(&pa.shape, &pa.pose, &shape, &Pose2::default())?
-                {
+                manifold.clear();
+                contact_manifold_2d(
+                    &pa.shape,
+                    &pa.pose,
+                    &shape,
+                    &Pose2::default(),
+                    &mut manifold,
+                )?;
+                for geometry in &manifold {
                     self.apply_contact(
                         a,
                         ContactTarget::Wall(w),
-                        &geometry,
+                        geometry,
                         geometry.point,
                         (Vec2::zeros(), 0.0),
                         f64::INFINITY,
@@ -485,6 +486,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
                 }
             }
         }
+        self.manifold = manifold;
         std::mem::swap(&mut self.history, &mut self.next_history);
 
         for (i, f) in self.system.force.iter().enumerate() {

@@ -2,7 +2,7 @@
 
 use crate::law::{BoundedStiffness, PairProperties};
 use crate::scene::Scene;
-use crate::shape::AnyShape2;
+use crate::shape::{AnyShape2, Shape2};
 
 /// The estimated stable limit and the mode that governs it.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,12 +34,33 @@ pub fn oscillator_limit(stiffness: f64, mass: f64, damping: f64) -> f64 {
 /// The law's largest stiffness is used (for eq. 19 at the widest contact).
 /// A particle with several contacts is stiffer than one contact: the run
 /// also watches the energy and stops if it grows.
+///
+/// A polygon's unit of contact is a face on a face: two vertex points, each
+/// with the law's stiffness, at lever arms up to the bounding radius `R`
+/// from the centroid, so that a normal force turns the body too. Its modes
+/// take twice the stiffness and damping of one point and the effective mass
+/// `1/m* = 1/m + R²/I` in both the normal and the shear–rotation mode; the
+/// largest eigenvalue of the two points' stiffness over the mass is at most
+/// `2 k (1/m + R²/I)`, so this bounds the face's stable step. A law with
+/// no finite stiffness at a vertex gives `dt = 0`
+/// ([`crate::dem::DemSimulation::new`] refuses such a law for polygons).
 pub fn critical_time_step<L: BoundedStiffness<2>>(scene: &Scene, law: &L) -> StabilityLimit {
     let mut best = StabilityLimit {
         dt: f64::INFINITY,
         governing: "no contact mode".into(),
     };
     for (i, p) in scene.particles.iter().enumerate() {
+        if let AnyShape2::Polygon(polygon) = &p.shape {
+            polygon_limit(
+                i,
+                p.mass,
+                p.inertia,
+                polygon.bounding_radius(),
+                law,
+                &mut best,
+            );
+            continue;
+        }
         let r = match &p.shape {
             AnyShape2::Circle(c) => c.radius(),
             other => other.as_shape().bounding_radius(),
@@ -91,6 +112,51 @@ pub fn critical_time_step<L: BoundedStiffness<2>>(scene: &Scene, law: &L) -> Sta
         }
     }
     best
+}
+
+/// The face-on-face modes of polygon `i` (mass `m`, inertia `inertia`,
+/// bounding radius `r`) against an identical polygon and a wall; lowers
+/// `best` where they are stiffer.
+fn polygon_limit<L: BoundedStiffness<2>>(
+    i: usize,
+    m: f64,
+    inertia: f64,
+    r: f64,
+    law: &L,
+    best: &mut StabilityLimit,
+) {
+    let turning_mass = 1.0 / (1.0 / m + r * r / inertia);
+    for (partner, partner_mass, rel_mass) in [
+        ("an identical polygon", m, 0.5 * turning_mass),
+        ("a wall", f64::INFINITY, turning_mass),
+    ] {
+        let pair = PairProperties {
+            curvature_radius_a: 0.0,
+            curvature_radius_b: f64::INFINITY,
+            width: 0.0,
+            mass_a: m,
+            mass_b: partner_mass,
+        };
+        let bound = law.stiffness_bound(&pair);
+        for (mode, k, eta) in [
+            ("normal-rotation", bound.normal, bound.normal_damping),
+            ("shear-rotation", bound.shear, bound.shear_damping),
+        ] {
+            let dt = if k.is_finite() && eta.is_finite() {
+                oscillator_limit(2.0 * k, rel_mass, 2.0 * eta)
+            } else {
+                0.0
+            };
+            if dt < best.dt {
+                *best = StabilityLimit {
+                    dt,
+                    governing: format!(
+                        "{mode} mode of a face of polygon {i} (two points) against {partner}, k = {k:.3e} N/m per point, m* = {rel_mass:.3e} kg"
+                    ),
+                };
+            }
+        }
+    }
 }
 
 #[cfg(test)]

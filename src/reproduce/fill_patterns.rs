@@ -18,7 +18,7 @@ use dismech::integrate::ExplicitEuler;
 use dismech::math::{Point, Vec2};
 use dismech::scene::layout::ellipse_half_extent;
 use dismech::scene::{Frame, Scene};
-use dismech::shape::AnyShape2;
+use dismech::shape::{AnyShape2, Shape2};
 
 /// One contact of a side wall with its eq. (23) earth-pressure coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -150,6 +150,10 @@ fn smallest_half_size(p: &dismech::scene::Particle) -> f64 {
     match &p.shape {
         AnyShape2::Circle(c) => c.radius(),
         AnyShape2::Ellipse(e) => e.b(),
+        AnyShape2::Polygon(polygon) => {
+            let (hx, hy) = half_extent(p);
+            hx.min(hy).min(polygon.bounding_radius())
+        }
         AnyShape2::Segment(_) => f64::INFINITY,
     }
 }
@@ -163,6 +167,10 @@ fn half_extent(p: &dismech::scene::Particle) -> (f64, f64) {
             let d = seg.end - seg.start;
             (0.5 * d.x.abs(), 0.5 * d.y.abs())
         }
+        AnyShape2::Polygon(polygon) => {
+            let bb = polygon.aabb(&p.pose);
+            (0.5 * (bb.max.x - bb.min.x), 0.5 * (bb.max.y - bb.min.y))
+        }
     }
 }
 
@@ -173,6 +181,11 @@ pub fn particle_outlines(scene: &Scene) -> Vec<Vec<Point>> {
         .particles
         .iter()
         .filter_map(|p| {
+            if let AnyShape2::Polygon(polygon) = &p.shape {
+                let mut outline: Vec<Point> = polygon.world_vertices(&p.pose).collect();
+                outline.push(outline[0]);
+                return Some(outline);
+            }
             let point = |k: usize| {
                 let t = k as f64 / POINTS as f64 * std::f64::consts::TAU;
                 match &p.shape {
@@ -181,7 +194,7 @@ pub fn particle_outlines(scene: &Scene) -> Vec<Vec<Point>> {
                         p.pose.position.y + c.radius() * t.sin(),
                     )),
                     AnyShape2::Ellipse(e) => Some(e.world_point(&p.pose, t)),
-                    AnyShape2::Segment(_) => None,
+                    AnyShape2::Segment(_) | AnyShape2::Polygon(_) => None,
                 }
             };
             (0..=POINTS).map(point).collect()

@@ -11,7 +11,7 @@ pub use particle::Particle;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::math::{Point, Vec2};
-use crate::shape::{Circle, Ellipse, Shape};
+use crate::shape::{Circle, Ellipse, Polygon, Shape};
 
 /// Particles in a rigid frame under gravity (2D, per unit thickness).
 #[derive(Debug, Clone, PartialEq)]
@@ -66,6 +66,53 @@ impl Scene {
         require_positive("density", density)?;
         let mp = ellipse.mass_properties(density);
         let mut particle = Particle::at_rest(ellipse.into(), centre, mp);
+        particle.pose.angle = angle;
+        self.particles.push(particle);
+        Ok(self.particles.len() - 1)
+    }
+
+    /// Add a rigid polygon of `density` (kg/m³) at rest, from its vertices
+    /// in world coordinates listed counter-clockwise (convex or concave, no
+    /// self-intersection); its pose is its centroid with angle 0. Returns
+    /// its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidPolygon`] (naming the particle's index as the
+    /// block) for fewer than three vertices, a non-finite vertex, clockwise
+    /// order, zero area or crossing edges; [`DismechError::InvalidParameter`]
+    /// for a density that is not finite and positive.
+    pub fn add_polygon(&mut self, vertices: &[Point], density: f64) -> Result<usize> {
+        let (polygon, centroid) = Polygon::from_world(vertices, self.particles.len())?;
+        require_positive("density", density)?;
+        let mp = polygon.mass_properties(density);
+        self.particles
+            .push(Particle::at_rest(polygon.into(), centroid, mp));
+        Ok(self.particles.len() - 1)
+    }
+
+    /// Add a `width × height` rectangle of `density` (kg/m³) at rest, centred
+    /// at `centre` and turned by `angle` (rad); returns its index. Its
+    /// vertices are numbered from the lower-left corner of the unturned
+    /// rectangle, edge 0 being its bottom ([`Polygon::rectangle`]).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a non-finite centre or angle,
+    /// or a size or density that is not finite and positive.
+    pub fn add_rectangle(
+        &mut self,
+        centre: Point,
+        width: f64,
+        height: f64,
+        angle: f64,
+        density: f64,
+    ) -> Result<usize> {
+        require_finite("centre x", centre.x)?;
+        require_finite("centre y", centre.y)?;
+        require_finite("angle", angle)?;
+        let rectangle = Polygon::rectangle(width, height)?;
+        require_positive("density", density)?;
+        let mp = rectangle.mass_properties(density);
+        let mut particle = Particle::at_rest(rectangle.into(), centre, mp);
         particle.pose.angle = angle;
         self.particles.push(particle);
         Ok(self.particles.len() - 1)

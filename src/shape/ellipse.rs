@@ -112,6 +112,71 @@ impl Ellipse {
     }
 }
 
+/// The root `s̄` of `(r₀ z₀ / (s + r₀))² + (z₁ / (s + 1))² = 1` by
+/// bisection, for [`Ellipse::closest_boundary_point`] (Eberly, "Distance
+/// from a point to an ellipse"); `g` is the implicit function at the point.
+fn closest_point_root(r0: f64, z0: f64, z1: f64, g: f64) -> f64 {
+    let n0 = r0 * z0;
+    let mut s0 = z1 - 1.0;
+    let mut s1 = if g < 0.0 { 0.0 } else { n0.hypot(z1) - 1.0 };
+    let mut s = 0.0;
+    // Bisection of doubles ends in at most ~1100 halvings.
+    for _ in 0..1100 {
+        s = 0.5 * (s0 + s1);
+        if s == s0 || s == s1 {
+            break;
+        }
+        let (ratio0, ratio1) = (n0 / (s + r0), z1 / (s + 1.0));
+        let value = ratio0 * ratio0 + ratio1 * ratio1 - 1.0;
+        if value > 0.0 {
+            s0 = s;
+        } else if value < 0.0 {
+            s1 = s;
+        } else {
+            break;
+        }
+    }
+    s
+}
+
+impl Ellipse {
+    /// The boundary point nearest to the body-frame point `p`, inside or
+    /// outside (Eberly's robust bisection; exact to rounding).
+    pub fn closest_boundary_point(&self, p: &Point) -> Point {
+        let (e0, e1) = (self.a, self.b);
+        let (y0, y1) = (p.x.abs(), p.y.abs());
+        let (x0, x1) = if y1 > 0.0 {
+            if y0 > 0.0 {
+                let (z0, z1) = (y0 / e0, y1 / e1);
+                let g = z0 * z0 + z1 * z1 - 1.0;
+                if g != 0.0 {
+                    let r0 = (e0 / e1) * (e0 / e1);
+                    let s = closest_point_root(r0, z0, z1, g);
+                    (r0 * y0 / (s + r0), y1 / (s + 1.0))
+                } else {
+                    (y0, y1)
+                }
+            } else {
+                (0.0, e1)
+            }
+        } else {
+            let (numer, denom) = (e0 * y0, e0 * e0 - e1 * e1);
+            if numer < denom {
+                let xde0 = numer / denom;
+                (e0 * xde0, e1 * (1.0 - xde0 * xde0).max(0.0).sqrt())
+            } else {
+                (e0, 0.0)
+            }
+        };
+        Point::new(x0.copysign(p.x), x1.copysign(p.y))
+    }
+
+    /// The outward unit normal at the body-frame boundary point `x`.
+    pub fn outward_normal(&self, x: &Point) -> Vec2 {
+        Vec2::new(x.x / (self.a * self.a), x.y / (self.b * self.b)).normalize()
+    }
+}
+
 impl Shape for Ellipse {
     fn kind(&self) -> ShapeKind {
         ShapeKind::Ellipse
@@ -168,6 +233,29 @@ mod tests {
         let e = Ellipse::new(2.0, 1.0).unwrap();
         approx::assert_relative_eq!(e.curvature_radius(0.0), 0.5);
         approx::assert_relative_eq!(e.curvature_radius(std::f64::consts::FRAC_PI_2), 4.0);
+    }
+
+    #[test]
+    fn closest_boundary_point_is_the_nearest_of_a_dense_sampling() {
+        let e = Ellipse::new(2.0, 1.0).unwrap();
+        for p in [
+            Point::new(0.3, 0.2),
+            Point::new(-1.7, 0.1),
+            Point::new(0.5, -0.0),
+            Point::new(0.0, 0.4),
+            Point::new(2.5, -1.5),
+            Point::new(-0.1, -0.95),
+        ] {
+            let x = e.closest_boundary_point(&p);
+            approx::assert_relative_eq!(e.implicit(&Pose2::default(), &x), 0.0, epsilon = 1e-12);
+            let sampled = (0..200_000)
+                .map(|k| (e.local_point(k as f64 * std::f64::consts::TAU / 200_000.0) - p).norm())
+                .fold(f64::INFINITY, f64::min);
+            approx::assert_relative_eq!((x - p).norm(), sampled, epsilon = 1e-9);
+            // The nearest point lies on the normal through it.
+            let n = e.outward_normal(&x);
+            assert!(crate::math::cross(&n, &(p - x)).abs() < 1e-9);
+        }
     }
 
     #[test]

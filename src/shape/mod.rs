@@ -101,6 +101,8 @@ pub enum AnyShape2 {
     Segment(Segment),
     /// An ellipse.
     Ellipse(Ellipse),
+    /// A simple polygon, convex or concave.
+    Polygon(Polygon),
 }
 
 impl AnyShape2 {
@@ -110,6 +112,7 @@ impl AnyShape2 {
             AnyShape2::Circle(c) => c,
             AnyShape2::Segment(s) => s,
             AnyShape2::Ellipse(e) => e,
+            AnyShape2::Polygon(p) => p,
         }
     }
 }
@@ -129,5 +132,11 @@ impl From<Ellipse> for AnyShape2 {
 impl From<Segment> for AnyShape2 {
     fn from(s: Segment) -> Self {
         AnyShape2::Segment(s)
+    }
+}
+
+impl From<Polygon> for AnyShape2 {
+    fn from(p: Polygon) -> Self {
+        AnyShape2::Polygon(p)
     }
 }

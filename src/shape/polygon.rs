@@ -3,14 +3,25 @@
 use nalgebra::SMatrix;
 
 use super::{MassProperties, Shape, Shape2, ShapeKind};
-use crate::error::{DismechError, Result};
-use crate::math::{cross, Aabb2, Point, Pose2};
+use crate::error::{require_positive, DismechError, Result};
+use crate::math::{cross, Aabb2, Point, Pose2, Vec2};
 
 /// A simple polygon (no self-intersection), vertices counter-clockwise in
 /// the body frame, whose origin is the centroid.
+///
+/// Vertex `k` joins edge `k − 1` (ending there) and edge `k` (from vertex `k`
+/// to vertex `k + 1`); the outward unit normals of the edges and which
+/// vertices are reflex (interior angle above 180°) are kept for the contact
+/// routines.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polygon {
     vertices: Vec<Point>,
+    /// Outward unit normal of edge `k`, body frame.
+    normals: Vec<Vec2>,
+    /// Whether vertex `k` is reflex.
+    reflex: Vec<bool>,
+    /// Largest distance from the centroid to a vertex.
+    radius: f64,
     area: f64,
     /// `∫x² dA`, `∫y² dA`, `∫xy dA` about the centroid.
     second_moments: [f64; 3],
@@ -103,9 +114,25 @@ impl Polygon {
         let centroid = Point::new(m[1] / m[0], m[2] / m[0]);
         let local: Vec<Point> = vertices.iter().map(|v| Point::from(v - centroid)).collect();
         let c = moments(&local);
+        let normals = (0..n)
+            .map(|k| {
+                let edge = local[(k + 1) % n] - local[k];
+                Vec2::new(edge.y, -edge.x) / edge.norm()
+            })
+            .collect();
+        let reflex = (0..n)
+            .map(|k| {
+                let (prev, here, next) = (local[(k + n - 1) % n], local[k], local[(k + 1) % n]);
+                cross(&(here - prev), &(next - here)) < 0.0
+            })
+            .collect();
+        let radius = local.iter().map(|v| v.coords.norm()).fold(0.0, f64::max);
         Ok((
             Self {
                 vertices: local,
+                normals,
+                reflex,
+                radius,
                 area: m[0],
                 second_moments: [c[3], c[4], c[5]],
             },
@@ -113,9 +140,57 @@ impl Polygon {
         ))
     }
 
+    /// A `width × height` rectangle centred on its centroid, sides along the
+    /// body axes; vertex 0 is the lower-left corner, edge 0 the bottom.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a width or height that is not
+    /// finite and positive.
+    pub fn rectangle(width: f64, height: f64) -> Result<Self> {
+        let (hw, hh) = (
+            0.5 * require_positive("rectangle width", width)?,
+            0.5 * require_positive("rectangle height", height)?,
+        );
+        let corners = [(-hw, -hh), (hw, -hh), (hw, hh), (-hw, hh)].map(|(x, y)| Point::new(x, y));
+        Ok(Self::from_world(&corners, 0)?.0)
+    }
+
     /// Vertices in the centroid frame, counter-clockwise.
     pub fn vertices(&self) -> &[Point] {
         &self.vertices
+    }
+
+    /// The vertices placed at `pose` (world frame).
+    pub fn world_vertices<'a>(&'a self, pose: &'a Pose2) -> impl Iterator<Item = Point> + 'a {
+        self.vertices.iter().map(|v| pose.transform_point(v))
+    }
+
+    /// Outward unit normal of edge `k` (from vertex `k` to `k + 1`), body
+    /// frame.
+    pub fn edge_normal(&self, k: usize) -> Vec2 {
+        self.normals[k]
+    }
+
+    /// Whether vertex `k` is reflex (interior angle above 180°).
+    pub fn is_reflex(&self, k: usize) -> bool {
+        self.reflex[k]
+    }
+
+    /// Whether the body-frame point `p` lies inside the polygon (crossing
+    /// number; a point on the boundary may count either way).
+    pub fn contains(&self, p: &Point) -> bool {
+        let n = self.vertices.len();
+        let mut inside = false;
+        for k in 0..n {
+            let (a, b) = (self.vertices[k], self.vertices[(k + 1) % n]);
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+                if p.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
     }
 
     /// Second moments of area about the centroid: `[∫x², ∫y², ∫xy] dA`.
@@ -181,10 +256,7 @@ impl Shape2 for Polygon {
         bb
     }
     fn bounding_radius(&self) -> f64 {
-        self.vertices
-            .iter()
-            .map(|v| v.coords.norm())
-            .fold(0.0, f64::max)
+        self.radius
     }
 }
 
