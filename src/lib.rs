@@ -8,6 +8,8 @@
 //! |---|---|---|
 //! | geometry of a body | [`shape::Shape`] (+ [`shape::Shape2`] in 2D) | [`shape`] |
 //! | pair geometry | [`contact::dispatch::contact_manifold_2d`] (one routine per shape pair; several points, named by [`contact::ContactFeatures`], where a face meets a face) | [`contact`] |
+//! | gap and shear with first and second variations (implicit drivers) | [`query::variation::GapVariation`] (vertex–edge, smooth–edge, smooth–smooth) | [`query`] |
+//! | how a body's unknowns move its points, its mass and stiffness | [`kinematics::Kinematics`] ([`kinematics::Rigid2`], [`kinematics::Affine2`], [`kinematics::Fixed`]) | [`kinematics`] |
 //! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
 //! | contact force and history | [`contact::ContactLaw`] | [`contact`] |
 //! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
@@ -65,11 +67,13 @@ pub mod error;
 pub mod grid;
 pub mod hpm;
 pub mod integrate;
+pub mod kinematics;
 pub mod law;
 pub mod limit;
 pub mod lp;
 pub mod math;
 pub mod output;
+pub mod query;
 pub mod reference;
 pub mod scene;
 pub mod shape;

@@ -18,7 +18,8 @@
 //! Within a step the points move linearly with the unknowns, `x = x̄ +
 //! T(x̄) d` (eq. 14), so all the nonlinearity is in `n(b)`, `τ(b)`, `l(b)`:
 //! the gradients and Hessians are taken in closed form with respect to
-//! `(a, b)` and carried to the twelve unknowns of the pair by the chain rule.
+//! `(a, b)` ([`crate::query::variation::local_geometry`]) and carried to the
+//! twelve unknowns of the pair by the chain rule.
 //! This is the content of eqs. (19)–(35) (whose `G`, `H`, `I`, `J`, `E'`
 //! matrices are these gradients written out), derived afresh because the
 //! printed equations are partly garbled.
@@ -33,10 +34,11 @@
 //! vertices are tested against the other's edges, so where two corners meet
 //! each may hold a contact on the other's edge; no rule merges the two.
 
-use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
+use nalgebra::{SMatrix, SVector, Vector2};
 
 use super::block::Block;
 use crate::math::{cross, Point};
+use crate::query::variation::local_geometry;
 
 /// Gradient with respect to the 12 unknowns of a pair `(d_j, d_k)`.
 pub type Grad12 = SVector<f64, 12>;
@@ -82,59 +84,6 @@ pub struct Kinematics {
     pub hess_gap: Hess12,
     /// `Δδg_s` (eq. 33).
     pub hess_shear: Hess12,
-}
-
-/// `(g_n, g_s)`, their gradients and Hessians with respect to `(a, b)`.
-pub(crate) struct LocalGeometry {
-    pub gap: f64,
-    pub shear: f64,
-    pub grad_gap: SVector<f64, 4>,
-    pub grad_shear: SVector<f64, 4>,
-    pub hess_gap: SMatrix<f64, 4, 4>,
-    pub hess_shear: SMatrix<f64, 4, 4>,
-}
-
-/// Gap and shear of a vertex against an edge, with derivatives in `(a, b)`.
-pub(crate) fn local_geometry(a: &Vector2<f64>, b: &Vector2<f64>, xi: f64) -> LocalGeometry {
-    let l2 = b.norm_squared();
-    let l = l2.sqrt();
-    let tau = b / l;
-    let n = Vector2::new(tau.y, -tau.x);
-    let ra = Vector2::new(-a.y, a.x);
-    let gap = cross(a, b) / l;
-    let ab = a.dot(b);
-    let shear = ab / l - xi * l;
-    let id = Matrix2::identity();
-    let rt = Matrix2::new(0.0, 1.0, -1.0, 0.0);
-    let bbt = b * b.transpose();
-
-    let dgap_b = ra / l - b * (gap / l2);
-    let hgap_ab = rt / l - n * b.transpose() / l2;
-    let hgap_bb = -(ra * b.transpose() + b * ra.transpose()) / (l2 * l) - id * (gap / l2)
-        + bbt * (3.0 * gap / (l2 * l2));
-
-    let dshear_b = a / l - b * (ab / (l2 * l)) - tau * xi;
-    let hshear_ab = id / l - bbt / (l2 * l);
-    let hshear_bb = -(a * b.transpose() + b * a.transpose()) / (l2 * l) - id * (ab / (l2 * l))
-        + bbt * (3.0 * ab / (l2 * l2 * l))
-        - (id / l - bbt / (l2 * l)) * xi;
-
-    let pack = |ga: Vector2<f64>, gb: Vector2<f64>| SVector::<f64, 4>::new(ga.x, ga.y, gb.x, gb.y);
-    let hess = |hab: Matrix2<f64>, hbb: Matrix2<f64>| {
-        let mut h = SMatrix::<f64, 4, 4>::zeros();
-        h.fixed_view_mut::<2, 2>(0, 2).copy_from(&hab);
-        h.fixed_view_mut::<2, 2>(2, 0).copy_from(&hab.transpose());
-        h.fixed_view_mut::<2, 2>(2, 2).copy_from(&hbb);
-        h
-    };
-    LocalGeometry {
-        gap,
-        shear,
-        grad_gap: pack(n, dgap_b),
-        grad_shear: pack(tau, dshear_b),
-        hess_gap: hess(hgap_ab, hgap_bb),
-        hess_shear: hess(hshear_ab, hshear_bb),
-    }
 }
 
 impl VertexEdge {

@@ -1,0 +1,120 @@
+//! The affine 2D body of DDA (paper 003 eqs. 14–16): six degrees of freedom
+//! `d = (u₀, v₀, r₀, εx, εy, γxy)` about the centroid, with the linear
+//! displacement field `u = T(X − c) d`.
+
+use nalgebra::{Matrix3, SMatrix, SVector};
+
+use super::{Advance, AreaMoments, Kinematics, MapVector, PlacedEllipse, PlacedPolygon};
+use crate::error::Result;
+use crate::math::Point;
+use crate::shape::Polygon;
+
+/// DDA's block kinematics: `x = X + T(X − c) d`, that is `t = (u₀, v₀)` and
+/// `F = I + [[εx, γxy/2 − r₀], [γxy/2 + r₀, εy]]`, linear in `d` (so a
+/// rotation `r₀` stretches the body slightly within a step, as in classic
+/// DDA).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Affine2;
+
+impl Affine2 {
+    /// The constant `P = ∂Δp/∂d`.
+    fn jacobian() -> SMatrix<f64, 6, 6> {
+        SMatrix::<f64, 6, 6>::from_row_slice(&[
+            1.0, 0.0, 0.0, 0.0, 0.0, 0.0, //
+            0.0, 1.0, 0.0, 0.0, 0.0, 0.0, //
+            0.0, 0.0, 0.0, 1.0, 0.0, 0.0, //
+            0.0, 0.0, -1.0, 0.0, 0.0, 0.5, //
+            0.0, 0.0, 1.0, 0.0, 0.0, 0.5, //
+            0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+        ])
+    }
+}
+
+impl Kinematics<6> for Affine2 {
+    const LINEAR: bool = true;
+
+    fn map_parameters(&self, d: &SVector<f64, 6>) -> MapVector {
+        MapVector::new(d[0], d[1], d[3], 0.5 * d[5] - d[2], 0.5 * d[5] + d[2], d[4])
+    }
+
+    fn map_jacobian(&self, _d: &SVector<f64, 6>) -> SMatrix<f64, 6, 6> {
+        Self::jacobian()
+    }
+
+    fn map_curvature(&self, _d: &SVector<f64, 6>, _w: &MapVector) -> SMatrix<f64, 6, 6> {
+        SMatrix::zeros()
+    }
+
+    /// `ρ ∫ TᵀT dA` exactly from the area and second moments: with
+    /// `T = T₀ + x Tx + y Ty` about the centroid,
+    /// `∫TᵀT = A T₀ᵀT₀ + Ixx TxᵀTx + Iyy TyᵀTy + Ixy (TxᵀTy + TyᵀTx)`
+    /// (the same arithmetic as [`crate::dda::Block::mass`]).
+    fn mass(&self, moments: &AreaMoments, density: f64) -> SMatrix<f64, 6, 6> {
+        let t0 = Polygon::dda_displacement_matrix(0.0, 0.0);
+        let tx = Polygon::dda_displacement_matrix(1.0, 0.0) - t0;
+        let ty = Polygon::dda_displacement_matrix(0.0, 1.0) - t0;
+        let s = &moments.second;
+        let (ixx, iyy, ixy) = (s[(0, 0)], s[(1, 1)], s[(0, 1)]);
+        let m = t0.transpose() * t0 * moments.area
+            + tx.transpose() * tx * ixx
+            + ty.transpose() * ty * iyy
+            + (tx.transpose() * ty + ty.transpose() * tx) * ixy;
+        m * density
+    }
+
+    /// `A D` on the strain unknowns `(εx, εy, γxy)` (from `∫σ·δε dΩ`,
+    /// eq. 2, with uniform strain).
+    fn stiffness(&self, moments: &AreaMoments, elastic: &Matrix3<f64>) -> SMatrix<f64, 6, 6> {
+        let mut k = SMatrix::<f64, 6, 6>::zeros();
+        k.fixed_view_mut::<3, 3>(3, 3)
+            .copy_from(&(elastic * moments.area));
+        k
+    }
+}
+
+/// A polygon's vertices move by `T(X − c) d` (eq. 14) and the polygon is
+/// rebuilt about its new centroid: the arithmetic of
+/// [`crate::dda::Block::apply_increment`], bit for bit.
+impl Advance<PlacedPolygon, 6> for Affine2 {
+    fn advance(
+        &self,
+        p: &PlacedPolygon,
+        d: &SVector<f64, 6>,
+        body: usize,
+    ) -> Result<PlacedPolygon> {
+        let c = p.centroid();
+        let moved: Vec<Point> = (0..p.vertex_count())
+            .map(|k| {
+                let q = p.vertex(k);
+                q + Polygon::dda_displacement_matrix(q.x - c.x, q.y - c.y) * d
+            })
+            .collect();
+        PlacedPolygon::from_world(&moved, body)
+    }
+}
+
+/// An ellipse (or circle) `{x : (x − e)ᵀ M⁻¹ (x − e) ≤ 1}` becomes the
+/// ellipse with centre `e + t` and matrix `F M Fᵀ`: its conjugate
+/// semi-diameters (the columns of its axes matrix) are multiplied by `F`.
+impl Advance<PlacedEllipse, 6> for Affine2 {
+    fn advance(
+        &self,
+        e: &PlacedEllipse,
+        d: &SVector<f64, 6>,
+        _body: usize,
+    ) -> Result<PlacedEllipse> {
+        let map = self.map(d);
+        PlacedEllipse::new(e.centre() + map.translation, map.gradient * e.axes())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn affine_jacobian_is_the_derivative_of_the_parameters() {
+        let d = SVector::<f64, 6>::new(0.1, -0.2, 0.03, 0.004, -0.005, 0.006);
+        assert_eq!(Affine2.map_parameters(&d), Affine2::jacobian() * d);
+    }
+}

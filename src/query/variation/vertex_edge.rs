@@ -1,0 +1,182 @@
+//! Vertex–edge contact (paper 003 eqs. 17–35): a polygon vertex P₁ of body
+//! A against an edge P₂P₃ of body B (a polygon edge or a wall).
+//!
+//! The edge runs with B's material on its left, so its outward normal is
+//! `n = (τ_y, −τ_x)`, `τ = (x₃ − x₂)/l`: for a polygon listed
+//! counter-clockwise, edge k runs from vertex k to k + 1; a wall segment,
+//! whose material (the allowed side) is on its left, is passed reversed
+//! ([`wall_edge`]). With `a = x₁ − x₂`, `b = x₃ − x₂`, `l = |b|`:
+//!
+//! * `g_n = (a × b)/l = (x₁ − x₂)·n`, negative when P₁ has penetrated;
+//! * `g_s = (x₁ − x₀')·τ = a·b/l − ξ l`, where `x₀' = x₂ + ξ b` is the
+//!   material point of the edge under P₁ at the start of the step, so that
+//!   `g_s` is the step's shear increment measured along the current edge.
+//!
+//! `a` and `b` are the local variables (M = 4): every point moves affinely
+//! in its body's map parameters, so `(a, b)` is linear in them and all the
+//! nonlinearity is in `n(b)`, `τ(b)`, `l(b)`, differentiated in closed form.
+
+use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
+
+use super::{GapVariation, LocalVariation, VariationError};
+use crate::kinematics::{point_map_jacobian, PlacedPolygon};
+use crate::math::{cross, Point};
+use crate::shape::Segment;
+
+/// `(g_n, g_s)` of a vertex against an edge, with their gradients and
+/// Hessians in `(a, b) = (x₁ − x₂, x₃ − x₂)`; `xi` places the shear
+/// reference point `x₀' = x₂ + ξ b`. These are eqs. (19)–(35) of paper 003
+/// (its `G`, `H`, `I`, `J`, `E'` matrices), derived afresh because the
+/// printed equations are partly garbled.
+pub fn local_geometry(a: &Vector2<f64>, b: &Vector2<f64>, xi: f64) -> LocalVariation<4> {
+    let l2 = b.norm_squared();
+    let l = l2.sqrt();
+    let tau = b / l;
+    let n = Vector2::new(tau.y, -tau.x);
+    let ra = Vector2::new(-a.y, a.x);
+    let gap = cross(a, b) / l;
+    let ab = a.dot(b);
+    let shear = ab / l - xi * l;
+    let id = Matrix2::identity();
+    let rt = Matrix2::new(0.0, 1.0, -1.0, 0.0);
+    let bbt = b * b.transpose();
+
+    let dgap_b = ra / l - b * (gap / l2);
+    let hgap_ab = rt / l - n * b.transpose() / l2;
+    let hgap_bb = -(ra * b.transpose() + b * ra.transpose()) / (l2 * l) - id * (gap / l2)
+        + bbt * (3.0 * gap / (l2 * l2));
+
+    let dshear_b = a / l - b * (ab / (l2 * l)) - tau * xi;
+    let hshear_ab = id / l - bbt / (l2 * l);
+    let hshear_bb = -(a * b.transpose() + b * a.transpose()) / (l2 * l) - id * (ab / (l2 * l))
+        + bbt * (3.0 * ab / (l2 * l2 * l))
+        - (id / l - bbt / (l2 * l)) * xi;
+
+    let pack = |ga: Vector2<f64>, gb: Vector2<f64>| SVector::<f64, 4>::new(ga.x, ga.y, gb.x, gb.y);
+    let hess = |hab: Matrix2<f64>, hbb: Matrix2<f64>| {
+        let mut h = SMatrix::<f64, 4, 4>::zeros();
+        h.fixed_view_mut::<2, 2>(0, 2).copy_from(&hab);
+        h.fixed_view_mut::<2, 2>(2, 0).copy_from(&hab.transpose());
+        h.fixed_view_mut::<2, 2>(2, 2).copy_from(&hbb);
+        h
+    };
+    LocalVariation {
+        gap,
+        shear,
+        grad_gap: pack(n, dgap_b),
+        grad_shear: pack(tau, dshear_b),
+        hess_gap: hess(hgap_ab, hgap_bb),
+        hess_shear: hess(hshear_ab, hshear_bb),
+    }
+}
+
+/// The edge of a wall segment in the orientation of this module: the wall's
+/// inner side (left of start → end) is the side a vertex may occupy, so the
+/// edge runs from `end` to `start`.
+pub fn wall_edge(wall: &Segment) -> [Point; 2] {
+    [wall.end, wall.start]
+}
+
+/// One vertex–edge contact, fixed for the duration of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VertexEdgeContact {
+    /// The vertex P₁ of body A at the start of the step (world).
+    pub vertex: Point,
+    /// Reference point (centroid) of body A at the start of the step.
+    pub reference_a: Point,
+    /// The edge `[P₂, P₃]` of body B at the start of the step (world).
+    pub edge: [Point; 2],
+    /// Reference point (centroid) of body B at the start of the step.
+    pub reference_b: Point,
+    /// Position of the shear reference point `x₀' = x₂ + ξ (x₃ − x₂)`.
+    pub xi: f64,
+    /// `g_n` at the start of the step.
+    pub initial_gap: f64,
+}
+
+impl VertexEdgeContact {
+    /// The contact of `vertex` (body A, reference `reference_a`) with
+    /// `edge` (body B) when the foot of the perpendicular lies on the edge,
+    /// `0 ≤ ξ ≤ 1`, and `|g_n| ≤ search`; `None` otherwise.
+    pub fn detect(
+        vertex: Point,
+        reference_a: Point,
+        edge: [Point; 2],
+        reference_b: Point,
+        search: f64,
+    ) -> Option<Self> {
+        let (a, b) = (vertex - edge[0], edge[1] - edge[0]);
+        let l2 = b.norm_squared();
+        let xi = a.dot(&b) / l2;
+        let gap = cross(&a, &b) / l2.sqrt();
+        if !(0.0..=1.0).contains(&xi) || gap.abs() > search {
+            return None;
+        }
+        Some(Self {
+            vertex,
+            reference_a,
+            edge,
+            reference_b,
+            xi,
+            initial_gap: gap,
+        })
+    }
+
+    /// DDA's choice of edge of `polygon` (body B) for `vertex`: among the
+    /// edges [`Self::detect`] accepts, the edge `previous` (the contact's
+    /// edge in the previous step) if it qualifies, otherwise the one with
+    /// the largest `g_n` (for a vertex inside, the shallowest penetration;
+    /// near a corner, the edge it would cross first). Returns the edge
+    /// index (edge k runs from vertex k to k + 1) with the contact.
+    pub fn closest_edge(
+        vertex: Point,
+        reference_a: Point,
+        polygon: &PlacedPolygon,
+        search: f64,
+        previous: Option<usize>,
+    ) -> Option<(usize, Self)> {
+        let mut best: Option<(usize, Self)> = None;
+        for e in 0..polygon.vertex_count() {
+            let edge = [polygon.vertex(e), polygon.vertex(e + 1)];
+            let Some(c) = Self::detect(vertex, reference_a, edge, polygon.centroid(), search)
+            else {
+                continue;
+            };
+            if previous == Some(e) {
+                return Some((e, c));
+            }
+            if best.is_none_or(|(_, b)| c.initial_gap > b.initial_gap) {
+                best = Some((e, c));
+            }
+        }
+        best
+    }
+}
+
+impl GapVariation<4> for VertexEdgeContact {
+    fn start(&self) -> SVector<f64, 4> {
+        let (a, b) = (self.vertex - self.edge[0], self.edge[1] - self.edge[0]);
+        SVector::<f64, 4>::new(a.x, a.y, b.x, b.y)
+    }
+
+    /// `Δa = ∂x₁/∂Δp_A Δp_A − ∂x₂/∂Δp_B Δp_B`, `Δb = (∂x₃ − ∂x₂)/∂Δp_B Δp_B`.
+    fn chain(&self) -> (SMatrix<f64, 4, 6>, SMatrix<f64, 4, 6>) {
+        let j1 = point_map_jacobian(&(self.vertex - self.reference_a));
+        let j2 = point_map_jacobian(&(self.edge[0] - self.reference_b));
+        let j3 = point_map_jacobian(&(self.edge[1] - self.reference_b));
+        let mut la = SMatrix::<f64, 4, 6>::zeros();
+        la.fixed_view_mut::<2, 6>(0, 0).copy_from(&j1);
+        let mut lb = SMatrix::<f64, 4, 6>::zeros();
+        lb.fixed_view_mut::<2, 6>(0, 0).copy_from(&(-j2));
+        lb.fixed_view_mut::<2, 6>(2, 0).copy_from(&(j3 - j2));
+        (la, lb)
+    }
+
+    fn local(&self, z: &SVector<f64, 4>) -> Result<LocalVariation<4>, VariationError> {
+        Ok(local_geometry(
+            &Vector2::new(z[0], z[1]),
+            &Vector2::new(z[2], z[3]),
+            self.xi,
+        ))
+    }
+}

@@ -1,0 +1,211 @@
+//! Body kinematics: the affine map is DDA's displacement field, its mass,
+//! stiffness and geometry update are DDA's bit for bit, the rigid map's
+//! mass gives a disc's exact kinetic energy, and the map derivatives are
+//! the finite differences of the map parameters.
+
+use dismech::dda::{Block, BlockMaterial, PlaneState};
+use dismech::kinematics::{
+    Advance, Affine2, AreaMoments, Kinematics, PlacedEllipse, PlacedPolygon, Rigid2,
+};
+use dismech::math::{Point, Vec2};
+use dismech::shape::Polygon;
+use nalgebra::{Matrix2, SVector};
+use proptest::prelude::*;
+
+fn material() -> BlockMaterial {
+    BlockMaterial {
+        density: 2200.0,
+        youngs_modulus: 1e9,
+        poisson_ratio: 0.25,
+        plane: PlaneState::Stress,
+    }
+}
+
+/// A convex quadrilateral: a rectangle `w × h` turned by `turn`, one corner
+/// pulled by `skew`, placed at `(x, y)`.
+fn quad(w: f64, h: f64, turn: f64, skew: f64, x: f64, y: f64) -> Vec<Point> {
+    let (s, c) = turn.sin_cos();
+    [(0.0, 0.0), (w, 0.0), (w + skew, h), (0.0, h)]
+        .iter()
+        .map(|&(u, v)| Point::new(x + c * u - s * v, y + s * u + c * v))
+        .collect()
+}
+
+fn dofs<const N: usize>(v: &[f64]) -> SVector<f64, N> {
+    SVector::<f64, N>::from_column_slice(&v[..N])
+}
+
+/// Three-point Gauss–Legendre nodes and weights on [0, 1].
+const GAUSS3: [(f64, f64); 3] = [
+    (0.112_701_665_379_258_31, 5.0 / 18.0),
+    (0.5, 8.0 / 18.0),
+    (0.887_298_334_620_741_7, 5.0 / 18.0),
+];
+
+/// `½ ρ ∫ |∂x/∂d ḋ|² dA` over a disc of radius `r` centred on the reference
+/// point, exact for the quadratic integrand (Gauss in r, 8 angles).
+fn disc_kinetic_energy<K: Kinematics<N>, const N: usize>(
+    k: &K,
+    r: f64,
+    rho: f64,
+    d: &SVector<f64, N>,
+    rate: &SVector<f64, N>,
+) -> f64 {
+    let mut sum = 0.0;
+    for &(s, w) in &GAUSS3 {
+        for j in 0..8 {
+            let phi = j as f64 * std::f64::consts::TAU / 8.0;
+            let offset = Vec2::new(phi.cos(), phi.sin()) * (s * r);
+            let v = k.point_jacobian(d, &offset) * rate;
+            // dA = ρ' dρ' dφ with ρ' = s r.
+            sum += w * r * (s * r) * (std::f64::consts::TAU / 8.0) * v.norm_squared();
+        }
+    }
+    0.5 * rho * sum
+}
+
+proptest! {
+    /// `c + t + F (X − c)` is DDA's `X + T(X − c) d` (eq. 14), and `∂x/∂d`
+    /// is `T(X − c)` (eq. 15) exactly.
+    #[test]
+    fn affine_map_is_the_dda_displacement_field(
+        d in proptest::collection::vec(-0.1f64..0.1, 6),
+        c in proptest::collection::vec(-5.0f64..5.0, 2),
+        x in proptest::collection::vec(-5.0f64..5.0, 2),
+    ) {
+        let d = dofs::<6>(&d);
+        let (c, x) = (Point::new(c[0], c[1]), Point::new(x[0], x[1]));
+        let t = Polygon::dda_displacement_matrix(x.x - c.x, x.y - c.y);
+        let dda = x + t * d;
+        let moved = Affine2.map(&d).apply(&c, &x);
+        prop_assert!((moved - dda).norm() <= 1e-14 * (1.0 + x.coords.norm()));
+        prop_assert_eq!(Affine2.point_jacobian(&d, &(x - c)), t);
+    }
+
+    /// Mass, stiffness and the committed update of an affine polygon are
+    /// those of a DDA block, bit for bit.
+    #[test]
+    fn affine_polygon_is_a_dda_block_bit_for_bit(
+        w in 0.5f64..3.0, h in 0.5f64..3.0, turn in -1.0f64..1.0, skew in -0.3f64..0.3,
+        x in -10.0f64..10.0, y in -10.0f64..10.0,
+        d in proptest::collection::vec(-0.01f64..0.01, 6),
+    ) {
+        let vertices = quad(w, h, turn, skew, x, y);
+        let mut block = Block::new(&vertices, material(), 0).unwrap();
+        let placed = PlacedPolygon::from_world(&vertices, 0).unwrap();
+        prop_assert_eq!(placed.centroid(), block.centroid());
+        let moments = placed.moments();
+        prop_assert_eq!(Affine2.mass(&moments, material().density), block.mass());
+        prop_assert_eq!(Affine2.stiffness(&moments, &block.elastic_matrix()), block.stiffness());
+        let d = dofs::<6>(&d);
+        let moved = Affine2.advance(&placed, &d, 0).unwrap();
+        block.apply_increment(&d, 0).unwrap();
+        prop_assert_eq!(moved.centroid(), block.centroid());
+        for k in 0..4 {
+            prop_assert_eq!(moved.vertex(k), block.vertex(k));
+        }
+    }
+
+    /// Under the affine map a circle becomes the ellipse with matrix
+    /// `F M Fᵀ`: the mapped boundary points lie on it.
+    #[test]
+    fn affine_map_turns_a_circle_into_the_ellipse_f_m_ft(
+        r in 0.1f64..2.0, d in proptest::collection::vec(-0.2f64..0.2, 6),
+    ) {
+        let centre = Point::new(1.0, -2.0);
+        let circle = PlacedEllipse::circle(centre, r).unwrap();
+        let d = dofs::<6>(&d);
+        let moved = Affine2.advance(&circle, &d, 0).unwrap();
+        let map = Affine2.map(&d);
+        let expected = map.gradient * circle.matrix() * map.gradient.transpose();
+        prop_assert!((moved.matrix() - expected).norm() <= 1e-14 * r * r);
+        let inverse = moved.matrix().try_inverse().unwrap();
+        for k in 0..16 {
+            let t = k as f64 * std::f64::consts::TAU / 16.0;
+            let x = map.apply(&centre, &(centre + Vec2::new(t.cos(), t.sin()) * r));
+            let q = x - moved.centre();
+            prop_assert!(((q.transpose() * inverse * q)[0] - 1.0).abs() < 1e-12);
+        }
+    }
+
+    /// `½ ḋᵀ M ḋ` is the kinetic energy `½ ρ ∫ |ẋ|² dA` of a disc, for the
+    /// rigid map at any angle and for the affine map.
+    #[test]
+    fn mass_gives_the_kinetic_energy_of_a_disc(
+        r in 0.1f64..2.0, rho in 100.0f64..5000.0,
+        d in proptest::collection::vec(-3.0f64..3.0, 6),
+        rate in proptest::collection::vec(-1.0f64..1.0, 6),
+    ) {
+        let moments = PlacedEllipse::circle(Point::origin(), r).unwrap().moments();
+        let (d3, v3) = (dofs::<3>(&d), dofs::<3>(&rate));
+        let m3 = Rigid2.mass(&moments, rho);
+        let exact = disc_kinetic_energy(&Rigid2, r, rho, &d3, &v3);
+        prop_assert!((0.5 * (v3.transpose() * m3 * v3)[0] - exact).abs() <= 1e-12 * exact.max(1e-300));
+        let (d6, v6) = (dofs::<6>(&d) * 0.01, dofs::<6>(&rate));
+        let m6 = Affine2.mass(&moments, rho);
+        let exact = disc_kinetic_energy(&Affine2, r, rho, &d6, &v6);
+        prop_assert!((0.5 * (v6.transpose() * m6 * v6)[0] - exact).abs() <= 1e-12 * exact.max(1e-300));
+    }
+
+    /// `P = ∂Δp/∂d` and `Σ w_k ∂²Δp_k/∂d²` are the finite differences of
+    /// the map parameters.
+    #[test]
+    fn map_derivatives_match_finite_differences(
+        d in proptest::collection::vec(-3.0f64..3.0, 6),
+        w in proptest::collection::vec(-1.0f64..1.0, 6),
+    ) {
+        let w = dofs::<6>(&w);
+        fn check<K: Kinematics<N>, const N: usize>(k: &K, d: SVector<f64, N>, w: &SVector<f64, 6>) -> Result<(), TestCaseError> {
+            let h = 1e-6;
+            let p = k.map_jacobian(&d);
+            let curvature = k.map_curvature(&d, w);
+            for i in 0..N {
+                let mut e = SVector::<f64, N>::zeros();
+                e[i] = h;
+                let fd = (k.map_parameters(&(d + e)) - k.map_parameters(&(d - e))) / (2.0 * h);
+                prop_assert!((fd - p.column(i)).norm() < 1e-9);
+                let fd = (k.map_jacobian(&(d + e)) - k.map_jacobian(&(d - e))).transpose() * w / (2.0 * h);
+                prop_assert!((fd - curvature.column(i)).norm() < 1e-9);
+            }
+            Ok(())
+        }
+        check(&Rigid2, dofs::<3>(d.as_slice()), &w)?;
+        check(&Affine2, dofs::<6>(d.as_slice()), &w)?;
+    }
+}
+
+#[test]
+fn rigid_mass_is_diagonal_with_the_polar_moment() {
+    let moments = AreaMoments::new(2.0, [0.5, 0.25, 0.1]);
+    let m = Rigid2.mass(&moments, 3.0);
+    assert_eq!(
+        m,
+        nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(6.0, 6.0, 2.25))
+    );
+    assert_eq!(
+        Rigid2.stiffness(&moments, &nalgebra::Matrix3::identity()),
+        nalgebra::Matrix3::zeros()
+    );
+}
+
+#[test]
+fn rigid_advance_keeps_an_ellipse_and_a_polygon_congruent() {
+    let e = PlacedEllipse::new(Point::new(1.0, 2.0), Matrix2::new(2.0, 0.0, 0.0, 0.5)).unwrap();
+    let d = SVector::<f64, 3>::new(0.3, -0.2, 0.9);
+    let moved = Rigid2.advance(&e, &d, 0).unwrap();
+    approx::assert_relative_eq!(moved.centre(), Point::new(1.3, 1.8), epsilon = 1e-15);
+    let (m0, m1) = (e.matrix(), moved.matrix());
+    approx::assert_relative_eq!(m0.trace(), m1.trace(), max_relative = 1e-14);
+    approx::assert_relative_eq!(m0.determinant(), m1.determinant(), max_relative = 1e-14);
+    let p = PlacedPolygon::from_world(&quad(2.0, 1.0, 0.3, 0.2, 4.0, -1.0), 0).unwrap();
+    let q = Rigid2.advance(&p, &d, 0).unwrap();
+    approx::assert_relative_eq!(
+        q.centroid(),
+        p.centroid() + Vec2::new(0.3, -0.2),
+        epsilon = 1e-13
+    );
+    for k in 0..4 {
+        let (a, b) = (p.vertex(k + 1) - p.vertex(k), q.vertex(k + 1) - q.vertex(k));
+        approx::assert_relative_eq!(b, Rigid2::rotation(0.9) * a, epsilon = 1e-13);
+    }
+}
