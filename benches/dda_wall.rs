@@ -70,9 +70,7 @@ fn wall(courses: usize, c: usize) -> Result<Vec<Block>, Box<dyn std::error::Erro
             spans.extend((0..c).map(|k| (k as f64 * w + g, (k + 1) as f64 * w - g)));
         } else {
             spans.push((JOINT, 0.5 * w - g));
-            spans.extend(
-                (0..c - 1).map(|k| ((k as f64 + 0.5) * w + g, (k as f64 + 1.5) * w - g)),
-            );
+            spans.extend((0..c - 1).map(|k| ((k as f64 + 0.5) * w + g, (k as f64 + 1.5) * w - g)));
             spans.push((length - 0.5 * w + g, length - JOINT));
         }
         for (x0, x1) in spans {
@@ -83,7 +81,7 @@ fn wall(courses: usize, c: usize) -> Result<Vec<Block>, Box<dyn std::error::Erro
     Ok(blocks)
 }
 
-fn run(target: usize, steps: usize) -> Result<(), Box<dyn std::error::Error>> {
+fn run(target: usize, steps: usize, verbose: bool) -> Result<(), Box<dyn std::error::Error>> {
     let (courses, c) = wall_shape(target);
     let blocks = wall(courses, c)?;
     let count = blocks.len() - 1;
@@ -98,6 +96,18 @@ fn run(target: usize, steps: usize) -> Result<(), Box<dyn std::error::Error>> {
         times.push(start.elapsed().as_secs_f64() * 1e3);
         if report.status != StepStatus::Converged {
             return Err(format!("{count} blocks: {:?}", report.status).into());
+        }
+        if verbose {
+            println!(
+                "  step {}: {:.1} ms, {} iterations ({} open-close), {} substeps, {} reductions, {} contacts",
+                times.len(),
+                times[times.len() - 1],
+                report.residuals.len() - 1,
+                report.open_close_iterations,
+                report.substeps,
+                report.reductions,
+                model.contacts().len()
+            );
         }
         iterations += report.residuals.len() - 1;
         open_close += report.open_close_iterations;
@@ -132,7 +142,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or(10usize)
         .max(1);
     for target in sizes {
-        run(target, steps)?;
+        run(target, steps, args.iter().any(|a| a == "verbose"))?;
     }
     Ok(())
 }

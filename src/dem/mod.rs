@@ -7,7 +7,7 @@
 //! | pair geometry | [`crate::contact::dispatch::contact_2d`] |
 //! | relative motion at the contact | [`crate::contact::relative_increment`] |
 //! | contact force and history | any [`crate::contact::ContactLaw<2>`], e.g. [`crate::contact::SpringDashpotCoulomb`] |
-//! | `M a = f` | [`crate::solve::LumpedSystem`] (diagonal mass) |
+//! | `M a = f` | [`crate::linsolve::LumpedSystem`] (diagonal mass) |
 //! | time step | any explicit [`crate::integrate::Integrator`], e.g. [`crate::integrate::ExplicitEuler`] |
 //!
 //! Per step: contact forces from the positions and the previous step's
