@@ -13,10 +13,9 @@ use std::time::Instant;
 
 use dismech::grid::Raster;
 use dismech::hpm::{
-    HpmIterativeSolver, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic,
-    SlopeGrids,
+    HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
 };
-use dismech::solve::CgSettings;
+use dismech::linsolve::{CgSettings, LinearSolverInfo};
 
 /// Peak resident memory (VmHWM) of this process, in MiB, where /proc has it.
 fn peak_memory_mib() -> Option<f64> {
@@ -62,7 +61,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             relative_tolerance,
             max_iterations: 100_000,
         };
-        let solver = HpmIterativeSolver::new(&model, settings)?;
+        let mut solver = HpmSolver::iterative(&model, settings)?;
         let t2 = Instant::now();
         let result = solver.elastic(&model, &Seismic::none())?;
         let t3 = Instant::now();
@@ -90,22 +89,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let stiffness = model.stiffness();
     let t2 = Instant::now();
-    let solver = HpmSolver::from_stiffness(stiffness)?;
+    let mut solver = HpmSolver::from_stiffness(stiffness)?;
     let t3 = Instant::now();
     let result = solver.elastic(&model, &Seismic::none())?;
     let t4 = Instant::now();
-    let stages = solver.factor().timings();
+    let factor = solver.linear_solver();
+    let stages = factor.timings();
     println!(
         "HPM elastic, {n} x {n} columns, {layers} layers: {} elements, {} DOF, {} stored entries of the lower triangle of K",
         model.elements.len(),
         model.dof(),
-        solver.factor().matrix_entries()
+        factor.matrix_entries()
     );
     println!(
         "model {:.2} s; block assembly {:.2} s; compressed lower triangle {:.2} s; AMD + symbolic Cholesky {:.2} s; numeric Cholesky (faer, {:?}) {:.2} s; loads + solve + tractions {:.2} s; total {:.2} s",
         (t1 - t0).as_secs_f64(),
         (t2 - t1).as_secs_f64(),
-        stages.compress.as_secs_f64(),
+        stages.convert.as_secs_f64(),
         stages.symbolic.as_secs_f64(),
         faer::get_global_parallelism(),
         stages.numeric.as_secs_f64(),
@@ -114,7 +114,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!(
         "{} stored entries of the Cholesky factor L (faer, AMD ordering); Fs = {:.4}; peak resident memory {:?} MiB",
-        solver.factor().factor_entries(),
+        factor.factor_entries().unwrap_or(0),
         result.safety_factor(&model),
         peak_memory_mib()
     );

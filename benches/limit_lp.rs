@@ -5,7 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, analyse_static};
-use dismech::solve::LinearProgramSolver;
+use dismech::lp::LinearProgramSolver;
 
 fn bench_lp(c: &mut Criterion) {
     let mut group = c.benchmark_group("rolling U-model limit load");

@@ -32,7 +32,7 @@ fn main() -> Result<(), DismechError> {
         model.dof()
     );
     // 3. One factorisation of the elastic stiffness serves every analysis.
-    let solver = HpmSolver::new(&model)?;
+    let mut solver = HpmSolver::new(&model)?;
     for (case, load) in [
         ("static", Seismic::none()),
         (

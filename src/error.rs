@@ -1,7 +1,5 @@
 //! Typed errors for misuse and for runs that cannot go on.
 
-use crate::solve::SolveError;
-
 /// Every error dismech returns to a caller.
 ///
 /// Each variant names the offending value, so that a message read on its own
@@ -302,4 +300,64 @@ pub fn require_finite(name: &'static str, value: f64) -> Result<f64> {
             requirement: "must be finite",
         })
     }
+}
+
+/// Why a linear solve, a factorization or a linear program failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// The system's parts have inconsistent sizes.
+    #[error("dimension mismatch in {what}: expected {expected}, found {found}")]
+    DimensionMismatch {
+        /// Which part of the system.
+        what: &'static str,
+        /// The size implied by the rest of the system.
+        expected: usize,
+        /// The size given.
+        found: usize,
+    },
+    /// An entry of the system is NaN or infinite.
+    #[error("non-finite value {value} in {what} at index {index}")]
+    NonFinite {
+        /// Which part of the system.
+        what: &'static str,
+        /// Position of the entry.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A diagonal mass or pivot is not positive.
+    #[error("non-positive {what} {value} at index {index}")]
+    NonPositive {
+        /// Which part of the system.
+        what: &'static str,
+        /// Position of the entry.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// The matrix could not be factorized (singular or, for Cholesky, not
+    /// positive definite).
+    #[error("factorization failed: {0}")]
+    Factorization(String),
+    /// A solver setting is out of its range.
+    #[error("invalid {name} = {value}: {requirement}")]
+    InvalidSetting {
+        /// The setting.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy.
+        requirement: &'static str,
+    },
+    /// An entry was added at a position the sparsity pattern does not hold.
+    #[error("entry ({row}, {col}) is not in the sparsity pattern")]
+    OutsidePattern {
+        /// Row of the entry.
+        row: usize,
+        /// Column of the entry.
+        col: usize,
+    },
+    /// The underlying LP solver refused the problem.
+    #[error("linear program solver error: {0}")]
+    LinearProgram(String),
 }

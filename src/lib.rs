@@ -13,17 +13,18 @@
 //! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
 //! | contact force and history | [`contact::ContactLaw`] | [`contact`] |
 //! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
-//! | global solve | [`solve::GlobalSolver`] | [`solve`] |
+//! | linear solve (analyse once, factor many, solve many) | [`linsolve::LinearSolver`] | [`linsolve`] |
+//! | linear program | [`lp::LpSolver`] | [`lp`] |
 //!
 //! ## The four methods as compositions
 //!
-//! | method (paper) | Shape | ContactLaw | Integrator | GlobalSolver | status |
+//! | method (paper) | Shape | ContactLaw | Integrator | solver | status |
 //! |---|---|---|---|---|---|
-//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
-//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`solve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`] |
-//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`solve::SparseDirectSolver`] (faer LU, symbolic analysis reused) + open–close + Newton | [`dda`] |
-//! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`solve::LinearProgramSolver`] (Clarabel) | [`limit`] |
-//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | faer sparse LLᵀ factorised once ([`hpm::BlockMatrix`]), initial-stiffness iteration | [`hpm`] |
+//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
+//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`] |
+//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`linsolve::SparseLu`] (supernodal LU on a 6 × 6 block pattern, analysis reused) + open–close + Newton | [`dda`] |
+//! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
+//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | any [`linsolve::LinearSolver`] of the [`hpm::BlockMatrix`] stiffness, factored once ([`linsolve::SparseCholesky`] by default, or PCG), initial-stiffness iteration | [`hpm`] |
 //!
 //! ## Data flow of one step
 //! 1. **Scene** ([`scene`]): bodies (shape, pose, velocities, mass), frame
@@ -70,6 +71,7 @@ pub mod integrate;
 pub mod kinematics;
 pub mod law;
 pub mod limit;
+pub mod linsolve;
 pub mod lp;
 pub mod math;
 pub mod output;
@@ -77,7 +79,6 @@ pub mod query;
 pub mod reference;
 pub mod scene;
 pub mod shape;
-pub mod solve;
 
 /// The README's code blocks, compiled as doctests so that they stay true.
 #[cfg(doctest)]

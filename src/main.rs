@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use dismech::error::DismechError;
 use dismech::limit::analyse;
 use dismech::limit::lattice::Lattice;
-use dismech::solve::LinearProgramSolver;
+use dismech::lp::LinearProgramSolver;
 use reproduce::StudyOptions;
 
 #[derive(Parser)]

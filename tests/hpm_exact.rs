@@ -5,6 +5,7 @@
 use dismech::error::DismechError;
 use dismech::grid::{parse_esri_ascii, Raster};
 use dismech::hpm::*;
+use dismech::linsolve::{CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
 use nalgebra::{Matrix3, Point3, Vector3};
 
@@ -97,7 +98,7 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
             direction_deg: towards,
         };
         let exact = exact_fs(&exact_w, &m, dip, kh);
-        let solver = HpmSolver::new(&model).unwrap();
+        let mut solver = HpmSolver::new(&model).unwrap();
         let elastic = solver.elastic(&model, &seismic).unwrap();
         let fs = elastic.safety_factor(&model);
         let sliding = elastic.sliding_safety_factor(&model);
@@ -166,7 +167,7 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
     let grids = slab(rows, columns, dip, 270.0, h, None);
     let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
     let exact = exact_fs(&exact_slab(rows, columns, &m, h, None), &m, dip, 0.0);
-    let solver = HpmSolver::new(&model).unwrap();
+    let mut solver = HpmSolver::new(&model).unwrap();
     let settings = NonlinearSettings::default();
     let r = solver
         .nonlinear(&model, &Seismic::none(), 1.0, &settings)
@@ -174,7 +175,7 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
     assert!(r.convergence.converged(), "{:?}", r.convergence);
     assert!((r.safety_factor(&model) / exact - 1.0).abs() < 0.01);
     assert!((r.sliding_safety_factor(&model) / exact - 1.0).abs() < 0.01);
-    let srf = strength_reduction(&solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
+    let srf = strength_reduction(&mut solver, &model, &Seismic::none(), &settings, 0.005).unwrap();
     eprintln!(
         "exact {exact:.4}; strength reduction in [{:.4}, {:.4}]",
         srf.safety_factor, srf.failed_at
@@ -296,11 +297,14 @@ fn patch_test_uniform_stress_gives_the_exact_uniform_strain_in_every_element() {
     // are removed by holding element 0 (its reaction is zero: the load is
     // balanced and the exact solution has no rotation).
     let mut k = model.free_stiffness();
-    let hold = 1e3 * k.diagonal[0].diagonal().amax();
+    let hold = 1e3 * k.diagonal()[0].diagonal().amax();
     for i in 0..6 {
-        k.diagonal[0][(i, i)] += hold;
+        k.diagonal_mut()[0][(i, i)] += hold;
     }
-    let u = k.factorize().unwrap().solve(&f).unwrap();
+    let mut solver = SparseCholesky::new();
+    solver.factor(&k).unwrap();
+    let mut u = f.clone();
+    solver.solve_in_place(&k, &mut u).unwrap();
     // Exact strain ε = D⁻¹ σ (engineering shear).
     let d = elasticity(m.youngs_modulus, m.poisson_ratio);
     let s6 = nalgebra::SVector::<f64, 6>::from([
@@ -403,11 +407,11 @@ fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
         .unwrap()
         .elastic(&model, &seismic)
         .unwrap();
-    let settings = dismech::solve::CgSettings {
+    let settings = CgSettings {
         relative_tolerance: 1e-10,
         max_iterations: 20_000,
     };
-    let iterative = HpmIterativeSolver::new(&model, settings)
+    let iterative = HpmSolver::iterative(&model, settings)
         .unwrap()
         .elastic(&model, &seismic)
         .unwrap();
@@ -442,6 +446,74 @@ fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
         iterative.safety_factor(&model),
     );
     assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
+}
+
+/// The nonlinear analysis and the strength reduction by PCG (to a tight
+/// residual) find the safety factors of the sparse Cholesky factor: the
+/// linear solver is a slot of the analysis, not part of it.
+#[test]
+fn nonlinear_fs_and_strength_reduction_by_pcg_match_cholesky() {
+    let m = HpmMaterial::paper();
+    let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
+    let settings = NonlinearSettings::default();
+    let cg = CgSettings {
+        relative_tolerance: 1e-12,
+        max_iterations: 20_000,
+    };
+    let mut direct = HpmSolver::new(&model).unwrap();
+    let mut iterative: HpmIterativeSolver = HpmSolver::iterative(&model, cg).unwrap();
+    let a = direct
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
+    let b = iterative
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
+    assert!(
+        a.convergence.converged() && b.convergence.converged(),
+        "{:?} {:?}",
+        a.convergence,
+        b.convergence
+    );
+    // Most of the slip surface yields: the iteration is far from elastic.
+    assert!(a.yielded_area_fraction(&model) > 0.5);
+    for (x, y) in [
+        (a.safety_factor(&model), b.safety_factor(&model)),
+        (
+            a.sliding_safety_factor(&model),
+            b.sliding_safety_factor(&model),
+        ),
+    ] {
+        eprintln!("nonlinear Fs: Cholesky {x:.10}, PCG {y:.10}");
+        assert!((x / y - 1.0).abs() < 1e-7, "{x} vs {y}");
+    }
+    // Strength reduction on the planar slab, whose exact Fs is known
+    // (an iteration limit of 300 keeps the failing trials short).
+    let m = HpmMaterial {
+        cohesion: 5.0e3,
+        ..HpmMaterial::paper()
+    };
+    let (rows, columns, dip, h) = (4, 5, 20.0, 6.0);
+    let grids = slab(rows, columns, dip, 270.0, h, None);
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let exact = exact_fs(&exact_slab(rows, columns, &m, h, None), &m, dip, 0.0);
+    let settings = NonlinearSettings {
+        max_iterations: 300,
+        ..settings
+    };
+    let mut direct = HpmSolver::new(&model).unwrap();
+    let mut iterative = HpmSolver::iterative(&model, cg).unwrap();
+    let none = Seismic::none();
+    let a = strength_reduction(&mut direct, &model, &none, &settings, 0.005).unwrap();
+    let b = strength_reduction(&mut iterative, &model, &none, &settings, 0.005).unwrap();
+    eprintln!("exact {exact:.4}; Cholesky {a:?}; PCG {b:?}");
+    assert!(
+        b.safety_factor <= exact * 1.001 && b.failed_at >= exact * 0.98,
+        "{b:?}"
+    );
+    assert!(
+        (a.safety_factor / b.safety_factor - 1.0).abs() <= 0.005,
+        "{a:?} vs {b:?}"
+    );
 }
 
 const GRID: &str = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";

@@ -5,10 +5,10 @@ use dismech::contact::RigidPlastic;
 use dismech::error::DismechError;
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
+use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
 use dismech::reference::lattice_limit_load::{eq32, eq38};
 use dismech::reference::{two_elements, two_elements_limit_load};
-use dismech::solve::LinearProgramSolver;
 use std::f64::consts::SQRT_2;
 
 fn solve(model: &LimitModel) -> LimitResult {

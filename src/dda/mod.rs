@@ -15,7 +15,7 @@
 //! The pieces are the crate's generic ones: [`crate::shape::Polygon`] for
 //! the geometry, the [`crate::contact::ContactLaw`] trait for the friction
 //! law, [`crate::integrate::Newmark`] for time and
-//! [`crate::solve::SparseDirectSolver`] (faer LU) for the global system; the
+//! [`crate::linsolve::SparseLu`] (a [`crate::linsolve::LinearSolver`]) for the global system; the
 //! broad phase is [`crate::broad_phase::CellGrid`].
 //!
 //! Choices where the paper is silent or garbled:

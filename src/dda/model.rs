@@ -16,9 +16,13 @@
 //! `c_a M + K + Σ_c [Jᵀ C J + t_n ∇²(−g_n) + t_s ∇²g_s] + Σ_f k_f TᵀT`
 //!
 //! (`J` = the rows `∇(−g_n)`, `∇g_s`; `C` the law's tangent; the Hessian
-//! terms are eq. 12's `Δδg_n`, `Δδg_s`), and solves `K_T Δd = −R` with faer's
-//! sparse LU (the symbolic analysis is reused while the contact list is
-//! unchanged; open contacts keep their zero entries so the pattern holds).
+//! terms are eq. 12's `Δδg_n`, `Δδg_s`), and solves `K_T Δd = −R` with a
+//! [`LinearSolver`] ([`SparseLu`]). The tangent is assembled into 6 × 6
+//! blocks on a pattern built from the pairs of blocks in contact
+//! ([`BlockAssembly`]; blocks whose six unknowns are all prescribed keep
+//! only their diagonal), so an iteration only refills values; the pattern,
+//! and the solver's analysis of it, are kept while those pairs are
+//! unchanged (open contacts keep their zero entries so the pattern holds).
 //!
 //! * **Open–close**: while the set of open contacts changes from one
 //!   iterate to the next, the iteration is an open–close iteration
@@ -52,9 +56,9 @@ use crate::error::{require_positive, DismechError, Result};
 use crate::integrate::{ImplicitIntegrator, Newmark};
 use crate::law::{ContactInput, ContactResponse, PairProperties, Regime, Tangent};
 use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState, TangentLaw};
+use crate::linsolve::{BlockAssembly, LinearSolver, LinearSolverInfo, SparseLu};
 use crate::math::{Aabb2, Point, Vec2};
 use crate::shape::Shape2;
-use crate::solve::{Factorization, GlobalSolver, SparseDirectSolver, SparseSystem};
 
 /// Settings of a DDA run; validated by [`DdaModel::new`].
 #[derive(Debug, Clone, PartialEq)]
@@ -252,10 +256,10 @@ pub struct DdaModel {
     time: f64,
     history: HashMap<(usize, usize, usize, usize), PenaltyState>,
     contacts: Vec<ContactReport>,
-    solver: SparseDirectSolver,
+    solver: SparseLu,
     grid: CellGrid,
     pairs: Vec<(usize, usize)>,
-    system: SparseSystem,
+    assembly: BlockAssembly,
     requested_dt: Option<f64>,
     current_dt: f64,
 }
@@ -282,7 +286,7 @@ impl DdaModel {
                 requirement: "must be finite",
             });
         }
-        let n = 6 * blocks.len();
+        let assembly = BlockAssembly::new(blocks.len(), 6, &[])?;
         let mut model = Self {
             blocks,
             law,
@@ -292,10 +296,10 @@ impl DdaModel {
             time: 0.0,
             history: HashMap::new(),
             contacts: Vec::new(),
-            solver: SparseDirectSolver::new(Factorization::Lu),
+            solver: SparseLu::default(),
             grid: CellGrid::new(),
             pairs: Vec::new(),
-            system: SparseSystem::new(n),
+            assembly,
             requested_dt: None,
             current_dt: 0.0,
         };
@@ -510,6 +514,7 @@ impl DdaModel {
             block_f[fp.block] += t.transpose() * (fp.point - fp.anchor) * fp.stiffness;
         }
 
+        self.update_pattern(contacts, &mask)?;
         let parts = Parts {
             block_k,
             block_f,
@@ -567,13 +572,11 @@ impl DdaModel {
             }
             last_open = Some(open);
             last_regimes = Some(eval.regimes.clone());
-            self.system.rhs.copy_from_slice(&eval.r);
-            for x in self.system.rhs.iter_mut() {
-                *x = -*x;
-            }
-            let delta = self
-                .solver
-                .solve(&self.system)
+            let mut delta: Vec<f64> = eval.r.iter().map(|x| -x).collect();
+            let matrix = self.assembly.matrix();
+            self.solver
+                .factor(matrix)
+                .and_then(|()| self.solver.solve_in_place(matrix, &mut delta))
                 .map_err(|e| StepFailure::Solve(e.to_string()))?;
             // Backtracking on ‖R‖ (return mapping only): a full step that does
             // not lower the residual is halved, up to `LINE_SEARCH` times, so
@@ -604,7 +607,30 @@ impl DdaModel {
         })
     }
 
-    /// Residual (and, with `matrix`, the tangent in `self.system`) at the
+    /// The block pattern of the tangent for `contacts`: a block for every
+    /// pair of blocks in contact, unless all six unknowns of one of them are
+    /// prescribed (its rows and columns then hold only its diagonal). Kept,
+    /// with the solver's analysis, while the pairs are unchanged.
+    fn update_pattern(
+        &mut self,
+        contacts: &[VertexEdge],
+        mask: &[bool],
+    ) -> std::result::Result<(), StepFailure> {
+        let held = |b: usize| mask[6 * b..6 * b + 6].iter().all(|m| *m);
+        let pairs: Vec<(usize, usize)> = contacts
+            .iter()
+            .map(|c| (c.vertex_block, c.edge_block))
+            .filter(|&(a, b)| !held(a) && !held(b))
+            .collect();
+        let pairs = BlockAssembly::normalised(&pairs);
+        if !self.assembly.has_layout(self.blocks.len(), 6, &pairs) {
+            self.assembly = BlockAssembly::new(self.blocks.len(), 6, &pairs)
+                .map_err(|e| StepFailure::Solve(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// Residual (and, with `matrix`, the tangent in `self.assembly`) at the
     /// iterate `d`.
     fn assemble(
         &mut self,
@@ -619,25 +645,25 @@ impl DdaModel {
         let mask = &parts.mask;
         let mut r = vec![0.0; n];
         if matrix {
-            self.system.dimension = n;
-            self.system.clear_values();
+            self.assembly.clear();
         }
         for i in 0..nb {
             let k = &parts.block_k[i];
             let fi = parts.block_f[i] + k * Self::block_dofs(d, i);
+            let slot = self.assembly.slot(i, i);
             for a in 0..6 {
                 r[6 * i + a] += fi[a];
-                if !matrix {
+                let Some(slot) = slot.filter(|_| matrix) else {
                     continue;
-                }
+                };
                 for b in 0..6 {
                     let (ra, cb) = (6 * i + a, 6 * i + b);
                     if !mask[ra] && !mask[cb] {
-                        self.system.add(ra, cb, k[(a, b)]);
+                        self.assembly.add(slot, a, b, k[(a, b)]);
                     }
                 }
                 if mask[6 * i + a] {
-                    self.system.add(6 * i + a, 6 * i + a, 1.0);
+                    self.assembly.add(slot, a, a, 1.0);
                 }
             }
         }
@@ -690,11 +716,21 @@ impl DdaModel {
                 kt -= kin.hess_gap * t_n;
                 kt += kin.hess_shear * t_s;
             }
-            for a in 0..12 {
-                for b in 0..12 {
-                    let (ra, cb) = (dofs(a), dofs(b));
-                    if !mask[ra] && !mask[cb] {
-                        self.system.add(ra, cb, kt[(a, b)]);
+            // Blocks (vertex, vertex), (edge, vertex), (vertex, edge), (edge, edge);
+            // a block missing from the pattern has only prescribed entries.
+            let bodies = [c.vertex_block, c.edge_block];
+            for (q, &column) in bodies.iter().enumerate() {
+                for (p, &row) in bodies.iter().enumerate() {
+                    let Some(slot) = self.assembly.slot(row, column) else {
+                        continue;
+                    };
+                    for b in 0..6 {
+                        for a in 0..6 {
+                            let (ra, cb) = (6 * row + a, 6 * column + b);
+                            if !mask[ra] && !mask[cb] {
+                                self.assembly.add(slot, a, b, kt[(6 * p + a, 6 * q + b)]);
+                            }
+                        }
                     }
                 }
             }

@@ -7,7 +7,7 @@
 //! | pair geometry | [`crate::contact::dispatch::contact_manifold_2d`] (several points for polygons) |
 //! | relative motion at the contact | [`crate::contact::relative_increment`] |
 //! | contact force and history | any [`crate::law::ContactLaw<2>`] with a [`crate::law::BoundedStiffness`], e.g. [`crate::contact::SpringDashpotCoulomb`] |
-//! | `M a = f` | [`crate::solve::LumpedSystem`] (diagonal mass) |
+//! | `M a = f` | [`crate::linsolve::LumpedSystem`] (diagonal mass) |
 //! | time step | any [`crate::integrate::ExplicitIntegrator`], e.g. [`crate::integrate::ExplicitEuler`] |
 //!
 //! Per step: contact forces from the positions and the previous step's

@@ -10,10 +10,10 @@ use crate::contact::{moment_about, relative_increment, ContactFeatures, ContactG
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties, Regime};
+use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
-use crate::solve::{solve_lumped_into, LumpedSystem};
 
 /// Settings of a DEM run; validated by [`DemSimulation::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]

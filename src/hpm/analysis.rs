@@ -46,10 +46,12 @@ use nalgebra::Vector3;
 use super::element::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use super::material::Seismic;
 use super::model::{HpmModel, SlipSpring};
-use super::stiffness::{BlockMatrix, CholeskyFactor};
+use super::stiffness::BlockMatrix;
 use crate::contact::{MohrCoulombSpring, Regime, Strength};
 use crate::error::Result;
-use crate::solve::{conjugate_gradient, BlockJacobi, CgSettings};
+use crate::linsolve::{
+    BlockJacobi, CgSettings, ConjugateGradient, LinearSolver, SolveStats, SparseCholesky,
+};
 
 /// Iteration limits of the nonlinear solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,47 +143,103 @@ pub struct HpmResult {
     pub convergence: Convergence,
 }
 
-/// An elastic stiffness factorised once, for all the analyses of a model.
+/// The elastic stiffness of a model and a linear solver `S` for it,
+/// factored once for all the analyses of the model: by default faer's
+/// sparse Cholesky ([`HpmSolver::new`]), or preconditioned conjugate
+/// gradients with one dense block per grid column
+/// ([`HpmSolver::iterative`], [`HpmIterativeSolver`]), whose memory grows
+/// with the stiffness rather than with a factor's fill.
 #[derive(Debug)]
-pub struct HpmSolver {
+pub struct HpmSolver<S = SparseCholesky> {
     stiffness: BlockMatrix,
-    factor: CholeskyFactor,
+    solver: S,
 }
 
-impl HpmSolver {
-    /// Assemble and factorise the elastic stiffness of `model`.
+/// HPM analyses by preconditioned conjugate gradients.
+pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
+
+impl HpmSolver<SparseCholesky> {
+    /// Assemble the elastic stiffness of `model` and factorise it
+    /// (sparse Cholesky).
     pub fn new(model: &HpmModel) -> Result<Self> {
         Self::from_stiffness(model.stiffness())
     }
 
     /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
     pub fn from_stiffness(stiffness: BlockMatrix) -> Result<Self> {
-        let factor = stiffness.factorize()?;
-        Ok(Self { stiffness, factor })
+        Self::with_solver(stiffness, SparseCholesky::new())
+    }
+}
+
+impl HpmSolver<ConjugateGradient<BlockJacobi>> {
+    /// Assemble the elastic stiffness of `model` for preconditioned
+    /// conjugate gradients with the stopping rule `settings`, the
+    /// preconditioner one dense block per grid column (all its layers).
+    pub fn iterative(model: &HpmModel, settings: CgSettings) -> Result<Self> {
+        let groups = model
+            .columns
+            .iter()
+            .map(|c| ELEMENT_DOF * c.elements.start..ELEMENT_DOF * c.elements.end)
+            .collect();
+        let solver = ConjugateGradient::new(settings, BlockJacobi::new(groups));
+        Self::with_solver(model.stiffness(), solver)
+    }
+}
+
+impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
+    /// Factor `stiffness` with `solver`.
+    pub fn with_solver(stiffness: BlockMatrix, mut solver: S) -> Result<Self> {
+        solver.factor(&stiffness)?;
+        Ok(Self { stiffness, solver })
     }
 
-    /// The factorised stiffness.
-    pub fn factor(&self) -> &CholeskyFactor {
-        &self.factor
+    /// The linear solver, holding the factor (or preconditioner).
+    pub fn linear_solver(&self) -> &S {
+        &self.solver
     }
 
-    /// Elastic analysis: one solve of eq. (4).
-    pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
+    /// The elastic stiffness.
+    pub fn stiffness(&self) -> &BlockMatrix {
+        &self.stiffness
+    }
+
+    /// `K⁻¹ b`.
+    fn solve(&mut self, b: &[f64]) -> Result<(Vec<f64>, SolveStats)> {
+        let mut x = b.to_vec();
+        let stats = self.solver.solve_in_place(&self.stiffness, &mut x)?;
+        Ok((x, stats))
+    }
+
+    /// Elastic analysis: one solve of eq. (4). With an iterative solver
+    /// the convergence reports its iterations and `NotConverged` if it
+    /// stopped at its limit; the residual is `‖F − K U‖ / ‖F‖` recomputed
+    /// from the returned U.
+    pub fn elastic(&mut self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
         seismic.validate()?;
         self.elastic_with_loads(model, &model.loads(seismic))
     }
 
     /// Elastic analysis under the load vector `f` (12 generalised forces
     /// per element, conjugate to the DOFs of eq. 2).
-    pub fn elastic_with_loads(&self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
-        let u = self.factor.solve(f)?;
-        Ok(elastic_result(model, &self.stiffness, f, u, 0, true))
+    pub fn elastic_with_loads(&mut self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
+        let (u, stats) = self.solve(f)?;
+        Ok(elastic_result(
+            model,
+            &self.stiffness,
+            f,
+            u,
+            stats.iterations,
+            stats.converged,
+        ))
     }
 
     /// Nonlinear analysis with the slip strength divided by `reduction`
-    /// (`c / F`, `tan φ / F`; 1 for the material's own strength).
+    /// (`c / F`, `tan φ / F`; 1 for the material's own strength). With an
+    /// iterative solver the corrections `K⁻¹ r` are those of its
+    /// tolerance; the out-of-balance force, evaluated exactly, decides
+    /// convergence.
     pub fn nonlinear(
-        &self,
+        &mut self,
         model: &HpmModel,
         seismic: &Seismic,
         reduction: f64,
@@ -226,7 +284,7 @@ impl HpmSolver {
                     convergence,
                 });
             }
-            let du = self.factor.solve(&residual)?;
+            let (du, _) = self.solve(&residual)?;
             // Aitken's relaxation of the fixed-point iteration
             // u ← u + K⁻¹ r(u): ω_k = −ω_{k−1} d_{k−1}·(d_k − d_{k−1}) / ‖d_k − d_{k−1}‖².
             if let Some(previous) = &last_correction {
@@ -277,55 +335,6 @@ impl HpmSolver {
             });
         }
         (r, tractions)
-    }
-}
-
-/// The elastic stiffness of a model with a block-Jacobi preconditioner of
-/// one dense block per grid column (all its layers), for elastic analyses
-/// by preconditioned conjugate gradients instead of a sparse Cholesky
-/// factor: memory grows with the stiffness, not with the factor's fill.
-#[derive(Debug)]
-pub struct HpmIterativeSolver {
-    stiffness: BlockMatrix,
-    preconditioner: BlockJacobi,
-    /// Stopping rule of the conjugate gradients.
-    pub settings: CgSettings,
-}
-
-impl HpmIterativeSolver {
-    /// Assemble the stiffness of `model` and factorise its column blocks.
-    pub fn new(model: &HpmModel, settings: CgSettings) -> Result<Self> {
-        let stiffness = model.stiffness();
-        let groups: Vec<_> = model.columns.iter().map(|c| c.elements.clone()).collect();
-        let preconditioner = BlockJacobi::new(stiffness.group_blocks(&groups))?;
-        Ok(Self {
-            stiffness,
-            preconditioner,
-            settings,
-        })
-    }
-
-    /// Elastic analysis: eq. (4) solved by PCG. The convergence reports the
-    /// PCG iterations and the relative residual `‖F − K U‖ / ‖F‖`
-    /// recomputed from the returned U; `NotConverged` if PCG stopped at its
-    /// iteration limit.
-    pub fn elastic(&self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
-        seismic.validate()?;
-        let f = model.loads(seismic);
-        let solution = conjugate_gradient(
-            &self.stiffness.rows(),
-            &self.preconditioner,
-            &f,
-            &self.settings,
-        )?;
-        Ok(elastic_result(
-            model,
-            &self.stiffness,
-            &f,
-            solution.x,
-            solution.iterations,
-            solution.converged,
-        ))
     }
 }
 

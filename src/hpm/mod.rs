@@ -17,18 +17,20 @@
 //! | 12-DOF element | `element.rs` | eqs. 2, 23–25 |
 //! | faces and Gauss points | `face.rs` | eqs. 14–28 |
 //! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
-//! | stiffness blocks, sparse Cholesky | `stiffness.rs` | eq. 4 |
+//! | stiffness blocks and how the linear solvers read them | `stiffness.rs` | eq. 4 |
 //! | elastic and nonlinear analyses, Fs | `analysis.rs` | §5 |
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
 //! Composition: the element is a [`crate::shape::Column`] layer, the slip
 //! springs a [`crate::contact::MohrCoulombSpring`] (a
-//! [`crate::contact::ContactLaw`]`<3>`), the global solve a faer sparse
-//! Cholesky factor reused by the nonlinear iteration, or, for the elastic
-//! analysis of large slopes, [`HpmIterativeSolver`]: conjugate gradients
-//! ([`crate::solve::ConjugateGradientSolver`]) preconditioned by one dense
-//! block per grid column.
+//! [`crate::contact::ContactLaw`]`<3>`), the global solve any
+//! [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness,
+//! factored once and reused by the elastic, nonlinear and
+//! strength-reduction analyses: faer's sparse Cholesky
+//! ([`crate::linsolve::SparseCholesky`], the default [`HpmSolver`]) or, for
+//! large slopes, conjugate gradients preconditioned by one dense block per
+//! grid column ([`HpmIterativeSolver`]).
 //!
 //! Choices where the paper is silent or garbled (also in the reproduction
 //! report): the errata's `k_n = (1 − ν) E' / ((1 + ν)(1 − 2ν) h)`; p = 100
@@ -61,5 +63,5 @@ pub use grids::{NamedRaster, SlopeGrids};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
-pub use stiffness::{BlockMatrix, BlockRows, CholeskyFactor, FactorTimings};
+pub use stiffness::BlockMatrix;
 pub use strength_reduction::{strength_reduction, StrengthReduction};

@@ -263,7 +263,7 @@ impl HpmModel {
             let ks =
                 spring_matrix(&p.normal, spring.normal_stiffness, spring.shear_stiffness) * p.area;
             let n = shape_matrix(&e.centre, &p.position);
-            k.diagonal[spring.element] += n.transpose() * ks * n;
+            k.diagonal_mut()[spring.element] += n.transpose() * ks * n;
         }
         k
     }
@@ -274,7 +274,7 @@ impl HpmModel {
         let d = elasticity(self.material.youngs_modulus, self.material.poisson_ratio);
         let mut k = BlockMatrix::zeros(self.elements.len());
         for (e, element) in self.elements.iter().enumerate() {
-            k.diagonal[e] += element_stiffness(element.volume, &d);
+            k.diagonal_mut()[e] += element_stiffness(element.volume, &d);
         }
         for face in &self.interfaces {
             let (ea, eb) = (&self.elements[face.a], &self.elements[face.b]);
@@ -284,11 +284,11 @@ impl HpmModel {
                     spring_matrix(&p.normal, face.normal_stiffness, face.shear_stiffness) * p.area;
                 let na = shape_matrix(&ea.centre, &p.position);
                 let nb = shape_matrix(&eb.centre, &p.position);
-                k.diagonal[face.a] += na.transpose() * ks * na;
-                k.diagonal[face.b] += nb.transpose() * ks * nb;
+                k.diagonal_mut()[face.a] += na.transpose() * ks * na;
+                k.diagonal_mut()[face.b] += nb.transpose() * ks * nb;
                 coupling -= na.transpose() * ks * nb;
             }
-            k.coupling.push((face.a, face.b, coupling));
+            k.add_coupling(face.a, face.b, coupling);
         }
         k
     }

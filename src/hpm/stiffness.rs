@@ -1,38 +1,36 @@
-//! The global HPM stiffness of eq. (4) as 12 × 12 blocks, and its sparse
-//! Cholesky factor (faer).
+//! The global HPM stiffness of eq. (4) as 12 × 12 blocks, and how the
+//! linear solvers read it.
 //!
 //! Elements couple only through faces, so the matrix is kept as one
 //! diagonal block per element and one off-diagonal block per pair of
-//! elements sharing a face. The compressed lower triangle is built
-//! directly from the blocks (no triplet list), analysed and factorised
-//! once; the factor is kept for the repeated solves of the nonlinear
-//! iteration.
-
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::prelude::Reborrow;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
-};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
-use faer::{Col, Side};
-use std::time::{Duration, Instant};
+//! elements sharing a face. It is a [`LinearOperator`] (the product by
+//! block rows, in parallel) for the conjugate gradients, hands its dense
+//! diagonal blocks to [`crate::linsolve::BlockJacobi`], and is converted
+//! to its compressed lower triangle (no triplet list) for
+//! [`SparseCholesky`].
 
 use std::ops::Range;
+use std::time::Instant;
 
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::element::{Block, ElementDofs, ELEMENT_DOF};
-use crate::solve::{LinearOperator, SolveError};
+use crate::linsolve::{
+    DiagonalBlocks, LinearOperator, LinearSolver, SolveError, SolveStats, SparseCholesky,
+    SparseMatrix, SparsePattern,
+};
 
-/// A symmetric block-sparse matrix: `diagonal[e]` and `coupling` blocks
-/// `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied).
+/// A symmetric block-sparse matrix: a diagonal block per element and
+/// coupling blocks `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied), indexed by
+/// block rows for the parallel product.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockMatrix {
-    /// Diagonal blocks, one per element.
-    pub diagonal: Vec<Block>,
-    /// Off-diagonal blocks `(a, b, K_ab)`, one per pair of elements.
-    pub coupling: Vec<(usize, usize, Block)>,
+    diagonal: Vec<Block>,
+    coupling: Vec<(usize, usize, Block)>,
+    /// `rows[a]` lists `(b, k, transposed)`: coupling block `k` in block
+    /// row `a`, column `b` (stored as `K_baᵀ` when `transposed`).
+    rows: Vec<Vec<(usize, usize, bool)>>,
 }
 
 impl BlockMatrix {
@@ -41,6 +39,7 @@ impl BlockMatrix {
         Self {
             diagonal: vec![Block::zeros(); elements],
             coupling: Vec::new(),
+            rows: vec![Vec::new(); elements],
         }
     }
 
@@ -49,18 +48,65 @@ impl BlockMatrix {
         ELEMENT_DOF * self.diagonal.len()
     }
 
-    /// `y = K x`.
+    /// The diagonal blocks, one per element.
+    pub fn diagonal(&self) -> &[Block] {
+        &self.diagonal
+    }
+
+    /// The diagonal blocks, to add to.
+    pub fn diagonal_mut(&mut self) -> &mut [Block] {
+        &mut self.diagonal
+    }
+
+    /// The coupling blocks `(a, b, K_ab)`, in the order added.
+    pub fn couplings(&self) -> &[(usize, usize, Block)] {
+        &self.coupling
+    }
+
+    /// Add the coupling block `K_ab` of elements `a ≠ b` (`K_ba = K_abᵀ`).
+    ///
+    /// # Panics
+    /// If `a` or `b` is not an element of the matrix, or `a = b` (as
+    /// indexing [`BlockMatrix::diagonal_mut`] out of range would).
+    pub fn add_coupling(&mut self, a: usize, b: usize, block: Block) {
+        let n = self.diagonal.len();
+        assert!(
+            a < n && b < n && a != b,
+            "coupling block ({a}, {b}) of a matrix of {n} elements"
+        );
+        let k = self.coupling.len();
+        self.coupling.push((a, b, block));
+        self.rows[a].push((b, k, false));
+        self.rows[b].push((a, k, true));
+    }
+
+    /// `y = K x`, block by block in the order of the blocks (sequential; the
+    /// residuals of the analyses use it).
     pub fn multiply(&self, x: &[f64]) -> Vec<f64> {
+        let block = |v: &[f64], e: usize| {
+            ElementDofs::from_column_slice(&v[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)])
+        };
+        let add = |y: &mut [f64], e: usize, v: ElementDofs| {
+            for (k, value) in v.iter().enumerate() {
+                y[ELEMENT_DOF * e + k] += value;
+            }
+        };
         let mut y = vec![0.0; x.len()];
-        self.apply(x, &mut y);
+        for (e, d) in self.diagonal.iter().enumerate() {
+            add(&mut y, e, d * block(x, e));
+        }
+        for (a, b, k) in &self.coupling {
+            add(&mut y, *a, k * block(x, *b));
+            add(&mut y, *b, k.transpose() * block(x, *a));
+        }
         y
     }
 
     /// The dense diagonal blocks of K over consecutive groups of elements
     /// (`groups` in order, covering all elements): the blocks of a
-    /// [`crate::solve::BlockJacobi`] preconditioner. For HPM the group of a grid column
-    /// holds its layers, which the stiff penalty springs between layers
-    /// (eqs. 20–22) couple.
+    /// [`crate::linsolve::BlockJacobi`] preconditioner. For HPM the group
+    /// of a grid column holds its layers, which the stiff penalty springs
+    /// between layers (eqs. 20–22) couple.
     pub fn group_blocks(&self, groups: &[Range<usize>]) -> Vec<DMatrix<f64>> {
         let mut group_of = vec![0; self.diagonal.len()];
         let mut blocks: Vec<DMatrix<f64>> = groups
@@ -96,84 +142,13 @@ impl BlockMatrix {
         }
         blocks
     }
-}
 
-/// A [`BlockMatrix`] by block rows: `rows[a]` lists `(b, k, transposed)`,
-/// the coupling block `k` of row a with column b (`K_ab`, stored as
-/// `K_baᵀ` when `transposed`). Its product runs over the rows in parallel
-/// (rayon).
-#[derive(Debug, Clone)]
-pub struct BlockRows<'a> {
-    matrix: &'a BlockMatrix,
-    rows: Vec<Vec<(usize, usize, bool)>>,
-}
-
-impl LinearOperator for BlockRows<'_> {
-    fn dimension(&self) -> usize {
-        self.matrix.dimension()
-    }
-
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        let block =
-            |e: usize| ElementDofs::from_column_slice(&x[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)]);
-        y.par_chunks_mut(ELEMENT_DOF)
-            .zip(&self.rows)
-            .enumerate()
-            .for_each(|(a, (out, row))| {
-                let mut sum = self.matrix.diagonal[a] * block(a);
-                for &(b, k, transposed) in row {
-                    let coupling = &self.matrix.coupling[k].2;
-                    if transposed {
-                        sum += coupling.tr_mul(&block(b));
-                    } else {
-                        sum += coupling * block(b);
-                    }
-                }
-                out.copy_from_slice(sum.as_slice());
-            });
-    }
-}
-
-impl LinearOperator for BlockMatrix {
-    fn dimension(&self) -> usize {
-        BlockMatrix::dimension(self)
-    }
-
-    /// `y = K x`, block by block.
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        let block = |v: &[f64], e: usize| {
-            ElementDofs::from_column_slice(&v[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)])
-        };
-        let add = |y: &mut [f64], e: usize, v: ElementDofs| {
-            for (k, value) in v.iter().enumerate() {
-                y[ELEMENT_DOF * e + k] += value;
-            }
-        };
-        y.fill(0.0);
-        for (e, d) in self.diagonal.iter().enumerate() {
-            add(y, e, d * block(x, e));
-        }
-        for (a, b, k) in &self.coupling {
-            add(y, *a, k * block(x, *b));
-            add(y, *b, k.transpose() * block(x, *a));
-        }
-    }
-}
-
-impl BlockMatrix {
-    /// The blocks of K arranged by block row, for parallel products
-    /// ([`BlockRows`]).
-    pub fn rows(&self) -> BlockRows<'_> {
-        let mut rows: Vec<Vec<(usize, usize, bool)>> = vec![Vec::new(); self.diagonal.len()];
-        for (k, (a, b, _)) in self.coupling.iter().enumerate() {
-            rows[*a].push((*b, k, false));
-            rows[*b].push((*a, k, true));
-        }
-        BlockRows { matrix: self, rows }
-    }
-
-    /// The lower triangle in compressed-column form.
-    fn lower_csc(&self) -> Result<SparseColMat<usize, f64>, SolveError> {
+    /// The lower triangle in compressed columns, built from the blocks.
+    ///
+    /// # Errors
+    /// Only if the blocks are inconsistent (not expected from
+    /// [`BlockMatrix::add_coupling`]).
+    pub fn lower_triangle(&self) -> Result<SparseMatrix, SolveError> {
         let elements = self.diagonal.len();
         let n = self.dimension();
         // Blocks of block-column b below the diagonal: (row element, block, transposed?).
@@ -217,127 +192,90 @@ impl BlockMatrix {
                 col_ptr.push(row_idx.len());
             }
         }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        Ok(SparseColMat::new(symbolic, values))
+        SparseMatrix::new(SparsePattern::from_columns(n, col_ptr, row_idx)?, values)
+    }
+}
+
+impl LinearOperator for BlockMatrix {
+    fn dimension(&self) -> usize {
+        BlockMatrix::dimension(self)
     }
 
-    /// Factorise `K = L Lᵀ`: faer's sparse Cholesky with its
-    /// approximate-minimum-degree ordering, supernodal where it pays, on
-    /// faer's global parallelism.
-    pub fn factorize(&self) -> Result<CholeskyFactor, SolveError> {
-        let start = Instant::now();
-        let matrix = self.lower_csc()?;
-        let compressed = Instant::now();
-        let failed = |what: &str, e: &dyn std::fmt::Debug| {
-            SolveError::Factorization(format!("{what} failed: {e:?}"))
-        };
-        let symbolic = factorize_symbolic_cholesky(
-            matrix.symbolic(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|e| failed("symbolic Cholesky analysis", &e))?;
-        let analysed = Instant::now();
-        let par = faer::get_global_parallelism();
-        let mut values = vec![0.0; symbolic.len_val()];
-        let mut buffer = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|e| failed("allocating the Cholesky workspace", &e))?;
-        symbolic
-            .factorize_numeric_llt::<f64>(
-                &mut values,
-                matrix.rb(),
-                Side::Lower,
-                Default::default(),
-                par,
-                MemStack::new(&mut buffer),
-                Default::default(),
-            )
-            .map_err(|e| failed("sparse Cholesky (stiffness not positive definite)", &e))?;
-        let timings = FactorTimings {
-            compress: compressed - start,
-            symbolic: analysed - compressed,
-            numeric: analysed.elapsed(),
-        };
-        Ok(CholeskyFactor {
-            symbolic,
-            values,
-            stored: matrix.compute_nnz(),
-            timings,
+    /// `y = K x` by block rows, the rows in parallel (rayon).
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        let block =
+            |e: usize| ElementDofs::from_column_slice(&x[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)]);
+        y.par_chunks_mut(ELEMENT_DOF)
+            .zip(&self.rows)
+            .enumerate()
+            .for_each(|(a, (out, row))| {
+                let mut sum = self.diagonal[a] * block(a);
+                for &(b, k, transposed) in row {
+                    let coupling = &self.coupling[k].2;
+                    if transposed {
+                        sum += coupling.tr_mul(&block(b));
+                    } else {
+                        sum += coupling * block(b);
+                    }
+                }
+                out.copy_from_slice(sum.as_slice());
+            });
+    }
+}
+
+impl DiagonalBlocks for BlockMatrix {
+    /// The blocks over ranges of unknowns that hold whole elements.
+    fn diagonal_blocks(&self, ranges: &[Range<usize>]) -> Result<Vec<DMatrix<f64>>, SolveError> {
+        let mut groups = Vec::with_capacity(ranges.len());
+        for range in ranges {
+            for bound in [range.start, range.end] {
+                if bound % ELEMENT_DOF != 0 || bound > self.dimension() {
+                    return Err(SolveError::DimensionMismatch {
+                        what:
+                            "bound of a block-Jacobi range (a multiple of 12 up to the dimension)",
+                        expected: ELEMENT_DOF * (bound / ELEMENT_DOF),
+                        found: bound,
+                    });
+                }
+            }
+            groups.push(range.start / ELEMENT_DOF..range.end / ELEMENT_DOF);
+        }
+        Ok(self.group_blocks(&groups))
+    }
+}
+
+/// The sparse Cholesky factor of the stiffness: its lower triangle in
+/// compressed columns (the conversion timed in
+/// [`crate::linsolve::CholeskyTimings::convert`]), factored once and kept
+/// for the repeated solves of the nonlinear iteration.
+fn check_rhs_length(matrix: &BlockMatrix, rhs: &[f64]) -> Result<(), SolveError> {
+    if rhs.len() == matrix.dimension() {
+        Ok(())
+    } else {
+        Err(SolveError::DimensionMismatch {
+            what: "right-hand side length",
+            expected: matrix.dimension(),
+            found: rhs.len(),
         })
     }
 }
 
-/// Wall-clock times of the stages of [`BlockMatrix::factorize`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct FactorTimings {
-    /// Blocks to the compressed lower triangle.
-    pub compress: Duration,
-    /// Ordering (AMD) and symbolic factorisation.
-    pub symbolic: Duration,
-    /// Numeric factorisation.
-    pub numeric: Duration,
-}
-
-/// A sparse Cholesky factor of the stiffness, reused for many solves.
-#[derive(Debug)]
-pub struct CholeskyFactor {
-    symbolic: SymbolicCholesky<usize>,
-    values: Vec<f64>,
-    stored: usize,
-    timings: FactorTimings,
-}
-
-impl CholeskyFactor {
-    /// Solve `K x = b`.
-    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let n = self.symbolic.nrows();
-        if b.len() != n {
-            return Err(SolveError::DimensionMismatch {
-                what: "right-hand side length",
-                expected: n,
-                found: b.len(),
-            });
-        }
-        // One right-hand side: the triangular solves run sequentially (the
-        // factorisation uses faer's global parallelism).
-        let par = faer::Par::Seq;
-        let mut buffer = MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, par))
-            .map_err(|e| {
-                SolveError::Factorization(format!("allocating the solve workspace failed: {e:?}"))
-            })?;
-        let mut x = Col::<f64>::from_fn(n, |i| b[i]);
-        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
-            faer::Conj::No,
-            x.as_mat_mut(),
-            par,
-            MemStack::new(&mut buffer),
-        );
-        let x: Vec<f64> = x.iter().copied().collect();
-        if let Some((index, &value)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(SolveError::NonFinite {
-                what: "stiffness solve",
-                index,
-                value,
-            });
-        }
-        Ok(x)
+impl LinearSolver<BlockMatrix> for SparseCholesky {
+    fn factor(&mut self, matrix: &BlockMatrix) -> Result<(), SolveError> {
+        let start = Instant::now();
+        let lower = matrix.lower_triangle()?;
+        let convert = start.elapsed();
+        LinearSolver::<SparseMatrix>::factor(self, &lower)?;
+        self.record_conversion(convert);
+        Ok(())
     }
 
-    /// Number of stored entries of the lower triangle of K.
-    pub fn matrix_entries(&self) -> usize {
-        self.stored
-    }
-
-    /// How long the stages of the factorisation took.
-    pub fn timings(&self) -> FactorTimings {
-        self.timings
-    }
-
-    /// Number of stored entries of the Cholesky factor L.
-    pub fn factor_entries(&self) -> usize {
-        self.values.len()
+    fn solve_in_place(
+        &mut self,
+        matrix: &BlockMatrix,
+        rhs: &mut [f64],
+    ) -> Result<SolveStats, SolveError> {
+        check_rhs_length(matrix, rhs)?;
+        self.solve_factored(rhs)
     }
 }

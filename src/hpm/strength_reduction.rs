@@ -11,7 +11,9 @@
 use super::analysis::{Convergence, HpmSolver, NonlinearSettings};
 use super::material::Seismic;
 use super::model::HpmModel;
+use super::stiffness::BlockMatrix;
 use crate::error::{require_positive, Result};
+use crate::linsolve::LinearSolver;
 
 /// The outcome of a strength-reduction search.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,9 +27,10 @@ pub struct StrengthReduction {
 }
 
 /// Search the strength-reduction factor to a bracket of relative width
-/// `resolution`.
-pub fn strength_reduction(
-    solver: &HpmSolver,
+/// `resolution`, each trial a nonlinear solve with `solver` (a direct
+/// factor, or conjugate gradients).
+pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
+    solver: &mut HpmSolver<S>,
     model: &HpmModel,
     seismic: &Seismic,
     settings: &NonlinearSettings,
@@ -35,7 +38,7 @@ pub fn strength_reduction(
 ) -> Result<StrengthReduction> {
     require_positive("strength-reduction resolution", resolution)?;
     let mut trials = Vec::new();
-    let converges = |f: f64, trials: &mut Vec<(f64, Convergence)>| -> Result<bool> {
+    let mut converges = |f: f64, trials: &mut Vec<(f64, Convergence)>| -> Result<bool> {
         let r = solver.nonlinear(model, seismic, f, settings)?;
         trials.push((f, r.convergence));
         Ok(r.convergence.converged())

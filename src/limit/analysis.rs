@@ -420,7 +420,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
         }
         if !matches!(solution.status, LpStatus::Optimal | LpStatus::AlmostOptimal) {
             return Err(DismechError::Solve(
-                crate::solve::SolveError::LinearProgram(format!(
+                crate::error::SolveError::LinearProgram(format!(
                     "the uniqueness test LP ended with status {:?}",
                     solution.status
                 )),

@@ -6,7 +6,7 @@ use clarabel::solver::{
 };
 
 use super::{LinearProgram, LinearProgramSolution, LpSolver, LpStatus};
-use crate::solve::SolveError;
+use crate::error::SolveError;
 
 /// Interior-point LP solver backed by Clarabel.
 #[derive(Debug, Clone)]

@@ -64,7 +64,7 @@ pub use clarabel::LinearProgramSolver;
 pub use program::LinearProgram;
 pub use solution::{LinearProgramSolution, LpStatus};
 
-use crate::solve::SolveError;
+use crate::error::SolveError;
 
 /// A solver of [`LinearProgram`]s: the slot a limit analysis is generic
 /// over. [`LinearProgramSolver`] (Clarabel's interior-point method) is the

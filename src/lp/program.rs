@@ -1,6 +1,6 @@
 //! The data of a linear program.
 
-use crate::solve::SolveError;
+use crate::error::SolveError;
 
 /// A linear program `min cᵀx  s.t.  A_eq x = b_eq,  A_ineq x ≤ b_ineq` with
 /// free `x`.

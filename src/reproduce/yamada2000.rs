@@ -23,6 +23,7 @@ use dismech::limit::{
     analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,
     PackingLimitSettings, Uniqueness,
 };
+use dismech::lp::LinearProgramSolver;
 use dismech::math::{perp, Point};
 use dismech::math::{SplitMix64, Vec2};
 use dismech::output::plot::mechanism_picture;
@@ -31,7 +32,6 @@ use dismech::output::{write_csv, Check, Summary};
 use dismech::reference::lattice_limit_load::{eq20, eq32, eq38};
 use dismech::reference::two_elements;
 use dismech::scene::{Frame, Scene};
-use dismech::solve::LinearProgramSolver;
 
 /// File name of the paper.
 pub const PAPER: &str = "002_d116351db0f49329.txt";

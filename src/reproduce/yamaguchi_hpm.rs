@@ -376,7 +376,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let dip = 20.0;
     let (grids, plan, thickness) = planar_slab(dip)?;
     let model = HpmModel::new(&grids, &material, &settings)?;
-    let solver = HpmSolver::new(&model)?;
+    let mut solver = HpmSolver::new(&model)?;
     for (id, load, kh) in [
         ("planar", &static_load, 0.0),
         ("planar_seismic", &seismic, SEISMIC_COEFFICIENT),
@@ -426,7 +426,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     files.extend(["ground.asc".to_string(), "slip.asc".to_string()]);
     let grids = SlopeGrids::read(&ground_path, &slip_path, None)?;
     let model = HpmModel::new(&grids, &material, &settings)?;
-    let solver = HpmSolver::new(&model)?;
+    let mut solver = HpmSolver::new(&model)?;
     let _ = writeln!(
         report,
         "\n## Representative slope\n\n24 × 32 cells of 10 m; {} valid columns, {} layers, {} elements, {} DOF; weight {:.4e} N. E = 1 GPa, ν = 0.2, c = 4.22 kN/m², φ = 22°, γ_t = 18 kN/m³, slip springs k_s = 100 MPa/m and k_n = (1 − ν)E/((1 + ν)(1 − 2ν)h_I); p = {} between elements; k_h = {SEISMIC_COEFFICIENT} towards the toe (−y).\n",
@@ -465,7 +465,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         write_maps(&dir, &format!("nonlinear_{case}"), &model, &nl, &mut files)?;
         results.push((case, elastic, nl));
     }
-    let srf = strength_reduction(&solver, &model, &static_load, &nonlinear, 0.02)?;
+    let srf = strength_reduction(&mut solver, &model, &static_load, &nonlinear, 0.02)?;
 
     let _ = writeln!(report, "| case | paper | HPM elastic | HPM nonlinear (status) | Hovland | columns with local Fs ≤ 1, elastic / nonlinear | slip-surface area slipping or open, nonlinear |\n|---|---|---|---|---|---|---|");
     for (case, elastic, nl) in &results {

@@ -1,0 +1,144 @@
+//! The linear-solver slot: the sparse layer under the implicit drivers
+//! (DDA, HPM). A solver is handed a matrix, analyses its sparsity pattern
+//! once while the pattern is unchanged, factors the values as often as
+//! they change, and solves as many right-hand sides as needed.
+//!
+//! | solver | matrix | for |
+//! |---|---|---|
+//! | [`SparseLu`] | [`SparseMatrix`] (any square) | unsymmetric tangents (DDA friction); supernodal LU on a symmetric fill-reducing ordering, falling back to faer's partial-pivoting LU |
+//! | [`SparseCholesky`] | [`SparseMatrix`] (lower triangle read), [`crate::hpm::BlockMatrix`] | symmetric positive definite stiffness (HPM) |
+//! | [`ConjugateGradient`] | any [`LinearOperator`] with a [`Preconditioner`] for it ([`BlockJacobi`]) | large SPD systems where a factor does not fit (HPM) |
+//! | [`LumpedMassSolver`] | a diagonal, as `[f64]` | explicit methods (`M a = f`) |
+//!
+//! # How a driver uses it
+//!
+//! A driver is generic over `S: LinearSolver<M>` and owns the matrix:
+//!
+//! ```
+//! use dismech::linsolve::{BlockAssembly, LinearSolver, LinearSolverInfo, SparseLu};
+//! # fn main() -> Result<(), dismech::error::SolveError> {
+//! // Two bodies of two unknowns, coupled: the pattern is built once.
+//! let mut assembly = BlockAssembly::new(2, 2, &[(0, 1)])?;
+//! let mut solver = SparseLu::default();
+//! for k in [1.0, 2.0] {
+//!     // A Newton iteration refills the values of the same pattern ...
+//!     assembly.clear();
+//!     for (a, b) in [(0, 0), (1, 1)] {
+//!         assembly.add_block(a, b, |p, q| if p == q { 4.0 * k } else { 1.0 })?;
+//!     }
+//!     assembly.add_block(0, 1, |_, _| -k)?;
+//!     assembly.add_block(1, 0, |_, _| -k)?;
+//!     // ... which the solver factors without a new analysis, then solves.
+//!     solver.factor(assembly.matrix())?;
+//!     let mut x = vec![1.0; 4];
+//!     solver.solve_in_place(assembly.matrix(), &mut x)?;
+//! }
+//! assert_eq!(solver.symbolic_analyses(), 1);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! The solve takes the matrix again: an iterative solver needs it for its
+//! products, a direct one ignores it; it must be the matrix last factored.
+//! Numerical outcomes that are not misuse are results, not panics: a
+//! singular matrix is a [`SolveError::Factorization`], a PCG that stops at
+//! its iteration limit returns [`SolveStats::converged`]` = false`.
+//!
+//! # Fill of the DDA tangent
+//!
+//! The DDA tangent is structurally symmetric (a block for every pair of
+//! bodies in contact) but unsymmetric in value. faer's sparse LU orders the
+//! columns by COLAMD and bounds the fill by the structure of `AᵀA`; it
+//! picks its simplicial kernel when that bound is small (walls of ~100
+//! blocks) and its supernodal one above. On a running-bond wall of 1 610
+//! blocks (9 666 unknowns, 393 486 entries) its supernodal factor stores
+//! 4.24 million entries in L and U; the Cholesky structure of `A + Aᵀ` on
+//! an approximate-minimum-degree ordering needs 2.48 million, and giving
+//! faer's LU that ordering instead makes it worse (13.7 million), since its
+//! pivoting bound is that of `AᵀA`. [`SparseLu`] therefore factors on the
+//! symmetric structure and pivots inside each supernode (the unknowns of
+//! one body stay together), and falls back to faer's LU when a pivot would
+//! be smaller than [`LuSettings::pivot_tolerance`] times the largest entry
+//! of its column (see `benches/dda_wall.rs`).
+
+mod block_assembly;
+mod block_jacobi;
+mod cholesky;
+mod conjugate_gradient;
+mod lu;
+mod lumped;
+mod partial_pivot_lu;
+mod pattern;
+mod supernodal_lu;
+
+pub use block_assembly::{BlockAssembly, BlockSlot};
+pub use block_jacobi::{BlockJacobi, DiagonalBlocks};
+pub use cholesky::{CholeskyTimings, SparseCholesky};
+pub use conjugate_gradient::{
+    conjugate_gradient, CgSettings, CgSolution, ConjugateGradient, LinearOperator, Preconditioner,
+};
+pub use lu::{LuPivoting, LuSettings, SparseLu};
+pub use lumped::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
+pub use pattern::{SparseMatrix, SparsePattern};
+
+pub use crate::error::SolveError;
+
+/// What a solve reports besides its solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveStats {
+    /// Iterations made (0 for a direct solve).
+    pub iterations: usize,
+    /// Relative residual `‖b − A x‖ / ‖b‖` where the solver computes it
+    /// (iterative solvers), `None` otherwise.
+    pub relative_residual: Option<f64>,
+    /// Whether the solution met the solver's tolerance (always `true` for
+    /// a direct solve that succeeded).
+    pub converged: bool,
+}
+
+impl SolveStats {
+    /// The statistics of a direct solve.
+    pub fn direct() -> Self {
+        Self {
+            iterations: 0,
+            relative_residual: None,
+            converged: true,
+        }
+    }
+}
+
+/// What a linear solver has done and keeps, whatever the matrix type.
+pub trait LinearSolverInfo {
+    /// How many symbolic analyses were made so far: constant while the
+    /// pattern is unchanged.
+    fn symbolic_analyses(&self) -> usize;
+
+    /// Stored entries of the last factor (L + U for an LU, L for a
+    /// Cholesky factor, the dense blocks of a preconditioner, the diagonal
+    /// of a lumped matrix): the fill and the memory kept between solves;
+    /// `None` where the backend does not tell.
+    fn factor_entries(&self) -> Option<usize>;
+}
+
+/// A solver of `A x = b` for matrices of type `M`: analyse the pattern
+/// once, factor many times, solve many times.
+pub trait LinearSolver<M: ?Sized>: LinearSolverInfo {
+    /// Prepare to solve with `matrix`: analyse its sparsity pattern if it
+    /// is not the one analysed last (ordering, symbolic factorization),
+    /// then factor its values (direct solvers) or build the preconditioner
+    /// (iterative ones).
+    ///
+    /// # Errors
+    /// Misuse (sizes, non-finite values) or a failed factorization
+    /// (singular, or not positive definite where that is required).
+    fn factor(&mut self, matrix: &M) -> Result<(), SolveError>;
+
+    /// Overwrite `rhs`, holding `b`, with the solution `x` of
+    /// `matrix · x = b`; `matrix` is the one last factored.
+    ///
+    /// # Errors
+    /// A solve before any factorization, a right-hand side of the wrong
+    /// length or with non-finite entries, or a solution that is not finite
+    /// (a numerically singular matrix).
+    fn solve_in_place(&mut self, matrix: &M, rhs: &mut [f64]) -> Result<SolveStats, SolveError>;
+}
