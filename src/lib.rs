@@ -67,6 +67,7 @@ pub mod dem;
 pub mod error;
 pub mod grid;
 pub mod hpm;
+pub mod implicit;
 pub mod integrate;
 pub mod kinematics;
 pub mod law;

@@ -4,11 +4,16 @@
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PenaltyState,
-    PlaneState, Prescribed, StepStatus, VertexEdge,
+    PlaneState, Prescribed, StepStatus,
 };
 use dismech::error::DismechError;
+use dismech::integrate::{Newmark, Restarting};
+use dismech::kinematics::Affine2;
 use dismech::law::{ContactInput, ContactLaw, PairProperties, Regime, TangentLaw};
 use dismech::math::{Point, Vec2};
+use dismech::query::variation::{
+    DofVariation, GapVariation, PairMatrix, PairVector, VertexEdgeContact,
+};
 use dismech::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
 use nalgebra::{SVector, Vector2};
 use proptest::prelude::*;
@@ -115,7 +120,7 @@ proptest! {
             .map(|&(x, y)| Point::new(dx + c * x - s * y, gap + s * x + c * y + 0.3 * tilt.abs()))
             .collect();
         let upper = Block::new(&corners, material(), 1).unwrap();
-        let blocks = vec![lower, upper];
+        let blocks = [lower, upper];
         // The lowest vertex of the upper block against the top edge (edge 2) of the lower one.
         let (vertex, _) = (0..4)
             .map(|v| (v, blocks[1].vertex(v).y))
@@ -123,9 +128,10 @@ proptest! {
         let p1 = blocks[1].vertex(vertex);
         let (x2, x3) = (blocks[0].vertex(2), blocks[0].vertex(3));
         let xi = (p1 - x2).dot(&(x3 - x2)) / (x3 - x2).norm_squared();
-        let contact = VertexEdge { vertex_block: 1, vertex, edge_block: 0, edge: 2, xi, initial_gap: 0.0 };
+        let contact = VertexEdgeContact { vertex: p1, reference_a: blocks[1].centroid(), edge: [x2, x3],
+            reference_b: blocks[0].centroid(), xi, initial_gap: 0.0 };
         let split = |v: &[f64]| (SVector::<f64, 6>::from_column_slice(&v[6..12]), SVector::<f64, 6>::from_column_slice(&v[0..6]));
-        let at = |v: &[f64]| { let (dj, dk) = split(v); contact.kinematics(&blocks, &dj, &dk) };
+        let at = |v: &[f64]| { let (dj, dk) = split(v); twelve(contact.dof_variation(&Affine2, &dj, &Affine2, &dk).unwrap()) };
         let k0 = at(&d);
         let h = 1e-6;
         for i in 0..12 {
@@ -147,6 +153,42 @@ proptest! {
                 prop_assert!((fd_hs - k0.hess_shear[(j, i)]).abs() < 1e-6, "hess shear {},{}: {} vs {}", j, i, fd_hs, k0.hess_shear[(j, i)]);
             }
         }
+    }
+}
+
+/// `g_n`, `g_s` and their variations over the twelve unknowns `(d_j, d_k)`.
+struct Twelve {
+    gap: f64,
+    shear: f64,
+    grad_gap: SVector<f64, 12>,
+    grad_shear: SVector<f64, 12>,
+    hess_gap: nalgebra::SMatrix<f64, 12, 12>,
+    hess_shear: nalgebra::SMatrix<f64, 12, 12>,
+}
+
+/// The pair's variations with the two bodies' blocks side by side.
+fn twelve(v: DofVariation<6, 6>) -> Twelve {
+    let grad = |g: &PairVector<6, 6>| {
+        let mut out = SVector::<f64, 12>::zeros();
+        out.fixed_rows_mut::<6>(0).copy_from(&g.a);
+        out.fixed_rows_mut::<6>(6).copy_from(&g.b);
+        out
+    };
+    let hess = |h: &PairMatrix<6, 6>| {
+        let mut out = nalgebra::SMatrix::<f64, 12, 12>::zeros();
+        out.fixed_view_mut::<6, 6>(0, 0).copy_from(&h.aa);
+        out.fixed_view_mut::<6, 6>(0, 6).copy_from(&h.ab);
+        out.fixed_view_mut::<6, 6>(6, 0).copy_from(&h.ba);
+        out.fixed_view_mut::<6, 6>(6, 6).copy_from(&h.bb);
+        out
+    };
+    Twelve {
+        gap: v.gap,
+        shear: v.shear,
+        grad_gap: grad(&v.grad_gap),
+        grad_shear: grad(&v.grad_shear),
+        hess_gap: hess(&v.hess_gap),
+        hess_shear: hess(&v.hess_shear),
     }
 }
 
@@ -200,15 +242,16 @@ fn patch_test_uniform_stress_gives_the_exact_strain() {
             mask: rigid,
             motion: std::sync::Arc::new(|_| [0.0; 6]),
         });
-        let d = block.elastic_matrix();
+        let d = block.material().elastic_matrix();
         let exact = d.try_inverse().unwrap() * nalgebra::Vector3::from(sigma);
         let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
         let settings = DdaSettings {
             gravity: Vec2::zeros(),
-            dynamic: false,
             ..DdaSettings::default()
         };
-        let mut model = DdaModel::new(vec![block], law, settings).unwrap();
+        let mut model =
+            DdaModel::with_integrator(vec![block], law, Restarting(Newmark::dda()), settings)
+                .unwrap();
         // A long step makes the inertia term of static DDA vanish (c_a = 2/Δt²).
         let report = model.advance(1e3).unwrap();
         assert_eq!(report.status, StepStatus::Converged);
@@ -525,7 +568,7 @@ fn symbolic_analysis_is_reused_while_the_contacts_are_unchanged() {
     // Vertical equilibrium of the block: contact forces = weight + m a_y
     // (the block's own elastic settlement starts a small vibration; as in
     // classic DDA the density is kept, so the mass follows the area).
-    let sum: f64 = model.contacts().iter().map(|c| c.force_on_vertex.y).sum();
+    let sum: f64 = model.contacts().iter().map(|c| c.force_on_a.y).sum();
     let mass = 2200.0 * model.blocks()[1].area();
     let inertia = mass * model.blocks()[1].acceleration[1];
     assert!(
@@ -543,11 +586,13 @@ fn fixed_point_spring_carries_the_weight() {
     let block = Block::new(&rect(0.0, 0.0, 1.0, 0.5), material(), 0).unwrap();
     let centre = block.centroid();
     let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
-    let settings = DdaSettings {
-        dynamic: false,
-        ..DdaSettings::default()
-    };
-    let mut model = DdaModel::new(vec![block], law, settings).unwrap();
+    let mut model = DdaModel::with_integrator(
+        vec![block],
+        law,
+        Restarting(Newmark::dda()),
+        DdaSettings::default(),
+    )
+    .unwrap();
     let k = 1e8;
     model.add_fixed_point(0, centre, k).unwrap();
     assert_eq!(model.advance(1e3).unwrap().status, StepStatus::Converged);

@@ -5,7 +5,7 @@
 
 mod variation_common;
 
-use dismech::dda::{contact::closest_edge, Block, BlockMaterial, PlaneState, VertexEdge};
+use dismech::dda::{Block, BlockMaterial, PlaneState};
 use dismech::kinematics::{
     Affine2, Fixed, Kinematics, MapVector, PlacedEllipse, PlacedPolygon, Rigid2,
 };
@@ -250,13 +250,97 @@ fn dda_pair(dx: f64, gap: f64, tilt: f64) -> (Vec<Block>, usize) {
 }
 
 fn placed(block: &Block) -> PlacedPolygon {
-    PlacedPolygon::new(block.polygon().clone(), block.centroid())
+    block.polygon().unwrap().clone()
+}
+
+/// Classic DDA's vertex–edge contact written directly (paper 003 eqs.
+/// 17–35): detection over the edges of block k, and `g_n`, `g_s` with their
+/// variations in the twelve unknowns through the chain of the displacement
+/// matrices `T` (eq. 15) at the three points. The reference the generic
+/// query must reproduce bit for bit.
+mod classic_dda {
+    use super::*;
+    use dismech::query::variation::local_geometry;
+    use dismech::shape::Polygon;
+    use nalgebra::{SMatrix, Vector2};
+
+    pub type Grad12 = SVector<f64, 12>;
+    pub type Hess12 = SMatrix<f64, 12, 12>;
+
+    /// `T(p − c)` of a block.
+    fn t(block: &Block, p: &Point) -> SMatrix<f64, 2, 6> {
+        let c = block.centroid();
+        Polygon::dda_displacement_matrix(p.x - c.x, p.y - c.y)
+    }
+
+    /// The candidate edge of block `k` for vertex `p`: `(edge, ξ, g_n)`.
+    pub fn closest_edge(
+        p: &Point,
+        k: &Block,
+        search: f64,
+        previous: Option<usize>,
+    ) -> Option<(usize, f64, f64)> {
+        let mut best: Option<(usize, f64, f64)> = None;
+        for e in 0..k.vertex_count() {
+            let (x2, x3) = (k.vertex(e), k.vertex(e + 1));
+            let (a, b) = (p - x2, x3 - x2);
+            let l2 = b.norm_squared();
+            let xi = a.dot(&b) / l2;
+            let gap = dismech::math::cross(&a, &b) / l2.sqrt();
+            if !(0.0..=1.0).contains(&xi) || gap.abs() > search {
+                continue;
+            }
+            if previous == Some(e) {
+                return Some((e, xi, gap));
+            }
+            if best.is_none_or(|(_, _, g)| gap > g) {
+                best = Some((e, xi, gap));
+            }
+        }
+        best
+    }
+
+    /// `(g_n, g_s, ∇g_n, ∇g_s, ∇²g_n, ∇²g_s)` in `(d_j, d_k)` for vertex
+    /// `vertex` of block j = 1 against edge `edge` of block k = 0.
+    #[allow(clippy::type_complexity)]
+    pub fn kinematics(
+        blocks: &[Block],
+        vertex: usize,
+        edge: usize,
+        xi: f64,
+        d_j: &SVector<f64, 6>,
+        d_k: &SVector<f64, 6>,
+    ) -> (f64, f64, Grad12, Grad12, Hess12, Hess12) {
+        let (bj, bk) = (&blocks[1], &blocks[0]);
+        let (x1, x2, x3) = (bj.vertex(vertex), bk.vertex(edge), bk.vertex(edge + 1));
+        let (t1, t2, t3) = (t(bj, &x1), t(bk, &x2), t(bk, &x3));
+        let mut c = SMatrix::<f64, 4, 12>::zeros();
+        c.fixed_view_mut::<2, 6>(0, 0).copy_from(&t1);
+        c.fixed_view_mut::<2, 6>(0, 6).copy_from(&(-t2));
+        c.fixed_view_mut::<2, 6>(2, 6).copy_from(&(t3 - t2));
+        let mut d = Grad12::zeros();
+        d.fixed_rows_mut::<6>(0).copy_from(d_j);
+        d.fixed_rows_mut::<6>(6).copy_from(d_k);
+        let delta = c * d;
+        let a = (x1 - x2) + Vector2::new(delta[0], delta[1]);
+        let b = (x3 - x2) + Vector2::new(delta[2], delta[3]);
+        let g = local_geometry(&a, &b, xi);
+        let ct = c.transpose();
+        (
+            g.gap,
+            g.shear,
+            ct * g.grad_gap,
+            ct * g.grad_shear,
+            ct * g.hess_gap * c,
+            ct * g.hess_shear * c,
+        )
+    }
 }
 
 proptest! {
-    /// The affine vertex–edge contact is DDA's `VertexEdge::kinematics`
-    /// bit for bit (values, gradients, Hessians), and its detection is
-    /// DDA's `closest_edge`.
+    /// The affine vertex–edge contact is classic DDA's contact (eqs. 17–35
+    /// through the T matrices of eq. 15) bit for bit (values, gradients,
+    /// Hessians), and its detection is DDA's rule.
     #[test]
     fn affine_vertex_edge_is_the_dda_contact_bit_for_bit(
         dx in -0.2f64..0.2, gap in -0.01f64..0.01, tilt in -0.3f64..0.3,
@@ -265,20 +349,20 @@ proptest! {
     ) {
         let (blocks, vertex) = dda_pair(dx, gap, tilt);
         let p1 = blocks[1].vertex(vertex);
-        let dda = closest_edge(&p1, &blocks[0], 0.05, previous);
+        let dda = classic_dda::closest_edge(&p1, &blocks[0], 0.05, previous);
         let ours = VertexEdgeContact::closest_edge(p1, blocks[1].centroid(), &placed(&blocks[0]), 0.05, previous);
         prop_assert_eq!(dda, ours.map(|(e, c)| (e, c.xi, c.initial_gap)));
         let Some((edge, contact)) = ours else { return Ok(()) };
-        let old = VertexEdge { vertex_block: 1, vertex, edge_block: 0, edge, xi: contact.xi, initial_gap: contact.initial_gap };
         let (dj, dk) = (SVector::<f64, 6>::from_column_slice(&d[0..6]), SVector::<f64, 6>::from_column_slice(&d[6..12]));
-        let k = old.kinematics(&blocks, &dj, &dk);
+        let (gap, shear, grad_gap, grad_shear, hess_gap, hess_shear) =
+            classic_dda::kinematics(&blocks, vertex, edge, contact.xi, &dj, &dk);
         let v = contact.dof_variation(&Affine2, &dj, &Affine2, &dk).unwrap();
-        prop_assert_eq!((k.gap, k.shear), (v.gap, v.shear));
-        for (g12, g) in [(&k.grad_gap, &v.grad_gap), (&k.grad_shear, &v.grad_shear)] {
+        prop_assert_eq!((gap, shear), (v.gap, v.shear));
+        for (g12, g) in [(&grad_gap, &v.grad_gap), (&grad_shear, &v.grad_shear)] {
             prop_assert_eq!(g12.fixed_rows::<6>(0).into_owned(), g.a);
             prop_assert_eq!(g12.fixed_rows::<6>(6).into_owned(), g.b);
         }
-        for (h12, h) in [(&k.hess_gap, &v.hess_gap), (&k.hess_shear, &v.hess_shear)] {
+        for (h12, h) in [(&hess_gap, &v.hess_gap), (&hess_shear, &v.hess_shear)] {
             prop_assert_eq!(h12.fixed_view::<6, 6>(0, 0).into_owned(), h.aa);
             prop_assert_eq!(h12.fixed_view::<6, 6>(0, 6).into_owned(), h.ab);
             prop_assert_eq!(h12.fixed_view::<6, 6>(6, 0).into_owned(), h.ba);

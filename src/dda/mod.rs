@@ -1,22 +1,18 @@
 //! Implicit discontinuous deformation analysis (DDA) after Hashimoto,
-//! Koyama & Kikumoto (paper 003): deformable polygon blocks with six
-//! unknowns each, penalty vertex–edge contacts with Coulomb friction
-//! integrated by return mapping (or by the conventional DDA treatment, for
-//! comparison), Newton–Raphson with the consistent tangent, and Newmark
-//! time integration with β = ½, γ = 1.
+//! Koyama & Kikumoto (paper 003), as one composition of the implicit
+//! driver:
 //!
-//! | concept | file | paper 003 |
+//! `DdaModel = ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>`
+//!
+//! | slot | piece | paper 003 |
 //! |---|---|---|
-//! | block: displacement field, stiffness, inertia, loads | [`block`] | eqs. (1)–(2), (14)–(16) |
-//! | vertex–edge contact: gap, shear, variations | [`contact`] | eqs. (17)–(35) |
-//! | friction: conventional and return mapping | [`crate::law::PenaltyCoulomb`] | eqs. (7)–(10), Fig. 1 |
-//! | assembly, open–close, Newton, Newmark, Δt control | [`model`] | eqs. (11)–(13), §2.(5), Fig. 5 |
-//!
-//! The pieces are the crate's generic ones: [`crate::shape::Polygon`] for
-//! the geometry, the [`crate::contact::ContactLaw`] trait for the friction
-//! law, [`crate::integrate::Newmark`] for time and
-//! [`crate::linsolve::SparseLu`] (a [`crate::linsolve::LinearSolver`]) for the global system; the
-//! broad phase is [`crate::broad_phase::CellGrid`].
+//! | shape | [`crate::shape::Polygon`] blocks ([`Block`]) | eqs. (14)–(16) |
+//! | body kinematics | [`crate::kinematics::Affine2`]: six unknowns `(u₀, v₀, r₀, εx, εy, γxy)`, mass `ρ∫TᵀT`, stiffness `A D` | eqs. (1)–(2), (14)–(16) |
+//! | pair query | vertex–edge gap and shear with exact first and second variations ([`crate::query::variation::VertexEdgeContact`]) | eqs. (17)–(35) |
+//! | contact law | [`crate::law::PenaltyCoulomb`]: return mapping (consistent, unsymmetric CLOSE tangent) or the conventional treatment | eqs. (7)–(10), Fig. 1 |
+//! | integrator | [`crate::integrate::Newmark`] β = ½, γ = 1 ([`crate::integrate::Restarting`] for the static analysis of classic DDA) | §2.(5) |
+//! | linear solver | [`crate::linsolve::SparseLu`] | |
+//! | driver | open–close, Newton with line search, Δt control ([`crate::implicit`]) | eqs. (11)–(13), Fig. 5 |
 //!
 //! Choices where the paper is silent or garbled:
 //! * the linearisation of eqs. (12)–(13) is derived from the penalty
@@ -31,18 +27,71 @@
 //! * the density is kept as a block deforms, so its mass follows its area
 //!   (as in classic DDA);
 //! * the static analysis of classic DDA keeps the inertia term in the
-//!   equations and resets velocities after every step;
+//!   equations and resets velocities after every step
+//!   ([`crate::integrate::Restarting`]);
 //! * the shear reference point `x₀'` is the material point of the edge
 //!   under the vertex at the start of each step, and the shear force is
-//!   carried from step to step as contact history.
+//!   carried from step to step as contact history;
+//! * where two corners meet, each block may hold a contact on the other's
+//!   edge; no rule merges the two.
 
-pub mod block;
-pub mod contact;
-pub mod model;
+use crate::error::Result;
+use crate::implicit::{ImplicitDynamics, ImplicitSettings};
+use crate::integrate::{ImplicitIntegrator, Newmark};
+use crate::kinematics::Affine2;
+use crate::linsolve::SparseLu;
 
+pub use crate::implicit::{FixedPoint, PlaneState, StepFailure, StepReport, StepStatus};
 pub use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
-pub use block::{Block, BlockMaterial, Motion, PlaneState, Prescribed};
-pub use contact::{Kinematics, VertexEdge};
-pub use model::{
-    ContactReport, DdaModel, DdaSettings, FixedPoint, StepFailure, StepReport, StepStatus,
-};
+
+/// A DDA block: a polygon body with the six DDA unknowns.
+pub type Block = crate::implicit::Body<6>;
+/// Elastic and inertial properties of a block.
+pub type BlockMaterial = crate::implicit::BodyMaterial;
+/// Imposed unknowns of a block.
+pub type Prescribed = crate::implicit::Prescribed<6>;
+/// A contact of the last accepted step, with the DDA law's history.
+pub type ContactReport = crate::implicit::ContactReport<PenaltyState>;
+/// Settings of a DDA run.
+pub type DdaSettings = ImplicitSettings;
+
+/// Paper 003's DDA: polygon blocks with affine kinematics, the penalty
+/// Coulomb law, Newmark (β = ½, γ = 1 by default) and sparse LU.
+pub type DdaModel<I = Newmark> = ImplicitDynamics<6, Affine2, PenaltyCoulomb, I, SparseLu>;
+
+impl DdaModel {
+    /// A dynamic DDA model of `blocks` with contact law `law`: Newmark
+    /// β = ½, γ = 1 (classic DDA). Refuses invalid settings and blocks that
+    /// overlap at the start by more than `settings.overlap_tolerance` (the
+    /// error names both blocks).
+    ///
+    /// # Errors
+    /// As described.
+    pub fn new(blocks: Vec<Block>, law: PenaltyCoulomb, settings: DdaSettings) -> Result<Self> {
+        Self::with_integrator(blocks, law, Newmark::dda(), settings)
+    }
+}
+
+impl<I: ImplicitIntegrator> DdaModel<I> {
+    /// A DDA model with the time integration of one's choice: Newmark with
+    /// other β, γ ([`Newmark::new`]), the static analysis of classic DDA
+    /// (`Restarting(Newmark::dda())`), or quasi-static steps.
+    ///
+    /// # Errors
+    /// As [`DdaModel::new`].
+    pub fn with_integrator(
+        blocks: Vec<Block>,
+        law: PenaltyCoulomb,
+        integrator: I,
+        settings: DdaSettings,
+    ) -> Result<Self> {
+        Self::compose(
+            blocks,
+            Affine2,
+            law,
+            integrator,
+            SparseLu::default(),
+            settings,
+        )
+    }
+}

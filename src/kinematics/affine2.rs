@@ -2,7 +2,7 @@
 //! `d = (u₀, v₀, r₀, εx, εy, γxy)` about the centroid, with the linear
 //! displacement field `u = T(X − c) d`.
 
-use nalgebra::{Matrix3, SMatrix, SVector};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::{Advance, AreaMoments, Kinematics, MapVector, PlacedEllipse, PlacedPolygon};
 use crate::error::Result;
@@ -48,7 +48,7 @@ impl Kinematics<6> for Affine2 {
     /// `ρ ∫ TᵀT dA` exactly from the area and second moments: with
     /// `T = T₀ + x Tx + y Ty` about the centroid,
     /// `∫TᵀT = A T₀ᵀT₀ + Ixx TxᵀTx + Iyy TyᵀTy + Ixy (TxᵀTy + TyᵀTx)`
-    /// (the same arithmetic as [`crate::dda::Block::mass`]).
+    /// (the arithmetic of classic DDA, paper 003 eq. 2).
     fn mass(&self, moments: &AreaMoments, density: f64) -> SMatrix<f64, 6, 6> {
         let t0 = Polygon::dda_displacement_matrix(0.0, 0.0);
         let tx = Polygon::dda_displacement_matrix(1.0, 0.0) - t0;
@@ -70,11 +70,22 @@ impl Kinematics<6> for Affine2 {
             .copy_from(&(elastic * moments.area));
         k
     }
+
+    /// `(εx, εy, γxy)`: the last three unknowns.
+    fn strain(&self, d: &SVector<f64, 6>) -> Vector3<f64> {
+        d.fixed_rows::<3>(3).into_owned()
+    }
+
+    /// `A (0, 0, 0, σx, σy, τxy)`.
+    fn stress_force(&self, moments: &AreaMoments, stress: &Vector3<f64>) -> SVector<f64, 6> {
+        let mut f = SVector::<f64, 6>::zeros();
+        f.fixed_rows_mut::<3>(3).copy_from(&(stress * moments.area));
+        f
+    }
 }
 
 /// A polygon's vertices move by `T(X − c) d` (eq. 14) and the polygon is
-/// rebuilt about its new centroid: the arithmetic of
-/// [`crate::dda::Block::apply_increment`], bit for bit.
+/// rebuilt about its new centroid: classic DDA's update, bit for bit.
 impl Advance<PlacedPolygon, 6> for Affine2 {
     fn advance(
         &self,

@@ -37,7 +37,7 @@ pub use fixed::Fixed;
 pub use placed::{PlacedEllipse, PlacedPolygon};
 pub use rigid2::Rigid2;
 
-use nalgebra::{Matrix2, Matrix3, SMatrix, SVector};
+use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
 
 use crate::error::Result;
 use crate::math::{Point, Vec2};
@@ -132,6 +132,18 @@ pub trait Kinematics<const N: usize> {
     /// Elastic stiffness `∫ Bᵀ D B dA` for the plane elastic matrix `D`
     /// (`σ = D ε`, `ε = (εx, εy, γxy)`); zero for a rigid body.
     fn stiffness(&self, moments: &AreaMoments, elastic: &Matrix3<f64>) -> SMatrix<f64, N, N>;
+
+    /// The uniform strain `(εx, εy, γxy)` of the increment `d` (zero for a
+    /// rigid body): the strain a stress increment `D ε` follows from.
+    fn strain(&self, _d: &SVector<f64, N>) -> Vector3<f64> {
+        Vector3::zeros()
+    }
+
+    /// The generalised force `∫ Bᵀ σ dA` of a uniform stress `σ` (zero for
+    /// a rigid body): the internal force of the stress a body carries.
+    fn stress_force(&self, _moments: &AreaMoments, _stress: &Vector3<f64>) -> SVector<f64, N> {
+        SVector::zeros()
+    }
 
     /// The body's map `x = c + t + F (X − c)` at `d`.
     fn map(&self, d: &SVector<f64, N>) -> BodyMap {

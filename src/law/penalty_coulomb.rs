@@ -231,6 +231,12 @@ impl TangentLaw<2> for PenaltyCoulomb {
     ) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
         self.respond(input, state)
     }
+
+    /// Return mapping is the consistent integration; the conventional one
+    /// is not (paper 003 Fig. 1).
+    fn is_consistent(&self) -> bool {
+        self.integration == FrictionIntegration::ReturnMapping
+    }
 }
 
 impl StrengthLaw for PenaltyCoulomb {

@@ -163,6 +163,15 @@ pub trait TangentLaw<const D: usize>: ContactLaw<D> {
         input: &ContactInput<D>,
         state: &Self::State,
     ) -> (ContactResponse<D, Self::State>, Tangent<D>);
+
+    /// Whether the force is an implicit function of the step's motion with
+    /// this tangent as its exact derivative, so that Newton converges on
+    /// it. A law integrated explicitly within a step (DDA's conventional
+    /// friction) answers `false`: an implicit driver then accepts a step
+    /// once the open/closed states settle, as classic DDA does.
+    fn is_consistent(&self) -> bool {
+        true
+    }
 }
 
 /// A law with a linear strength `|t_s| ≤ c + μ t_n`, as a limit analysis

@@ -26,6 +26,7 @@ use dismech::dda::{
     Prescribed, StepReport,
 };
 use dismech::error::Result;
+use dismech::integrate::{Newmark, Restarting};
 use dismech::math::{Point, Vec2};
 use dismech::output::plot::{line_chart, Series};
 use dismech::output::{write_csv, Check, Reported, Summary};
@@ -234,8 +235,11 @@ pub const SHEAR_NORMAL_STRESS: f64 = 1e6;
 pub const SHEAR_DISPLACEMENT: f64 = 2e-3;
 
 /// The direct shear model (§3.(1)); the "time" runs from 0 to 1 over the
-/// loading, so `dt = 1/steps`.
-pub fn direct_shear_model(integration: FrictionIntegration) -> Result<DdaModel> {
+/// loading, so `dt = 1/steps`. It is a static analysis of classic DDA:
+/// Newmark β = ½, γ = 1 restarted from rest after every step.
+pub fn direct_shear_model(
+    integration: FrictionIntegration,
+) -> Result<DdaModel<Restarting<Newmark>>> {
     let material = BlockMaterial {
         density: 2200.0,
         youngs_modulus: 1e9,
@@ -257,10 +261,14 @@ pub fn direct_shear_model(integration: FrictionIntegration) -> Result<DdaModel> 
     let settings = DdaSettings {
         gravity: Vec2::zeros(),
         search_distance: 0.01,
-        dynamic: false,
         ..DdaSettings::default()
     };
-    DdaModel::new(vec![lower, upper], law, settings)
+    DdaModel::with_integrator(
+        vec![lower, upper],
+        law,
+        Restarting(Newmark::dda()),
+        settings,
+    )
 }
 
 /// One direct shear run.

@@ -24,7 +24,8 @@
 //!   term only for a nonlinear kinematics ([`Rigid2`](crate::kinematics::Rigid2)).
 //!   For a linear one ([`Affine2`](crate::kinematics::Affine2)) `z = z₀ +
 //!   C d` directly, so the vertex–edge contact of two DDA blocks reproduces
-//!   [`crate::dda::VertexEdge::kinematics`] bit for bit.
+//!   classic DDA's chain through the displacement matrices of paper 003
+//!   eq. (15) bit for bit (tested in `tests/variations.rs`).
 //!
 //! The result keeps the two bodies apart as blocks (`aa`, `ab`, `ba`,
 //! `bb`), so the bodies may have different numbers of unknowns.

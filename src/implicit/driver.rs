@@ -1,0 +1,562 @@
+//! The implicit driver: bodies, laws and the workspaces of the step, and
+//! the time loop with automatic reduction of the step.
+
+use std::collections::HashMap;
+
+use nalgebra::SVector;
+
+use super::body::{Body, BodyGeometry};
+use super::detect::{detect, ContactKey, Previous, StepContact};
+use super::laws::ContactLaws;
+use super::report::{ContactReport, StepFailure, StepReport, StepStatus};
+use super::settings::ImplicitSettings;
+use super::step::{body_dofs, Parts, StepData, Trial};
+use crate::broad_phase::CellGrid;
+use crate::contact::dispatch::contact_manifold_2d;
+use crate::contact::Feature;
+use crate::error::{require_positive, DismechError, Result};
+use crate::integrate::ImplicitIntegrator;
+use crate::kinematics::{Advance, Kinematics, PlacedEllipse, PlacedPolygon};
+use crate::law::TangentLaw;
+use crate::linsolve::{BlockAssembly, LinearSolver, SparseMatrix};
+use crate::math::{Aabb2, Point, Vec2};
+use crate::query::variation::PairContact;
+use crate::shape::Segment;
+
+/// A penalty spring tying a material point of a body to its start position
+/// (the fixed point of classic DDA).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedPoint {
+    /// The body.
+    pub body: usize,
+    /// Current position of the material point (moves with the body).
+    pub point: Point,
+    /// Anchor it is tied to.
+    pub anchor: Point,
+    /// Spring stiffness (N/m per m).
+    pub stiffness: f64,
+}
+
+/// Implicit dynamics (or quasi-statics) of 2D bodies with penalty
+/// contacts, generic over the slots: the bodies' kinematics `K` with `N`
+/// unknowns each, a contact law `L` with a consistent tangent, an implicit
+/// integrator `I` and a linear solver `S`. Each step detects the contacts
+/// (pair queries with first and second variations), then runs an
+/// open–close iteration and Newton–Raphson with a line search; a step
+/// that fails is halved down to a bound (see the [module documentation](super)).
+#[derive(Debug)]
+pub struct ImplicitDynamics<const N: usize, K, L: TangentLaw<2>, I, S> {
+    bodies: Vec<Body<N>>,
+    kinematics: K,
+    laws: ContactLaws<L>,
+    integrator: I,
+    solver: S,
+    settings: ImplicitSettings,
+    fixed_points: Vec<FixedPoint>,
+    time: f64,
+    history: HashMap<ContactKey, L::State>,
+    previous: Previous,
+    contacts: Vec<ContactReport<L::State>>,
+    grid: CellGrid,
+    pairs: Vec<(usize, usize)>,
+    assembly: BlockAssembly,
+    requested_dt: Option<f64>,
+    current_dt: f64,
+}
+
+impl<const N: usize, K, L, I, S> ImplicitDynamics<N, K, L, I, S>
+where
+    K: Kinematics<N> + Advance<PlacedPolygon, N> + Advance<PlacedEllipse, N>,
+    L: TangentLaw<2>,
+    I: ImplicitIntegrator,
+    S: LinearSolver<SparseMatrix>,
+{
+    /// A model of `bodies` composed from the slots. Refuses invalid
+    /// settings and bodies that overlap at the start by more than
+    /// `settings.overlap_tolerance` (the error names both bodies).
+    ///
+    /// # Errors
+    /// As described.
+    pub fn compose(
+        bodies: Vec<Body<N>>,
+        kinematics: K,
+        laws: impl Into<ContactLaws<L>>,
+        integrator: I,
+        solver: S,
+        settings: ImplicitSettings,
+    ) -> Result<Self> {
+        settings.validate()?;
+        let assembly = BlockAssembly::new(bodies.len(), N, &[])?;
+        let mut model = Self {
+            bodies,
+            kinematics,
+            laws: laws.into(),
+            integrator,
+            solver,
+            settings,
+            fixed_points: Vec::new(),
+            time: 0.0,
+            history: HashMap::new(),
+            previous: Previous::default(),
+            contacts: Vec::new(),
+            grid: CellGrid::new(),
+            pairs: Vec::new(),
+            assembly,
+            requested_dt: None,
+            current_dt: 0.0,
+        };
+        model.find_pairs();
+        model.check_initial_overlaps()?;
+        Ok(model)
+    }
+
+    /// Refuse a start where two bodies overlap by more than the tolerance,
+    /// measured by the explicit pair query of their shapes.
+    fn check_initial_overlaps(&self) -> Result<()> {
+        let tolerance = self.settings.overlap_tolerance;
+        let mut manifold = Vec::new();
+        for &(i, j) in &self.pairs {
+            let (gi, gj) = (self.bodies[i].geometry(), self.bodies[j].geometry());
+            if matches!((gi, gj), (BodyGeometry::Wall(_), BodyGeometry::Wall(_))) {
+                continue;
+            }
+            let ((si, pi), (sj, pj)) = (gi.shape_and_pose()?, gj.shape_and_pose()?);
+            manifold.clear();
+            contact_manifold_2d(&si, &pi, &sj, &pj, &mut manifold)?;
+            let Some(deepest) = manifold
+                .iter()
+                .filter(|g| g.overlap > tolerance)
+                .max_by(|a, b| a.overlap.total_cmp(&b.overlap))
+            else {
+                continue;
+            };
+            // Name the body whose vertex (or whole boundary) penetrates.
+            let (vertex_block, vertex, edge_block) = match deepest.features.a {
+                Feature::Vertex(v) => (i, v, j),
+                _ => match deepest.features.b {
+                    Feature::Vertex(v) => (j, v, i),
+                    _ => (i, 0, j),
+                },
+            };
+            return Err(DismechError::BlocksOverlap {
+                vertex_block,
+                vertex,
+                edge_block,
+                depth: deepest.overlap,
+                tolerance,
+            });
+        }
+        Ok(())
+    }
+
+    /// Add a fixed point: the material point `point` of `body` is tied to
+    /// its present position by a spring of `stiffness`.
+    ///
+    /// # Errors
+    /// A stiffness that is not finite and positive, or no such body.
+    pub fn add_fixed_point(&mut self, body: usize, point: Point, stiffness: f64) -> Result<()> {
+        require_positive("fixed-point stiffness", stiffness)?;
+        if body >= self.bodies.len() {
+            return Err(DismechError::NoSuchBody {
+                index: body,
+                count: self.bodies.len(),
+            });
+        }
+        self.fixed_points.push(FixedPoint {
+            body,
+            point,
+            anchor: point,
+            stiffness,
+        });
+        Ok(())
+    }
+
+    /// The bodies.
+    pub fn bodies(&self) -> &[Body<N>] {
+        &self.bodies
+    }
+
+    /// The blocks (the bodies, by the name DDA gives them).
+    pub fn blocks(&self) -> &[Body<N>] {
+        &self.bodies
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The contact laws.
+    pub fn laws(&self) -> &ContactLaws<L> {
+        &self.laws
+    }
+
+    /// The law of contacts between groups no pair of the table names.
+    pub fn law(&self) -> &L {
+        self.laws.default_law()
+    }
+
+    /// The integrator.
+    pub fn integrator(&self) -> &I {
+        &self.integrator
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ImplicitSettings {
+        &self.settings
+    }
+
+    /// Contacts of the last accepted step.
+    pub fn contacts(&self) -> &[ContactReport<L::State>] {
+        &self.contacts
+    }
+
+    /// How many symbolic analyses the linear solver made so far.
+    pub fn symbolic_analyses(&self) -> usize {
+        self.solver.symbolic_analyses()
+    }
+
+    /// Stored entries of the linear solver's last factor.
+    pub fn factor_entries(&self) -> Option<usize> {
+        self.solver.factor_entries()
+    }
+
+    fn find_pairs(&mut self) {
+        let boxes: Vec<Aabb2> = self.bodies.iter().map(|b| b.geometry().aabb()).collect();
+        self.grid
+            .candidate_pairs(&boxes, self.settings.search_distance, &mut self.pairs);
+    }
+
+    fn prescribed_mask(&self) -> Vec<bool> {
+        let mut mask = vec![false; N * self.bodies.len()];
+        for (i, b) in self.bodies.iter().enumerate() {
+            if let Some(p) = &b.prescribed {
+                mask[N * i..N * i + N].copy_from_slice(&p.mask);
+            }
+        }
+        mask
+    }
+
+    /// One trial step of size `dt` from the current state.
+    fn trial(
+        &mut self,
+        dt: f64,
+        contacts: &[StepContact],
+    ) -> std::result::Result<Trial<L::State>, StepFailure> {
+        let nb = self.bodies.len();
+        let mask = self.prescribed_mask();
+        let mut d = vec![0.0; N * nb];
+        for (i, b) in self.bodies.iter().enumerate() {
+            if let Some(p) = &b.prescribed {
+                let (u0, u1) = ((p.motion)(self.time), (p.motion)(self.time + dt));
+                for k in 0..N {
+                    if p.mask[k] {
+                        d[N * i + k] = u1[k] - u0[k];
+                    }
+                }
+            }
+        }
+        // Predictor for the free unknowns: the motion at constant
+        // acceleration, Δd = Δt v₀ + ½ Δt² a₀.
+        for (i, b) in self.bodies.iter().enumerate() {
+            for k in 0..N {
+                if !mask[N * i + k] {
+                    d[N * i + k] = dt * b.velocity[k] + 0.5 * dt * dt * b.acceleration[k];
+                }
+            }
+        }
+        let coeffs = self.integrator.coefficients(dt);
+        self.update_pattern(contacts, &mask)?;
+        let data = StepData {
+            bodies: &self.bodies,
+            kinematics: &self.kinematics,
+            laws: &self.laws,
+            history: &self.history,
+            contacts,
+            dt,
+        };
+        let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
+        data.iterate(
+            d,
+            &parts,
+            &mut self.assembly,
+            &mut self.solver,
+            &self.settings,
+        )
+    }
+
+    /// The block pattern of the tangent for `contacts`: a block for every
+    /// pair of bodies in contact, unless all unknowns of one of them are
+    /// prescribed (its rows and columns then hold only its diagonal). Kept,
+    /// with the solver's analysis, while the pairs are unchanged.
+    fn update_pattern(
+        &mut self,
+        contacts: &[StepContact],
+        mask: &[bool],
+    ) -> std::result::Result<(), StepFailure> {
+        let held = |b: usize| mask[N * b..N * b + N].iter().all(|m| *m);
+        let pairs: Vec<(usize, usize)> = contacts
+            .iter()
+            .map(|c| (c.a, c.b))
+            .filter(|&(a, b)| !held(a) && !held(b))
+            .collect();
+        let pairs = BlockAssembly::normalised(&pairs);
+        if !self.assembly.has_layout(self.bodies.len(), N, &pairs) {
+            self.assembly = BlockAssembly::new(self.bodies.len(), N, &pairs)
+                .map_err(|e| StepFailure::Solve(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// The displacement over the increment `d_i` of the material point of
+    /// body `i` now at `p`.
+    fn displacement_of(&self, i: usize, p: &Point, d_i: &SVector<f64, N>) -> Vec2 {
+        let r = p - self.bodies[i].centroid();
+        if K::LINEAR {
+            self.kinematics.point_jacobian(d_i, &r) * d_i
+        } else {
+            self.kinematics
+                .map(d_i)
+                .apply(&self.bodies[i].centroid(), p)
+                - p
+        }
+    }
+
+    /// Points of body `i` that may meet another body: polygon vertices, the
+    /// ends of an ellipse's conjugate semi-diameters, a wall's ends.
+    fn probe_points(&self, i: usize) -> Vec<Point> {
+        match self.bodies[i].geometry() {
+            BodyGeometry::Polygon(p) => (0..p.vertex_count()).map(|v| p.vertex(v)).collect(),
+            BodyGeometry::Ellipse(e) => {
+                let (c, a) = (e.centre(), e.axes());
+                let (u, v) = (a.column(0).into_owned(), a.column(1).into_owned());
+                vec![c + u, c - u, c + v, c - v]
+            }
+            BodyGeometry::Wall(s) => vec![s.start, s.end],
+        }
+    }
+
+    /// Largest motion over the increment `d` of a point near a neighbouring
+    /// body (inside its box grown by the search distance) relative to that
+    /// body's material.
+    fn fastest_point(&self, d: &[f64]) -> (usize, f64) {
+        let mut worst = (0, 0.0f64);
+        for &(i, j) in &self.pairs {
+            for (a, b) in [(i, j), (j, i)] {
+                let (da, db) = (body_dofs::<N>(d, a), body_dofs::<N>(d, b));
+                let near = self.bodies[b]
+                    .geometry()
+                    .aabb()
+                    .inflated(self.settings.search_distance);
+                for p in self.probe_points(a) {
+                    if p.x < near.min.x || p.x > near.max.x || p.y < near.min.y || p.y > near.max.y
+                    {
+                        continue;
+                    }
+                    let rel = self.displacement_of(a, &p, &da) - self.displacement_of(b, &p, &db);
+                    if rel.norm() > worst.1 {
+                        worst = (a, rel.norm());
+                    }
+                }
+            }
+        }
+        worst
+    }
+
+    /// The geometry of body `i` after its increment `d_i`.
+    fn advanced(&self, i: usize, d_i: &SVector<f64, N>) -> Result<BodyGeometry> {
+        Ok(match self.bodies[i].geometry() {
+            BodyGeometry::Polygon(p) => BodyGeometry::Polygon(self.kinematics.advance(p, d_i, i)?),
+            BodyGeometry::Ellipse(e) => BodyGeometry::Ellipse(self.kinematics.advance(e, d_i, i)?),
+            BodyGeometry::Wall(s) => {
+                let c = self.bodies[i].centroid();
+                let map = self.kinematics.map(d_i);
+                BodyGeometry::Wall(Segment::new(map.apply(&c, &s.start), map.apply(&c, &s.end)))
+            }
+        })
+    }
+
+    /// Accept a trial: move the bodies, update their stress, velocities and
+    /// accelerations (the integrator), keep the contact states.
+    fn commit(
+        &mut self,
+        contacts: &[StepContact],
+        trial: &Trial<L::State>,
+    ) -> std::result::Result<(), StepFailure> {
+        let mut moved = self.bodies.clone();
+        for (i, b) in moved.iter_mut().enumerate() {
+            let di = body_dofs::<N>(&trial.d, i);
+            let geometry = self
+                .advanced(i, &di)
+                .map_err(|e| StepFailure::Geometry(e.to_string()))?;
+            b.set_geometry(geometry);
+            b.stress += b.material().elastic_matrix() * self.kinematics.strain(&di);
+            b.displacement += di;
+            for k in 0..N {
+                let (mut v, mut a) = (b.velocity[k], b.acceleration[k]);
+                self.integrator.finish(trial.dt, di[k], &mut v, &mut a);
+                b.velocity[k] = v;
+                b.acceleration[k] = a;
+            }
+        }
+        for fp in &mut self.fixed_points {
+            let di = body_dofs::<N>(&trial.d, fp.body);
+            let r = fp.point - self.bodies[fp.body].centroid();
+            fp.point += self.kinematics.point_jacobian(&di, &r) * di;
+        }
+        // Contact reports in the accepted configuration; history for the
+        // contacts that did not open.
+        self.history.clear();
+        self.contacts.clear();
+        self.previous = Previous::default();
+        for (k, c) in contacts.iter().enumerate() {
+            let (da, db) = (body_dofs::<N>(&trial.d, c.a), body_dofs::<N>(&trial.d, c.b));
+            let (dp_a, dp_b) = (
+                self.kinematics.map_parameters(&da),
+                self.kinematics.map_parameters(&db),
+            );
+            let variation = c
+                .geometry
+                .map_variation(&dp_a, &dp_b)
+                .map_err(|e| StepFailure::Variation(e.to_string()))?;
+            let (t_n, t_s) = trial.forces[k];
+            // ∂g/∂t_A: the change of the gap with a translation of A.
+            let grad_n = Vec2::new(variation.grad_gap[0], variation.grad_gap[1]);
+            let grad_s = Vec2::new(variation.grad_shear[0], variation.grad_shear[1]);
+            let material = match &c.geometry {
+                PairContact::VertexEdge(v) => v.vertex,
+                PairContact::SmoothEdge(s) => s.material,
+                PairContact::SmoothSmooth(s) => s.material_a,
+            };
+            let point = material + self.displacement_of(c.a, &material, &da);
+            let key = c.key();
+            if trial.regimes[k] != 0 {
+                self.history.insert(key, trial.states[k].clone());
+                if let (Feature::Vertex(v), Feature::Edge(e)) = (c.features.a, c.features.b) {
+                    self.previous.edges.insert((c.a, v, c.b), e);
+                }
+            }
+            if let PairContact::SmoothSmooth(s) = &c.geometry {
+                if let Ok(angle) = s.normal_angle(&dp_a, &dp_b) {
+                    self.previous.angles.insert(key, angle);
+                }
+            }
+            self.contacts.push(ContactReport {
+                bodies: (c.a, c.b),
+                features: c.features,
+                state: trial.states[k].clone(),
+                force: (t_n, t_s),
+                force_on_a: grad_n * t_n - grad_s * t_s,
+                normal: grad_n.try_normalize(0.0).unwrap_or_else(Vec2::zeros),
+                point,
+            });
+        }
+        self.bodies = moved;
+        self.time += trial.dt;
+        Ok(())
+    }
+
+    /// Like [`Self::advance`], for drivers that cannot go on after a failed
+    /// step: a [`StepStatus::Failed`] becomes [`DismechError::StepFailed`],
+    /// which says what failed.
+    ///
+    /// # Errors
+    /// As described, and as [`Self::advance`].
+    pub fn advance_or_stop(&mut self, dt: f64) -> Result<StepReport> {
+        let report = self.advance(dt)?;
+        match report.status {
+            StepStatus::Failed {
+                time,
+                dt,
+                ref reason,
+            } => Err(DismechError::StepFailed {
+                time,
+                dt,
+                reason: reason.to_string(),
+            }),
+            StepStatus::Converged => Ok(report),
+        }
+    }
+
+    /// Total contact force on `body` from the contacts of the last
+    /// accepted step (N/m).
+    pub fn contact_force_on(&self, body: usize) -> Vec2 {
+        self.contacts.iter().fold(Vec2::zeros(), |f, c| {
+            if c.bodies.0 == body {
+                f + c.force_on_a
+            } else if c.bodies.1 == body {
+                f - c.force_on_a
+            } else {
+                f
+            }
+        })
+    }
+
+    /// Advance the model by `dt` (s), in sub-steps if a step has to be
+    /// reduced. Misuse (`dt ≤ 0`) is an error; a step that cannot be
+    /// completed within the reduction bound is a [`StepStatus::Failed`].
+    ///
+    /// # Errors
+    /// A time step that is not finite and positive.
+    pub fn advance(&mut self, dt: f64) -> Result<StepReport> {
+        require_positive("time step dt", dt)?;
+        if self.requested_dt != Some(dt) {
+            self.requested_dt = Some(dt);
+            self.current_dt = dt;
+        }
+        let end = self.time + dt;
+        let mut report = StepReport {
+            status: StepStatus::Converged,
+            substeps: 0,
+            reductions: 0,
+            smallest_dt: dt,
+            residuals: Vec::new(),
+            step_lengths: Vec::new(),
+            open_close_iterations: 0,
+        };
+        while end - self.time > 1e-12 * dt {
+            let h = self.current_dt.min(end - self.time);
+            self.find_pairs();
+            let outcome = detect(
+                &self.bodies,
+                &self.pairs,
+                self.settings.search_distance,
+                &self.previous,
+            )
+            .map_err(|e| StepFailure::Variation(e.to_string()))
+            .and_then(|contacts| {
+                let trial = self.trial(h, &contacts)?;
+                let (block, motion) = self.fastest_point(&trial.d);
+                if motion > self.settings.search_distance {
+                    return Err(StepFailure::TooFast { block, motion });
+                }
+                self.commit(&contacts, &trial)?;
+                Ok(trial)
+            });
+            match outcome {
+                Ok(trial) => {
+                    report.substeps += 1;
+                    report.smallest_dt = report.smallest_dt.min(h);
+                    report.residuals = trial.residuals;
+                    report.step_lengths = trial.step_lengths;
+                    report.open_close_iterations = trial.open_close;
+                    self.current_dt = (2.0 * self.current_dt).min(dt);
+                }
+                Err(reason) => {
+                    if h / 2.0 >= dt * self.settings.min_dt_ratio * (1.0 - 1e-12) {
+                        self.current_dt = h / 2.0;
+                        report.reductions += 1;
+                    } else {
+                        report.status = StepStatus::Failed {
+                            time: self.time,
+                            dt: h,
+                            reason,
+                        };
+                        return Ok(report);
+                    }
+                }
+            }
+        }
+        Ok(report)
+    }
+}

@@ -1,0 +1,64 @@
+//! The implicit-dynamics driver: penalty contact of 2D bodies stepped by an
+//! implicit integrator, with an open–close iteration and Newton–Raphson on
+//! the consistent tangent, a line search and automatic reduction of the
+//! step — written once, generic over the slots:
+//!
+//! | slot | here |
+//! |---|---|
+//! | shape | [`BodyGeometry`]: polygons (convex or concave), ellipses and circles, walls |
+//! | pair query | [`crate::query::variation`]: gap and shear of vertex–edge, smooth–edge and smooth–smooth contacts with their first and second variations |
+//! | body kinematics | `K:` [`crate::kinematics::Kinematics`]`<N>`: [`crate::kinematics::Rigid2`] (3 unknowns), [`crate::kinematics::Affine2`] (DDA's 6) |
+//! | contact law | `L:` [`crate::law::TangentLaw`]`<2>` (a law without a consistent tangent does not compile here), per pair of body groups ([`ContactLaws`]) |
+//! | integrator | `I:` [`crate::integrate::ImplicitIntegrator`]: Newmark with the user's β, γ; quasi-static; restarted from rest |
+//! | linear solver | `S:` [`crate::linsolve::LinearSolver`] on a [`crate::linsolve::BlockAssembly`] pattern kept while the pairs in contact are unchanged |
+//!
+//! Paper 003's DDA is one instantiation ([`crate::dda::DdaModel`]:
+//! `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>`).
+//!
+//! | concept | file |
+//! |---|---|
+//! | body: geometry, material, state, prescribed unknowns | `body.rs` |
+//! | contact detection at the start of a step | `detect.rs` |
+//! | laws per pair of body groups | `laws.rs` |
+//! | assembly, open–close, Newton, line search | `step.rs` |
+//! | the driver: time loop, Δt control, commit | `driver.rs` |
+//! | settings, reports | `settings.rs`, `report.rs` |
+//!
+//! * **Open–close**: while the set of open contacts changes from one
+//!   iterate to the next, the iteration is an open–close iteration (at
+//!   most `max_open_close`).
+//! * **Newton**: once the set is stable, a consistent law iterates to
+//!   `‖R‖ ≤ tol · scale` with the consistent tangent (at most `max_newton`
+//!   iterations), with the stick/slip states and slip directions unchanged
+//!   between the last two iterates. A backtracking line search on `‖R‖`
+//!   halves a step that does not lower the residual (at most 8 times).
+//!   A law that is not consistent ([`crate::law::TangentLaw::is_consistent`],
+//!   DDA's conventional friction) has no Newton phase: as in classic DDA
+//!   the step is accepted when the open/closed states no longer change,
+//!   and its tangent has no Hessian terms.
+//! * **Δt reduction**: a step whose iteration fails, whose solve is
+//!   singular, or which moves a point further than the search distance
+//!   relative to a neighbouring body is retried with half the step, down to
+//!   `min_dt_ratio` times the requested step; after a successful sub-step
+//!   the step doubles again up to the requested one. Past that bound
+//!   [`ImplicitDynamics::advance`] returns a [`StepStatus::Failed`] saying
+//!   what failed.
+//!
+//! Conventions: the first two unknowns of every kinematics translate the
+//! body's reference point (its centroid); within a step every point moves
+//! by the kinematics' map `x = c + t(d) + F(d)(X − c)`.
+
+mod body;
+mod detect;
+mod driver;
+mod laws;
+mod report;
+mod settings;
+mod step;
+
+pub use body::{Body, BodyGeometry, BodyMaterial, Motion, PlaneState, Prescribed};
+pub use detect::{ContactKey, StepContact};
+pub use driver::{FixedPoint, ImplicitDynamics};
+pub use laws::ContactLaws;
+pub use report::{ContactReport, StepFailure, StepReport, StepStatus};
+pub use settings::ImplicitSettings;

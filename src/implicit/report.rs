@@ -1,0 +1,107 @@
+//! What a step of the implicit driver reports: its status, why a step
+//! failed, its iterations, and the contacts of the accepted state.
+
+use crate::contact::ContactFeatures;
+use crate::math::{Point, Vec2};
+
+/// What made a step fail.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepFailure {
+    /// The open/closed states kept changing.
+    OpenCloseNotSettled {
+        /// Iterations made.
+        iterations: usize,
+    },
+    /// Newton did not reach the tolerance.
+    NewtonNotConverged {
+        /// Iterations made.
+        iterations: usize,
+        /// Last relative residual.
+        residual: f64,
+    },
+    /// The linear solve failed (singular tangent).
+    Solve(String),
+    /// A point of a body moved further than the search distance relative
+    /// to a neighbouring body.
+    TooFast {
+        /// The body.
+        block: usize,
+        /// Relative motion (m).
+        motion: f64,
+    },
+    /// A body became invalid (a polygon turned inside out, an ellipse
+    /// degenerated).
+    Geometry(String),
+    /// The contact normal of a smooth pair could not be found.
+    Variation(String),
+}
+
+impl std::fmt::Display for StepFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::OpenCloseNotSettled { iterations } => write!(f, "open-close iteration did not settle in {iterations} iterations"),
+            Self::NewtonNotConverged { iterations, residual } => write!(f, "Newton-Raphson did not converge in {iterations} iterations (relative residual {residual:.3e})"),
+            Self::Solve(m) => write!(f, "linear solve failed: {m}"),
+            Self::TooFast { block, motion } => write!(f, "a point of body {block} moved {motion:.3e} m relative to a neighbour in one step, beyond the search distance"),
+            Self::Geometry(m) => write!(f, "{m}"),
+            Self::Variation(m) => write!(f, "contact geometry: {m}"),
+        }
+    }
+}
+
+/// Outcome of [`super::ImplicitDynamics::advance`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepStatus {
+    /// The whole interval was integrated.
+    Converged,
+    /// A sub-step failed at the smallest admissible step; the model is left
+    /// at the last accepted state.
+    Failed {
+        /// Time reached (s).
+        time: f64,
+        /// Step that failed (s).
+        dt: f64,
+        /// What failed; reduce the time step or change the penalty.
+        reason: StepFailure,
+    },
+}
+
+/// Record of one [`super::ImplicitDynamics::advance`] call.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepReport {
+    /// Converged or failed.
+    pub status: StepStatus,
+    /// Sub-steps taken.
+    pub substeps: usize,
+    /// How many times the step was halved.
+    pub reductions: usize,
+    /// Smallest sub-step used (s).
+    pub smallest_dt: f64,
+    /// Relative residual norms of every iteration of the last sub-step.
+    pub residuals: Vec<f64>,
+    /// Length (1 = full Newton step) of the update after each residual of
+    /// `residuals` but the last, from the backtracking line search.
+    pub step_lengths: Vec<f64>,
+    /// Open–close iterations of the last sub-step.
+    pub open_close_iterations: usize,
+}
+
+/// A contact after the last accepted step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactReport<S> {
+    /// Body A (the vertex or smooth side) and body B (the edge side).
+    pub bodies: (usize, usize),
+    /// Which features of A and B touch.
+    pub features: ContactFeatures,
+    /// The history kept for the next step (after any pull-back).
+    pub state: S,
+    /// `(t_n, t_s)` in the equilibrium of the step (before the pull-back of
+    /// the conventional law).
+    pub force: (f64, f64),
+    /// Force on body A at the contact (N/m); B receives the opposite.
+    pub force_on_a: Vec2,
+    /// Unit normal from B into A: the direction the normal force pushes A.
+    pub normal: Vec2,
+    /// A's material point of the contact at the end of the step (world).
+    pub point: Point,
+}

@@ -1,0 +1,65 @@
+//! Settings of an implicit run, validated when the driver is built.
+
+use crate::error::{require_positive, DismechError, Result};
+use crate::math::Vec2;
+
+/// Settings of the implicit driver (open–close, Newton, Δt control).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImplicitSettings {
+    /// Gravity (m/s²).
+    pub gravity: Vec2,
+    /// Search distance `d₀` of contact detection (m): pairs closer than this
+    /// at the start of a step are contacts of the step.
+    pub search_distance: f64,
+    /// Largest penetration accepted at the start (m).
+    pub overlap_tolerance: f64,
+    /// Most open–close iterations per step.
+    pub max_open_close: usize,
+    /// Most Newton iterations per step once the contact states settled.
+    pub max_newton: usize,
+    /// Relative residual tolerance of Newton.
+    pub residual_tolerance: f64,
+    /// Smallest step, as a fraction of the requested one (e.g. 1/64).
+    pub min_dt_ratio: f64,
+}
+
+impl Default for ImplicitSettings {
+    fn default() -> Self {
+        Self {
+            gravity: Vec2::new(0.0, -9.8),
+            search_distance: 0.01,
+            overlap_tolerance: 1e-6,
+            max_open_close: 20,
+            max_newton: 20,
+            residual_tolerance: 1e-10,
+            min_dt_ratio: 1.0 / 64.0,
+        }
+    }
+}
+
+impl ImplicitSettings {
+    /// Check every value.
+    ///
+    /// # Errors
+    /// A typed error naming the value.
+    pub fn validate(&self) -> Result<()> {
+        require_positive("search distance d0", self.search_distance)?;
+        require_positive("overlap tolerance", self.overlap_tolerance)?;
+        require_positive("residual tolerance", self.residual_tolerance)?;
+        if !(self.min_dt_ratio > 0.0 && self.min_dt_ratio <= 1.0) {
+            return Err(DismechError::InvalidParameter {
+                name: "min_dt_ratio",
+                value: self.min_dt_ratio,
+                requirement: "must lie in (0, 1]",
+            });
+        }
+        if !(self.gravity.x.is_finite() && self.gravity.y.is_finite()) {
+            return Err(DismechError::InvalidParameter {
+                name: "gravity",
+                value: self.gravity.norm(),
+                requirement: "must be finite",
+            });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,422 @@
+//! One trial step of the implicit driver: the linearised weak form
+//! assembled from the bodies and the contacts of the step, solved by an
+//! open–close iteration and then Newton–Raphson with a backtracking line
+//! search (paper 003, Fig. 5, written over the slots).
+//!
+//! One step of size `Δt` solves for the increments `d` of all unknowns
+//!
+//! `R(d) = M a₁(d) + K d + f_σ − f_ext + Σ_c (−t_n ∇g_n + t_s ∇g_s) + Σ_f k_f Jᵀ J d = 0`
+//!
+//! with `a₁ = c_a d − a_v v₀ − a_a a₀` from the integrator, the mass `M`
+//! and elastic stiffness `K` from the kinematics, the internal force `f_σ`
+//! of the current stress, the contact forces of the law and the fixed-point
+//! springs of classic DDA. Each iteration evaluates every contact at the
+//! current iterate and assembles `R` and the tangent
+//!
+//! `c_a M + K + Σ_c [Jᵀ C J + t_n ∇²(−g_n) + t_s ∇²g_s] + Σ_f k_f JᵀJ`
+//!
+//! (`J` = the rows `∇(−g_n)`, `∇g_s` from the pair query; `C` the law's
+//! tangent; the Hessian terms are paper 003 eq. 12's `Δδg_n`, `Δδg_s`),
+//! and solves `K_T Δd = −R` with the linear solver on a block pattern kept
+//! while the pairs in contact are unchanged.
+
+use std::collections::HashMap;
+
+use nalgebra::{SMatrix, SVector};
+
+use super::body::Body;
+use super::detect::{ContactKey, StepContact};
+use super::laws::ContactLaws;
+use super::report::StepFailure;
+use crate::integrate::ImplicitCoefficients;
+use crate::kinematics::Kinematics;
+use crate::law::{ContactInput, ContactResponse, PairProperties, Regime, Tangent, TangentLaw};
+use crate::linsolve::{BlockAssembly, LinearSolver, SparseMatrix};
+use crate::query::variation::DofVariation;
+
+/// Most halvings of a Newton step in the backtracking line search.
+pub(super) const LINE_SEARCH: usize = 8;
+
+/// The parts of a step's residual that do not depend on the iterate.
+pub(super) struct Parts<const N: usize> {
+    /// Per body: effective stiffness (elastic + inertia + fixed points).
+    pub block_k: Vec<SMatrix<f64, N, N>>,
+    /// Per body: force at zero increment.
+    pub block_f: Vec<SVector<f64, N>>,
+    /// Prescribed unknowns.
+    pub mask: Vec<bool>,
+    /// Consistent linearisation (Newton with the Hessian terms) or the
+    /// classic open–close acceptance.
+    pub consistent: bool,
+    /// Scale of the loads, for the relative residual.
+    pub scale: f64,
+}
+
+/// Residual and contact states at one iterate.
+pub(super) struct Evaluation<S> {
+    pub r: Vec<f64>,
+    pub norm: f64,
+    pub contact_scale: f64,
+    /// Per contact: 0 open, 1 stick, 2 / 3 slip with `t_s ≥ 0` / `< 0`.
+    pub regimes: Vec<i8>,
+    pub states: Vec<S>,
+    pub forces: Vec<(f64, f64)>,
+}
+
+/// Result of one trial step.
+pub(super) struct Trial<S> {
+    pub dt: f64,
+    pub d: Vec<f64>,
+    pub regimes: Vec<i8>,
+    pub states: Vec<S>,
+    pub forces: Vec<(f64, f64)>,
+    pub residuals: Vec<f64>,
+    pub step_lengths: Vec<f64>,
+    pub open_close: usize,
+}
+
+/// What a trial needs to read: the bodies, their kinematics, the laws and
+/// the contact history.
+pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
+    pub bodies: &'a [Body<N>],
+    pub kinematics: &'a K,
+    pub laws: &'a ContactLaws<L>,
+    pub history: &'a HashMap<ContactKey, L::State>,
+    pub contacts: &'a [StepContact],
+    pub dt: f64,
+}
+
+/// The unknowns of body `i` in the global vector `d`.
+pub(super) fn body_dofs<const N: usize>(d: &[f64], i: usize) -> SVector<f64, N> {
+    SVector::<f64, N>::from_column_slice(&d[N * i..N * i + N])
+}
+
+impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
+    /// The pair query and the law at the iterate `d` for contact `c`.
+    pub fn evaluate(
+        &self,
+        c: &StepContact,
+        d: &[f64],
+    ) -> Result<(DofVariation<N, N>, ContactResponse<2, L::State>, Tangent<2>), StepFailure> {
+        let var = c
+            .geometry
+            .dof_variation(
+                self.kinematics,
+                &body_dofs::<N>(d, c.a),
+                self.kinematics,
+                &body_dofs::<N>(d, c.b),
+            )
+            .map_err(|e| StepFailure::Variation(e.to_string()))?;
+        let key = c.key();
+        let old = self.history.get(&key).cloned().unwrap_or_default();
+        let (ba, bb) = (&self.bodies[c.a], &self.bodies[c.b]);
+        let input = ContactInput {
+            overlap: -var.gap,
+            increment: SVector::<f64, 2>::new(c.geometry.initial_gap() - var.gap, var.shear),
+            dt: self.dt,
+            is_new: !self.history.contains_key(&key),
+            pair: PairProperties {
+                curvature_radius_a: f64::INFINITY,
+                curvature_radius_b: f64::INFINITY,
+                width: 0.0,
+                mass_a: ba.area() * ba.material().density,
+                mass_b: bb.area() * bb.material().density,
+            },
+        };
+        let law = self.laws.law(ba.group, bb.group);
+        let (response, tangent) = law.evaluate_with_tangent(&input, &old);
+        Ok((var, response, tangent))
+    }
+
+    /// The parts of the residual that do not depend on the iterate, for
+    /// the integrator's coefficients `coeffs`, gravity `gravity` and the
+    /// fixed points `(body, point, anchor, stiffness)`.
+    pub fn parts(
+        &self,
+        coeffs: &ImplicitCoefficients,
+        gravity: &crate::math::Vec2,
+        fixed_points: &[super::FixedPoint],
+        mask: Vec<bool>,
+    ) -> Parts<N> {
+        let zero = SVector::<f64, N>::zeros();
+        let mut block_k = Vec::with_capacity(self.bodies.len());
+        let mut block_f = Vec::with_capacity(self.bodies.len());
+        let mut scale = 0.0f64;
+        for b in self.bodies {
+            let moments = b.geometry().moments();
+            let elastic = b.material().elastic_matrix();
+            let mut k = self.kinematics.stiffness(&moments, &elastic);
+            let ext = external_force(self.kinematics, b, gravity);
+            let stress_force = self.kinematics.stress_force(&moments, &b.stress);
+            let mut f = stress_force - ext;
+            scale = scale.max(ext.norm()).max(stress_force.norm());
+            let m = self.kinematics.mass(&moments, b.material().density);
+            k += m * coeffs.acceleration_per_increment;
+            let hist = m
+                * (b.velocity * coeffs.acceleration_from_velocity
+                    + b.acceleration * coeffs.acceleration_from_acceleration);
+            f -= hist;
+            scale = scale.max(hist.norm());
+            block_k.push(k);
+            block_f.push(f);
+        }
+        for fp in fixed_points {
+            let body = &self.bodies[fp.body];
+            let t = self
+                .kinematics
+                .point_jacobian(&zero, &(fp.point - body.centroid()));
+            block_k[fp.body] += t.transpose() * t * fp.stiffness;
+            block_f[fp.body] += t.transpose() * (fp.point - fp.anchor) * fp.stiffness;
+        }
+        let consistent = self.laws.default_law().is_consistent();
+        Parts {
+            block_k,
+            block_f,
+            mask,
+            consistent,
+            scale,
+        }
+    }
+
+    /// Residual (and, with `matrix`, the tangent in `assembly`) at the
+    /// iterate `d`.
+    pub fn assemble(
+        &self,
+        d: &[f64],
+        parts: &Parts<N>,
+        assembly: &mut BlockAssembly,
+        matrix: bool,
+    ) -> Result<Evaluation<L::State>, StepFailure> {
+        let nb = self.bodies.len();
+        let mask = &parts.mask;
+        let mut r = vec![0.0; N * nb];
+        if matrix {
+            assembly.clear();
+        }
+        for i in 0..nb {
+            let k = &parts.block_k[i];
+            let fi = parts.block_f[i] + k * body_dofs::<N>(d, i);
+            let slot = assembly.slot(i, i);
+            for a in 0..N {
+                r[N * i + a] += fi[a];
+                let Some(slot) = slot.filter(|_| matrix) else {
+                    continue;
+                };
+                for b in 0..N {
+                    let (ra, cb) = (N * i + a, N * i + b);
+                    if !mask[ra] && !mask[cb] {
+                        assembly.add(slot, a, b, k[(a, b)]);
+                    }
+                }
+                if mask[N * i + a] {
+                    assembly.add(slot, a, a, 1.0);
+                }
+            }
+        }
+        let mut eval = Evaluation {
+            r: Vec::new(),
+            norm: 0.0,
+            contact_scale: 0.0,
+            regimes: Vec::with_capacity(self.contacts.len()),
+            states: Vec::with_capacity(self.contacts.len()),
+            forces: Vec::with_capacity(self.contacts.len()),
+        };
+        for c in self.contacts {
+            let (var, resp, tangent) = self.evaluate(c, d)?;
+            let (t_n, t_s) = (resp.force[0], resp.force[1]);
+            eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
+            let g_ov = [-var.grad_gap.a, -var.grad_gap.b];
+            let shear = [var.grad_shear.a, var.grad_shear.b];
+            let bodies = [c.a, c.b];
+            for side in 0..2 {
+                let force = g_ov[side] * t_n + shear[side] * t_s;
+                for a in 0..N {
+                    r[N * bodies[side] + a] += force[a];
+                }
+            }
+            eval.regimes.push(match resp.regime {
+                Regime::Open => 0,
+                Regime::Stick => 1,
+                Regime::Slip if t_s >= 0.0 => 2,
+                Regime::Slip => 3,
+            });
+            eval.states.push(resp.state);
+            eval.forces.push((t_n, t_s));
+            if !matrix {
+                continue;
+            }
+            // kt = Σ_pq rows_p C_pq rows_qᵀ (− t_n ∇²g_n + t_s ∇²g_s), by
+            // blocks (A, A), (B, A), (A, B), (B, B).
+            let rows = [g_ov, shear];
+            let hessians = [
+                [&var.hess_gap.aa, &var.hess_gap.ab],
+                [&var.hess_gap.ba, &var.hess_gap.bb],
+            ];
+            let shear_hessians = [
+                [&var.hess_shear.aa, &var.hess_shear.ab],
+                [&var.hess_shear.ba, &var.hess_shear.bb],
+            ];
+            let curved = parts.consistent && resp.regime != Regime::Open;
+            for (q, &column) in bodies.iter().enumerate() {
+                for (p, &row) in bodies.iter().enumerate() {
+                    let mut kt = SMatrix::<f64, N, N>::zeros();
+                    for (i, ri) in rows.iter().enumerate() {
+                        for (j, rj) in rows.iter().enumerate() {
+                            let cij = tangent[(i, j)];
+                            if cij != 0.0 {
+                                kt += ri[p] * rj[q].transpose() * cij;
+                            }
+                        }
+                    }
+                    if curved {
+                        kt -= hessians[p][q] * t_n;
+                        kt += shear_hessians[p][q] * t_s;
+                    }
+                    // A block missing from the pattern has only prescribed
+                    // entries.
+                    let Some(slot) = assembly.slot(row, column) else {
+                        continue;
+                    };
+                    for b in 0..N {
+                        for a in 0..N {
+                            let (ra, cb) = (N * row + a, N * column + b);
+                            if !mask[ra] && !mask[cb] {
+                                assembly.add(slot, a, b, kt[(a, b)]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for (k, m) in mask.iter().enumerate() {
+            if *m {
+                r[k] = 0.0;
+            }
+        }
+        eval.norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        eval.r = r;
+        Ok(eval)
+    }
+
+    /// Open–close, then Newton–Raphson with the line search, from the
+    /// predictor `d` (see the module documentation).
+    #[allow(clippy::too_many_arguments)]
+    pub fn iterate<S: LinearSolver<SparseMatrix>>(
+        &self,
+        mut d: Vec<f64>,
+        parts: &Parts<N>,
+        assembly: &mut BlockAssembly,
+        solver: &mut S,
+        settings: &super::ImplicitSettings,
+    ) -> Result<Trial<L::State>, StepFailure> {
+        let consistent = parts.consistent;
+        let max_iter = settings.max_open_close + settings.max_newton;
+        let mut residuals = Vec::new();
+        let mut step_lengths = Vec::new();
+        let mut open_close = 0;
+        let mut newton = 0;
+        let mut last_open: Option<Vec<bool>> = None;
+        let mut last_regimes: Option<Vec<i8>> = None;
+        let mut eval = self.assemble(&d, parts, assembly, true)?;
+        for _ in 0..=max_iter {
+            let rel = eval.norm / parts.scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
+            residuals.push(rel);
+            if !rel.is_finite() {
+                return Err(StepFailure::Solve("non-finite residual".into()));
+            }
+            let open: Vec<bool> = eval.regimes.iter().map(|&r| r == 0).collect();
+            let settled = last_open.as_ref() == Some(&open);
+            if settled {
+                let done = if consistent {
+                    last_regimes.as_ref() == Some(&eval.regimes)
+                        && rel <= settings.residual_tolerance
+                } else {
+                    true
+                };
+                if done {
+                    return Ok(Trial {
+                        dt: self.dt,
+                        d,
+                        regimes: eval.regimes,
+                        states: eval.states,
+                        forces: eval.forces,
+                        residuals,
+                        step_lengths,
+                        open_close,
+                    });
+                }
+                newton += 1;
+                if newton > settings.max_newton {
+                    return Err(StepFailure::NewtonNotConverged {
+                        iterations: newton - 1,
+                        residual: rel,
+                    });
+                }
+            } else if last_open.is_some() {
+                open_close += 1;
+                if open_close > settings.max_open_close {
+                    return Err(StepFailure::OpenCloseNotSettled {
+                        iterations: open_close - 1,
+                    });
+                }
+            }
+            last_open = Some(open);
+            last_regimes = Some(eval.regimes.clone());
+            let mut delta: Vec<f64> = eval.r.iter().map(|x| -x).collect();
+            let matrix = assembly.matrix();
+            solver
+                .factor(matrix)
+                .and_then(|()| solver.solve_in_place(matrix, &mut delta))
+                .map_err(|e| StepFailure::Solve(e.to_string()))?;
+            // Backtracking on ‖R‖ (consistent laws only): a full step that
+            // does not lower the residual is halved, up to `LINE_SEARCH`
+            // times, so that Newton does not cycle between the two slip
+            // directions of a contact that should stick.
+            let mut alpha = 1.0;
+            let mut next = Vec::with_capacity(d.len());
+            for attempt in 0..=LINE_SEARCH {
+                next.clear();
+                next.extend(d.iter().zip(&delta).map(|(x, dx)| x + alpha * dx));
+                if !consistent || attempt == LINE_SEARCH {
+                    break;
+                }
+                let probe = self.assemble(&next, parts, assembly, false)?;
+                if probe.norm < (1.0 - 1e-4 * alpha) * eval.norm || eval.norm == 0.0 {
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            // The step reached (accepted, or the last halving) is taken.
+            step_lengths.push(alpha);
+            std::mem::swap(&mut d, &mut next);
+            eval = self.assemble(&d, parts, assembly, true)?;
+        }
+        Err(StepFailure::NewtonNotConverged {
+            iterations: newton,
+            residual: residuals.last().copied().unwrap_or(f64::NAN),
+        })
+    }
+}
+
+/// External load of a body: its weight `ρ A g` at the reference point and
+/// its edge tractions, `∫ Jᵀ t dΓ = L J(midpoint)ᵀ t` (J is linear along an
+/// edge), at the start of the step.
+pub(super) fn external_force<const N: usize, K: Kinematics<N>>(
+    kinematics: &K,
+    body: &Body<N>,
+    gravity: &crate::math::Vec2,
+) -> SVector<f64, N> {
+    let zero = SVector::<f64, N>::zeros();
+    let w = body.material().density * body.area();
+    let mut f = kinematics
+        .point_jacobian(&zero, &crate::math::Vec2::zeros())
+        .transpose()
+        * (gravity * w);
+    let c = body.centroid();
+    for &(edge, traction) in &body.edge_tractions {
+        let (a, b) = (body.vertex(edge), body.vertex(edge + 1));
+        let mid = crate::math::Point::from((a.coords + b.coords) * 0.5);
+        f += kinematics.point_jacobian(&zero, &(mid - c)).transpose() * traction * (b - a).norm();
+    }
+    f
+}
