@@ -364,6 +364,12 @@ impl DdaModel {
         &self.contacts
     }
 
+    /// The linear solver of the Newton iterations (its analyses, fill and
+    /// fallbacks).
+    pub fn linear_solver(&self) -> &SparseLu {
+        &self.solver
+    }
+
     /// How many symbolic analyses the sparse solver made so far.
     pub fn symbolic_analyses(&self) -> usize {
         self.solver.symbolic_analyses()

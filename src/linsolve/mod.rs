@@ -142,3 +142,20 @@ pub trait LinearSolver<M: ?Sized>: LinearSolverInfo {
     /// (a numerically singular matrix).
     fn solve_in_place(&mut self, matrix: &M, rhs: &mut [f64]) -> Result<SolveStats, SolveError>;
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Solvers can move to another thread with the driver that owns them.
+    #[test]
+    fn solvers_are_send_and_sync() {
+        fn check<T: Send + Sync>() {}
+        check::<SparseLu>();
+        check::<SparseCholesky>();
+        check::<ConjugateGradient<BlockJacobi>>();
+        check::<LumpedMassSolver>();
+        check::<crate::dda::DdaModel>();
+        check::<crate::hpm::HpmSolver>();
+    }
+}
