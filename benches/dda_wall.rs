@@ -1,11 +1,17 @@
 //! Speed of the implicit DDA on a running-bond wall of rectangular blocks
 //! on a fixed base under gravity, with the default settings and the
 //! return-mapping law: milliseconds and Newton iterations per step, at
-//! about 100, 400 and 1 600 blocks. A timed run rather than a criterion
-//! loop (a step of the large wall takes a noticeable time).
+//! about 100, 400 and 1 600 blocks, with the linear solver's symbolic
+//! analyses, fallbacks to partial pivoting and the fill of its factor
+//! (stored entries of L and U against those of the tangent). A timed run
+//! rather than a criterion loop (a step of the large wall takes a
+//! noticeable time); the first step, where the bed joints close, takes
+//! most iterations, so the mean, the median and the first step are all
+//! printed.
 //!
 //! Run: `cargo bench --bench dda_wall` (optionally `-- 400 1600` for some
-//! sizes, `steps=20` for the number of steps per size; for one core,
+//! sizes, `steps=20` for the number of steps per size, `verbose` for every
+//! step; for one core,
 //! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench --bench dda_wall`).
 //!
 //! Bricks are 0.4 m × 0.2 m; even courses hold `c` whole bricks, odd
@@ -21,6 +27,7 @@ use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
     Prescribed, StepStatus,
 };
+use dismech::linsolve::LinearSolverInfo;
 use dismech::math::Point;
 
 /// Brick length and height (m).
@@ -116,8 +123,9 @@ fn run(target: usize, steps: usize, verbose: bool) -> Result<(), Box<dyn std::er
     let mean = times.iter().sum::<f64>() / steps as f64;
     let mut sorted = times.clone();
     sorted.sort_by(f64::total_cmp);
+    let solver = model.linear_solver();
     println!(
-        "{count} blocks ({courses} courses, {c} bricks), {} DOF, {} contacts: {mean:.1} ms/step (median {:.1}, first {:.1}); {:.2} iterations/step ({:.2} open-close), {:.2} substeps/step; {} symbolic analyses",
+        "{count} blocks ({courses} courses, {c} bricks), {} DOF, {} contacts: {mean:.1} ms/step (median {:.1}, first {:.1}); {:.2} iterations/step ({:.2} open-close), {:.2} substeps/step; {} symbolic analyses, {} fallbacks to partial pivoting; tangent {} entries, factor L+U {} entries",
         6 * (count + 1),
         model.contacts().len(),
         sorted[steps / 2],
@@ -126,6 +134,11 @@ fn run(target: usize, steps: usize, verbose: bool) -> Result<(), Box<dyn std::er
         open_close as f64 / steps as f64,
         substeps as f64 / steps as f64,
         model.symbolic_analyses(),
+        solver.fallbacks(),
+        solver.matrix_entries(),
+        solver
+            .factor_entries()
+            .map_or("(not reported)".to_string(), |e| e.to_string()),
     );
     Ok(())
 }

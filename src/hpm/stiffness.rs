@@ -10,6 +10,7 @@
 //! [`SparseCholesky`].
 
 use std::ops::Range;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use nalgebra::DMatrix;
@@ -22,15 +23,51 @@ use crate::linsolve::{
 };
 
 /// A symmetric block-sparse matrix: a diagonal block per element and
-/// coupling blocks `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied), indexed by
-/// block rows for the parallel product.
-#[derive(Debug, Clone, PartialEq)]
+/// coupling blocks `K_ab` (a ≠ b; `K_ba = K_abᵀ` is implied).
+#[derive(Debug, Clone)]
 pub struct BlockMatrix {
     diagonal: Vec<Block>,
     coupling: Vec<(usize, usize, Block)>,
-    /// `rows[a]` lists `(b, k, transposed)`: coupling block `k` in block
-    /// row `a`, column `b` (stored as `K_baᵀ` when `transposed`).
-    rows: Vec<Vec<(usize, usize, bool)>>,
+    /// The coupling blocks by block rows, for the parallel product; built
+    /// at the first product after the last coupling was added.
+    rows: OnceLock<BlockRows>,
+}
+
+impl PartialEq for BlockMatrix {
+    fn eq(&self, other: &Self) -> bool {
+        self.diagonal == other.diagonal && self.coupling == other.coupling
+    }
+}
+
+/// Block row `a` holds `entries[start[a]..start[a + 1]]`, each
+/// `(b, k, transposed)`: coupling block `k` in column `b` (stored as
+/// `K_baᵀ` when `transposed`).
+#[derive(Debug, Clone)]
+struct BlockRows {
+    start: Vec<usize>,
+    entries: Vec<(usize, usize, bool)>,
+}
+
+impl BlockRows {
+    fn new(elements: usize, coupling: &[(usize, usize, Block)]) -> Self {
+        let mut start = vec![0; elements + 1];
+        for (a, b, _) in coupling {
+            start[a + 1] += 1;
+            start[b + 1] += 1;
+        }
+        for e in 0..elements {
+            start[e + 1] += start[e];
+        }
+        let mut next = start.clone();
+        let mut entries = vec![(0, 0, false); start[elements]];
+        for (k, (a, b, _)) in coupling.iter().enumerate() {
+            entries[next[*a]] = (*b, k, false);
+            next[*a] += 1;
+            entries[next[*b]] = (*a, k, true);
+            next[*b] += 1;
+        }
+        Self { start, entries }
+    }
 }
 
 impl BlockMatrix {
@@ -39,7 +76,7 @@ impl BlockMatrix {
         Self {
             diagonal: vec![Block::zeros(); elements],
             coupling: Vec::new(),
-            rows: vec![Vec::new(); elements],
+            rows: OnceLock::new(),
         }
     }
 
@@ -74,10 +111,8 @@ impl BlockMatrix {
             a < n && b < n && a != b,
             "coupling block ({a}, {b}) of a matrix of {n} elements"
         );
-        let k = self.coupling.len();
         self.coupling.push((a, b, block));
-        self.rows[a].push((b, k, false));
-        self.rows[b].push((a, k, true));
+        self.rows = OnceLock::new();
     }
 
     /// `y = K x`, block by block in the order of the blocks (sequential; the
@@ -205,12 +240,14 @@ impl LinearOperator for BlockMatrix {
     fn apply(&self, x: &[f64], y: &mut [f64]) {
         let block =
             |e: usize| ElementDofs::from_column_slice(&x[ELEMENT_DOF * e..ELEMENT_DOF * (e + 1)]);
+        let rows = self
+            .rows
+            .get_or_init(|| BlockRows::new(self.diagonal.len(), &self.coupling));
         y.par_chunks_mut(ELEMENT_DOF)
-            .zip(&self.rows)
             .enumerate()
-            .for_each(|(a, (out, row))| {
+            .for_each(|(a, out)| {
                 let mut sum = self.diagonal[a] * block(a);
-                for &(b, k, transposed) in row {
+                for &(b, k, transposed) in &rows.entries[rows.start[a]..rows.start[a + 1]] {
                     let coupling = &self.coupling[k].2;
                     if transposed {
                         sum += coupling.tr_mul(&block(b));

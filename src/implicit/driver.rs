@@ -211,6 +211,12 @@ where
         &self.contacts
     }
 
+    /// The linear solver of the Newton iterations (its analyses, fill and
+    /// fallbacks).
+    pub fn linear_solver(&self) -> &S {
+        &self.solver
+    }
+
     /// How many symbolic analyses the linear solver made so far.
     pub fn symbolic_analyses(&self) -> usize {
         self.solver.symbolic_analyses()

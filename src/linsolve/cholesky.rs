@@ -146,8 +146,13 @@ impl LinearSolver<SparseMatrix> for SparseCholesky {
         let failed = |what: &str, e: &dyn std::fmt::Debug| {
             SolveError::Factorization(format!("{what} failed: {e:?}"))
         };
-        self.values.clear();
-        self.values.resize(symbolic.len_val(), 0.0);
+        if self.values.len() == symbolic.len_val() {
+            self.values.fill(0.0);
+        } else {
+            // A fresh zeroed allocation: the pages are zeroed lazily, which
+            // a memset of a large factor would not be.
+            self.values = vec![0.0; symbolic.len_val()];
+        }
         let mut buffer = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
         )

@@ -234,9 +234,9 @@ fn pcg<A: LinearOperator + ?Sized, M: Preconditioner<A> + ?Sized>(
             });
         }
         let alpha = rz / curvature;
-        for i in 0..n {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * kp[i];
+        for (((xi, ri), pi), kpi) in x.iter_mut().zip(r.iter_mut()).zip(p.iter()).zip(kp.iter()) {
+            *xi += alpha * pi;
+            *ri -= alpha * kpi;
         }
         relative = dot(r, r).sqrt() / b_norm;
         if relative <= settings.relative_tolerance {

@@ -97,6 +97,11 @@ impl SparseLu {
         self.settings
     }
 
+    /// Stored entries of the last matrix analysed.
+    pub fn matrix_entries(&self) -> usize {
+        self.pattern.as_ref().map_or(0, |p| p.entries())
+    }
+
     /// How many factorizations needed pivoting across supernodes (and
     /// were redone by faer's LU).
     pub fn fallbacks(&self) -> usize {

@@ -226,15 +226,7 @@ impl SupernodalLu {
         .subrows(pos, nr);
         // Columns of s: L and the diagonal block.
         self.tmp.resize(nr * n1, 0.0);
-        let mut product = MatMut::from_column_major_slice_mut(&mut self.tmp, nr, n1);
-        matmul(
-            product.rb_mut(),
-            Accum::Replace,
-            ld,
-            ud.subrows(0, n1).transpose(),
-            1.0,
-            Par::Seq,
-        );
+        product(&mut self.tmp, ld, ud.subrows(0, n1));
         let ls = &mut l_after[..st.l_ptr[s + 1] - st.l_ptr[s]];
         for (jj, &col) in reach[..n1].iter().enumerate() {
             let base = (col - f) * (w + p);
@@ -246,15 +238,7 @@ impl SupernodalLu {
         let n2 = nr - n1;
         if n2 > 0 {
             self.tmp.resize(n2 * n1, 0.0);
-            let mut product = MatMut::from_column_major_slice_mut(&mut self.tmp, n2, n1);
-            matmul(
-                product.rb_mut(),
-                Accum::Replace,
-                ud.subrows(n1, n2),
-                ld.subrows(0, n1).transpose(),
-                1.0,
-                Par::Seq,
-            );
+            product(&mut self.tmp, ud.subrows(n1, n2), ld.subrows(0, n1));
             let us = &mut u_after[..st.u_ptr[s + 1] - st.u_ptr[s]];
             for (jj, &row) in reach[..n1].iter().enumerate() {
                 let base = (row - f) * p;
@@ -324,10 +308,12 @@ impl SupernodalLu {
         if p > 0 {
             let us = &mut self.u[st.u_ptr[s]..st.u_ptr[s + 1]];
             // Π_s A_sP: the rows of A_sP are the columns of the Uᵀ panel.
-            self.tmp.clear();
-            self.tmp.extend_from_slice(us);
-            for (c, &from) in perm.iter().enumerate() {
-                us[c * p..(c + 1) * p].copy_from_slice(&self.tmp[from * p..(from + 1) * p]);
+            if perm.iter().enumerate().any(|(c, &from)| c != from) {
+                self.tmp.clear();
+                self.tmp.extend_from_slice(us);
+                for (c, &from) in perm.iter().enumerate() {
+                    us[c * p..(c + 1) * p].copy_from_slice(&self.tmp[from * p..(from + 1) * p]);
+                }
             }
             let panel = MatMut::from_column_major_slice_mut(us, p, w);
             solve_unit_lower_triangular_in_place(diag.rb(), panel.transpose_mut(), Par::Seq);
@@ -396,6 +382,13 @@ impl SupernodalLu {
             x[to] = *yi;
         }
     }
+}
+
+/// `out = a bᵀ`, column-major `a.nrows() × b.nrows()` (faer's matmul; a
+/// plain loop measured no faster on the small products of the DDA).
+fn product(out: &mut [f64], a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
+    let dst = MatMut::from_column_major_slice_mut(out, a.nrows(), b.nrows());
+    matmul(dst, Accum::Replace, a, b.transpose(), 1.0, Par::Seq);
 }
 
 impl Structure {
