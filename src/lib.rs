@@ -21,9 +21,9 @@
 //! | method (paper) | Shape | ContactLaw | Integrator | solver | status |
 //! |---|---|---|---|---|---|
 //! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
-//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`] |
+//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`], and against the DDA by [`compositions::block_wall`] |
 //! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`linsolve::SparseLu`] (supernodal LU on a 6 × 6 block pattern, analysis reused) + open–close + Newton | [`dda`] |
-//! | rigid-plastic limit analysis (002) | `Circle` | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
+//! | rigid-plastic limit analysis (002) | `Circle` (the paper), any [`shape::AnyShape2`] ([`compositions::polygon_lp`], [`compositions::packing_lp`]) | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
 //! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | any [`linsolve::LinearSolver`] of the [`hpm::BlockMatrix`] stiffness, factored once ([`linsolve::SparseCholesky`] by default, or PCG), initial-stiffness iteration | [`hpm`] |
 //!
 //! ## Data flow of one step
@@ -51,11 +51,14 @@
 //! ## Exact references and reproductions
 //! [`reference`](mod@reference) holds exact reference solutions (the rigid and compliant
 //! sliding block, the planar slab's Fs, paper 002's two-element example and
-//! closed forms, an independent ellipse contact) that tests, examples and
+//! closed forms, an independent ellipse contact, a block tipping or sliding
+//! on a floor) that tests, examples and
 //! the reproductions check the methods against. The reproductions of the
 //! papers are clients of this library, in the `dismech` binary
 //! (`dismech reproduce all`): they build their scenes from these pieces,
-//! run them and compare with each paper.
+//! run them and compare with each paper. The [`compositions`] combine the
+//! pieces in ways the papers do not and check them against exact solutions
+//! or a second method (`dismech reproduce compositions`).
 
 #![deny(missing_docs)]
 

@@ -25,9 +25,11 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Reproduce a paper's examples and compare with its numbers.
+    /// Reproduce a paper's examples and compare with its numbers, or run the
+    /// cross-compositions against exact solutions and second methods.
     Reproduce {
-        /// Study name (katsuki1990, yamada2000, hashimoto-dda, yamaguchi-hpm) or `all`.
+        /// Study name (katsuki1990, yamada2000, hashimoto-dda, yamaguchi-hpm,
+        /// compositions) or `all`.
         study: String,
         /// Output folder; each study writes into OUT/<study>/.
         #[arg(long, default_value = "results")]

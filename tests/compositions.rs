@@ -4,6 +4,7 @@
 
 use dismech::compositions::packing_lp::{ellipse_packing_limit, EllipsePacking};
 use dismech::limit::LimitStatus;
+use dismech::math::Vec2;
 
 /// A DEM-settled packing of 120 ellipses (a/b = 2) analysed by the LP: a
 /// collapse mechanism exists, the dual contact forces hold every body in
@@ -36,4 +37,142 @@ fn ellipse_packing_settled_by_the_dem_is_analysed_by_the_lp() {
         "{} bodies, {} contacts: P/C = {load}, equilibrium {:e}, gap {:e}",
         limit.size.0, limit.size.1, limit.admissibility.equilibrium, limit.primal_dual_gap
     );
+}
+
+/// A rigid 0.4 m × 0.8 m block on a floor, pushed at its top: with
+/// μ = tan 30° > w/2h it rocks about its leading corner at `W w/(2h)`, with
+/// μ = tan 10° < w/2h it slides at `μ W`; the LP's multiplier equals the
+/// closed form to 1e-6 and its dual forces are admissible.
+#[test]
+fn block_on_a_floor_tips_or_slides_at_the_closed_form_load() {
+    use dismech::compositions::polygon_lp::{
+        block_limit, sliding_block, sliding_ratio, tipping_block, tipping_ratio,
+    };
+    use dismech::reference::BlockMechanism;
+    let tipping = tipping_ratio().unwrap();
+    let sliding = sliding_ratio().unwrap();
+    assert!((tipping - 1.0).abs() <= 1e-6, "tipping ratio {tipping}");
+    assert!((sliding - 1.0).abs() <= 1e-6, "sliding ratio {sliding}");
+    for (block, mechanism) in [
+        (tipping_block(), BlockMechanism::Tipping),
+        (sliding_block(), BlockMechanism::Sliding),
+    ] {
+        let limit = block_limit(&block).unwrap();
+        assert_eq!(limit.mechanism, mechanism);
+        assert_eq!(limit.result.status, LimitStatus::Collapse);
+        let a = limit.admissibility;
+        assert!(
+            a.equilibrium <= 1e-8,
+            "{mechanism:?}: equilibrium {:e}",
+            a.equilibrium
+        );
+        assert!(
+            a.strength_excess <= 1e-8,
+            "{mechanism:?}: strength {:e}",
+            a.strength_excess
+        );
+        let (velocity, spin) = limit.result.velocities[0];
+        match mechanism {
+            // Rocking about the right corner (w/2, 0): that corner neither
+            // moves along nor off the floor, the left corner lifts.
+            BlockMechanism::Tipping => {
+                let corner =
+                    velocity + Vec2::new(spin * block.height / 2.0, spin * block.width / 2.0);
+                assert!(corner.norm() <= 1e-6 * velocity.norm(), "{corner}");
+                assert!(limit.result.normal_force[0].abs() <= 1e-6 * block.weight);
+            }
+            // Sliding with dilation tan φ and no spin.
+            BlockMechanism::Sliding => {
+                assert!(spin.abs() <= 1e-6 * velocity.norm(), "spin {spin}");
+                approx::assert_relative_eq!(
+                    velocity.y,
+                    block.friction * velocity.x,
+                    max_relative = 1e-6
+                );
+            }
+        }
+    }
+}
+
+/// A running-bond wall of 39 blocks at rest on a fixed base by the
+/// polygon DEM (rigid blocks) and the DDA (deformable blocks), with the
+/// same contact points and the same stiffness per point: the base carries
+/// the weight in both, no contact slips, and the bottom course's shares of
+/// the weight agree to a percent of a block's weight.
+#[test]
+fn running_bond_wall_rests_on_its_base_by_the_polygon_dem_and_the_dda() {
+    use dismech::compositions::block_wall::{dem_vs_dda, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let blocks = wall.blocks().unwrap();
+    assert!(blocks.len() >= 30, "{} blocks", blocks.len());
+    let run = dem_vs_dda(&wall).unwrap();
+    for (name, solution) in [("DEM", &run.dem), ("DDA", &run.dda)] {
+        assert!(solution.at_rest, "{name} not at rest");
+        let ratio = solution.base_reaction_ratio();
+        assert!(
+            (ratio - 1.0).abs() <= 0.005,
+            "{name}: base reaction / weight {ratio}"
+        );
+        assert!(
+            solution.base_reaction.x.abs() <= 1e-6 * solution.total_weight,
+            "{name}: horizontal base reaction {}",
+            solution.base_reaction.x
+        );
+        assert_eq!(solution.slipping, 0, "{name}: contacts in slip");
+        assert_eq!(solution.bottom_course.len(), wall.blocks_per_course);
+    }
+    // The same contact points: a corner on a face is one point in both.
+    assert_eq!(run.dem.contacts.len(), run.dda.contacts.len());
+    assert!(
+        run.bottom_course_difference < 0.01,
+        "bottom course differs by {} block weights",
+        run.bottom_course_difference
+    );
+    println!(
+        "base reaction / weight: DEM {:.9}, DDA {:.9}; bottom course difference {:.3e} W_block",
+        run.dem.base_reaction_ratio(),
+        run.dda.base_reaction_ratio(),
+        run.bottom_course_difference
+    );
+}
+
+/// What separates the DEM's and the DDA's bottom course is the DDA blocks'
+/// strain: the difference is proportional to k/E (contact stiffness over
+/// the blocks' modulus). Blocks 100 times stiffer divide it by about 100;
+/// contacts and blocks both 10 times softer leave it unchanged; nearly
+/// rigid DDA blocks (E × 10⁴) meet the rigid DEM blocks to 1e-5 of a
+/// block's weight, so nothing else (contact points, loading path, rest
+/// criteria) contributes at that level. The shear springs share the
+/// weight too: DEM shear springs a quarter as stiff as the DDA's penalty
+/// separate even nearly rigid blocks by a percent of a block's weight.
+#[test]
+fn bottom_course_difference_between_dem_and_dda_follows_k_over_e() {
+    use dismech::compositions::block_wall::{dem_vs_dda_variants, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let rigid = wall.scaled(1.0, 1e4);
+    let soft_shear = RunningBondWall {
+        dem_stiffness_ratio: 0.25,
+        ..rigid
+    };
+    let walls = [
+        wall,
+        wall.scaled(1.0, 100.0),
+        wall.scaled(0.1, 0.1),
+        rigid,
+        soft_shear,
+    ];
+    let d: Vec<f64> = dem_vs_dda_variants(&walls)
+        .unwrap()
+        .iter()
+        .map(|r| r.bottom_course_difference)
+        .collect();
+    println!("differences (W_block): {d:?}");
+    let stiffer_blocks = d[1] / d[0];
+    assert!(
+        (0.008..0.015).contains(&stiffer_blocks),
+        "E x 100 changes the difference by {stiffer_blocks}"
+    );
+    approx::assert_relative_eq!(d[2], d[0], max_relative = 0.01);
+    assert!(d[3] < 1e-5, "nearly rigid DDA blocks: {}", d[3]);
+    assert!(d[4] > 0.005, "DEM k_s/k_n = 0.25: {}", d[4]);
 }

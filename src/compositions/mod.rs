@@ -7,7 +7,16 @@
 //! | composition | drivers and pieces | checked against |
 //! |---|---|---|
 //! | [`polygon_incline`]: a rigid rectangle on an incline | [`crate::shape::Polygon`], [`crate::contact::dispatch::contact_manifold_2d`] (polygon–wall, two points), [`crate::law::SpringDashpotCoulomb`] with a constant `k_n`, [`crate::dem::DemSimulation`] | sliding at `g (sin β − μ cos β)`, or at rest for `tan β ≤ μ` |
+//! | [`polygon_lp`]: a rigid rectangle on a frictional floor pushed at its top | [`crate::shape::Polygon`] in the limit driver ([`crate::limit::LimitModel::add_shape`]), contacts at the two corners of the face-on-floor manifold ([`crate::limit::LimitModel::add_contact_at`], [`crate::law::RigidPlastic`] unilateral, c = 0), a live load ([`crate::limit::LimitModel::set_live_load`]), Clarabel | [`crate::reference::block_on_floor`]: `W w/(2h)` (tipping) or `μ W` (sliding), to 1e-6 |
 //! | [`packing_lp`]: a DEM-settled packing of ellipses | explicit DEM of ellipses → limit analysis ([`crate::limit::model_from_packing`], Clarabel) | equilibrium of the dual, primal = dual |
+//! | [`block_wall`]: a running-bond wall of 39 blocks at rest on a base | the polygon DEM (rigid blocks, [`crate::law::SpringDashpotCoulomb`], `k_s = k_n`) and the DDA ([`crate::dda::DdaModel`], deformable blocks, [`crate::law::PenaltyCoulomb`] with return mapping, static steps), same contact points and stiffness per point | each other: the base carries the weight in both; the bottom course's shares differ in proportion to `k/E` (the DDA blocks' strain) |
+//!
+//! A composition is a set-up struct with a [`Default`] (the study's size),
+//! a function that builds and solves it, and small functions returning the
+//! checked quantities (e.g. [`polygon_lp::tipping_ratio`]); the study adds
+//! one function that reports them, the tests assert them.
 
+pub mod block_wall;
 pub mod packing_lp;
 pub mod polygon_incline;
+pub mod polygon_lp;

@@ -135,6 +135,9 @@ pub fn packing_limit_model(sim: &DemSimulation<SpringDashpotCoulomb>) -> Result<
 pub struct PackingLimit {
     /// Bodies and contact points of the limit model.
     pub size: (usize, usize),
+    /// The limit model (bodies, supports, contacts), e.g. to draw the
+    /// mechanism or the dual forces.
+    pub model: LimitModel,
     /// The LP's result (limit load `P / C`, mechanism, dual forces).
     pub result: LimitResult,
     /// Equilibrium and strength of the dual contact forces.
@@ -158,5 +161,6 @@ pub fn ellipse_packing_limit(packing: &EllipsePacking) -> Result<PackingLimit> {
         admissibility: admissibility(&model, &result),
         primal_dual_gap: gap,
         result,
+        model,
     })
 }

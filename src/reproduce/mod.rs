@@ -1,7 +1,10 @@
-//! Reproductions of the papers' examples: each builds its scenes from the
-//! library pieces, runs them, compares with the paper and writes its
-//! numbers, plots and `summary.json` into `OUT/<study>/`.
+//! Reproductions of the papers' examples, and the cross-compositions
+//! checked against exact solutions and second methods: each builds its
+//! scenes from the library pieces, runs them, compares with the paper or
+//! the reference and writes its numbers, plots and `summary.json` into
+//! `OUT/<study>/`.
 
+pub mod compositions;
 pub mod fill_patterns;
 pub mod hashimoto_dda;
 pub mod katsuki1990;
@@ -28,6 +31,7 @@ pub const STUDIES: &[&str] = &[
     "yamada2000",
     "hashimoto-dda",
     "yamaguchi-hpm",
+    compositions::NAME,
 ];
 
 /// Run the study `name` (or every study for `all`).
@@ -44,6 +48,7 @@ fn run_one(name: &str, options: &StudyOptions) -> Result<Summary> {
         "yamada2000" => yamada2000::reproduce(options),
         "hashimoto-dda" => hashimoto_dda::reproduce(options),
         "yamaguchi-hpm" => yamaguchi_hpm::reproduce(options),
+        compositions::NAME => compositions::reproduce(options),
         other => Err(DismechError::UnknownStudy(
             other.to_string(),
             STUDIES.join(", "),
