@@ -44,11 +44,14 @@ use crate::dem::{
     critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunStatus,
 };
 use crate::error::{require_positive, DismechError, Result};
-use crate::integrate::ExplicitEuler;
+use crate::integrate::{ExplicitEuler, Newmark, Restarting};
 use crate::law::{FrictionIntegration, PenaltyCoulomb};
 use crate::math::{Point, Vec2};
 use crate::scene::{Frame, Scene};
 use crate::shape::Segment;
+
+/// Classic DDA's static analysis: Newmark β = ½, γ = 1 restarted from rest.
+type StaticDda = DdaModel<Restarting<Newmark>>;
 
 /// The wall and the material of both methods. [`Default`]: six courses of
 /// 0.4 m × 0.2 m concrete blocks (39 blocks), 1 cm head joints, contact
@@ -371,11 +374,11 @@ pub fn wall_by_dda(wall: &RunningBondWall) -> Result<WallSolution> {
     let settings = DdaSettings {
         gravity: Vec2::new(0.0, -wall.gravity),
         search_distance: 0.5 * wall.joint,
-        dynamic: false,
         residual_tolerance: 1e-9,
         ..DdaSettings::default()
     };
-    let mut model = DdaModel::new(blocks, law, settings)?;
+    // The static analysis of classic DDA: Newmark restarted from rest.
+    let mut model = DdaModel::with_integrator(blocks, law, Restarting(Newmark::dda()), settings)?;
     let weights: Vec<f64> = layout
         .iter()
         .enumerate()
@@ -418,25 +421,25 @@ pub fn wall_by_dda(wall: &RunningBondWall) -> Result<WallSolution> {
 }
 
 /// Weight of DDA block `i` as it is now (its mass follows its area).
-fn block_weight(model: &DdaModel, i: usize, wall: &RunningBondWall) -> f64 {
+fn block_weight(model: &StaticDda, i: usize, wall: &RunningBondWall) -> f64 {
     model.blocks()[i].area() * wall.density * wall.gravity
 }
 
 /// The contact forces of a DDA model, the base's vertical force on each
 /// bottom-course block, and the contacts in slip.
 fn dda_contacts(
-    model: &DdaModel,
+    model: &StaticDda,
     base: usize,
     layout: &[WallBlock],
 ) -> (Vec<WallContact>, Vec<f64>, usize) {
     let mut bottom = vec![0.0; layout.iter().filter(|b| b.course == 0).count()];
     let mut contacts = Vec::with_capacity(model.contacts().len());
     for c in model.contacts() {
-        let (vertex_block, edge_block) = (c.contact.vertex_block, c.contact.edge_block);
+        let (vertex_block, edge_block) = c.bodies;
         let on_block = if edge_block == base {
-            Some((vertex_block, c.force_on_vertex))
+            Some((vertex_block, c.force_on_a))
         } else if vertex_block == base {
-            Some((edge_block, -c.force_on_vertex))
+            Some((edge_block, -c.force_on_a))
         } else {
             None
         };
@@ -447,7 +450,7 @@ fn dda_contacts(
         }
         contacts.push(WallContact {
             point: c.point,
-            force: c.force_on_vertex,
+            force: c.force_on_a,
         });
     }
     let slipping = count_slipping(model.contacts().iter().filter_map(|c| c.state.regime));
