@@ -3,10 +3,10 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dismech::broad_phase::CellGrid;
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::math::Aabb2;
 use dismech::scene::CircleRows;
 

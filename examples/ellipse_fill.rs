@@ -5,9 +5,9 @@
 //!
 //! Run with `cargo run --release --example ellipse_fill`.
 
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Scene};
 

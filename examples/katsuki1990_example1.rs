@@ -4,9 +4,9 @@
 //!
 //! Run with `cargo run --release --example katsuki1990_example1`.
 
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Scene};
 

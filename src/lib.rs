@@ -7,11 +7,11 @@
 //! | piece | trait | family |
 //! |---|---|---|
 //! | geometry of a body | [`shape::Shape`] (+ [`shape::Shape2`] in 2D) | [`shape`] |
-//! | pair geometry | [`contact::dispatch::contact_manifold_2d`] (one routine per shape pair; several points, named by [`contact::ContactFeatures`], where a face meets a face) | [`contact`] |
+//! | pair geometry | [`query::contact_manifold_2d`] (one routine per shape pair; several points, named by [`query::ContactFeatures`], where a face meets a face) | [`query`] |
 //! | gap and shear with first and second variations (implicit drivers) | [`query::variation::GapVariation`] (vertex–edge, smooth–edge, smooth–smooth) | [`query`] |
 //! | how a body's unknowns move its points, its mass and stiffness | [`kinematics::Kinematics`] ([`kinematics::Rigid2`], [`kinematics::Affine2`], [`kinematics::Fixed`]) | [`kinematics`] |
 //! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
-//! | contact force and history | [`contact::ContactLaw`] | [`contact`] |
+//! | contact force and history | [`law::ContactLaw`] | [`law`] |
 //! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
 //! | linear solve (analyse once, factor many, solve many) | [`linsolve::LinearSolver`] | [`linsolve`] |
 //! | linear program | [`lp::LpSolver`] | [`lp`] |
@@ -20,21 +20,21 @@
 //!
 //! | method (paper) | Shape | ContactLaw | Integrator | solver | status |
 //! |---|---|---|---|---|---|
-//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`contact::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] (diagonal mass) | [`dem`] (circles and ellipses; Examples 2–3 to come) |
-//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`contact::SpringDashpotCoulomb`] with [`contact::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`]; checked by [`compositions::polygon_incline`], and against the DDA by [`compositions::block_wall`] |
+//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`law::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] (diagonal mass) | [`dem`] ([`explicit`]) (circles and ellipses; Examples 2–3 to come) |
+//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`law::SpringDashpotCoulomb`] with [`law::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`] ([`explicit`]); checked by [`compositions::polygon_incline`], and against the DDA by [`compositions::block_wall`] |
 //! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`linsolve::SparseLu`] (supernodal LU on a 6 × 6 block pattern, analysis reused) + open–close + Newton | [`dda`] |
-//! | rigid-plastic limit analysis (002) | `Circle` (the paper), any [`shape::AnyShape2`] ([`compositions::polygon_lp`], [`compositions::packing_lp`]) | [`contact::RigidPlastic`] (admissible set [`contact::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
-//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`contact::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | any [`linsolve::LinearSolver`] of the [`hpm::BlockMatrix`] stiffness, factored once ([`linsolve::SparseCholesky`] by default, or PCG), initial-stiffness iteration | [`hpm`] |
+//! | rigid-plastic limit analysis (002) | `Circle` (the paper), any [`shape::AnyShape2`] ([`compositions::polygon_lp`], [`compositions::packing_lp`]) | [`law::RigidPlastic`] (admissible set [`law::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
+//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`law::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | any [`linsolve::LinearSolver`] of the [`hpm::BlockMatrix`] stiffness, factored once ([`linsolve::SparseCholesky`] by default, or PCG), initial-stiffness iteration | [`hpm`] |
 //!
 //! ## Data flow of one step
 //! 1. **Scene** ([`scene`]): bodies (shape, pose, velocities, mass), frame
 //!    walls, gravity.
 //! 2. **Broad phase**: candidate pairs from the cell grid.
-//! 3. **Narrow phase**: the [`contact::ContactGeometry`] points of a pair
+//! 3. **Narrow phase**: the [`query::ContactGeometry`] points of a pair
 //!    from the dispatcher — point, unit normal (A → B), overlap, contact
 //!    width, radii of curvature, features.
 //! 4. **Contact law**: the relative increment
-//!    ([`contact::relative_increment`], rotation included) and the history
+//!    ([`query::relative_increment`], rotation included) and the history
 //!    state give forces, tangent and regime.
 //! 5. **Assembly / solve**: force sums into `M a = f`, or a sparse system, or
 //!    an LP.
@@ -64,10 +64,10 @@
 
 pub mod broad_phase;
 pub mod compositions;
-pub mod contact;
 pub mod dda;
 pub mod dem;
 pub mod error;
+pub mod explicit;
 pub mod grid;
 pub mod hpm;
 pub mod implicit;

@@ -1,14 +1,14 @@
 //! Property tests of the spring–dashpot–Coulomb law and of the contact
 //! geometry and kinematics that feed it.
 
-use dismech::contact::dispatch::contact_2d;
-use dismech::contact::relative_increment;
 use dismech::law::{
     conformance, ContactInput, ContactLaw, Damping, FrictionIntegration, MohrCoulombSpring,
     NormalStiffness, PairProperties, PenaltyCoulomb, PenaltyState, Regime, SpringDashpotCoulomb,
     SpringState, TangentLaw,
 };
 use dismech::math::{rotate, Point, Pose2, Vec2};
+use dismech::query::manifold::dispatch::contact_2d;
+use dismech::query::relative_increment;
 use dismech::shape::{AnyShape2, Circle};
 use nalgebra::Vector2;
 use proptest::prelude::*;
@@ -234,7 +234,7 @@ proptest! {
         e_n in 100.0f64..2e4, e_s in prop::array::uniform2(-2e4f64..2e4), damping in any::<bool>()
     ) {
         let law = law(true, damping, 0.4);
-        let input = dismech::contact::ContactInput::<3> {
+        let input = dismech::law::ContactInput::<3> {
             overlap, increment: nalgebra::Vector3::new(du[0], du[1], du[2]), dt: 1e-4, is_new: false, pair: pair(0.01),
         };
         let mut s = SpringState::<3>::default();

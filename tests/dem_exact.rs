@@ -1,9 +1,9 @@
 //! Exact two-body checks of the explicit DEM and bad-input handling.
 
-use dismech::contact::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb};
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Scene};
 

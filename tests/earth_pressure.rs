@@ -3,10 +3,10 @@
 //! start overlapping is refused, and a particle pushed out of the frame
 //! stops the run.
 
-use dismech::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
 use dismech::scene::Layout;
 use dismech::scene::{Frame, Scene};

@@ -1,12 +1,12 @@
 //! Ellipse contact: geometry properties, robustness against an
 //! independent reference, and exact resting states in the DEM.
 
-use dismech::contact::circle_circle::contact_circle_circle;
-use dismech::contact::ellipse::contact_ellipse_ellipse;
-use dismech::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
+use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{rotate, Point, Pose2, Vec2};
+use dismech::query::manifold::circle_circle::contact_circle_circle;
+use dismech::query::manifold::ellipse::contact_ellipse_ellipse;
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Shape2};

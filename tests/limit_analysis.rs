@@ -1,8 +1,8 @@
 //! Rigid-plastic limit analysis by LP: exact small cases, static
 //! admissibility of the dual forces, and bad input.
 
-use dismech::contact::RigidPlastic;
 use dismech::error::DismechError;
+use dismech::law::RigidPlastic;
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
 use dismech::lp::LinearProgramSolver;
@@ -293,9 +293,8 @@ fn settled_disc_converted_from_dem_needs_the_exact_push() {
         .unwrap();
     // Paper 000's law with Example 1's material (E = 750 kgf/cm², ν = 0.3,
     // k_s/k_n = 0.25, μ = 0.577).
-    let law =
-        dismech::contact::SpringDashpotCoulomb::katsuki(750.0 * 9.80665 / 1e-4, 0.3, 0.25, 0.577)
-            .unwrap();
+    let law = dismech::law::SpringDashpotCoulomb::katsuki(750.0 * 9.80665 / 1e-4, 0.3, 0.25, 0.577)
+        .unwrap();
     let mut sim = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default()).unwrap();
     sim.run_to_rest(&RestCriterion::default(), |_, _| {})
         .unwrap();

@@ -1,10 +1,10 @@
 //! Polygon pair queries (manifolds with features) and polygons in the
 //! explicit DEM.
 
-use dismech::contact::dispatch::{contact_2d, contact_manifold_2d};
-use dismech::contact::{ContactFeatures, ContactGeometry, Feature};
 use dismech::error::DismechError;
 use dismech::math::{rotate, Point, Pose2, Vec2};
+use dismech::query::manifold::dispatch::{contact_2d, contact_manifold_2d};
+use dismech::query::{ContactFeatures, ContactGeometry, Feature};
 use dismech::shape::{AnyShape2, Circle, Ellipse, Polygon, Segment};
 use proptest::prelude::*;
 

@@ -3,11 +3,12 @@
 use dismech::compositions::polygon_incline::{
     incline_slide_ratio, incline_stick_displacement, run_block_on_incline, BlockOnIncline,
 };
-use dismech::contact::{Damping, Feature, NormalStiffness, SpringDashpotCoulomb};
 use dismech::dem::{critical_time_step, ContactTarget, DemSettings, DemSimulation};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
+use dismech::query::Feature;
 use dismech::scene::{Frame, Scene};
 use nalgebra::{Matrix3, Vector3};
 
@@ -27,7 +28,7 @@ fn floor_scene() -> Scene {
 }
 
 /// The wall named `bottom`'s reaction on the particles, in the last step.
-fn floor_reaction<L: dismech::contact::ContactLaw<2>>(sim: &DemSimulation<L>) -> Vec2 {
+fn floor_reaction<L: dismech::law::ContactLaw<2>>(sim: &DemSimulation<L>) -> Vec2 {
     -sim.wall_load(sim.scene().frame.index_of("bottom").unwrap())
 }
 

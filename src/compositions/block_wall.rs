@@ -38,13 +38,13 @@
 //! [`DdaModel::contacts`] (their vertex and edge blocks, point and force),
 //! with [`Block`], [`BlockMaterial`], [`DdaSettings`] and [`Prescribed`].
 
-use crate::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::dda::{Block, BlockMaterial, DdaModel, DdaSettings, PlaneState, Prescribed};
 use crate::dem::{
     critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunStatus,
 };
 use crate::error::{require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, Newmark, Restarting};
+use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::law::{FrictionIntegration, PenaltyCoulomb};
 use crate::math::{Point, Vec2};
 use crate::scene::{Frame, Scene};

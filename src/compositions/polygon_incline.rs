@@ -11,10 +11,10 @@
 //! at rest otherwise; the DEM should reproduce both up to the elastic
 //! compliance of its contacts.
 
-use crate::contact::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::dem::{DemSettings, DemSimulation};
 use crate::error::{require_positive, DismechError, Result};
 use crate::integrate::ExplicitEuler;
+use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::math::{perp, Point, Vec2};
 use crate::scene::{Frame, Scene};
 use crate::shape::Segment;

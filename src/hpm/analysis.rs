@@ -47,8 +47,8 @@ use super::element::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use super::material::Seismic;
 use super::model::{HpmModel, SlipSpring};
 use super::stiffness::BlockMatrix;
-use crate::contact::{MohrCoulombSpring, Regime, Strength};
 use crate::error::Result;
+use crate::law::{MohrCoulombSpring, Regime, Strength};
 use crate::linsolve::{
     BlockJacobi, CgSettings, ConjugateGradient, LinearSolver, SolveStats, SparseCholesky,
 };

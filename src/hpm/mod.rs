@@ -23,8 +23,8 @@
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
 //! Composition: the element is a [`crate::shape::Column`] layer, the slip
-//! springs a [`crate::contact::MohrCoulombSpring`] (a
-//! [`crate::contact::ContactLaw`]`<3>`), the global solve any
+//! springs a [`crate::law::MohrCoulombSpring`] (a
+//! [`crate::law::ContactLaw`]`<3>`), the global solve any
 //! [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness,
 //! factored once and reused by the elastic, nonlinear and
 //! strength-reduction analyses: faer's sparse Cholesky

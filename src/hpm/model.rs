@@ -19,8 +19,8 @@ use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, Slip
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
 use super::stiffness::BlockMatrix;
-use crate::contact::MohrCoulombSpring;
 use crate::error::Result;
+use crate::law::MohrCoulombSpring;
 use crate::shape::Column;
 
 /// One element: a layer of a column.

@@ -16,11 +16,11 @@
 
 use std::collections::HashMap;
 
-use crate::contact::{ContactFeatures, Feature};
 use crate::query::variation::{
     smooth_polygon_contacts, wall_edge, PairContact, SmoothEdgeContact, SmoothSide,
     SmoothSmoothContact, VariationError, VertexEdgeContact,
 };
+use crate::query::{ContactFeatures, Feature};
 
 use super::body::{Body, BodyGeometry};
 

@@ -12,15 +12,15 @@ use super::report::{ContactReport, StepFailure, StepReport, StepStatus};
 use super::settings::ImplicitSettings;
 use super::step::{body_dofs, Parts, StepData, Trial};
 use crate::broad_phase::CellGrid;
-use crate::contact::dispatch::contact_manifold_2d;
-use crate::contact::Feature;
 use crate::error::{require_positive, DismechError, Result};
 use crate::integrate::ImplicitIntegrator;
 use crate::kinematics::{Advance, Kinematics, PlacedEllipse, PlacedPolygon};
 use crate::law::TangentLaw;
 use crate::linsolve::{BlockAssembly, LinearSolver, SparseMatrix};
 use crate::math::{Aabb2, Point, Vec2};
+use crate::query::manifold::dispatch::contact_manifold_2d;
 use crate::query::variation::PairContact;
+use crate::query::Feature;
 use crate::shape::Segment;
 
 /// A penalty spring tying a material point of a body to its start position

@@ -1,8 +1,8 @@
 //! What a step of the implicit driver reports: its status, why a step
 //! failed, its iterations, and the contacts of the accepted state.
 
-use crate::contact::ContactFeatures;
 use crate::math::{Point, Vec2};
+use crate::query::ContactFeatures;
 
 /// What made a step fail.
 #[derive(Debug, Clone, PartialEq)]

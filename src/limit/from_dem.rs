@@ -3,9 +3,9 @@
 //! LP of the same assembly.
 
 use super::model::{LimitModel, Partner};
-use crate::contact::RigidPlastic;
-use crate::dem::{ContactRecord, ContactTarget};
 use crate::error::{require_positive, DismechError, Result};
+use crate::explicit::{ContactRecord, ContactTarget};
+use crate::law::RigidPlastic;
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
 

@@ -13,8 +13,8 @@
 //!   it touches column-0 elements j = 0 … n'−1, in the L-model all of them.
 
 use super::model::{LimitModel, Partner};
-use crate::contact::RigidPlastic;
 use crate::error::{DismechError, Result};
+use crate::law::RigidPlastic;
 use crate::math::{Point, Vec2};
 
 /// Which lattice.

@@ -1,5 +1,5 @@
 //! An independent reference for the ellipse–ellipse contact routine
-//! ([`crate::contact::ellipse::contact_ellipse_ellipse`]), and its
+//! ([`crate::query::manifold::ellipse::contact_ellipse_ellipse`]), and its
 //! comparison with the routine over random pairs (paper 000's ellipse
 //! model).
 //!
@@ -15,8 +15,8 @@
 //! is found by bisection on the reference, then the pair is moved closer by
 //! an overlap uniform in [−5 %, 20 %] of the smaller b (negative: apart).
 
-use crate::contact::ellipse::contact_ellipse_ellipse;
 use crate::math::{Pose2, SplitMix64, Vec2};
+use crate::query::manifold::ellipse::contact_ellipse_ellipse;
 use crate::shape::Ellipse;
 
 /// Results of a random-pair comparison.

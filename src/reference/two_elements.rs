@@ -1,8 +1,8 @@
 //! The two-element example of paper 002 (Yamada & Tamura 2000, §2.2,
 //! Fig. 3), whose limit load `(1 + √2) C` is known in closed form.
 
-use crate::contact::RigidPlastic;
 use crate::error::Result;
+use crate::law::RigidPlastic;
 use crate::limit::{LimitModel, Partner};
 use crate::math::{Point, Vec2};
 

@@ -11,10 +11,10 @@
 //! the top for `σ_v,max · h / H` to be a vertical stress, so it is read here
 //! as the depth.
 
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{ContactTarget, DemSimulation};
 use dismech::error::{DismechError, Result};
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};
 use dismech::scene::layout::ellipse_half_extent;
 use dismech::scene::{Frame, Scene};

@@ -13,11 +13,11 @@ use std::fmt::Write as _;
 
 use super::StudyOptions;
 use crate::reproduce::katsuki1990;
-use dismech::contact::RigidPlastic;
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
 use dismech::error::Result;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::RigidPlastic;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{
     analyse, mechanism_uniqueness, model_from_packing, LimitModel, LimitResult, LimitStatus,

@@ -9,7 +9,7 @@
 //! broad phase and contact routines need: a bounding box in a pose.
 //!
 //! The set of kinds is closed in [`ShapeKind`] so that the pair dispatcher
-//! ([`crate::contact::dispatch`]) can match exhaustively and answer
+//! ([`crate::query::manifold::dispatch`]) can match exhaustively and answer
 //! `Err(UnsupportedPair)` for a pair it lacks, never panic.
 
 mod circle;

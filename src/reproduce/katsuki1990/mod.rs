@@ -34,12 +34,12 @@ pub use shape_anisotropy::{run_pattern, PatternRun};
 use std::path::Path;
 
 use super::StudyOptions;
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{
     critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunOutcome,
 };
 use dismech::error::Result;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, Series};
 use dismech::output::{write_csv, Check, Reported, Summary};
 use dismech::scene::{CircleRows, Scene};

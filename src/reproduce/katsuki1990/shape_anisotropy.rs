@@ -22,10 +22,10 @@ use super::{equilibrium, settle_scene, FillEquilibrium};
 use crate::reproduce::fill_patterns::{
     particle_outlines, representative_k, wall_pressures, WallPressure,
 };
-use dismech::contact::SpringDashpotCoulomb;
 use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
 use dismech::error::Result;
 use dismech::integrate::ExplicitEuler;
+use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, outline_picture, scatter_chart, ForceMark, Series};
 use dismech::output::{write_csv, Check, Reported};
 

@@ -1,10 +1,10 @@
 //! Checks of a DEM set-up that concern the law and the shapes together.
 
-use crate::contact::dispatch::contact_manifold_2d;
-use crate::contact::ContactGeometry;
 use crate::error::{DismechError, Result};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties};
 use crate::math::Pose2;
+use crate::query::manifold::dispatch::contact_manifold_2d;
+use crate::query::ContactGeometry;
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
 

@@ -43,7 +43,7 @@ pub fn oscillator_limit(stiffness: f64, mass: f64, damping: f64) -> f64 {
 /// largest eigenvalue of the two points' stiffness over the mass is at most
 /// `2 k (1/m + R²/I)`, so this bounds the face's stable step. A law with
 /// no finite stiffness at a vertex gives `dt = 0`
-/// ([`crate::dem::DemSimulation::new`] refuses such a law for polygons).
+/// ([`crate::explicit::ExplicitDynamics::new`] refuses such a law for polygons).
 pub fn critical_time_step<L: BoundedStiffness<2>>(scene: &Scene, law: &L) -> StabilityLimit {
     let mut best = StabilityLimit {
         dt: f64::INFINITY,

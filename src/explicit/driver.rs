@@ -1,21 +1,21 @@
-//! The explicit DEM loop.
+//! The explicit loop: contact forces, accelerations, the integrator.
 
 use std::collections::HashMap;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
-use crate::contact::dispatch::contact_manifold_2d;
-use crate::contact::{moment_about, relative_increment, ContactFeatures, ContactGeometry};
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties, Regime};
 use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
+use crate::query::manifold::dispatch::contact_manifold_2d;
+use crate::query::{moment_about, relative_increment, ContactFeatures, ContactGeometry};
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
 
-/// Settings of a DEM run; validated by [`DemSimulation::new`].
+/// Settings of a DEM run; validated by [`ExplicitDynamics::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DemSettings {
     /// Time step Δt (s).
@@ -80,7 +80,7 @@ pub enum RunStatus {
     TimeLimit,
 }
 
-/// The outcome of [`DemSimulation::run_to_rest`].
+/// The outcome of [`ExplicitDynamics::run_to_rest`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOutcome {
     /// At rest or out of time.
@@ -133,7 +133,7 @@ type HistoryKey = (usize, ContactTarget, ContactFeatures);
 /// An explicit DEM simulation: a scene, a contact law and an integrator,
 /// plus the workspaces of the loop.
 #[derive(Debug)]
-pub struct DemSimulation<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEuler> {
+pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEuler> {
     scene: Scene,
     law: L,
     integrator: I,
@@ -160,7 +160,7 @@ pub struct DemSimulation<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEuler
     frame_reach: Aabb2,
 }
 
-/// See [`DemSimulation::frame_reach`]. Without walls the reach is the
+/// See [`ExplicitDynamics::frame_reach`]. Without walls the reach is the
 /// whole plane.
 fn frame_reach(scene: &Scene) -> Aabb2 {
     let Some(walls) = scene.frame.bounding_box() else {
@@ -176,7 +176,7 @@ fn frame_reach(scene: &Scene) -> Aabb2 {
     }
 }
 
-impl<L: ContactLaw<2>, I: ExplicitIntegrator> DemSimulation<L, I> {
+impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// Set up a run: validates the settings, the initial overlaps and (when
     /// `settings.check_stability`) the time step against the stable limit
     /// estimated from the law's stiffness bound.
