@@ -4,7 +4,7 @@
 use dismech::law::{
     conformance, ContactInput, ContactLaw, Damping, FrictionIntegration, MohrCoulombSpring,
     NormalStiffness, PairProperties, PenaltyCoulomb, PenaltyState, Regime, SpringDashpotCoulomb,
-    SpringState, TangentLaw,
+    SpringState, StrengthLaw, TangentLaw,
 };
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::dispatch::contact_2d;
@@ -302,6 +302,35 @@ proptest! {
         mc_state.spring.0[0] = 1e7 * (overlap - input3.increment[0]);
         let violations = conformance::check_all(&mc, &input3, &mc_state);
         prop_assert!(violations.is_empty(), "Mohr-Coulomb spring: {:?}", violations);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The bonded penalty law (cohesive, bilateral) passes the conformance
+    /// checks that apply to a contact that never opens (within its
+    /// Mohr–Coulomb strength, tangent = central differences, pure), in
+    /// compression and in tension; it carries tension and never opens.
+    #[test]
+    fn bonded_penalty_law_passes_the_conformance_suite_and_carries_tension(
+        overlap in -2e-3f64..2e-3, du in prop::array::uniform2(-1e-3f64..1e-3),
+        shear in -2e4f64..2e4, cohesion in 0.0f64..2e4, mu in prop::sample::select(vec![0.0, 0.3, 1.2])
+    ) {
+        let law = PenaltyCoulomb::bonded_with_friction(1e7, cohesion, mu).unwrap();
+        prop_assert!(!law.may_open());
+        let input = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new: false, pair: pair(0.01) };
+        let state = PenaltyState { normal: 1e7 * overlap, shear, regime: Some(Regime::Stick) };
+        let violations = conformance::check_all(&law, &input, &state);
+        prop_assert!(violations.is_empty(), "bonded penalty: {:?}", violations);
+        let r = law.evaluate(&input, &state);
+        prop_assert!(r.regime != Regime::Open);
+        let apex = if mu > 0.0 { -cohesion / mu } else { f64::NEG_INFINITY };
+        let expected = (1e7 * overlap).max(apex);
+        prop_assert!((r.force[0] - expected).abs() <= 1e-14 * expected.abs(), "t_n {} vs {}", r.force[0], expected);
+        if mu == 0.0 {
+            prop_assert!(r.force[1].abs() <= cohesion * (1.0 + 1e-12));
+        }
     }
 }
 

@@ -21,6 +21,17 @@
 //!   an unbalanced force of the next step. In slide the friction force is
 //!   `μ t_n,n sgn`, a known load from the previous step's normal force; the
 //!   contact returns to LOCK when the relative motion reverses.
+//!
+//! [`PenaltyCoulomb::bonded`] is the bonded (cohesive, never opening)
+//! variant for penalty models of paper 002's cohesive contacts: the normal
+//! spring is bilateral, `t_n = p_c (−g_n)` in compression and tension
+//! alike, and the shear, integrated by the same return mapping, is capped
+//! by the Mohr–Coulomb line `|t_s| ≤ c + μ t_n` — the linear strength the
+//! limit analysis imposes on a bilateral contact (eq. 13 of paper 002). With
+//! friction the line meets zero shear strength at the tension
+//! `t_n = −c/μ`; the normal spring yields there (`t_n ≥ −c/μ`), so that the
+//! force stays within the strength. Without friction the cap is `c` and the
+//! tension is unlimited, as in the LP.
 
 use nalgebra::SVector;
 
@@ -61,11 +72,14 @@ pub struct PenaltyState {
     pub regime: Option<Regime>,
 }
 
-/// The penalty Coulomb law of DDA.
+/// The penalty Coulomb law of DDA, unilateral (paper 003) or bonded
+/// ([`PenaltyCoulomb::bonded`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PenaltyCoulomb {
     penalty: f64,
     friction: f64,
+    cohesion: f64,
+    bonded: bool,
     integration: FrictionIntegration,
 }
 
@@ -78,7 +92,38 @@ impl PenaltyCoulomb {
         Ok(Self {
             penalty,
             friction,
+            cohesion: 0.0,
+            bonded: false,
             integration,
+        })
+    }
+
+    /// A bonded cohesive contact with penalty `p_c` (> 0) and cohesion `c`
+    /// (≥ 0, N/m): a bilateral normal spring that carries tension, and a
+    /// shear spring capped at `c` by return mapping; it never opens
+    /// ([`StrengthLaw::may_open`] is `false`). The penalty model of paper
+    /// 002's contact of strength `C_p`.
+    ///
+    /// # Errors
+    /// A penalty that is not finite and positive, or a cohesion that is not
+    /// finite and non-negative.
+    pub fn bonded(penalty: f64, cohesion: f64) -> Result<Self> {
+        Self::bonded_with_friction(penalty, cohesion, 0.0)
+    }
+
+    /// [`Self::bonded`] with friction: the shear cap is the Mohr–Coulomb
+    /// line `c + μ t_n`, and the tension is limited to `c/μ` (the apex of
+    /// the line) for `μ > 0`.
+    ///
+    /// # Errors
+    /// As [`Self::bonded`], and a friction coefficient that is not finite
+    /// and non-negative.
+    pub fn bonded_with_friction(penalty: f64, cohesion: f64, friction: f64) -> Result<Self> {
+        let law = Self::new(penalty, friction, FrictionIntegration::ReturnMapping)?;
+        Ok(Self {
+            cohesion: require_non_negative("contact cohesion c", cohesion)?,
+            bonded: true,
+            ..law
         })
     }
 
@@ -97,18 +142,43 @@ impl PenaltyCoulomb {
         self.integration
     }
 
+    /// The cohesion `c` (zero unless bonded).
+    pub fn cohesion(&self) -> f64 {
+        self.cohesion
+    }
+
+    /// Whether the contact is bonded (bilateral, cohesive).
+    pub fn is_bonded(&self) -> bool {
+        self.bonded
+    }
+
     fn strength_of(&self) -> Strength {
         Strength {
-            cohesion: 0.0,
+            cohesion: self.cohesion,
             friction: self.friction,
         }
     }
 
-    /// Backward-Euler return mapping: the Coulomb core.
-    fn return_mapping(&self, t_n: f64, input: &ContactInput<2>, state: &PenaltyState) -> Out {
+    /// Backward-Euler return mapping: the Coulomb core, with the strength
+    /// taken at `t_n` whose derivative with respect to the approach is
+    /// `k_n`.
+    fn return_mapping(
+        &self,
+        t_n: f64,
+        k_n: f64,
+        input: &ContactInput<2>,
+        state: &PenaltyState,
+    ) -> Out {
         let p = self.penalty;
         let previous = SVector::<f64, 2>::new(0.0, state.shear);
-        let step = shear_step(&self.strength_of(), p, &previous, &input.increment, t_n, p);
+        let step = shear_step(
+            &self.strength_of(),
+            p,
+            &previous,
+            &input.increment,
+            t_n,
+            k_n,
+        );
         Out {
             shear: step.force[1],
             d_shear: [step.tangent[(1, 0)], step.tangent[(1, 1)]],
@@ -165,6 +235,9 @@ impl PenaltyCoulomb {
         input: &ContactInput<2>,
         state: &PenaltyState,
     ) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
+        if self.bonded {
+            return self.respond_bonded(input, state);
+        }
         if input.overlap <= 0.0 {
             let open = ContactResponse {
                 force: SVector::zeros(),
@@ -180,11 +253,70 @@ impl PenaltyCoulomb {
         }
         let t_n = self.penalty * input.overlap;
         let out = match self.integration {
-            FrictionIntegration::ReturnMapping => self.return_mapping(t_n, input, state),
+            FrictionIntegration::ReturnMapping => {
+                self.return_mapping(t_n, self.penalty, input, state)
+            }
             FrictionIntegration::Conventional => self.conventional(t_n, input, state),
         };
         let force = SVector::<f64, 2>::new(t_n, out.shear);
         let tangent = Tangent::<2>::new(self.penalty, 0.0, out.d_shear[0], out.d_shear[1]);
+        let response = ContactResponse {
+            force,
+            spring_force: force,
+            regime: out.regime,
+            state: PenaltyState {
+                normal: t_n,
+                shear: out.stored,
+                regime: Some(out.regime),
+            },
+        };
+        (response, tangent)
+    }
+}
+
+impl PenaltyCoulomb {
+    /// The tension at which the Mohr–Coulomb line `c + μ t_n` reaches zero
+    /// (`−c/μ`, rounded towards zero so that the strength there is not
+    /// negative in floating point); `−∞` without friction.
+    fn apex(&self) -> f64 {
+        if self.friction <= 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        let mut apex = -self.cohesion / self.friction;
+        while apex < 0.0 && self.strength_of().limit(apex) < 0.0 {
+            // The next float towards zero.
+            apex = f64::from_bits(apex.to_bits() - 1);
+        }
+        apex
+    }
+
+    /// The bonded law: bilateral normal spring (yielding in tension at the
+    /// apex `−c/μ` of the Mohr–Coulomb line when `μ > 0`), shear by return
+    /// mapping onto `c + μ t_n`.
+    fn respond_bonded(
+        &self,
+        input: &ContactInput<2>,
+        state: &PenaltyState,
+    ) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
+        let spring = self.penalty * input.overlap;
+        let apex = self.apex();
+        let (t_n, k_n, out) = if spring > apex {
+            let out = self.return_mapping(spring, self.penalty, input, state);
+            (spring, self.penalty, out)
+        } else {
+            // At the apex the strength is zero: no shear, whatever the
+            // motion (computed so, not as c + μ t_n, which round-off may
+            // leave a hair below zero).
+            let out = Out {
+                shear: 0.0,
+                d_shear: [0.0, 0.0],
+                stored: 0.0,
+                regime: Regime::Slip,
+            };
+            (apex, 0.0, out)
+        };
+        let force = SVector::<f64, 2>::new(t_n, out.shear);
+        let tangent = Tangent::<2>::new(k_n, 0.0, out.d_shear[0], out.d_shear[1]);
         let response = ContactResponse {
             force,
             spring_force: force,
@@ -242,6 +374,11 @@ impl TangentLaw<2> for PenaltyCoulomb {
 impl StrengthLaw for PenaltyCoulomb {
     fn strength(&self) -> Strength {
         self.strength_of()
+    }
+
+    /// A bonded contact never opens.
+    fn may_open(&self) -> bool {
+        !self.bonded
     }
 }
 
