@@ -9,7 +9,7 @@ use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
 use super::laws::ContactLaws;
 use super::report::{ContactReport, StepFailure, StepReport, StepStatus};
-use super::settings::ImplicitSettings;
+use super::settings::{ImplicitSettings, Predictor};
 use super::step::{body_dofs, Parts, StepData, Trial};
 use crate::broad_phase::CellGrid;
 use crate::error::{require_positive, DismechError, Result};
@@ -59,6 +59,8 @@ pub struct ImplicitDynamics<const N: usize, K, L: TangentLaw<2>, I, S> {
     contacts: Vec<ContactReport<L::State>>,
     grid: CellGrid,
     pairs: Vec<(usize, usize)>,
+    motion_grid: CellGrid,
+    motion_pairs: Vec<(usize, usize)>,
     assembly: BlockAssembly,
     requested_dt: Option<f64>,
     current_dt: f64,
@@ -101,6 +103,8 @@ where
             contacts: Vec::new(),
             grid: CellGrid::new(),
             pairs: Vec::new(),
+            motion_grid: CellGrid::new(),
+            motion_pairs: Vec::new(),
             assembly,
             requested_dt: None,
             current_dt: 0.0,
@@ -262,12 +266,16 @@ where
                 }
             }
         }
-        // Predictor for the free unknowns: the motion at constant
-        // acceleration, Δd = Δt v₀ + ½ Δt² a₀.
+        // The start of the iteration for the free unknowns.
         for (i, b) in self.bodies.iter().enumerate() {
             for k in 0..N {
                 if !mask[N * i + k] {
-                    d[N * i + k] = dt * b.velocity[k] + 0.5 * dt * dt * b.acceleration[k];
+                    d[N * i + k] = match self.settings.predictor {
+                        Predictor::ConstantAcceleration => {
+                            dt * b.velocity[k] + 0.5 * dt * dt * b.acceleration[k]
+                        }
+                        Predictor::StartOfStep => 0.0,
+                    };
                 }
             }
         }
@@ -289,6 +297,44 @@ where
             &mut self.solver,
             &self.settings,
         )
+    }
+
+    /// The residual and the tangent's product with `v` at the iterate `d`
+    /// of a step of size `dt` from the current state (for tests of the
+    /// linearisation).
+    #[cfg(test)]
+    pub(super) fn residual_and_product(
+        &mut self,
+        dt: f64,
+        d: &[f64],
+        v: &[f64],
+    ) -> (Vec<f64>, Vec<f64>, Vec<i8>) {
+        self.find_pairs();
+        let contacts = detect(
+            &self.bodies,
+            &self.pairs,
+            self.settings.search_distance,
+            &self.previous,
+        )
+        .expect("detection");
+        let mask = self.prescribed_mask();
+        let coeffs = self.integrator.coefficients(dt);
+        self.update_pattern(&contacts, &mask).expect("pattern");
+        let data = StepData {
+            bodies: &self.bodies,
+            kinematics: &self.kinematics,
+            laws: &self.laws,
+            history: &self.history,
+            contacts: &contacts,
+            dt,
+        };
+        let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
+        let eval = data
+            .assemble(d, &parts, &mut self.assembly, true)
+            .expect("assembly");
+        let mut product = vec![0.0; d.len()];
+        self.assembly.matrix().mul_vec(v, &mut product);
+        (eval.r, product, eval.regimes)
     }
 
     /// The block pattern of the tangent for `contacts`: a block for every
@@ -328,44 +374,83 @@ where
         }
     }
 
-    /// Points of body `i` that may meet another body: polygon vertices, the
-    /// ends of an ellipse's conjugate semi-diameters, a wall's ends.
-    fn probe_points(&self, i: usize) -> Vec<Point> {
-        match self.bodies[i].geometry() {
-            BodyGeometry::Polygon(p) => (0..p.vertex_count()).map(|v| p.vertex(v)).collect(),
+    /// The largest motion over the increments `d_a`, `d_b` of a boundary
+    /// point of body `a` relative to the material of body `b` — among the
+    /// points that could reach `b`'s box grown by `margin` — and the point.
+    /// The relative displacement is affine in the point for every
+    /// kinematics here, so over a polygon's or a wall's boundary its
+    /// largest norm is at a vertex or an end; over an ellipse `c + A e`,
+    /// `|e| = 1`, it is at most `|u(c)| + ‖[u(c + A e₁) − u(c), u(c + A e₂) −
+    /// u(c)]‖₂`, which is what is returned for an ellipse.
+    fn relative_motion(
+        &self,
+        a: usize,
+        b: usize,
+        d_a: &SVector<f64, N>,
+        d_b: &SVector<f64, N>,
+        margin: f64,
+    ) -> f64 {
+        let rel = |p: &Point| self.displacement_of(a, p, d_a) - self.displacement_of(b, p, d_b);
+        let near = self.bodies[b].geometry().aabb();
+        let vertices = |points: &mut dyn Iterator<Item = Point>| {
+            points.fold(0.0f64, |worst, p| {
+                let u = rel(&p).norm();
+                // A point further from b's box than margin plus its own
+                // motion cannot reach b.
+                if near.inflated(margin + u).contains(&p) {
+                    worst.max(u)
+                } else {
+                    worst
+                }
+            })
+        };
+        match self.bodies[a].geometry() {
+            BodyGeometry::Polygon(p) => vertices(&mut (0..p.vertex_count()).map(|v| p.vertex(v))),
+            BodyGeometry::Wall(s) => vertices(&mut [s.start, s.end].into_iter()),
             BodyGeometry::Ellipse(e) => {
-                let (c, a) = (e.centre(), e.axes());
-                let (u, v) = (a.column(0).into_owned(), a.column(1).into_owned());
-                vec![c + u, c - u, c + v, c - v]
+                let (c, axes) = (e.centre(), e.axes());
+                let w = rel(&c);
+                let g = nalgebra::Matrix2::from_columns(&[
+                    rel(&(c + axes.column(0))) - w,
+                    rel(&(c + axes.column(1))) - w,
+                ]);
+                w.norm() + spectral_norm(&g)
             }
-            BodyGeometry::Wall(s) => vec![s.start, s.end],
         }
     }
 
-    /// Largest motion over the increment `d` of a point near a neighbouring
-    /// body (inside its box grown by the search distance) relative to that
-    /// body's material.
-    fn fastest_point(&self, d: &[f64]) -> (usize, f64) {
+    /// The body and the largest motion, over the increment `d`, of a
+    /// boundary point of a body relative to another body it could reach
+    /// ([`Self::relative_motion`]): the pairs are those whose boxes, each
+    /// grown by the largest motion of its own boundary, come within the
+    /// search distance — the pairs in contact at the start and any pair a
+    /// fast body may run into within the step.
+    fn fastest_point(&mut self, d: &[f64]) -> (usize, f64) {
+        let d0 = self.settings.search_distance;
+        let zero = SVector::<f64, N>::zeros();
+        let boxes: Vec<Aabb2> = (0..self.bodies.len())
+            .map(|i| {
+                let di = body_dofs::<N>(d, i);
+                let own = self.relative_motion(i, i, &di, &zero, f64::INFINITY);
+                self.bodies[i].geometry().aabb().inflated(own)
+            })
+            .collect();
+        let mut pairs = std::mem::take(&mut self.motion_pairs);
+        self.motion_grid.candidate_pairs(&boxes, d0, &mut pairs);
         let mut worst = (0, 0.0f64);
-        for &(i, j) in &self.pairs {
+        for &(i, j) in &pairs {
+            if self.bodies[i].is_fixed() && self.bodies[j].is_fixed() {
+                continue;
+            }
             for (a, b) in [(i, j), (j, i)] {
                 let (da, db) = (body_dofs::<N>(d, a), body_dofs::<N>(d, b));
-                let near = self.bodies[b]
-                    .geometry()
-                    .aabb()
-                    .inflated(self.settings.search_distance);
-                for p in self.probe_points(a) {
-                    if p.x < near.min.x || p.x > near.max.x || p.y < near.min.y || p.y > near.max.y
-                    {
-                        continue;
-                    }
-                    let rel = self.displacement_of(a, &p, &da) - self.displacement_of(b, &p, &db);
-                    if rel.norm() > worst.1 {
-                        worst = (a, rel.norm());
-                    }
+                let motion = self.relative_motion(a, b, &da, &db, d0);
+                if motion > worst.1 {
+                    worst = (a, motion);
                 }
             }
         }
+        self.motion_pairs = pairs;
         worst
     }
 
@@ -565,4 +650,11 @@ where
         }
         Ok(report)
     }
+}
+
+/// The largest singular value of a 2×2 matrix.
+fn spectral_norm(m: &nalgebra::Matrix2<f64>) -> f64 {
+    let f2 = m.norm_squared();
+    let det = m.determinant();
+    (0.5 * (f2 + (f2 * f2 - 4.0 * det * det).max(0.0).sqrt())).sqrt()
 }

@@ -61,4 +61,7 @@ pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
 pub use laws::ContactLaws;
 pub use report::{ContactReport, StepFailure, StepReport, StepStatus};
-pub use settings::ImplicitSettings;
+pub use settings::{ImplicitSettings, Predictor};
+
+#[cfg(test)]
+mod tests;
