@@ -233,6 +233,9 @@ pub enum DismechError {
         /// What failed.
         reason: String,
     },
+    /// A limit-analysis model that has no penalty counterpart.
+    #[error("the limit model cannot be turned into a penalty model: {0}")]
+    PenaltyModel(String),
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),

@@ -235,3 +235,25 @@ fn a_disc_in_a_notch_between_two_corners_is_held_by_both() {
     let to_centre = (c - Point::new(-0.5 * gap, 0.0)).normalize();
     assert!((left.normalize() - to_centre).norm() < 1e-6, "{left:?}");
 }
+
+/// Regression: the start-up overlap check gave the explicit query two
+/// touching discs as ellipses with equal axes, whose routine reported an
+/// overlap of 4 R at this tangency, and the model was refused. Discs
+/// touching along 45° (a lattice of paper 002) are now accepted.
+#[test]
+fn touching_discs_along_a_diagonal_are_not_refused_as_overlapping() {
+    let s = 2.0 * std::f64::consts::FRAC_PI_4.cos();
+    let a = Body::<3>::circle(Point::new(-s, 7.0 * s), 1.0, material(), 0).unwrap();
+    let b = Body::<3>::circle(Point::new(-2.0 * s, 6.0 * s), 1.0, material(), 1).unwrap();
+    let (shape, _) = a.geometry().shape_and_pose().unwrap();
+    assert!(matches!(shape, dismech::shape::AnyShape2::Circle(_)));
+    assert!(ImplicitDynamics::compose(
+        vec![a, b],
+        Rigid2,
+        law(1e6),
+        Newmark::dda(),
+        SparseLu::default(),
+        ImplicitSettings::default(),
+    )
+    .is_ok());
+}

@@ -18,5 +18,6 @@
 
 pub mod block_wall;
 pub mod packing_lp;
+pub mod penalty_vs_lp;
 pub mod polygon_incline;
 pub mod polygon_lp;

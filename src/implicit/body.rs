@@ -9,7 +9,7 @@ use nalgebra::{Matrix2, Matrix3, SVector, Vector3};
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::kinematics::{AreaMoments, PlacedEllipse, PlacedPolygon};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
-use crate::shape::{AnyShape2, Ellipse, Segment, Shape2};
+use crate::shape::{AnyShape2, Circle, Ellipse, Segment, Shape2};
 
 /// The geometry of a body at the start of a step.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,7 +68,8 @@ impl BodyGeometry {
     }
 
     /// The geometry as a shape and a pose, for the explicit pair queries
-    /// (an ellipse gets its semi-axes and angle from its shape matrix).
+    /// (an ellipse gets its semi-axes and angle from its shape matrix; one
+    /// with equal semi-axes is a circle).
     ///
     /// # Errors
     /// An ellipse beyond the aspect ratio the contact routines support.
@@ -81,10 +82,14 @@ impl BodyGeometry {
             BodyGeometry::Ellipse(e) => {
                 let (a, b, angle) = principal_axes(&e.matrix());
                 let c = e.centre();
-                (
-                    AnyShape2::Ellipse(Ellipse::new(a, b)?),
-                    Pose2::new(c.x, c.y, angle),
-                )
+                // A circle is given as a circle: the ellipse routines of
+                // the explicit queries misjudge two circles that touch.
+                let shape = if a - b <= 1e-12 * a {
+                    AnyShape2::Circle(Circle::new(0.5 * (a + b))?)
+                } else {
+                    AnyShape2::Ellipse(Ellipse::new(a, b)?)
+                };
+                (shape, Pose2::new(c.x, c.y, angle))
             }
             BodyGeometry::Wall(s) => (AnyShape2::Segment(*s), Pose2::default()),
         })

@@ -8,6 +8,7 @@ use nalgebra::SVector;
 use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
 use super::laws::ContactLaws;
+use super::motion;
 use super::report::{ContactReport, StepFailure, StepReport, StepStatus};
 use super::settings::{ImplicitSettings, Predictor};
 use super::step::{body_dofs, Parts, StepData, Trial};
@@ -288,6 +289,7 @@ where
             history: &self.history,
             contacts,
             dt,
+            slip_regularization: self.settings.slip_regularization,
         };
         let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
         data.iterate(
@@ -327,6 +329,7 @@ where
             history: &self.history,
             contacts: &contacts,
             dt,
+            slip_regularization: self.settings.slip_regularization,
         };
         let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
         let eval = data
@@ -360,80 +363,22 @@ where
         Ok(())
     }
 
-    /// The displacement over the increment `d_i` of the material point of
-    /// body `i` now at `p`.
-    fn displacement_of(&self, i: usize, p: &Point, d_i: &SVector<f64, N>) -> Vec2 {
-        let r = p - self.bodies[i].centroid();
-        if K::LINEAR {
-            self.kinematics.point_jacobian(d_i, &r) * d_i
-        } else {
-            self.kinematics
-                .map(d_i)
-                .apply(&self.bodies[i].centroid(), p)
-                - p
-        }
-    }
-
-    /// The largest motion over the increments `d_a`, `d_b` of a boundary
-    /// point of body `a` relative to the material of body `b` — among the
-    /// points that could reach `b`'s box grown by `margin` — and the point.
-    /// The relative displacement is affine in the point for every
-    /// kinematics here, so over a polygon's or a wall's boundary its
-    /// largest norm is at a vertex or an end; over an ellipse `c + A e`,
-    /// `|e| = 1`, it is at most `|u(c)| + ‖[u(c + A e₁) − u(c), u(c + A e₂) −
-    /// u(c)]‖₂`, which is what is returned for an ellipse.
-    fn relative_motion(
-        &self,
-        a: usize,
-        b: usize,
-        d_a: &SVector<f64, N>,
-        d_b: &SVector<f64, N>,
-        margin: f64,
-    ) -> f64 {
-        let rel = |p: &Point| self.displacement_of(a, p, d_a) - self.displacement_of(b, p, d_b);
-        let near = self.bodies[b].geometry().aabb();
-        let vertices = |points: &mut dyn Iterator<Item = Point>| {
-            points.fold(0.0f64, |worst, p| {
-                let u = rel(&p).norm();
-                // A point further from b's box than margin plus its own
-                // motion cannot reach b.
-                if near.inflated(margin + u).contains(&p) {
-                    worst.max(u)
-                } else {
-                    worst
-                }
-            })
-        };
-        match self.bodies[a].geometry() {
-            BodyGeometry::Polygon(p) => vertices(&mut (0..p.vertex_count()).map(|v| p.vertex(v))),
-            BodyGeometry::Wall(s) => vertices(&mut [s.start, s.end].into_iter()),
-            BodyGeometry::Ellipse(e) => {
-                let (c, axes) = (e.centre(), e.axes());
-                let w = rel(&c);
-                let g = nalgebra::Matrix2::from_columns(&[
-                    rel(&(c + axes.column(0))) - w,
-                    rel(&(c + axes.column(1))) - w,
-                ]);
-                w.norm() + spectral_norm(&g)
-            }
-        }
-    }
-
     /// The body and the largest motion, over the increment `d`, of a
     /// boundary point of a body relative to another body it could reach
-    /// ([`Self::relative_motion`]): the pairs are those whose boxes, each
+    /// ([`motion::relative_motion`]): the pairs are those whose boxes, each
     /// grown by the largest motion of its own boundary, come within the
-    /// search distance — the pairs in contact at the start and any pair a
-    /// fast body may run into within the step.
+    /// search distance — the pairs near each other at the start and any
+    /// pair a fast body may run into within the step.
     fn fastest_point(&mut self, d: &[f64]) -> (usize, f64) {
         let d0 = self.settings.search_distance;
-        let zero = SVector::<f64, N>::zeros();
-        let boxes: Vec<Aabb2> = (0..self.bodies.len())
-            .map(|i| {
-                let di = body_dofs::<N>(d, i);
-                let own = self.relative_motion(i, i, &di, &zero, f64::INFINITY);
-                self.bodies[i].geometry().aabb().inflated(own)
-            })
+        let own: Vec<f64> = (0..self.bodies.len())
+            .map(|i| motion::own_motion(&self.kinematics, &self.bodies[i], &body_dofs::<N>(d, i)))
+            .collect();
+        let boxes: Vec<Aabb2> = self
+            .bodies
+            .iter()
+            .zip(&own)
+            .map(|(b, m)| b.geometry().aabb().inflated(*m))
             .collect();
         let mut pairs = std::mem::take(&mut self.motion_pairs);
         self.motion_grid.candidate_pairs(&boxes, d0, &mut pairs);
@@ -444,9 +389,15 @@ where
             }
             for (a, b) in [(i, j), (j, i)] {
                 let (da, db) = (body_dofs::<N>(d, a), body_dofs::<N>(d, b));
-                let motion = self.relative_motion(a, b, &da, &db, d0);
-                if motion > worst.1 {
-                    worst = (a, motion);
+                let m = motion::relative_motion(
+                    &self.kinematics,
+                    (&self.bodies[a], &da),
+                    (&self.bodies[b], &db),
+                    d0,
+                    own[b],
+                );
+                if m > worst.1 {
+                    worst = (a, m);
                 }
             }
         }
@@ -519,7 +470,8 @@ where
                 PairContact::SmoothEdge(s) => s.material,
                 PairContact::SmoothSmooth(s) => s.material_a,
             };
-            let point = material + self.displacement_of(c.a, &material, &da);
+            let point = material
+                + motion::displacement(&self.kinematics, &self.bodies[c.a], &material, &da);
             let key = c.key();
             if trial.regimes[k] != 0 {
                 self.history.insert(key, trial.states[k].clone());
@@ -650,11 +602,4 @@ where
         }
         Ok(report)
     }
-}
-
-/// The largest singular value of a 2×2 matrix.
-fn spectral_norm(m: &nalgebra::Matrix2<f64>) -> f64 {
-    let f2 = m.norm_squared();
-    let det = m.determinant();
-    (0.5 * (f2 + (f2 * f2 - 4.0 * det * det).max(0.0).sqrt())).sqrt()
 }

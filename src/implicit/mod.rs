@@ -52,6 +52,7 @@ mod body;
 mod detect;
 mod driver;
 mod laws;
+mod motion;
 mod report;
 mod settings;
 mod step;

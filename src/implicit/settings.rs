@@ -39,6 +39,14 @@ pub struct ImplicitSettings {
     pub min_dt_ratio: f64,
     /// Where each step's iteration starts.
     pub predictor: Predictor,
+    /// Fraction of a slipping contact's normal stiffness added to its
+    /// shear stiffness in Newton's matrix (not in the residual, so the
+    /// converged state is the same). The consistent tangent of a
+    /// slipping contact has no shear stiffness; without inertia
+    /// ([`crate::integrate::QuasiStatic`]) a disc whose every contact
+    /// slips may then turn freely and the matrix is singular. Zero keeps
+    /// the exact consistent tangent (Newton's quadratic convergence).
+    pub slip_regularization: f64,
 }
 
 impl Default for ImplicitSettings {
@@ -52,6 +60,7 @@ impl Default for ImplicitSettings {
             residual_tolerance: 1e-10,
             min_dt_ratio: 1.0 / 64.0,
             predictor: Predictor::default(),
+            slip_regularization: 0.0,
         }
     }
 }
@@ -65,6 +74,7 @@ impl ImplicitSettings {
         require_positive("search distance d0", self.search_distance)?;
         require_positive("overlap tolerance", self.overlap_tolerance)?;
         require_positive("residual tolerance", self.residual_tolerance)?;
+        crate::error::require_non_negative("slip regularization", self.slip_regularization)?;
         if !(self.min_dt_ratio > 0.0 && self.min_dt_ratio <= 1.0) {
             return Err(DismechError::InvalidParameter {
                 name: "min_dt_ratio",

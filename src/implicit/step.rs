@@ -27,6 +27,7 @@ use nalgebra::{SMatrix, SVector};
 use super::body::Body;
 use super::detect::{ContactKey, StepContact};
 use super::laws::ContactLaws;
+use super::motion;
 use super::report::StepFailure;
 use crate::integrate::ImplicitCoefficients;
 use crate::kinematics::Kinematics;
@@ -84,6 +85,9 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     pub history: &'a HashMap<ContactKey, L::State>,
     pub contacts: &'a [StepContact],
     pub dt: f64,
+    /// Fraction of the normal stiffness added to the shear stiffness of a
+    /// slipping contact in the tangent ([`super::ImplicitSettings::slip_regularization`]).
+    pub slip_regularization: f64,
 }
 
 /// The unknowns of body `i` in the global vector `d`.
@@ -222,7 +226,10 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             forces: Vec::with_capacity(self.contacts.len()),
         };
         for c in self.contacts {
-            let (var, resp, tangent) = self.evaluate(c, d)?;
+            let (var, resp, mut tangent) = self.evaluate(c, d)?;
+            if resp.regime == Regime::Slip {
+                tangent[(1, 1)] += self.slip_regularization * tangent[(0, 0)].abs();
+            }
             let (t_n, t_s) = (resp.force[0], resp.force[1]);
             eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
             let g_ov = [-var.grad_gap.a, -var.grad_gap.b];
@@ -368,6 +375,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 .factor(matrix)
                 .and_then(|()| solver.solve_in_place(matrix, &mut delta))
                 .map_err(|e| StepFailure::Solve(e.to_string()))?;
+            self.limit_update(&d, &mut delta, settings.search_distance);
             // Backtracking on ‖R‖ (consistent laws only): a full step that
             // does not lower the residual is halved, up to `LINE_SEARCH`
             // times, so that Newton does not cycle between the two slip
@@ -395,6 +403,29 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             iterations: newton,
             residual: residuals.last().copied().unwrap_or(f64::NAN),
         })
+    }
+}
+
+impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
+    /// Scale the Newton update `delta` at the iterate `d` so that it moves
+    /// no boundary point further than `limit` (to first order): a step
+    /// beyond the search distance is rejected anyway, and a tangent that
+    /// is (nearly) singular — a disc whose every contact slips turns
+    /// freely — would otherwise throw the iterate to a far spurious
+    /// equilibrium.
+    fn limit_update(&self, d: &[f64], delta: &mut [f64], limit: f64) {
+        let largest = self.bodies.iter().enumerate().fold(0.0f64, |m, (i, b)| {
+            m.max(motion::update_motion(
+                self.kinematics,
+                b,
+                &body_dofs::<N>(d, i),
+                &body_dofs::<N>(delta, i),
+            ))
+        });
+        if largest > limit {
+            let scale = limit / largest;
+            delta.iter_mut().for_each(|x| *x *= scale);
+        }
     }
 }
 
