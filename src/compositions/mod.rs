@@ -17,6 +17,7 @@
 //! one function that reports them, the tests assert them.
 
 pub mod block_wall;
+pub mod implicit_ellipses;
 pub mod packing_lp;
 pub mod penalty_vs_lp;
 pub mod polygon_incline;

@@ -65,6 +65,7 @@ pub struct ImplicitDynamics<const N: usize, K, L: TangentLaw<2>, I, S> {
     assembly: BlockAssembly,
     requested_dt: Option<f64>,
     current_dt: f64,
+    solves: usize,
 }
 
 impl<const N: usize, K, L, I, S> ImplicitDynamics<N, K, L, I, S>
@@ -109,6 +110,7 @@ where
             assembly,
             requested_dt: None,
             current_dt: 0.0,
+            solves: 0,
         };
         model.find_pairs();
         model.check_initial_overlaps()?;
@@ -298,6 +300,7 @@ where
             &mut self.assembly,
             &mut self.solver,
             &self.settings,
+            &mut self.solves,
         )
     }
 
@@ -556,7 +559,9 @@ where
             residuals: Vec::new(),
             step_lengths: Vec::new(),
             open_close_iterations: 0,
+            iterations: 0,
         };
+        let solves = self.solves;
         while end - self.time > 1e-12 * dt {
             let h = self.current_dt.min(end - self.time);
             self.find_pairs();
@@ -595,11 +600,13 @@ where
                             dt: h,
                             reason,
                         };
+                        report.iterations = self.solves - solves;
                         return Ok(report);
                     }
                 }
             }
         }
+        report.iterations = self.solves - solves;
         Ok(report)
     }
 }

@@ -84,6 +84,9 @@ pub struct StepReport {
     pub step_lengths: Vec<f64>,
     /// Open–close iterations of the last sub-step.
     pub open_close_iterations: usize,
+    /// Iterations (linear solves) of the whole call: every sub-step, the
+    /// failed ones included.
+    pub iterations: usize,
 }
 
 /// A contact after the last accepted step.

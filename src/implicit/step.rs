@@ -306,7 +306,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
     }
 
     /// Open–close, then Newton–Raphson with the line search, from the
-    /// predictor `d` (see the module documentation).
+    /// predictor `d` (see the module documentation); `solves` counts the
+    /// linear solves.
     #[allow(clippy::too_many_arguments)]
     pub fn iterate<S: LinearSolver<SparseMatrix>>(
         &self,
@@ -315,6 +316,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         assembly: &mut BlockAssembly,
         solver: &mut S,
         settings: &super::ImplicitSettings,
+        solves: &mut usize,
     ) -> Result<Trial<L::State>, StepFailure> {
         let consistent = parts.consistent;
         let max_iter = settings.max_open_close + settings.max_newton;
@@ -371,6 +373,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             last_regimes = Some(eval.regimes.clone());
             let mut delta: Vec<f64> = eval.r.iter().map(|x| -x).collect();
             let matrix = assembly.matrix();
+            *solves += 1;
             solver
                 .factor(matrix)
                 .and_then(|()| solver.solve_in_place(matrix, &mut delta))

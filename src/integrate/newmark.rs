@@ -54,6 +54,32 @@ impl Newmark {
 }
 
 impl Newmark {
+    /// The spectral radius of the scheme's amplification matrix for an
+    /// undamped oscillator at `ω Δt = omega_dt`: how much of a mode of that
+    /// frequency survives one step (1 for no numerical damping). With
+    /// `Δt = 1`, `m = 1`, `k = Ω²`, one step takes `(d, v, a)` to
+    /// `d₁ = (d + v + (½ − β) a)/(1 + β Ω²)`, `a₁ = −Ω² d₁`,
+    /// `v₁ = v + (1 − γ) a + γ a₁`.
+    pub fn spectral_radius(&self, omega_dt: f64) -> f64 {
+        let (b, g) = (self.beta, self.gamma);
+        let w2 = omega_dt * omega_dt;
+        let mut amplification = nalgebra::Matrix3::<f64>::zeros();
+        for j in 0..3 {
+            let mut x = [0.0; 3];
+            x[j] = 1.0;
+            let [d0, v0, a0] = x;
+            let d1 = (d0 + v0 + (0.5 - b) * a0) / (1.0 + b * w2);
+            let a1 = -w2 * d1;
+            let v1 = v0 + (1.0 - g) * a0 + g * a1;
+            amplification.set_column(j, &nalgebra::Vector3::new(d1, v1, a1));
+        }
+        amplification
+            .complex_eigenvalues()
+            .iter()
+            .map(|z| z.norm())
+            .fold(0.0, f64::max)
+    }
+
     /// β.
     pub fn beta(&self) -> f64 {
         self.beta
@@ -116,6 +142,26 @@ mod tests {
         let (d, e) = oscillate(&Newmark::dda(), 100, 0.5);
         assert!(d.is_finite());
         assert!(e < e0);
+    }
+
+    /// The trapezoidal rule keeps every mode; DDA's β = ½, γ = 1 damps
+    /// little at high frequency (ρ → 1) and most near ω Δt = 4; β =
+    /// (γ + ½)²/4 with γ = 1 damps the high frequencies to ρ → 1/3.
+    #[test]
+    fn spectral_radius_shows_where_each_scheme_damps() {
+        for w in [0.1, 1.0, 10.0, 1e3] {
+            approx::assert_relative_eq!(
+                Newmark::trapezoidal().spectral_radius(w),
+                1.0,
+                epsilon = 1e-9
+            );
+        }
+        let dda = Newmark::dda();
+        assert!(dda.spectral_radius(4.0) < 0.34);
+        assert!(dda.spectral_radius(40.0) > 0.99);
+        let damped = Newmark::new(0.5625, 1.0).unwrap();
+        approx::assert_relative_eq!(damped.spectral_radius(1e4), 1.0 / 3.0, epsilon = 1e-4);
+        assert!(damped.spectral_radius(40.0) < 0.34);
     }
 
     #[test]
