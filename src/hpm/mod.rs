@@ -14,7 +14,7 @@
 //! |---|---|---|
 //! | grids, valid columns, corner heights | `grids.rs` | §3, §5, eq. 23 |
 //! | material, seismic load, settings | `material.rs` | eqs. 11–13, 16–17, 30 |
-//! | 12-DOF element | `element.rs` | eqs. 2, 23–25 |
+//! | 12-DOF element | [`crate::kinematics::affine3`] | eqs. 2, 23–25 |
 //! | faces and Gauss points | `face.rs` | eqs. 14–28 |
 //! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
 //! | stiffness blocks and how the linear solvers read them | `stiffness.rs` | eq. 4 |
@@ -41,7 +41,6 @@
 //! interpolated from the cell-centre values of the rasters.
 
 mod analysis;
-mod element;
 mod face;
 mod grids;
 mod hovland;
@@ -50,13 +49,13 @@ mod model;
 mod stiffness;
 mod strength_reduction;
 
+pub use crate::kinematics::affine3::{
+    displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
+    ELEMENT_DOF,
+};
 pub use analysis::{
     Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
     SurfacePoint,
-};
-pub use element::{
-    displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
-    ELEMENT_DOF,
 };
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids};
