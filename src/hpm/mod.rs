@@ -22,9 +22,19 @@
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
-//! Composition: the element is a [`crate::shape::Column`] layer, the slip
-//! springs a [`crate::law::MohrCoulombSpring`] (a
-//! [`crate::law::ContactLaw`]`<3>`), the global solve any
+//! Composition, on the engine's slots:
+//!
+//! | slot | piece |
+//! |---|---|
+//! | shape | [`crate::shape::Column`] layers of the grid columns |
+//! | pair query | a fixed adjacency: the faces between layers and columns, the slip surface under each column (no detection) |
+//! | body kinematics | the 12-unknown element of [`crate::kinematics::affine3`] (3D counterpart of DDA's [`crate::kinematics::Affine2`]) |
+//! | contact law | penalty springs between elements; [`crate::law::MohrCoulombSpring`] on the slip surface (the Coulomb core shared with the DEM and DDA laws) |
+//! | integrator | none: one load step (initial-stiffness iteration) |
+//! | linear solver | any [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness |
+//!
+//! The slip springs are a [`crate::law::MohrCoulombSpring`] (a
+//! [`crate::law::TangentLaw`]`<3>`), the global solve any
 //! [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness,
 //! factored once and reused by the elastic, nonlinear and
 //! strength-reduction analyses: faer's sparse Cholesky
