@@ -1,64 +1,180 @@
 //! # dismech — discrete mechanics of granular and blocky geomaterials
 //!
-//! dismech rebuilds published methods of discrete mechanics from a few
-//! generic pieces, so that a user can compose a new model by picking one of
-//! each:
+//! A model in dismech is a *composition*: one piece per slot, run by one
+//! of a few drivers. The four published methods the crate reproduces are
+//! four such compositions, and a new model — polygons in the DEM, ellipses
+//! under an implicit Newton step, blocks in a limit analysis — is a new
+//! choice of pieces, not a new engine.
 //!
-//! | piece | trait | family |
+//! ## The slots
+//!
+//! | slot | trait(s) | pieces | module |
+//! |---|---|---|---|
+//! | shape | [`shape::Shape`], [`shape::Shape2`] | [`shape::Circle`], [`shape::Ellipse`], [`shape::Polygon`] (convex or concave), [`shape::Segment`], [`shape::Column`] (3D) | [`shape`] |
+//! | pair query | [`query::contact_manifold_2d`] (one dispatcher; several points where a face meets a face); [`query::variation::GapVariation`] (gap and shear with first and second variations, for implicit drivers) | one routine per pair of 2D shapes; a pair without one is a typed error naming both | [`query`] |
+//! | body kinematics | [`kinematics::Kinematics`] | [`kinematics::Rigid2`] (3 unknowns), [`kinematics::Affine2`] (DDA's 6), [`kinematics::Fixed`]; [`kinematics::affine3`] (HPM's 12, 3D) | [`kinematics`] |
+//! | contact law | [`law::ContactLaw`] (force), [`law::TangentLaw`] (consistent tangent), [`law::StrengthLaw`] (strength), [`law::BoundedStiffness`] (stable step) | [`law::SpringDashpotCoulomb`], [`law::PenaltyCoulomb`], [`law::MohrCoulombSpring`] on one Coulomb core ([`law::coulomb`]); [`law::RigidPlastic`]; checks for any law in [`law::conformance`] | [`law`] |
+//! | integrator | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate::ExplicitEuler`], [`integrate::Newmark`] (any β, γ), [`integrate::QuasiStatic`], [`integrate::Restarting`] | [`integrate`] |
+//! | linear solver | [`linsolve::LinearSolver`] (analyse once, factor many, solve many) | [`linsolve::SparseLu`], [`linsolve::SparseCholesky`], [`linsolve::ConjugateGradient`] with [`linsolve::BlockJacobi`], [`linsolve::LumpedMassSolver`] | [`linsolve`] |
+//! | LP solver | [`lp::LpSolver`] | [`lp::LinearProgramSolver`] (Clarabel) | [`lp`] |
+//!
+//! A driver names in its bounds the capabilities it needs, so a piece that
+//! lacks one does not compile with it: an implicit integrator in the
+//! explicit driver, a law without a tangent in the implicit driver, a law
+//! without a strength in a limit analysis, a law without a stiffness bound
+//! in the explicit driver (unless its stability check is explicitly
+//! waived).
+//!
+//! ## The drivers
+//!
+//! | driver | generic over | module |
 //! |---|---|---|
-//! | geometry of a body | [`shape::Shape`] (+ [`shape::Shape2`] in 2D) | [`shape`] |
-//! | pair geometry | [`query::contact_manifold_2d`] (one routine per shape pair; several points, named by [`query::ContactFeatures`], where a face meets a face) | [`query`] |
-//! | gap and shear with first and second variations (implicit drivers) | [`query::variation::GapVariation`] (vertex–edge, smooth–edge, smooth–smooth) | [`query`] |
-//! | how a body's unknowns move its points, its mass and stiffness | [`kinematics::Kinematics`] ([`kinematics::Rigid2`], [`kinematics::Affine2`], [`kinematics::Fixed`]) | [`kinematics`] |
-//! | candidate pairs | [`broad_phase::CellGrid`] (uniform grid, O(N)) | [`broad_phase`] |
-//! | contact force and history | [`law::ContactLaw`] | [`law`] |
-//! | time stepping | [`integrate::ExplicitIntegrator`], [`integrate::ImplicitIntegrator`] | [`integrate`] |
-//! | linear solve (analyse once, factor many, solve many) | [`linsolve::LinearSolver`] | [`linsolve`] |
-//! | linear program | [`lp::LpSolver`] | [`lp`] |
+//! | explicit dynamics (DEM) | law `L: ContactLaw<2> + BoundedStiffness<2>`, integrator `I: ExplicitIntegrator`; any 2D shapes through the manifold dispatcher; rigid bodies | [`explicit::ExplicitDynamics`] |
+//! | implicit dynamics: open–close, Newton with line search, Δt control | kinematics `K: Kinematics<N>`, law `L: TangentLaw<2>` (per pair of body groups), integrator `I: ImplicitIntegrator`, linear solver `S: LinearSolver`; any 2D shapes through the variation queries | [`implicit::ImplicitDynamics`] |
+//! | limit analysis (rigid-plastic LP) | LP solver `S: LpSolver`; bodies of any shape; any `StrengthLaw` per contact; a driven plate or a live load | [`limit::analyse`], [`limit::analyse_static`] |
+//! | HPM slope analysis (elastic, nonlinear, strength reduction) | linear solver `S: LinearSolver<BlockMatrix>` (Cholesky or PCG); the 12-unknown element of [`kinematics::affine3`]; [`law::MohrCoulombSpring`] on the Coulomb core | [`hpm::HpmSolver`] |
 //!
-//! ## The four methods as compositions
+//! ## The four papers as compositions
 //!
-//! | method (paper) | Shape | ContactLaw | Integrator | solver | status |
-//! |---|---|---|---|---|---|
-//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`shape::Circle`], [`shape::Ellipse`] | [`law::SpringDashpotCoulomb`] (spring + dashpot + Coulomb slip, eqs. 14–19) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] (diagonal mass) | [`dem`] ([`explicit`]) (circles and ellipses; Examples 2–3 to come) |
-//! | polygon DEM | [`shape::Polygon`] (rigid, 3 DOF), with circles, ellipses and walls | [`law::SpringDashpotCoulomb`] with [`law::NormalStiffness::Constant`] (eq. 19 has no value at a vertex) | [`integrate::ExplicitEuler`] | [`linsolve::LumpedSystem`] | [`dem`] ([`explicit`]); checked by [`compositions::polygon_incline`], and against the DDA by [`compositions::block_wall`] |
-//! | implicit DDA (003) | [`shape::Polygon`] (6-DOF block, [`dda::Block`]) | [`dda::PenaltyCoulomb`] (return mapping or conventional; consistent tangent [`law::TangentLaw`]) | [`integrate::Newmark`] (β = ½, γ = 1) | [`linsolve::SparseLu`] (supernodal LU on a 6 × 6 block pattern, analysis reused) + open–close + Newton | [`dda`] |
-//! | rigid-plastic limit analysis (002) | `Circle` (the paper), any [`shape::AnyShape2`] ([`compositions::polygon_lp`], [`compositions::packing_lp`]) | [`law::RigidPlastic`] (admissible set [`law::Strength`], flow rule) | none (limit state) | [`lp::LinearProgramSolver`] (Clarabel) | [`limit`] |
-//! | HPM slope stability (001) | [`shape::Column`] (3D, 12-DOF layers) | penalty springs; [`law::MohrCoulombSpring`] (c, φ, no tension, return mapping) on the slip surface | none (one load step) | any [`linsolve::LinearSolver`] of the [`hpm::BlockMatrix`] stiffness, factored once ([`linsolve::SparseCholesky`] by default, or PCG), initial-stiffness iteration | [`hpm`] |
+//! | method (paper) | type or constructor | pieces |
+//! |---|---|---|
+//! | ellipse DEM (000, Katsuki & Ishikawa 1990) | [`dem::DemSimulation`]`<SpringDashpotCoulomb>` = `ExplicitDynamics<SpringDashpotCoulomb, ExplicitEuler>` | ellipses and circles, the exact ellipse manifold, rigid kinematics, [`law::SpringDashpotCoulomb::katsuki`] (eqs. 14–19), [`integrate::ExplicitEuler`], diagonal mass |
+//! | rigid-plastic LP (002, Yamada & Tamura 2000) | [`limit::analyse`]`(&`[`limit::lattice::Lattice`]`::u_model(..).build()?, &mut LinearProgramSolver)` | circles, contacts from circle geometry, rigid kinematics (rolling or not), [`law::RigidPlastic`], Clarabel |
+//! | implicit DDA (003, Hashimoto, Koyama & Kikumoto) | [`dda::DdaModel`] = `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>` | polygons, vertex–edge variations, [`kinematics::Affine2`], [`law::PenaltyCoulomb`] (return mapping), [`integrate::Newmark`] β = ½, γ = 1, [`linsolve::SparseLu`] |
+//! | HPM slope stability (001, Yamaguchi, Takeuchi & Hamasaki) | [`hpm::HpmSolver`]`<SparseCholesky>` (or `<ConjugateGradient<BlockJacobi>>`) | grid columns, fixed adjacency, [`kinematics::affine3`], [`law::MohrCoulombSpring`], a linear solver factored once |
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dem::{DemSettings, DemSimulation};
+//! use dismech::integrate::ExplicitEuler;
+//! use dismech::law::SpringDashpotCoulomb;
+//! use dismech::math::{Point, Vec2};
+//! use dismech::scene::{Frame, Scene};
+//! // Paper 000: ellipses in a frame, explicit DEM.
+//! let mut scene = Scene::new(Frame::open_box(2.0, 3.0)?, Vec2::new(0.0, -9.81))?;
+//! scene.add_ellipse(Point::new(1.0, 0.5), 0.099, 0.0495, 0.0, 2690.0)?;
+//! let law = SpringDashpotCoulomb::katsuki(73.55e6, 0.3, 0.25, 0.577)?;
+//! let dem: DemSimulation<SpringDashpotCoulomb> =
+//!     DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default())?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::limit::{analyse, lattice::Lattice};
+//! use dismech::lp::LinearProgramSolver;
+//! // Paper 002: the rolling U-model, k = 4, n' = 1, by LP.
+//! let model = Lattice::u_model(4, 4, 1, true).build()?;
+//! let result = analyse(&model, &mut LinearProgramSolver::default())?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dda::{Block, BlockMaterial, DdaModel, DdaSettings, PlaneState, Prescribed};
+//! use dismech::implicit::ImplicitDynamics;
+//! use dismech::integrate::Newmark;
+//! use dismech::kinematics::Affine2;
+//! use dismech::law::{FrictionIntegration, PenaltyCoulomb};
+//! use dismech::linsolve::SparseLu;
+//! use dismech::math::Point;
+//! // Paper 003: a block on a fixed base, implicit DDA.
+//! let rock = BlockMaterial { density: 2200.0, youngs_modulus: 14.9e9, poisson_ratio: 0.2,
+//!                            plane: PlaneState::Stress };
+//! let square = |x0: f64, y0: f64, x1: f64, y1: f64| {
+//!     [Point::new(x0, y0), Point::new(x1, y0), Point::new(x1, y1), Point::new(x0, y1)]
+//! };
+//! let mut base = Block::new(&square(-2.0, -0.5, 2.0, 0.0), rock, 0)?;
+//! base.prescribed = Some(Prescribed::fixed());
+//! let block = Block::new(&square(-0.5, 0.0, 0.5, 0.5), rock, 1)?;
+//! let law = PenaltyCoulomb::new(2e9, 0.7, FrictionIntegration::ReturnMapping)?;
+//! // The same model twice: by its name, and spelled out slot by slot.
+//! let dda: DdaModel = DdaModel::new(vec![base.clone(), block.clone()], law, DdaSettings::default())?;
+//! let spelled: ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu> =
+//!     ImplicitDynamics::compose(vec![base, block], Affine2, law, Newmark::new(0.5, 1.0)?,
+//!                               SparseLu::default(), DdaSettings::default())?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::grid::Raster;
+//! use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids};
+//! // Paper 001: a slab on a planar slip surface, elastic HPM by sparse Cholesky.
+//! let ground = Raster::from_fn(10, 10, 0.0, 0.0, 10.0, |_, y| Some(0.36 * y))?;
+//! let slip = Raster::from_fn(10, 10, 0.0, 0.0, 10.0, |_, y| Some(0.36 * y - 6.0))?;
+//! let grids = SlopeGrids::new(NamedRaster::new("ground", ground), NamedRaster::new("slip", slip), None)?;
+//! let model = HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default())?;
+//! let mut solver = HpmSolver::new(&model)?;
+//! let result = solver.elastic(&model, &Seismic::none())?;
+//! # Ok(()) }
+//! ```
+//!
+//! ## Cross-compositions
+//!
+//! Combinations no single paper has, each a constructor in
+//! [`compositions`], checked in the tests and by `dismech reproduce
+//! compositions` against an exact solution or a second method:
+//!
+//! | composition | type or constructor | pieces | checked against |
+//! |---|---|---|---|
+//! | polygon DEM | [`compositions::polygon_incline::run_block_on_incline`] | [`shape::Polygon`] in the explicit driver, polygon–wall manifold (two points), [`law::SpringDashpotCoulomb`] with a constant `k_n`, rigid kinematics, [`integrate::ExplicitEuler`] | sliding at `g (sin β − μ cos β)`; sticking below `tan β = μ` |
+//! | polygon DEM vs DDA | [`compositions::block_wall::dem_vs_dda`] | the same running-bond wall by `ExplicitDynamics<SpringDashpotCoulomb, ExplicitEuler>` and by `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Restarting<Newmark>, SparseLu>` | base reaction = weight in both; the bottom course compared |
+//! | polygon LP | [`compositions::polygon_lp::block_limit`] | a [`shape::Polygon`] block in the limit driver, its corners as contact points, [`law::RigidPlastic`] unilateral friction, a live load, Clarabel | tipping `W w / 2h` or sliding `μ W` ([`reference::block_on_floor`]) |
+//! | packing LP | [`compositions::packing_lp::ellipse_packing_limit`] | ellipses settled by the explicit driver, then their bodies and manifolds in the limit driver ([`limit::model_from_packing`]) | equilibrium of the dual forces; primal = dual |
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::limit::{analyse, LimitModel, Partner};
+//! use dismech::law::RigidPlastic;
+//! use dismech::lp::LinearProgramSolver;
+//! use dismech::math::{Point, Pose2, Vec2};
+//! use dismech::shape::Polygon;
+//! // A polygon block in the limit driver: corners on a floor, a live load at the top.
+//! let (w, h, weight) = (0.4, 0.8, 1e3);
+//! let mut model = LimitModel::new(1e-9)?;
+//! let block = model.add_shape(Polygon::rectangle(w, h)?.into(), Pose2::new(0.0, h / 2.0, 0.0), true)?;
+//! model.set_load(block, Vec2::new(0.0, -weight))?;
+//! let floor = model.add_support("floor", Point::origin(), Vec2::y(), Vec2::zeros())?;
+//! let law = RigidPlastic::new(0.0, 30f64.to_radians(), true)?;
+//! for x in [-w / 2.0, w / 2.0] {
+//!     model.add_contact_at(block, Partner::Support(floor), law, Point::new(x, 0.0), -Vec2::y())?;
+//! }
+//! model.set_live_load(block, Vec2::x(), Point::new(0.0, h))?;
+//! let limit = analyse(&model, &mut LinearProgramSolver::default())?;
+//! # Ok(()) }
+//! ```
 //!
 //! ## Data flow of one step
-//! 1. **Scene** ([`scene`]): bodies (shape, pose, velocities, mass), frame
-//!    walls, gravity.
-//! 2. **Broad phase**: candidate pairs from the cell grid.
-//! 3. **Narrow phase**: the [`query::ContactGeometry`] points of a pair
-//!    from the dispatcher — point, unit normal (A → B), overlap, contact
-//!    width, radii of curvature, features.
-//! 4. **Contact law**: the relative increment
-//!    ([`query::relative_increment`], rotation included) and the history
-//!    state give forces, tangent and regime.
-//! 5. **Assembly / solve**: force sums into `M a = f`, or a sparse system, or
-//!    an LP.
-//! 6. **Integrator**: advance the state.
+//! 1. **World**: bodies (shape, kinematics, material, state), walls,
+//!    loads, contact history ([`scene`], [`implicit::Body`]).
+//! 2. **Broad phase**: candidate pairs from a uniform cell grid
+//!    ([`broad_phase::CellGrid`]), or a fixed adjacency (HPM).
+//! 3. **Pair query**: a manifold ([`query::manifold`]), or gaps with their
+//!    variations ([`query::variation`]).
+//! 4. **Contact law**: force, tangent, regime, new history ([`law`]).
+//! 5. **Assembly / solve**: force sums into `M a = f`, a sparse system on
+//!    a reused pattern ([`linsolve`]), or an LP ([`lp`]).
+//! 6. **Integrator**: advance the state ([`integrate`]).
 //! 7. **Outputs** ([`output`]): CSV, SVG plots, `summary.json`, all written
 //!    whole or not at all.
 //!
 //! ## Conventions
 //! SI units (m, kg, s, N, Pa); 2D quantities are per metre of thickness.
 //! 2D methods work in the x–y plane, y up, angles counter-clockwise from +x.
-//! Misuse is an `Err` of [`error::DismechError`] naming the offending value;
-//! a run that goes unstable stops with an error saying what to change.
+//! Friction is given as μ = tan φ to the laws (the rigid-plastic law and
+//! HPM's material take φ and convert once). Misuse is an `Err` of
+//! [`error::DismechError`] naming the offending value; a run that goes
+//! unstable stops with an error saying what to change.
 //!
 //! ## Exact references and reproductions
 //! [`reference`](mod@reference) holds exact reference solutions (the rigid and compliant
 //! sliding block, the planar slab's Fs, paper 002's two-element example and
 //! closed forms, an independent ellipse contact, a block tipping or sliding
-//! on a floor) that tests, examples and
-//! the reproductions check the methods against. The reproductions of the
-//! papers are clients of this library, in the `dismech` binary
-//! (`dismech reproduce all`): they build their scenes from these pieces,
-//! run them and compare with each paper. The [`compositions`] combine the
-//! pieces in ways the papers do not and check them against exact solutions
-//! or a second method (`dismech reproduce compositions`).
+//! on a floor) that tests, examples and the reproductions check the
+//! methods against. The reproductions of the papers are clients of this
+//! library, in the `dismech` binary (`dismech reproduce all`): they build
+//! their scenes from these pieces, run them and compare with each paper.
 
 #![deny(missing_docs)]
 

@@ -14,6 +14,7 @@ use dismech::math::{Point, Vec2};
 use dismech::query::variation::{
     DofVariation, GapVariation, PairMatrix, PairVector, VertexEdgeContact,
 };
+use dismech::reference::sliding_block::brute_force_sliding;
 use dismech::reference::{compliant_sliding_block, rigid_sliding_block, Shaking};
 use nalgebra::{SVector, Vector2};
 use proptest::prelude::*;
@@ -353,42 +354,6 @@ fn block_on_incline_sticks_below_phi() {
 /// three cycles.
 fn study_shaking(mu: f64) -> Shaking {
     Shaking::with_peak_acceleration(1.5 * mu * 9.8, 2.0, 3.0)
-}
-
-/// The rigid sliding block (Newmark 1965) by brute force: explicit steps of
-/// 1 µs with stick when the relative velocity changes sign and the drive
-/// stays below μ g. Returns the relative displacement every millisecond
-/// (times `k · 1e-3`, k = 1, 2, …).
-fn brute_force_sliding(shaking: &Shaking, mu: f64, g: f64) -> (Vec<f64>, Vec<f64>) {
-    let (a, w) = (shaking.amplitude, shaking.omega());
-    let h = 1e-6;
-    let steps = (shaking.duration / h).round() as usize;
-    let (mut s, mut v) = (0.0f64, 0.0f64);
-    let mut times = Vec::new();
-    let mut brute = Vec::new();
-    for k in 0..steps {
-        let t = k as f64 * h;
-        let drive = a * w * w * (w * t).sin();
-        let accel = if v != 0.0 {
-            drive - v.signum() * mu * g
-        } else if drive.abs() > mu * g {
-            drive - drive.signum() * mu * g
-        } else {
-            0.0
-        };
-        let v_new = v + h * accel;
-        v = if v != 0.0 && v_new * v < 0.0 {
-            0.0
-        } else {
-            v_new
-        };
-        s += h * v;
-        if (k + 1) % 1000 == 0 {
-            times.push((k + 1) as f64 * h);
-            brute.push(s);
-        }
-    }
-    (times, brute)
 }
 
 /// The event-driven rigid solution against the brute-force integration.

@@ -24,21 +24,33 @@ fn sampled_support(side: &SmoothSide, m: &Vec2) -> f64 {
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// The smallest value of `f` over a period: on 512 angles, then three
-/// times on 64 angles around the best.
+/// The smallest value of `f` over a period: on 512 angles, then, around
+/// each of the eight best of them (the global minimum may lie in a basin
+/// whose coarse sample is not the best), three times on 64 angles.
 fn minimise_on_circle(f: impl Fn(f64) -> f64) -> f64 {
-    let (mut best, mut width, mut count) = (0.0, std::f64::consts::TAU, 512);
+    let coarse = 512;
+    let coarse_step = std::f64::consts::TAU / coarse as f64;
+    let mut samples: Vec<(f64, f64)> = (0..coarse)
+        .map(|k| k as f64 * coarse_step)
+        .map(|t| (f(t), t))
+        .collect();
+    samples.sort_by(|x, y| x.0.total_cmp(&y.0));
     let mut value = f64::INFINITY;
-    for _ in 0..4 {
-        let step = width / count as f64;
-        for k in 0..=count {
-            let t = best - 0.5 * width + k as f64 * step;
-            let v = f(t);
-            if v < value {
-                (value, best) = (v, t);
+    for &(start_value, start) in samples.iter().take(8) {
+        let (mut best, mut best_value) = (start, start_value);
+        let (mut width, count) = (4.0 * coarse_step, 64);
+        for _ in 0..3 {
+            let step = width / count as f64;
+            for k in 0..=count {
+                let t = best - 0.5 * width + k as f64 * step;
+                let v = f(t);
+                if v < best_value {
+                    (best_value, best) = (v, t);
+                }
             }
+            width = 4.0 * step;
         }
-        (width, count) = (4.0 * step, 64);
+        value = value.min(best_value);
     }
     value
 }

@@ -16,6 +16,7 @@ use crate::error::{require_positive, DismechError, Result};
 use crate::integrate::ExplicitEuler;
 use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::math::{perp, Point, Vec2};
+pub use crate::reference::incline::sliding_acceleration;
 use crate::scene::{Frame, Scene};
 use crate::shape::Segment;
 
@@ -79,13 +80,6 @@ pub struct InclineRun {
     pub exact_acceleration: f64,
     /// Rotation of the block at the end (rad).
     pub rotation: f64,
-}
-
-/// A rigid block's acceleration down a slope of angle `slope` with friction
-/// coefficient `friction` under gravity `gravity`: `g (sin β − μ cos β)`
-/// when positive, otherwise 0 (it sticks).
-pub fn sliding_acceleration(gravity: f64, slope: f64, friction: f64) -> f64 {
-    (gravity * (slope.sin() - friction * slope.cos())).max(0.0)
 }
 
 /// Run the block on the incline.

@@ -1,6 +1,6 @@
 //! The explicit loop: contact forces, accelerations, the integrator.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
 use super::stability::critical_time_step;
@@ -143,8 +143,9 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     initial_potential: f64,
     initial_kinetic: f64,
     /// Law state and overlap of each contact point at the previous step.
-    history: HashMap<HistoryKey, (L::State, f64)>,
-    next_history: HashMap<HistoryKey, (L::State, f64)>,
+    /// (Keyed by small integers: a fast non-cryptographic hash.)
+    history: FxHashMap<HistoryKey, (L::State, f64)>,
+    next_history: FxHashMap<HistoryKey, (L::State, f64)>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
     increments: Vec<(Vec2, f64)>,
@@ -239,8 +240,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             time: 0.0,
             initial_potential: 0.0,
             initial_kinetic: 0.0,
-            history: HashMap::new(),
-            next_history: HashMap::new(),
+            history: FxHashMap::default(),
+            next_history: FxHashMap::default(),
             manifold: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             grid: CellGrid::new(),

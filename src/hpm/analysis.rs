@@ -43,11 +43,11 @@
 
 use nalgebra::Vector3;
 
-use super::element::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use super::material::Seismic;
 use super::model::{HpmModel, SlipSpring};
 use super::stiffness::BlockMatrix;
 use crate::error::Result;
+use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use crate::law::{MohrCoulombSpring, Regime, Strength};
 use crate::linsolve::{
     BlockJacobi, CgSettings, ConjugateGradient, LinearSolver, SolveStats, SparseCholesky,
@@ -391,7 +391,7 @@ fn add_spring_force(model: &HpmModel, spring: &SlipSpring, local: &Vector3<f64>,
     let p = &spring.point;
     let global = (p.point.normal * local[0] + p.s * local[1] + p.t * local[2]) * p.point.area;
     let e = &model.elements[spring.element];
-    let n = super::element::shape_matrix(&e.centre, &p.point.position);
+    let n = crate::kinematics::affine3::shape_matrix(&e.centre, &p.point.position);
     let contribution = n.transpose() * global;
     for (k, value) in contribution.iter().enumerate() {
         r[ELEMENT_DOF * spring.element + k] += value;

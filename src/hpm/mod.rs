@@ -14,7 +14,7 @@
 //! |---|---|---|
 //! | grids, valid columns, corner heights | `grids.rs` | §3, §5, eq. 23 |
 //! | material, seismic load, settings | `material.rs` | eqs. 11–13, 16–17, 30 |
-//! | 12-DOF element | `element.rs` | eqs. 2, 23–25 |
+//! | 12-DOF element | [`crate::kinematics::affine3`] | eqs. 2, 23–25 |
 //! | faces and Gauss points | `face.rs` | eqs. 14–28 |
 //! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
 //! | stiffness blocks and how the linear solvers read them | `stiffness.rs` | eq. 4 |
@@ -22,9 +22,19 @@
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
-//! Composition: the element is a [`crate::shape::Column`] layer, the slip
-//! springs a [`crate::law::MohrCoulombSpring`] (a
-//! [`crate::law::ContactLaw`]`<3>`), the global solve any
+//! Composition, on the engine's slots:
+//!
+//! | slot | piece |
+//! |---|---|
+//! | shape | [`crate::shape::Column`] layers of the grid columns |
+//! | pair query | a fixed adjacency: the faces between layers and columns, the slip surface under each column (no detection) |
+//! | body kinematics | the 12-unknown element of [`crate::kinematics::affine3`] (3D counterpart of DDA's [`crate::kinematics::Affine2`]) |
+//! | contact law | penalty springs between elements; [`crate::law::MohrCoulombSpring`] on the slip surface (the Coulomb core shared with the DEM and DDA laws) |
+//! | integrator | none: one load step (initial-stiffness iteration) |
+//! | linear solver | any [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness |
+//!
+//! The slip springs are a [`crate::law::MohrCoulombSpring`] (a
+//! [`crate::law::TangentLaw`]`<3>`), the global solve any
 //! [`crate::linsolve::LinearSolver`] of the [`BlockMatrix`] stiffness,
 //! factored once and reused by the elastic, nonlinear and
 //! strength-reduction analyses: faer's sparse Cholesky
@@ -41,7 +51,6 @@
 //! interpolated from the cell-centre values of the rasters.
 
 mod analysis;
-mod element;
 mod face;
 mod grids;
 mod hovland;
@@ -50,13 +59,13 @@ mod model;
 mod stiffness;
 mod strength_reduction;
 
+pub use crate::kinematics::affine3::{
+    displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
+    ELEMENT_DOF,
+};
 pub use analysis::{
     Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
     SurfacePoint,
-};
-pub use element::{
-    displacement_at, elasticity, element_stiffness, shape_matrix, strain_tensor, ElementDofs,
-    ELEMENT_DOF,
 };
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids};

@@ -14,12 +14,12 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::element::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
 use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
 use super::stiffness::BlockMatrix;
 use crate::error::Result;
+use crate::kinematics::affine3::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
 use crate::law::MohrCoulombSpring;
 use crate::shape::Column;
 
@@ -318,7 +318,7 @@ impl HpmModel {
         let e = &self.elements[spring.element];
         let dofs = &u[ELEMENT_DOF * spring.element..ELEMENT_DOF * (spring.element + 1)];
         let n = shape_matrix(&e.centre, &spring.point.point.position);
-        let disp = n * super::element::ElementDofs::from_column_slice(dofs);
+        let disp = n * crate::kinematics::affine3::ElementDofs::from_column_slice(dofs);
         let p = &spring.point;
         Vector3::new(p.point.normal.dot(&disp), p.s.dot(&disp), p.t.dot(&disp))
     }

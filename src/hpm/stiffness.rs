@@ -16,7 +16,7 @@ use std::time::Instant;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
-use super::element::{Block, ElementDofs, ELEMENT_DOF};
+use crate::kinematics::affine3::{Block, ElementDofs, ELEMENT_DOF};
 use crate::linsolve::{
     DiagonalBlocks, LinearOperator, LinearSolver, SolveError, SolveStats, SparseCholesky,
     SparseMatrix, SparsePattern,

@@ -14,7 +14,7 @@
 //!
 //! A wall's ends do not act as corners against polygons within a step.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use crate::query::variation::{
     smooth_polygon_contacts, wall_edge, PairContact, SmoothEdgeContact, SmoothSide,
@@ -54,9 +54,9 @@ impl StepContact {
 #[derive(Debug, Clone, Default)]
 pub struct Previous {
     /// `(vertex body, vertex, edge body) → edge`.
-    pub edges: HashMap<(usize, usize, usize), usize>,
+    pub edges: FxHashMap<(usize, usize, usize), usize>,
     /// Normal angle (rad, from A to B) of each smooth–smooth contact.
-    pub angles: HashMap<ContactKey, f64>,
+    pub angles: FxHashMap<ContactKey, f64>,
 }
 
 fn smooth_side(geometry: &BodyGeometry) -> Option<SmoothSide> {

@@ -1,7 +1,7 @@
 //! The implicit driver: bodies, laws and the workspaces of the step, and
 //! the time loop with automatic reduction of the step.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use nalgebra::SVector;
 
@@ -55,7 +55,7 @@ pub struct ImplicitDynamics<const N: usize, K, L: TangentLaw<2>, I, S> {
     settings: ImplicitSettings,
     fixed_points: Vec<FixedPoint>,
     time: f64,
-    history: HashMap<ContactKey, L::State>,
+    history: FxHashMap<ContactKey, L::State>,
     previous: Previous,
     contacts: Vec<ContactReport<L::State>>,
     grid: CellGrid,
@@ -100,7 +100,7 @@ where
             settings,
             fixed_points: Vec::new(),
             time: 0.0,
-            history: HashMap::new(),
+            history: FxHashMap::default(),
             previous: Previous::default(),
             contacts: Vec::new(),
             grid: CellGrid::new(),

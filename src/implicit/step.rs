@@ -20,7 +20,7 @@
 //! and solves `K_T Δd = −R` with the linear solver on a block pattern kept
 //! while the pairs in contact are unchanged.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use nalgebra::{SMatrix, SVector};
 
@@ -82,7 +82,7 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     pub bodies: &'a [Body<N>],
     pub kinematics: &'a K,
     pub laws: &'a ContactLaws<L>,
-    pub history: &'a HashMap<ContactKey, L::State>,
+    pub history: &'a FxHashMap<ContactKey, L::State>,
     pub contacts: &'a [StepContact],
     pub dt: f64,
     /// Fraction of the normal stiffness added to the shear stiffness of a

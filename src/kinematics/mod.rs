@@ -24,10 +24,15 @@
 //! | [`Rigid2`] | 3 | (u₀, v₀, θ) | R(θ), an exact rotation | diag(m, m, I) | none |
 //! | [`Affine2`] | 6 | (u₀, v₀, r₀, εx, εy, γxy) of DDA (paper 003 eq. 16) | I + [[εx, γ/2 − r₀], [γ/2 + r₀, εy]], linear in d (eqs. 14–15) | ρ ∫TᵀT dA | A D on the strains |
 //!
+//! In 3D, [`affine3`] is the HPM element of paper 001 (12 unknowns:
+//! translation, rotation and uniform strain about the centroid, `u = N(x)
+//! U`, stiffness `V BᵀDB`), used by [`crate::hpm`].
+//!
 //! The number of degrees of freedom is a const generic parameter of the
 //! trait, so the matrices are fixed-size nalgebra types.
 
 mod affine2;
+pub mod affine3;
 mod fixed;
 mod placed;
 mod rigid2;

@@ -4,6 +4,7 @@
 //!
 //! | reference | answer | checks |
 //! |---|---|---|
+//! | [`incline`] | a rigid block sliding down a frictional slope, `g (sin β − μ cos β)`, or at rest | the polygon DEM ([`crate::compositions::polygon_incline`]) |
 //! | [`block_on_floor`] | horizontal load that rocks or slides a rigid block on a frictional floor, `W min(μ, w/2h)` | the LP limit analysis of a polygon ([`crate::compositions::polygon_lp`]) |
 //! | [`sliding_block`] | rigid block on a shaken base, Coulomb friction (Newmark 1965), and the same block on an elastic–plastic shear spring | DDA (paper 003) |
 //! | [`planar_slab`] | Fs of a slab on a planar slip surface by global equilibrium, `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))` | HPM and Hovland (paper 001) |
@@ -13,6 +14,7 @@
 
 pub mod block_on_floor;
 pub mod ellipse_contact;
+pub mod incline;
 pub mod lattice_limit_load;
 pub mod planar_slab;
 pub mod sliding_block;

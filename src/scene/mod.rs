@@ -10,8 +10,8 @@ pub use layout::{CircleRows, Layout};
 pub use particle::Particle;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
-use crate::math::{Point, Vec2};
-use crate::shape::{Circle, Ellipse, Polygon, Shape};
+use crate::math::{Point, Pose2, Vec2};
+use crate::shape::{AnyShape2, Circle, Ellipse, Polygon};
 
 /// Particles in a rigid frame under gravity (2D, per unit thickness).
 #[derive(Debug, Clone, PartialEq)]
@@ -39,14 +39,11 @@ impl Scene {
     /// Add a circle of `radius` (m) and `density` (kg/m³) at rest at
     /// `centre`; returns its index.
     pub fn add_circle(&mut self, centre: Point, radius: f64, density: f64) -> Result<usize> {
-        require_finite("centre x", centre.x)?;
-        require_finite("centre y", centre.y)?;
-        let circle = Circle::new(radius)?;
-        require_positive("density", density)?;
-        let mp = circle.mass_properties(density);
-        self.particles
-            .push(Particle::at_rest(circle.into(), centre, mp));
-        Ok(self.particles.len() - 1)
+        self.add_shape(
+            Circle::new(radius)?,
+            Pose2::new(centre.x, centre.y, 0.0),
+            density,
+        )
     }
 
     /// Add an ellipse with semi-axes `a ≥ b` (m), major axis at `angle`
@@ -59,16 +56,11 @@ impl Scene {
         angle: f64,
         density: f64,
     ) -> Result<usize> {
-        require_finite("centre x", centre.x)?;
-        require_finite("centre y", centre.y)?;
-        require_finite("angle", angle)?;
-        let ellipse = Ellipse::new(a, b)?;
-        require_positive("density", density)?;
-        let mp = ellipse.mass_properties(density);
-        let mut particle = Particle::at_rest(ellipse.into(), centre, mp);
-        particle.pose.angle = angle;
-        self.particles.push(particle);
-        Ok(self.particles.len() - 1)
+        self.add_shape(
+            Ellipse::new(a, b)?,
+            Pose2::new(centre.x, centre.y, angle),
+            density,
+        )
     }
 
     /// Add a rigid polygon of `density` (kg/m³) at rest, from its vertices
@@ -83,11 +75,7 @@ impl Scene {
     /// for a density that is not finite and positive.
     pub fn add_polygon(&mut self, vertices: &[Point], density: f64) -> Result<usize> {
         let (polygon, centroid) = Polygon::from_world(vertices, self.particles.len())?;
-        require_positive("density", density)?;
-        let mp = polygon.mass_properties(density);
-        self.particles
-            .push(Particle::at_rest(polygon.into(), centroid, mp));
-        Ok(self.particles.len() - 1)
+        self.add_shape(polygon, Pose2::new(centroid.x, centroid.y, 0.0), density)
     }
 
     /// Add a `width × height` rectangle of `density` (kg/m³) at rest, centred
@@ -106,14 +94,31 @@ impl Scene {
         angle: f64,
         density: f64,
     ) -> Result<usize> {
-        require_finite("centre x", centre.x)?;
-        require_finite("centre y", centre.y)?;
-        require_finite("angle", angle)?;
         let rectangle = Polygon::rectangle(width, height)?;
+        self.add_shape(rectangle, Pose2::new(centre.x, centre.y, angle), density)
+    }
+
+    /// Add a body of any shape, at rest at `pose` (the shape's reference
+    /// point, its centroid, at the pose's position), with `density`
+    /// (kg/m³); returns its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a non-finite pose or a
+    /// density that is not finite and positive.
+    pub fn add_shape(
+        &mut self,
+        shape: impl Into<AnyShape2>,
+        pose: Pose2,
+        density: f64,
+    ) -> Result<usize> {
+        require_finite("centre x", pose.position.x)?;
+        require_finite("centre y", pose.position.y)?;
+        require_finite("angle", pose.angle)?;
         require_positive("density", density)?;
-        let mp = rectangle.mass_properties(density);
-        let mut particle = Particle::at_rest(rectangle.into(), centre, mp);
-        particle.pose.angle = angle;
+        let shape = shape.into();
+        let mp = shape.as_shape().mass_properties(density);
+        let mut particle = Particle::at_rest(shape, pose.position, mp);
+        particle.pose.angle = pose.angle;
         self.particles.push(particle);
         Ok(self.particles.len() - 1)
     }

@@ -42,9 +42,6 @@ impl Shape for Circle {
             inertia: 0.5 * mass * self.radius * self.radius,
         }
     }
-    fn degrees_of_freedom(&self) -> usize {
-        3
-    }
 }
 
 impl Shape2 for Circle {

@@ -156,10 +156,6 @@ impl Shape for Column {
             inertia: density * polar,
         }
     }
-    /// Rigid translation and rotation plus uniform strain (paper 001).
-    fn degrees_of_freedom(&self) -> usize {
-        12
-    }
 }
 
 #[cfg(test)]

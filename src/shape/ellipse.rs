@@ -195,9 +195,6 @@ impl Shape for Ellipse {
             inertia: 0.25 * mass * (self.a * self.a + self.b * self.b),
         }
     }
-    fn degrees_of_freedom(&self) -> usize {
-        3
-    }
 }
 
 impl Shape2 for Ellipse {

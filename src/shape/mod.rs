@@ -6,7 +6,10 @@
 //! needs to know of a body's geometry: what kind it is (for the pair
 //! dispatcher), its dimension, its measure (area or volume) and its mass
 //! properties. 2D shapes also implement [`Shape2`], which adds what the 2D
-//! broad phase and contact routines need: a bounding box in a pose.
+//! broad phase and contact routines need: a bounding box in a pose. How a
+//! body's unknowns move its shape is the kinematics slot's business
+//! ([`crate::kinematics`]): the same polygon is a rigid DEM block (3
+//! unknowns) or a deformable DDA block (6).
 //!
 //! The set of kinds is closed in [`ShapeKind`] so that the pair dispatcher
 //! ([`crate::query::manifold::dispatch`]) can match exhaustively and answer
@@ -77,10 +80,6 @@ pub trait Shape: std::fmt::Debug + Send + Sync {
     fn measure(&self) -> f64;
     /// Mass properties for a uniform density (kg/m³).
     fn mass_properties(&self, density: f64) -> MassProperties;
-    /// Degrees of freedom of a body of this shape in the methods that
-    /// discretise it: 3 for a rigid 2D body, 6 for a DDA block, 12 for an
-    /// HPM element, 0 for a fixed wall.
-    fn degrees_of_freedom(&self) -> usize;
 }
 
 /// What 2D shapes add: bounds for the broad phase.

@@ -236,10 +236,6 @@ impl Shape for Polygon {
             inertia: density * (self.second_moments[0] + self.second_moments[1]),
         }
     }
-    /// The six DDA unknowns (u₀, v₀, r₀, εx, εy, γxy).
-    fn degrees_of_freedom(&self) -> usize {
-        6
-    }
 }
 
 impl Shape2 for Polygon {

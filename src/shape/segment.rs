@@ -68,9 +68,6 @@ impl Shape for Segment {
             inertia: 0.0,
         }
     }
-    fn degrees_of_freedom(&self) -> usize {
-        0
-    }
 }
 
 impl Shape2 for Segment {

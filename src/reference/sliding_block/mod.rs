@@ -12,11 +12,16 @@
 //!   exact answer of a penalty method (DDA, paper 003 §3.(2)) whose
 //!   contacts have the shear stiffness `k`.
 //!
-//! Both start at rest relative to the base.
+//! * [`brute_force_sliding`]: the rigid block by 1 µs explicit steps, an
+//!   independent check of both.
+//!
+//! All start at rest relative to the base.
 
+mod brute_force;
 mod compliant;
 mod rigid;
 
+pub use brute_force::brute_force_sliding;
 pub use compliant::compliant_sliding_block;
 pub use rigid::rigid_sliding_block;
 

@@ -1,6 +1,8 @@
-//! The 12-DOF HPM element (paper 001, eqs. 2 and 23–25): a linear
-//! displacement field made of a rigid translation and rotation about the
-//! element's centroid plus a uniform strain.
+//! The 3D affine body of HPM (paper 001, eqs. 2 and 23–25): twelve
+//! unknowns moving an element by a linear displacement field made of a
+//! rigid translation and rotation about its centroid plus a uniform strain
+//! — the 3D counterpart of [`super::Affine2`] (DDA's six unknowns), used
+//! by [`crate::hpm`]'s column elements.
 //!
 //! Degrees of freedom, in order: `u_c = (u, v, w)` at the centroid, the
 //! rotation `ω = (ω_x, ω_y, ω_z)`, and the strain
