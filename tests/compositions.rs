@@ -176,3 +176,106 @@ fn bottom_course_difference_between_dem_and_dda_follows_k_over_e() {
     assert!(d[3] < 1e-5, "nearly rigid DDA blocks: {}", d[3]);
     assert!(d[4] > 0.005, "DEM k_s/k_n = 0.25: {}", d[4]);
 }
+
+/// A disc as a six-unknown affine DDA body rolls down a 30° incline with
+/// μ = 0.5 at `(2/3) g sin β` to 1 % at Δt = 2.5e-4 s; the error falls as
+/// the step is halved (DDA's first-order rotation grows the disc's area in
+/// proportion to the step), and the area grows less at the smaller step.
+#[test]
+fn affine_disc_rolls_at_two_thirds_g_sin_beta() {
+    use dismech::compositions::affine_disc::{rolling_convergence, RollingDisc};
+    let [fine, middle, coarse] = rolling_convergence(&RollingDisc::default()).unwrap();
+    for run in [&fine, &middle, &coarse] {
+        println!(
+            "ratio {:.6}, area change {:.2e}, turn {:.2} rad, {:.2} solves/step, {} reductions",
+            run.ratio(),
+            run.area_change,
+            run.turn,
+            run.iterations_per_step,
+            run.reductions
+        );
+    }
+    assert!(
+        (fine.ratio() - 1.0).abs() <= 0.01,
+        "rolling ratio {}",
+        fine.ratio()
+    );
+    let errors = [fine, middle, coarse].map(|r| (r.ratio() - 1.0).abs());
+    assert!(
+        errors[0] < errors[1] && errors[1] < errors[2],
+        "errors {errors:?}"
+    );
+    assert!(fine.area_change < middle.area_change && middle.area_change < coarse.area_change);
+}
+
+/// Paper 002's U-model (k = 4, n' = 1, rolling) pushed quasi-statically by
+/// the implicit driver with bonded penalty contacts: the driver finds the
+/// LP model's contacts, the load levels off, and its plateau is the LP's
+/// limit load (paper 002 eq. 32: 5.9497 C_p, which the LP meets) to 1 % at the stiffest penalty;
+/// the gap (the change of geometry over the elastic travel) falls as the
+/// penalty rises.
+#[test]
+fn penalty_pushover_levels_off_at_the_lp_limit_load() {
+    use dismech::compositions::penalty_vs_lp::{penalty_vs_lp, UModelPushover};
+    let setup = UModelPushover::default();
+    let result = penalty_vs_lp(&setup).unwrap();
+    let exact = dismech::reference::lattice_limit_load::eq32(4, 1);
+    assert!(
+        (result.lp_load / exact - 1.0).abs() < 1e-6,
+        "LP load {} against eq. 32's {exact}",
+        result.lp_load
+    );
+    let ratios: Vec<f64> = (0..result.curves.len())
+        .map(|k| result.plateau_ratio(k))
+        .collect();
+    for (curve, ratio) in result.curves.iter().zip(&ratios) {
+        println!(
+            "penalty {:e}: plateau / LP {ratio:.5}, spread {:.2e}, {} reductions",
+            curve.penalty,
+            curve.plateau_spread(setup.plateau_fraction),
+            curve.reductions
+        );
+        assert!(curve.contacts_match, "penalty {:e}", curve.penalty);
+        assert!(curve.plateau_spread(setup.plateau_fraction) < 5e-3);
+    }
+    assert!(
+        (result.checked_ratio() - 1.0).abs() <= 0.01,
+        "ratio {}",
+        result.checked_ratio()
+    );
+    assert!(
+        ratios
+            .windows(2)
+            .all(|w| (w[1] - 1.0).abs() < (w[0] - 1.0).abs()),
+        "{ratios:?}"
+    );
+}
+
+/// 64 ellipses (a/b = 2) settled in a box by the implicit driver (rigid
+/// bodies, Newmark β = 0.5625, γ = 1, return-mapping Coulomb) at a
+/// requested step of 20 explicit limits come to rest, and the walls carry
+/// their weight to 0.5 %.
+#[test]
+fn implicit_ellipses_come_to_rest_on_the_walls() {
+    use dismech::compositions::implicit_ellipses::{settle, EllipseBox};
+    let setup = EllipseBox::default();
+    assert!(setup.count >= 50 && setup.aspect == 2.0);
+    let settled = settle(&setup).unwrap();
+    println!(
+        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps, {} reductions, rest at {:.3} s",
+        settled.reaction_ratio(),
+        settled.step_ratio(),
+        settled.accepted_step_ratio(),
+        settled.iterations_per_step(),
+        settled.steps,
+        settled.reductions,
+        settled.time
+    );
+    assert!(settled.at_rest, "largest speed {} m/s", settled.max_speed);
+    assert!(settled.step_ratio() >= 20.0 * (1.0 - 1e-12));
+    assert!(
+        (settled.reaction_ratio() - 1.0).abs() <= 5e-3,
+        "reaction ratio {}",
+        settled.reaction_ratio()
+    );
+}

@@ -20,6 +20,14 @@
 //! spectral radius at high frequency is 1/3 (computed by
 //! [`Newmark::spectral_radius`]).
 //!
+//! The driver halves a step whose open–close or Newton iteration does not
+//! converge and doubles it again after a success. While the packing
+//! settles, most steps of 20 explicit limits are halved two or three times
+//! (contacts open, close, stick and slip within a step, and the iteration
+//! cycles between them): [`SettledBox::accepted_step_ratio`] reports the
+//! mean accepted sub-step against the explicit limit beside the requested
+//! [`SettledBox::step_ratio`].
+//!
 //! At rest the walls carry the weight: the sum of their vertical forces on
 //! the ellipses over the total weight is 1, to the precision of the rest.
 
@@ -238,6 +246,12 @@ impl SettledBox {
         self.dt / self.dt_explicit
     }
 
+    /// The mean accepted sub-step over the explicit limit: the simulated
+    /// time over the sub-steps that made it.
+    pub fn accepted_step_ratio(&self) -> f64 {
+        self.time / self.substeps.max(1) as f64 / self.dt_explicit
+    }
+
     /// Mean iterations (linear solves) per step of `dt`.
     pub fn iterations_per_step(&self) -> f64 {
         self.iterations as f64 / self.steps.max(1) as f64
@@ -329,15 +343,17 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
             break;
         }
     }
-    let vertical_reaction = -(n..n + 3)
-        .map(|w| model.contact_force_on(w).y)
-        .sum::<f64>();
+    let vertical_reaction = -(n..n + 3).map(|w| model.contact_force_on(w).y).sum::<f64>();
     let ellipses = model.bodies()[..n]
         .iter()
         .filter_map(|b| match b.geometry() {
             crate::implicit::BodyGeometry::Ellipse(e) => {
                 let a = e.axes();
-                Some((e.centre(), a.column(0).into_owned(), a.column(1).into_owned()))
+                Some((
+                    e.centre(),
+                    a.column(0).into_owned(),
+                    a.column(1).into_owned(),
+                ))
             }
             _ => None,
         })

@@ -16,6 +16,7 @@
 //! checked quantities (e.g. [`polygon_lp::tipping_ratio`]); the study adds
 //! one function that reports them, the tests assert them.
 
+pub mod affine_disc;
 pub mod block_wall;
 pub mod implicit_ellipses;
 pub mod packing_lp;

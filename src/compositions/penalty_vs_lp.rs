@@ -358,14 +358,22 @@ pub fn pushover(
 }
 
 /// Paper 002's U-model pushed by penalty models of three stiffnesses.
+///
+/// Each run pushes the plate by `travel_force / penalty`: the elastic
+/// travel to the plateau scales with the compliance `1/p`, so every run
+/// reaches its plateau in the same share of its steps. What separates the
+/// plateau from the LP's load is the change of geometry over that travel
+/// (the LP is of the undeformed lattice): the gap falls as the penalty
+/// rises.
 #[derive(Debug, Clone, PartialEq)]
 pub struct UModelPushover {
     /// The lattice ([`Lattice::u_model`]: R = 1, C_p = 1).
     pub lattice: Lattice,
-    /// Contact penalties (N/m per m, with C_p = 1 N/m and R = 1 m).
+    /// Contact penalties (N/m per m, with C_p = 1 N/m and R = 1 m), softest
+    /// first; the check takes the last.
     pub penalties: Vec<f64>,
-    /// Plate travel (m) of every run.
-    pub travel: f64,
+    /// Plate travel of a run times its penalty (N/m).
+    pub travel_force: f64,
     /// Quasi-static steps of every run.
     pub steps: usize,
     /// Search distance (m).
@@ -376,14 +384,14 @@ pub struct UModelPushover {
 }
 
 impl Default for UModelPushover {
-    /// k = 4, n' = 1, rolling; penalties 1e3, 1e4, 1e5; travel 0.02 R in
-    /// 100 steps; plateau over the last quarter.
+    /// k = 4, n' = 1, rolling; penalties 1e4, 3e4, 1e5; travel 300 / p
+    /// (0.03 R at 1e4) in 80 steps; plateau over the last quarter.
     fn default() -> Self {
         Self {
             lattice: Lattice::u_model(4, 4, 1, true),
-            penalties: vec![1e3, 1e4, 1e5],
-            travel: 0.02,
-            steps: 100,
+            penalties: vec![1e4, 3e4, 1e5],
+            travel_force: 300.0,
+            steps: 80,
             search: 0.1,
             plateau_fraction: 0.25,
         }
@@ -406,15 +414,30 @@ impl PenaltyVsLp {
     pub fn plateau_ratio(&self, k: usize) -> f64 {
         self.curves[k].plateau(self.setup.plateau_fraction) / self.lp_load
     }
+
+    /// The checked ratio: the plateau of the stiffest run (the last) over
+    /// the LP limit load.
+    pub fn checked_ratio(&self) -> f64 {
+        self.plateau_ratio(self.curves.len().saturating_sub(1))
+    }
 }
 
 /// Solve `setup`'s lattice by the LP (Clarabel) and push it with each
 /// penalty.
 ///
 /// # Errors
-/// As [`Lattice::build`], [`analyse`] and [`pushover`]; a collapse the LP
+/// [`DismechError::InvalidParameter`] for no penalties or a travel force
+/// that is not positive; as [`Lattice::build`], [`analyse`] and
+/// [`pushover`]; a collapse the LP
 /// does not find is [`DismechError::PenaltyModel`].
 pub fn penalty_vs_lp(setup: &UModelPushover) -> Result<PenaltyVsLp> {
+    if setup.penalties.is_empty() {
+        return Err(DismechError::InvalidParameter {
+            name: "penalties",
+            value: 0.0,
+            requirement: "needs at least one penalty",
+        });
+    }
     let limit = setup.lattice.build()?;
     let result = analyse(&limit, &mut LinearProgramSolver::default())?;
     let lp_load = result
@@ -423,7 +446,10 @@ pub fn penalty_vs_lp(setup: &UModelPushover) -> Result<PenaltyVsLp> {
     let curves = setup
         .penalties
         .iter()
-        .map(|&p| pushover(&limit, p, setup.search, setup.travel, setup.steps))
+        .map(|&p| {
+            let travel = require_positive("travel force", setup.travel_force)? / p;
+            pushover(&limit, p, setup.search, travel, setup.steps)
+        })
         .collect::<Result<Vec<_>>>()?;
     Ok(PenaltyVsLp {
         setup: setup.clone(),

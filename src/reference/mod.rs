@@ -4,7 +4,7 @@
 //!
 //! | reference | answer | checks |
 //! |---|---|---|
-//! | [`incline`] | a rigid block sliding down a frictional slope, `g (sin β − μ cos β)`, or at rest | the polygon DEM ([`crate::compositions::polygon_incline`]) |
+//! | [`incline`] | a rigid block sliding down a frictional slope, `g (sin β − μ cos β)`, or at rest; a disc rolling, `(2/3) g sin β` | the polygon DEM ([`crate::compositions::polygon_incline`]); the affine DDA disc ([`crate::compositions::affine_disc`]) |
 //! | [`block_on_floor`] | horizontal load that rocks or slides a rigid block on a frictional floor, `W min(μ, w/2h)` | the LP limit analysis of a polygon ([`crate::compositions::polygon_lp`]) |
 //! | [`sliding_block`] | rigid block on a shaken base, Coulomb friction (Newmark 1965), and the same block on an elastic–plastic shear spring | DDA (paper 003) |
 //! | [`planar_slab`] | Fs of a slab on a planar slip surface by global equilibrium, `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))` | HPM and Hovland (paper 001) |

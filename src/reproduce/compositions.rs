@@ -13,6 +13,7 @@
 //! ([`Collector::file`]). Adding a composition is adding its file and its
 //! entry.
 
+mod implicit;
 mod incline;
 mod packing_lp;
 mod pictures;
@@ -38,6 +39,9 @@ pub const COMPOSITIONS: &[Composition] = &[
     polygon_lp::polygon_lp,
     packing_lp::packing_lp,
     wall::polygon_dem_vs_dda,
+    implicit::implicit_ellipses,
+    implicit::affine_disc,
+    implicit::penalty_vs_lp_u4_1,
 ];
 
 /// Run every composition and write the study's outputs into

@@ -1,0 +1,274 @@
+//! The implicit driver beyond classic DDA: ellipses settled at a large time
+//! step ([`dismech::compositions::implicit_ellipses`]), a disc as a DDA body
+//! ([`dismech::compositions::affine_disc`]) and paper 002's U-model pushed
+//! by bonded penalty contacts against its LP limit load
+//! ([`dismech::compositions::penalty_vs_lp`]).
+
+use super::{Collector, Item, Rule};
+use dismech::compositions::affine_disc::{rolling_convergence, RollingDisc};
+use dismech::compositions::implicit_ellipses::{settle, EllipseBox};
+use dismech::compositions::penalty_vs_lp::{penalty_vs_lp, UModelPushover};
+use dismech::error::Result;
+use dismech::output::plot::{line_chart, Series};
+use dismech::output::write_csv;
+use dismech::reference::lattice_limit_load::eq32;
+
+/// Ellipses settled in a box by the implicit driver.
+pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
+    let setup = EllipseBox::default();
+    let settled = settle(&setup)?;
+    c.section(
+        "Implicit ellipses: a box settled at 20 explicit limits (`compositions::implicit_ellipses`)",
+        &format!(
+            "{} rigid ellipses (a/b = {}, a ∈ [{}, {}] m, ρ = {} kg/m³) stacked in {} columns and \
+             released in a box of three walls; penalty Coulomb contacts (k = {:e} N/m per m, μ = {}, \
+             return mapping), Newmark β = {}, γ = {}, sparse LU. Requested Δt = {:.4e} s, {} times \
+             the explicit limit 2√(m/k) = {:.4e} s of the lightest ellipse on one spring (rotation and \
+             several contacts only lower that limit). Rest: no boundary point faster than {:e} m/s. \
+             The driver halves a step whose iteration fails and doubles it after a success: the mean \
+             accepted sub-step is reported beside the requested one.",
+            setup.count,
+            setup.aspect,
+            setup.semi_major.0,
+            setup.semi_major.1,
+            setup.density,
+            setup.columns,
+            setup.penalty,
+            setup.friction,
+            setup.newmark.0,
+            setup.newmark.1,
+            settled.dt,
+            setup.step_ratio,
+            settled.dt_explicit,
+            setup.rest_speed
+        ),
+    );
+    c.check(
+        Item {
+            id: "implicit_ellipses.vertical_reaction_ratio",
+            what: "Σ vertical wall forces on the ellipses at rest over their weight",
+            reference: "static equilibrium of the packing",
+            unit: "-",
+            note: "at rest the walls carry the weight; what remains is the rest criterion's motion",
+        },
+        Rule::Near {
+            target: 1.0,
+            tolerance: 5e-3,
+        },
+        if settled.at_rest {
+            settled.reaction_ratio()
+        } else {
+            f64::NAN
+        },
+    );
+    for (id, what, unit, note, value) in [
+        (
+            "implicit_ellipses.step_ratio",
+            "requested time step over the explicit limit",
+            "-",
+            "the step every advance asks for",
+            settled.step_ratio(),
+        ),
+        (
+            "implicit_ellipses.accepted_step_ratio",
+            "mean accepted sub-step over the explicit limit",
+            "-",
+            "most steps are halved two or three times while contacts open, close, stick and slip within a step",
+            settled.accepted_step_ratio(),
+        ),
+        (
+            "implicit_ellipses.iterations_per_step",
+            "linear solves (open–close and Newton iterations, failed sub-steps included) per requested step",
+            "-",
+            "the failed attempts before a halving dominate",
+            settled.iterations_per_step(),
+        ),
+        (
+            "implicit_ellipses.settling_time",
+            "simulated time to rest",
+            "s",
+            "from release to the rest criterion",
+            settled.time,
+        ),
+    ] {
+        c.value(
+            Item {
+                id,
+                what,
+                reference: "none",
+                unit,
+                note,
+            },
+            None,
+            value,
+        );
+    }
+    Ok(())
+}
+
+/// A disc as a six-unknown affine DDA body rolling down an incline.
+pub(super) fn affine_disc(c: &mut Collector) -> Result<()> {
+    let setup = RollingDisc::default();
+    let runs = rolling_convergence(&setup)?;
+    c.section(
+        "Affine disc: a DDA body on a smooth boundary rolls (`compositions::affine_disc`)",
+        &format!(
+            "A disc of radius {} m (ρ = {} kg/m³, E = {:e} Pa, ν = {}) with DDA's six affine unknowns \
+             on a {}° incline, μ = {} (it rolls: μ ≥ tan β / 3), penalty {:e} N/m per m, Newmark β = ½, \
+             γ = 1, for {} s; the centre's acceleration is the curvature of a parabola fitted from {} s. \
+             DDA's first-order rotation grows the body's area by r₀² each step, so the error is first \
+             order in Δt: the run is repeated at 2 Δt and 4 Δt.",
+            setup.radius,
+            setup.density,
+            setup.youngs_modulus,
+            setup.poisson_ratio,
+            setup.slope.to_degrees().round(),
+            setup.friction,
+            setup.penalty,
+            setup.duration,
+            setup.settling_time
+        ),
+    );
+    c.check(
+        Item {
+            id: "affine_disc.rolling_ratio",
+            what: &format!(
+                "centre acceleration down a 30° slope (μ = 0.5) at Δt = {:e} s over the rolling disc's",
+                setup.dt
+            ),
+            reference: "a uniform disc rolling without slip, a = (2/3) g sin β",
+            unit: "-",
+            note: "short of 1 by the area the first-order rotation adds (below)",
+        },
+        Rule::Near {
+            target: 1.0,
+            tolerance: 0.01,
+        },
+        runs[0].ratio(),
+    );
+    for (run, factor) in runs.iter().zip(["1", "2", "4"]) {
+        c.value(
+            Item {
+                id: &format!("affine_disc.dt_times_{factor}.ratio"),
+                what: &format!("acceleration ratio at {factor} Δt"),
+                reference: "(2/3) g sin β",
+                unit: "-",
+                note: "the error halves with the step",
+            },
+            Some(1.0),
+            run.ratio(),
+        );
+        c.value(
+            Item {
+                id: &format!("affine_disc.dt_times_{factor}.area_change"),
+                what: &format!("relative area change over the run at {factor} Δt"),
+                reference: "a rigid rotation keeps the area",
+                unit: "-",
+                note: "Σ r₀² of DDA's linearised rotation",
+            },
+            Some(0.0),
+            run.area_change,
+        );
+    }
+    Ok(())
+}
+
+/// Paper 002's U-model pushed by the implicit penalty driver.
+pub(super) fn penalty_vs_lp_u4_1(c: &mut Collector) -> Result<()> {
+    let setup = UModelPushover::default();
+    let result = penalty_vs_lp(&setup)?;
+    let last = result.curves.len() - 1;
+    c.section(
+        "Penalty vs LP: paper 002's U-model (k = 4, n' = 1, rolling) pushed quasi-statically (`compositions::penalty_vs_lp`)",
+        &format!(
+            "The LP model turned contact for contact into rigid discs and walls with bonded penalty \
+             contacts (tension carried, shear capped at c + μ t_n by return mapping), the plate \
+             translated in {} quasi-static steps over 300/p R. The LP is of the undeformed lattice; \
+             the penalty model's geometry changes over the elastic travel to the plateau, which \
+             shrinks as 1/p: the plateau approaches the LP load as the penalty rises. The plateau is \
+             the mean load of the last {} of the steps.",
+            setup.steps, setup.plateau_fraction
+        ),
+    );
+    c.check(
+        Item {
+            id: "penalty_vs_lp.u4_1.ratio",
+            what: &format!(
+                "plateau of the plate load at penalty {:e} C_p/R over the LP limit load",
+                setup.penalties[last]
+            ),
+            reference: "the LP's rigid-plastic limit load (paper 002 eq. 32: (1 + 3.5 √2) C_p = 5.9497 C_p)",
+            unit: "-",
+            note: "short of 1 by the change of geometry over the elastic travel",
+        },
+        Rule::Near {
+            target: 1.0,
+            tolerance: 0.01,
+        },
+        result.checked_ratio(),
+    );
+    c.value(
+        Item {
+            id: "penalty_vs_lp.u4_1.lp_load",
+            what: "the LP limit load",
+            reference: "paper 002 eq. 32, (1 + 3.5 √2) C_p; Table 1 gives 5.95",
+            unit: "C_p",
+            note: "Clarabel on the undeformed lattice",
+        },
+        Some(eq32(4, 1)),
+        result.lp_load,
+    );
+    let mut rows = Vec::new();
+    let mut series = Vec::new();
+    for (k, curve) in result.curves.iter().enumerate() {
+        c.value(
+            Item {
+                id: &format!("penalty_vs_lp.u4_1.penalty_{:e}.ratio", curve.penalty),
+                what: &format!("plateau over the LP load at penalty {:e}", curve.penalty),
+                reference: "the LP limit load",
+                unit: "-",
+                note: "the trend over three penalties",
+            },
+            Some(1.0),
+            result.plateau_ratio(k),
+        );
+        rows.extend(
+            curve
+                .travel
+                .iter()
+                .zip(&curve.load)
+                .map(|(&u, &p)| vec![curve.penalty, u, u * curve.penalty, p]),
+        );
+        series.push(Series {
+            name: format!("penalty {:e}", curve.penalty),
+            points: curve
+                .travel
+                .iter()
+                .zip(&curve.load)
+                .map(|(&u, &p)| (u * curve.penalty, p))
+                .collect(),
+            markers: false,
+        });
+    }
+    let span = setup.travel_force;
+    series.push(Series {
+        name: "LP limit load".into(),
+        points: vec![(0.0, result.lp_load), (span, result.lp_load)],
+        markers: false,
+    });
+    write_csv(
+        &c.dir().join("penalty_pushover.csv"),
+        &["penalty", "travel", "travel_times_penalty", "plate_load"],
+        &rows,
+    )?;
+    c.file("penalty_pushover.csv");
+    line_chart(
+        &c.dir().join("penalty_pushover.svg"),
+        "U-model k = 4, n' = 1: plate load of bonded penalty models and the LP limit load",
+        "plate travel × penalty (C_p)",
+        "plate load (C_p)",
+        &series,
+    )?;
+    c.file("penalty_pushover.svg");
+    Ok(())
+}
