@@ -122,6 +122,9 @@
 //! | polygon DEM vs DDA | [`compositions::block_wall::dem_vs_dda`] | the same running-bond wall by `ExplicitDynamics<SpringDashpotCoulomb, ExplicitEuler>` and by `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Restarting<Newmark>, SparseLu>` | base reaction = weight in both; the bottom course compared |
 //! | polygon LP | [`compositions::polygon_lp::block_limit`] | a [`shape::Polygon`] block in the limit driver, its corners as contact points, [`law::RigidPlastic`] unilateral friction, a live load, Clarabel | tipping `W w / 2h` or sliding `μ W` ([`reference::block_on_floor`]) |
 //! | packing LP | [`compositions::packing_lp::ellipse_packing_limit`] | ellipses settled by the explicit driver, then their bodies and manifolds in the limit driver ([`limit::model_from_packing`]) | equilibrium of the dual forces; primal = dual |
+//! | implicit ellipses | [`compositions::implicit_ellipses::settle`] | `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, Newmark, SparseLu>`: rigid ellipses and walls, smooth–smooth and smooth–edge gap variations, return-mapping Coulomb, Newmark β = 0.5625, γ = 1 at a requested step of 20 explicit limits | the walls carry the weight at rest |
+//! | affine disc | [`compositions::affine_disc::run_rolling_disc`] | a disc with DDA's six affine unknowns: `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>` on a smooth boundary | rolling at `(2/3) g sin β` ([`reference::incline::disc_acceleration`]) |
+//! | penalty vs LP | [`compositions::penalty_vs_lp::penalty_vs_lp`] | a [`limit::LimitModel`] of circles turned into `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, QuasiStatic, SparseLu>` with bonded contacts ([`law::PenaltyCoulomb::bonded_with_friction`]) and a prescribed plate | the plateau of the plate load against the LP's limit load |
 //!
 //! ```no_run
 //! # fn main() -> dismech::error::Result<()> {
@@ -142,6 +145,29 @@
 //! }
 //! model.set_live_load(block, Vec2::x(), Point::new(0.0, h))?;
 //! let limit = analyse(&model, &mut LinearProgramSolver::default())?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```no_run
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::implicit::{Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState};
+//! use dismech::integrate::Newmark;
+//! use dismech::kinematics::Affine2;
+//! use dismech::law::{FrictionIntegration, PenaltyCoulomb};
+//! use dismech::linsolve::SparseLu;
+//! use dismech::math::{Point, Vec2};
+//! use dismech::shape::Segment;
+//! // A disc and an ellipse as DDA bodies (six affine unknowns) on a floor.
+//! let material = BodyMaterial { density: 2000.0, youngs_modulus: 1e10, poisson_ratio: 0.2, plane: PlaneState::Stress };
+//! let bodies = vec![
+//!     Body::<6>::circle(Point::new(0.0, 0.1), 0.1, material, 0)?,
+//!     Body::<6>::ellipse(Point::new(0.5, 0.05), 0.1, 0.05, 0.0, material, 1)?,
+//!     Body::<6>::wall(Segment::new(Point::new(-1.0, 0.0), Point::new(1.0, 0.0)), 2)?, // bodies on its left
+//! ];
+//! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping)?;
+//! let settings = ImplicitSettings { gravity: Vec2::new(0.0, -9.81), ..ImplicitSettings::default() };
+//! let mut model = ImplicitDynamics::compose(bodies, Affine2, law, Newmark::new(0.5625, 1.0)?, SparseLu::default(), settings)?;
+//! model.advance_or_stop(1e-3)?;
 //! # Ok(()) }
 //! ```
 //!

@@ -18,7 +18,8 @@ pub enum BodyGeometry {
     Polygon(PlacedPolygon),
     /// An ellipse or a circle (an affine body keeps an ellipse an ellipse).
     Ellipse(PlacedEllipse),
-    /// A straight wall, material on its left (start → end); it has no area
+    /// A straight wall, the bodies it holds on its left (start → end: a
+    /// floor runs in +x); it has no area
     /// and must be fully prescribed.
     Wall(Segment),
 }
@@ -335,7 +336,8 @@ impl<const N: usize> Body<N> {
         Self::ellipse(centre, radius, radius, 0.0, material, index)
     }
 
-    /// A fixed wall, material on its left (start → end).
+    /// A fixed wall, the bodies it holds on its left (start → end: a floor
+    /// runs in +x).
     ///
     /// # Errors
     /// A wall of zero length or with non-finite end points.
