@@ -121,28 +121,14 @@ fn fitted_acceleration(samples: &[(f64, f64)]) -> Option<f64> {
 /// or the driver refuses; [`DismechError::StepFailed`] when a step fails.
 pub fn run_rolling_disc(setup: &RollingDisc) -> Result<RollingRun> {
     let beta = setup.slope;
-    if !(beta.is_finite() && beta > 0.0 && beta < std::f64::consts::FRAC_PI_2) {
-        return Err(DismechError::InvalidParameter {
-            name: "slope angle",
-            value: beta,
-            requirement: "must lie in (0, 90°) (radians)",
-        });
-    }
+    super::require_incline_run(beta, setup.settling_time, setup.duration)?;
     for (name, value) in [
         ("radius", setup.radius),
         ("density", setup.density),
         ("gravity", setup.gravity),
         ("time step", setup.dt),
-        ("settling time", setup.settling_time),
     ] {
         require_positive(name, value)?;
-    }
-    if setup.duration.is_nan() || setup.duration <= setup.settling_time {
-        return Err(DismechError::InvalidParameter {
-            name: "duration",
-            value: setup.duration,
-            requirement: "must exceed the settling time",
-        });
     }
     let (s, c) = beta.sin_cos();
     let downhill = Vec2::new(c, -s);

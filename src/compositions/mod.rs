@@ -23,3 +23,27 @@ pub mod packing_lp;
 pub mod penalty_vs_lp;
 pub mod polygon_incline;
 pub mod polygon_lp;
+
+use crate::error::{require_positive, DismechError, Result};
+
+/// The checks of a run on an incline: a slope angle in (0, 90°) (rad), a
+/// positive settling time and a duration beyond it.
+fn require_incline_run(slope: f64, settling_time: f64, duration: f64) -> Result<()> {
+    if !(slope.is_finite() && slope > 0.0 && slope < std::f64::consts::FRAC_PI_2) {
+        return Err(DismechError::InvalidParameter {
+            name: "slope angle",
+            value: slope,
+            requirement: "must lie in (0, 90°) (radians)",
+        });
+    }
+    require_positive("settling time", settling_time)?;
+    require_positive("duration", duration)?;
+    if duration <= settling_time {
+        return Err(DismechError::InvalidParameter {
+            name: "duration",
+            value: duration,
+            requirement: "must exceed the settling time",
+        });
+    }
+    Ok(())
+}

@@ -12,7 +12,7 @@
 //! compliance of its contacts.
 
 use crate::dem::{DemSettings, DemSimulation};
-use crate::error::{require_positive, DismechError, Result};
+use crate::error::{require_positive, Result};
 use crate::integrate::ExplicitEuler;
 use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::math::{perp, Point, Vec2};
@@ -85,27 +85,12 @@ pub struct InclineRun {
 /// Run the block on the incline.
 ///
 /// # Errors
-/// [`DismechError::InvalidParameter`] for a slope outside (0, 90°), a
+/// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter) for a slope outside (0, 90°), a
 /// duration not above the settling time, or any value the scene, the law or
 /// the DEM refuses; the DEM's own errors if the run fails.
 pub fn run_block_on_incline(setup: &BlockOnIncline) -> Result<InclineRun> {
     let beta = setup.slope;
-    if !(beta.is_finite() && beta > 0.0 && beta < std::f64::consts::FRAC_PI_2) {
-        return Err(DismechError::InvalidParameter {
-            name: "slope angle",
-            value: beta,
-            requirement: "must lie in (0, 90°) (radians)",
-        });
-    }
-    require_positive("settling time", setup.settling_time)?;
-    require_positive("duration", setup.duration)?;
-    if setup.duration <= setup.settling_time {
-        return Err(DismechError::InvalidParameter {
-            name: "duration",
-            value: setup.duration,
-            requirement: "must exceed the settling time",
-        });
-    }
+    super::require_incline_run(beta, setup.settling_time, setup.duration)?;
     // A wall 15 block lengths long, descending to the right; the block
     // starts 3 lengths below its top.
     let length = 15.0 * require_positive("block width", setup.width)?;

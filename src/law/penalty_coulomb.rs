@@ -258,19 +258,7 @@ impl PenaltyCoulomb {
             }
             FrictionIntegration::Conventional => self.conventional(t_n, input, state),
         };
-        let force = SVector::<f64, 2>::new(t_n, out.shear);
-        let tangent = Tangent::<2>::new(self.penalty, 0.0, out.d_shear[0], out.d_shear[1]);
-        let response = ContactResponse {
-            force,
-            spring_force: force,
-            regime: out.regime,
-            state: PenaltyState {
-                normal: t_n,
-                shear: out.stored,
-                regime: Some(out.regime),
-            },
-        };
-        (response, tangent)
+        out.response(t_n, self.penalty)
     }
 }
 
@@ -315,19 +303,7 @@ impl PenaltyCoulomb {
             };
             (apex, 0.0, out)
         };
-        let force = SVector::<f64, 2>::new(t_n, out.shear);
-        let tangent = Tangent::<2>::new(k_n, 0.0, out.d_shear[0], out.d_shear[1]);
-        let response = ContactResponse {
-            force,
-            spring_force: force,
-            regime: out.regime,
-            state: PenaltyState {
-                normal: t_n,
-                shear: out.stored,
-                regime: Some(out.regime),
-            },
-        };
-        (response, tangent)
+        out.response(t_n, k_n)
     }
 }
 
@@ -338,6 +314,26 @@ struct Out {
     d_shear: [f64; 2],
     stored: f64,
     regime: Regime,
+}
+
+impl Out {
+    /// The response and tangent for normal force `t_n` (normal stiffness
+    /// `k_n`) with this shear part.
+    fn response(self, t_n: f64, k_n: f64) -> (ContactResponse<2, PenaltyState>, Tangent<2>) {
+        let force = SVector::<f64, 2>::new(t_n, self.shear);
+        let tangent = Tangent::<2>::new(k_n, 0.0, self.d_shear[0], self.d_shear[1]);
+        let response = ContactResponse {
+            force,
+            spring_force: force,
+            regime: self.regime,
+            state: PenaltyState {
+                normal: t_n,
+                shear: self.stored,
+                regime: Some(self.regime),
+            },
+        };
+        (response, tangent)
+    }
 }
 
 impl ContactLaw<2> for PenaltyCoulomb {
