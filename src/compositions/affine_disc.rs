@@ -10,12 +10,12 @@
 //! measured by a least-squares parabola through the centre's travel along
 //! the slope after a settling time.
 //!
-//! What remains is the time step's: DDA's first-order rotation
+//! What remains is the time step's, first order in `Δt`: Newmark with
+//! `γ = 1` is first-order accurate, and DDA's first-order rotation
 //! `I + [[0, −r₀], [r₀, 0]]` stretches the body by `1 + r₀²` in area each
-//! step, so a disc turning `ω Δt` per step grows in area (and in mass and
-//! inertia, integrated over its current shape) in proportion to `Δt` over a
-//! given turn. The error of the acceleration falls in proportion to the
-//! step: [`RollingRun::area_change`] reports the growth.
+//! step, so a disc turning `ω Δt` per step grows in area in proportion to
+//! `Δt` over a given turn ([`RollingRun::area_change`] reports it). The
+//! error halves with the step.
 
 use crate::error::{require_positive, DismechError, Result};
 use crate::implicit::{Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState};
@@ -186,10 +186,17 @@ pub fn run_rolling_disc(setup: &RollingDisc) -> Result<RollingRun> {
             samples.push((model.time(), travel));
         }
     }
+    if samples.len() < 3 {
+        return Err(DismechError::InvalidParameter {
+            name: "duration",
+            value: setup.duration,
+            requirement: "must leave at least three steps after the settling time",
+        });
+    }
     let acceleration = fitted_acceleration(&samples).ok_or(DismechError::InvalidParameter {
-        name: "duration",
-        value: setup.duration,
-        requirement: "must leave at least three steps after the settling time",
+        name: "time step",
+        value: setup.dt,
+        requirement: "must leave distinct sample times after the settling time",
     })?;
     let travel = (model.bodies()[0].centroid() - start).dot(&downhill);
     Ok(RollingRun {

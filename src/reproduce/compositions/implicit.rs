@@ -116,8 +116,8 @@ pub(super) fn affine_disc(c: &mut Collector) -> Result<()> {
             "A disc of radius {} m (ρ = {} kg/m³, E = {:e} Pa, ν = {}) with DDA's six affine unknowns \
              on a {}° incline, μ = {} (it rolls: μ ≥ tan β / 3), penalty {:e} N/m per m, Newmark β = ½, \
              γ = 1, for {} s; the centre's acceleration is the curvature of a parabola fitted from {} s. \
-             DDA's first-order rotation grows the body's area by r₀² each step, so the error is first \
-             order in Δt: the run is repeated at 2 Δt and 4 Δt.",
+             The error is first order in Δt (Newmark with γ = 1 is first order, and DDA's first-order \
+             rotation grows the body's area by r₀² each step): the run is repeated at 2 Δt and 4 Δt.",
             setup.radius,
             setup.density,
             setup.youngs_modulus,
@@ -138,7 +138,7 @@ pub(super) fn affine_disc(c: &mut Collector) -> Result<()> {
             ),
             reference: "a uniform disc rolling without slip, a = (2/3) g sin β",
             unit: "-",
-            note: "short of 1 by the area the first-order rotation adds (below)",
+            note: "short of 1 by the first-order time error (below)",
         },
         Rule::Near {
             target: 1.0,
