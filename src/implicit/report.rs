@@ -79,8 +79,9 @@ pub struct StepReport {
     pub smallest_dt: f64,
     /// Relative residual norms of every iteration of the last sub-step.
     pub residuals: Vec<f64>,
-    /// Length (1 = full Newton step) of the update after each residual of
-    /// `residuals` but the last, from the backtracking line search.
+    /// Length (1 = the full Newton update, after its scaling to the search
+    /// distance) of the update after each residual of `residuals` but the
+    /// last, from the backtracking line search.
     pub step_lengths: Vec<f64>,
     /// Open–close iterations of the last sub-step.
     pub open_close_iterations: usize,

@@ -15,7 +15,10 @@ pub enum Predictor {
     ConstantAcceleration,
     /// The start-of-step configuration, `Δd = 0`: the contacts start in
     /// the states they ended the last step in. Free flight is linear in the
-    /// increments, so it still converges in one Newton iteration.
+    /// increments, so it converges in one Newton iteration unless the
+    /// update moves a boundary point further than the search distance (a
+    /// Newton update is scaled down to that, so a body flying further needs
+    /// one iteration per search distance).
     StartOfStep,
 }
 
