@@ -271,15 +271,17 @@ fn implicit_ellipses_come_to_rest_on_the_walls() {
     assert!(setup.count >= 50 && setup.aspect == 2.0);
     let settled = settle(&setup).unwrap();
     println!(
-        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps, {} reductions, rest at {:.3} s",
+        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps, {} reductions ({:?}), rest at {:.3} s",
         settled.reaction_ratio(),
         settled.step_ratio(),
         settled.accepted_step_ratio(),
         settled.iterations_per_step(),
         settled.steps,
         settled.reductions,
+        settled.halvings,
         settled.time
     );
+    assert_eq!(settled.halvings.total(), settled.reductions);
     assert!(settled.at_rest, "largest speed {} m/s", settled.max_speed);
     assert!(settled.step_ratio() >= 20.0 * (1.0 - 1e-12));
     assert!(

@@ -41,7 +41,7 @@ use crate::integrate::{ImplicitIntegrator, Newmark};
 use crate::kinematics::Affine2;
 use crate::linsolve::SparseLu;
 
-pub use crate::implicit::{FixedPoint, PlaneState, StepFailure, StepReport, StepStatus};
+pub use crate::implicit::{FixedPoint, Halvings, PlaneState, StepFailure, StepReport, StepStatus};
 pub use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 
 /// A DDA block: a polygon body with the six DDA unknowns.

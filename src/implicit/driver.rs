@@ -9,7 +9,7 @@ use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
 use super::laws::ContactLaws;
 use super::motion;
-use super::report::{ContactReport, StepFailure, StepReport, StepStatus};
+use super::report::{ContactReport, Halvings, StepFailure, StepReport, StepStatus};
 use super::settings::{ImplicitSettings, Predictor};
 use super::step::{body_dofs, Parts, StepData, Trial};
 use crate::broad_phase::CellGrid;
@@ -555,6 +555,7 @@ where
             status: StepStatus::Converged,
             substeps: 0,
             reductions: 0,
+            halvings: Halvings::default(),
             smallest_dt: dt,
             residuals: Vec::new(),
             step_lengths: Vec::new(),
@@ -594,6 +595,7 @@ where
                     if h / 2.0 >= dt * self.settings.min_dt_ratio * (1.0 - 1e-12) {
                         self.current_dt = h / 2.0;
                         report.reductions += 1;
+                        report.halvings.count(&reason);
                     } else {
                         report.status = StepStatus::Failed {
                             time: self.time,

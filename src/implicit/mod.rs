@@ -30,8 +30,12 @@
 //! * **Newton**: once the set is stable, a consistent law iterates to
 //!   `‖R‖ ≤ tol · scale` with the consistent tangent (at most `max_newton`
 //!   iterations), with the stick/slip states and slip directions unchanged
-//!   between the last two iterates. A backtracking line search on `‖R‖`
-//!   halves a step that does not lower the residual (at most 8 times).
+//!   between the last two iterates. An update that would take a slipping
+//!   contact to slip the other way stops where that contact sticks (its
+//!   stick band is too narrow for a full update to land in, and Newton
+//!   would cycle between the two slip directions); a backtracking line
+//!   search on `‖R‖` then halves a step that does not lower the residual
+//!   (at most 8 times).
 //!   A law that is not consistent ([`crate::law::TangentLaw::is_consistent`],
 //!   DDA's conventional friction) has no Newton phase: as in classic DDA
 //!   the step is accepted when the open/closed states no longer change,
@@ -40,7 +44,8 @@
 //!   singular, or which moves a point further than the search distance
 //!   relative to a neighbouring body is retried with half the step, down to
 //!   `min_dt_ratio` times the requested step; after a successful sub-step
-//!   the step doubles again up to the requested one. Past that bound
+//!   the step doubles again up to the requested one
+//!   ([`StepReport::halvings`] counts the causes). Past that bound
 //!   [`ImplicitDynamics::advance`] returns a [`StepStatus::Failed`] saying
 //!   what failed.
 //!
@@ -61,7 +66,7 @@ pub use body::{Body, BodyGeometry, BodyMaterial, Motion, PlaneState, Prescribed}
 pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
 pub use laws::ContactLaws;
-pub use report::{ContactReport, StepFailure, StepReport, StepStatus};
+pub use report::{ContactReport, Halvings, StepFailure, StepReport, StepStatus};
 pub use settings::{ImplicitSettings, Predictor};
 
 #[cfg(test)]

@@ -49,6 +49,48 @@ impl std::fmt::Display for StepFailure {
     }
 }
 
+/// Why the steps of an [`super::ImplicitDynamics::advance`] call were
+/// halved: one count per [`StepFailure`] kind.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Halvings {
+    /// [`StepFailure::OpenCloseNotSettled`].
+    pub open_close: usize,
+    /// [`StepFailure::NewtonNotConverged`].
+    pub newton: usize,
+    /// [`StepFailure::TooFast`]: a motion beyond the search distance.
+    pub too_fast: usize,
+    /// The others: a failed linear solve, an invalid body, a contact
+    /// normal not found.
+    pub other: usize,
+}
+
+impl Halvings {
+    /// Count one halving caused by `failure`.
+    pub fn count(&mut self, failure: &StepFailure) {
+        match failure {
+            StepFailure::OpenCloseNotSettled { .. } => self.open_close += 1,
+            StepFailure::NewtonNotConverged { .. } => self.newton += 1,
+            StepFailure::TooFast { .. } => self.too_fast += 1,
+            StepFailure::Solve(_) | StepFailure::Geometry(_) | StepFailure::Variation(_) => {
+                self.other += 1
+            }
+        }
+    }
+
+    /// Add the counts of `other`.
+    pub fn add(&mut self, other: &Halvings) {
+        self.open_close += other.open_close;
+        self.newton += other.newton;
+        self.too_fast += other.too_fast;
+        self.other += other.other;
+    }
+
+    /// All halvings.
+    pub fn total(&self) -> usize {
+        self.open_close + self.newton + self.too_fast + self.other
+    }
+}
+
 /// Outcome of [`super::ImplicitDynamics::advance`].
 #[derive(Debug, Clone, PartialEq)]
 pub enum StepStatus {
@@ -75,13 +117,16 @@ pub struct StepReport {
     pub substeps: usize,
     /// How many times the step was halved.
     pub reductions: usize,
+    /// Why: the failures that caused the halvings, by kind.
+    pub halvings: Halvings,
     /// Smallest sub-step used (s).
     pub smallest_dt: f64,
     /// Relative residual norms of every iteration of the last sub-step.
     pub residuals: Vec<f64>,
-    /// Length (1 = the full Newton update, after its scaling to the search
-    /// distance) of the update after each residual of `residuals` but the
-    /// last, from the backtracking line search.
+    /// Length of the update after each residual of `residuals` but the
+    /// last: 1 is the full Newton update (after its scaling to the search
+    /// distance), shortened where a contact whose slip would reverse
+    /// sticks, then by the backtracking line search.
     pub step_lengths: Vec<f64>,
     /// Open–close iterations of the last sub-step.
     pub open_close_iterations: usize,

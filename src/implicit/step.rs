@@ -1,7 +1,8 @@
 //! One trial step of the implicit driver: the linearised weak form
 //! assembled from the bodies and the contacts of the step, solved by an
 //! open–close iteration and then Newton–Raphson with a backtracking line
-//! search (paper 003, Fig. 5, written over the slots).
+//! search (paper 003, Fig. 5, written over the slots), each update stopped
+//! where a contact whose slip would reverse sticks.
 //!
 //! One step of size `Δt` solves for the increments `d` of all unknowns
 //!
@@ -89,6 +90,20 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     /// slipping contact in the tangent ([`super::ImplicitSettings::slip_regularization`]).
     pub slip_regularization: f64,
 }
+
+/// A contact's regime as the iteration compares it: 0 open, 1 stick, 2 / 3
+/// slip with `t_s ≥ 0` / `< 0`.
+fn regime_code<S>(response: &ContactResponse<2, S>) -> i8 {
+    match response.regime {
+        Regime::Open => 0,
+        Regime::Stick => 1,
+        Regime::Slip if response.force[1] >= 0.0 => 2,
+        Regime::Slip => 3,
+    }
+}
+
+/// Halvings of the search for where a contact whose slip reverses sticks.
+const STICK_SEARCH: usize = 60;
 
 /// The unknowns of body `i` in the global vector `d`.
 pub(super) fn body_dofs<const N: usize>(d: &[f64], i: usize) -> SVector<f64, N> {
@@ -241,12 +256,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                     r[N * bodies[side] + a] += force[a];
                 }
             }
-            eval.regimes.push(match resp.regime {
-                Regime::Open => 0,
-                Regime::Stick => 1,
-                Regime::Slip if t_s >= 0.0 => 2,
-                Regime::Slip => 3,
-            });
+            eval.regimes.push(regime_code(&resp));
             eval.states.push(resp.state);
             eval.forces.push((t_n, t_s));
             if !matrix {
@@ -326,6 +336,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let mut newton = 0;
         let mut last_open: Option<Vec<bool>> = None;
         let mut last_regimes: Option<Vec<i8>> = None;
+        // Per contact: whether its slip has reversed between two iterates.
+        let mut reversed = vec![false; self.contacts.len()];
         let mut eval = self.assemble(&d, parts, assembly, true)?;
         for _ in 0..=max_iter {
             let rel = eval.norm / parts.scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
@@ -370,6 +382,11 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 }
             }
             last_open = Some(open);
+            if let Some(last) = &last_regimes {
+                for ((r, &was), &now) in reversed.iter_mut().zip(last).zip(&eval.regimes) {
+                    *r |= was >= 2 && now >= 2 && was != now;
+                }
+            }
             last_regimes = Some(eval.regimes.clone());
             let mut delta: Vec<f64> = eval.r.iter().map(|x| -x).collect();
             let matrix = assembly.matrix();
@@ -379,11 +396,15 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 .and_then(|()| solver.solve_in_place(matrix, &mut delta))
                 .map_err(|e| StepFailure::Solve(e.to_string()))?;
             self.limit_update(&d, &mut delta, settings.search_distance);
-            // Backtracking on ‖R‖ (consistent laws only): a full step that
-            // does not lower the residual is halved, up to `LINE_SEARCH`
-            // times, so that Newton does not cycle between the two slip
-            // directions of a contact that should stick.
-            let mut alpha = 1.0;
+            // A contact whose slip would reverse stops the update where it
+            // sticks; then backtracking on ‖R‖ (consistent laws only): a
+            // step that does not lower the residual is halved, up to
+            // `LINE_SEARCH` times.
+            let mut alpha = if consistent {
+                self.slip_reversal_bound(&d, &delta, &eval.regimes, &reversed)?
+            } else {
+                1.0
+            };
             let mut next = Vec::with_capacity(d.len());
             for attempt in 0..=LINE_SEARCH {
                 next.clear();
@@ -410,6 +431,72 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
 }
 
 impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
+    /// The largest fraction of the Newton update `delta` from `d` that takes
+    /// no slipping contact (`regimes`) whose slip has reversed before in
+    /// this step's iteration (`reversed`) across its stick band to slip the
+    /// other way again: the fraction at which the first such contact
+    /// sticks.
+    ///
+    /// The stick band of a contact is narrow — the shear travel `2 μ t_n /
+    /// k_s` between the two slip limits, micrometres for a stiff penalty —
+    /// and the tangent of a slipping contact has no shear stiffness, so a
+    /// full update jumps from one slip direction to the other and the next
+    /// one jumps back: Newton cycles, and backtracking on ‖R‖ only shortens
+    /// the jumps. Stopped inside the band, the contact sticks and the next
+    /// update sees its shear stiffness. A first reversal is taken whole: a
+    /// contact whose slip truly reverses within the step (and there are
+    /// many as a packing or a wall takes its load) would otherwise cost an
+    /// iteration each. The fraction is found by bisection
+    /// on the contact's regime along the update (only the law's regimes are
+    /// read, so this holds for any [`TangentLaw`]).
+    fn slip_reversal_bound(
+        &self,
+        d: &[f64],
+        delta: &[f64],
+        regimes: &[i8],
+        reversed: &[bool],
+    ) -> Result<f64, StepFailure> {
+        let along = |alpha: f64| -> Vec<f64> {
+            d.iter().zip(delta).map(|(x, dx)| x + alpha * dx).collect()
+        };
+        let regime_at = |c: &StepContact, x: &[f64]| -> Result<i8, StepFailure> {
+            let (_, response, _) = self.evaluate(c, x)?;
+            Ok(regime_code(&response))
+        };
+        let full = along(1.0);
+        let mut bound = 1.0f64;
+        for ((c, &now), _) in self
+            .contacts
+            .iter()
+            .zip(regimes)
+            .zip(reversed)
+            .filter(|(_, &cycled)| cycled)
+        {
+            if now < 2 {
+                continue;
+            }
+            let end = regime_at(c, &full)?;
+            if end < 2 || end == now {
+                continue;
+            }
+            // `low` still slips as now, `high` does not.
+            let (mut low, mut high) = (0.0f64, 1.0f64);
+            for _ in 0..STICK_SEARCH {
+                let mid = 0.5 * (low + high);
+                match regime_at(c, &along(mid))? {
+                    r if r == now => low = mid,
+                    0 | 1 => {
+                        high = mid;
+                        break;
+                    }
+                    _ => high = mid,
+                }
+            }
+            bound = bound.min(high);
+        }
+        Ok(bound)
+    }
+
     /// Scale the Newton update `delta` at the iterate `d` so that it moves
     /// no boundary point further than `limit` (to first order): a step
     /// beyond the search distance is rejected anyway, and a tangent that

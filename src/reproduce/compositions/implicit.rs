@@ -25,8 +25,13 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
              return mapping), Newmark β = {}, γ = {}, sparse LU. Requested Δt = {:.4e} s, {} times \
              the explicit limit 2√(m/k) = {:.4e} s of the lightest ellipse on one spring (rotation and \
              several contacts only lower that limit). Rest: no boundary point faster than {:e} m/s. \
-             The driver halves a step whose iteration fails and doubles it after a success: the mean \
-             accepted sub-step is reported beside the requested one.",
+             Search distance {} m, at most {} open–close and {} Newton iterations a step. The driver \
+             halves a step whose iteration fails or whose motion passes the search distance and \
+             doubles it after a success: the mean accepted sub-step and the causes of the halvings \
+             are reported beside the requested step. While the columns collapse, ellipses turn at \
+             up to {:.0} rad/s (the largest at the end of a step), so boundary points can move \
+             several centimetres in a step of 20 limits, more than the search distance: a halving \
+             for that motion is a bound on the step's geometry, not on its stability.",
             setup.count,
             setup.aspect,
             setup.semi_major.0,
@@ -40,7 +45,11 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
             settled.dt,
             setup.step_ratio,
             settled.dt_explicit,
-            setup.rest_speed
+            setup.rest_speed,
+            setup.search_distance,
+            setup.max_iterations,
+            setup.max_iterations,
+            settled.peak_spin
         ),
     );
     c.check(
@@ -73,8 +82,36 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
             "implicit_ellipses.accepted_step_ratio",
             "mean accepted sub-step over the explicit limit",
             "-",
-            "most steps are halved two or three times while contacts open, close, stick and slip within a step",
+            "below the requested ratio while the columns collapse: see the halvings",
             settled.accepted_step_ratio(),
+        ),
+        (
+            "implicit_ellipses.peak_spin",
+            "largest angular speed of an ellipse at the end of a step",
+            "rad/s",
+            "the collapse of the columns",
+            settled.peak_spin,
+        ),
+        (
+            "implicit_ellipses.halvings.too_fast",
+            "halvings because a boundary point moved beyond the search distance",
+            "-",
+            "the motion bound of a step",
+            settled.halvings.too_fast as f64,
+        ),
+        (
+            "implicit_ellipses.halvings.newton",
+            "halvings because Newton did not converge",
+            "-",
+            "stick/slip states still changing at the iteration bound",
+            settled.halvings.newton as f64,
+        ),
+        (
+            "implicit_ellipses.halvings.open_close",
+            "halvings because the open/closed states did not settle",
+            "-",
+            "contacts still opening and closing at the iteration bound",
+            settled.halvings.open_close as f64,
         ),
         (
             "implicit_ellipses.iterations_per_step",
