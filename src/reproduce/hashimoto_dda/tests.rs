@@ -34,6 +34,32 @@ fn dda_sliding_block_follows_the_rigid_solution() {
     );
 }
 
+/// The sliding block at the stiffest penalty of the study (2e7 kN/m) and
+/// the coarse step (0.01 s), return mapping: a contact whose slip reverses
+/// a second time within a step's iteration stops in its stick band (2 μ t_n
+/// / k_s wide, under a micrometre here) instead of jumping to the other
+/// slip direction and back. Without that, one step did not converge and was
+/// halved, and the error against the rigid solution doubled (2.2 %); now no
+/// step is halved and the error is that of the softer penalties (1 %).
+#[test]
+fn shaken_block_at_stiff_penalty_needs_no_halving() {
+    let shaking = study_shaking(sliding_friction());
+    let run = run_sliding(
+        2e10,
+        0.01,
+        FrictionIntegration::ReturnMapping,
+        &shaking,
+        SLIDING_BLOCK,
+    )
+    .unwrap();
+    assert_eq!(run.reductions, 0, "steps halved");
+    assert!(
+        run.max_rel_error <= 0.015,
+        "max relative error {}",
+        run.max_rel_error
+    );
+}
+
 /// At the softest penalty (2e4 kN/m, 2 Hz, Δt = 1 ms) the return-mapping
 /// DDA misses the rigid solution by more than the paper's 3 %, and the
 /// exact solution of the same block on an elastic–plastic shear spring of
