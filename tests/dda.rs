@@ -2,9 +2,12 @@
 //! kinematics' derivatives, a patch test, the block on an inclined plane,
 //! the exact sliding-block solution, and bad input.
 
+mod dda_common;
+
+use dda_common::material;
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PenaltyState,
-    PlaneState, Prescribed, StepStatus,
+    Prescribed, StepStatus,
 };
 use dismech::error::DismechError;
 use dismech::integrate::{Newmark, Restarting};
@@ -32,15 +35,6 @@ fn input(overlap: f64, shear: f64) -> ContactInput<2> {
             mass_a: 1.0,
             mass_b: 1.0,
         },
-    }
-}
-
-fn material() -> BlockMaterial {
-    BlockMaterial {
-        density: 2200.0,
-        youngs_modulus: 1e9,
-        poisson_ratio: 0.25,
-        plane: PlaneState::Stress,
     }
 }
 

@@ -3,7 +3,10 @@
 //! mass gives a disc's exact kinetic energy, and the map derivatives are
 //! the finite differences of the map parameters.
 
-use dismech::dda::{Block, BlockMaterial, PlaneState};
+mod dda_common;
+
+use dda_common::material;
+use dismech::dda::Block;
 use dismech::kinematics::{
     Advance, Affine2, AreaMoments, Kinematics, PlacedEllipse, PlacedPolygon, Rigid2,
 };
@@ -55,15 +58,6 @@ mod classic_dda {
             })
             .collect();
         Polygon::from_world(&moved, 0).unwrap()
-    }
-}
-
-fn material() -> BlockMaterial {
-    BlockMaterial {
-        density: 2200.0,
-        youngs_modulus: 1e9,
-        poisson_ratio: 0.25,
-        plane: PlaneState::Stress,
     }
 }
 

@@ -3,9 +3,12 @@
 //! and in the unknowns of rigid, affine and fixed bodies; exact gaps of
 //! circles; DDA's vertex–edge contact bit for bit.
 
+mod dda_common;
+
 mod variation_common;
 
-use dismech::dda::{Block, BlockMaterial, PlaneState};
+use dda_common::material;
+use dismech::dda::Block;
 use dismech::kinematics::{
     Affine2, Fixed, Kinematics, MapVector, PlacedEllipse, PlacedPolygon, Rigid2,
 };
@@ -218,15 +221,6 @@ proptest! {
 }
 
 // --------------------------------------------------------------- DDA
-
-fn material() -> BlockMaterial {
-    BlockMaterial {
-        density: 2200.0,
-        youngs_modulus: 1e9,
-        poisson_ratio: 0.25,
-        plane: PlaneState::Stress,
-    }
-}
 
 /// The two blocks of the DDA derivative test: a slab and a tilted block
 /// above it, with the upper block's lowest vertex.
