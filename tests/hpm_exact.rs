@@ -157,8 +157,9 @@ fn planar_slab_slip_springs_balance_the_load_exactly() {
     );
 }
 
-#[test]
-fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
+/// A 4 × 5-column slab 6 m thick dipping 20° with c = 5 kPa, and its exact
+/// safety factor.
+fn cohesive_planar_slab() -> (HpmModel, f64) {
     let m = HpmMaterial {
         cohesion: 5.0e3,
         ..HpmMaterial::paper()
@@ -167,6 +168,12 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
     let grids = slab(rows, columns, dip, 270.0, h, None);
     let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
     let exact = exact_fs(&exact_slab(rows, columns, &m, h, None), &m, dip, 0.0);
+    (model, exact)
+}
+
+#[test]
+fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
+    let (model, exact) = cohesive_planar_slab();
     let mut solver = HpmSolver::new(&model).unwrap();
     let settings = NonlinearSettings::default();
     let r = solver
@@ -488,14 +495,7 @@ fn nonlinear_fs_and_strength_reduction_by_pcg_match_cholesky() {
     }
     // Strength reduction on the planar slab, whose exact Fs is known
     // (an iteration limit of 300 keeps the failing trials short).
-    let m = HpmMaterial {
-        cohesion: 5.0e3,
-        ..HpmMaterial::paper()
-    };
-    let (rows, columns, dip, h) = (4, 5, 20.0, 6.0);
-    let grids = slab(rows, columns, dip, 270.0, h, None);
-    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
-    let exact = exact_fs(&exact_slab(rows, columns, &m, h, None), &m, dip, 0.0);
+    let (model, exact) = cohesive_planar_slab();
     let settings = NonlinearSettings {
         max_iterations: 300,
         ..settings
