@@ -26,10 +26,10 @@
 //! While the columns collapse the ellipses spin fast
 //! ([`SettledBox::peak_spin`]; tens of rad/s) and boundary points move
 //! several centimetres in a step of 20 limits, more than the search
-//! distance: most halvings of the default run are that motion bound (in the
-//! default run 111 of 180; 37 Newton and 32 open–close iterations did not
-//! converge within 40), a bound on the step's geometry rather than its
-//! stability. Once the packing is dense the steps are taken whole.
+//! distance: most halvings of the default run are that motion bound, a
+//! bound on the step's geometry rather than its stability (the rest are
+//! Newton and open–close iterations that did not converge within 40; the
+//! study reports each count). Once the packing is dense the steps are taken whole.
 //! [`SettledBox::accepted_step_ratio`] reports the mean accepted sub-step
 //! against the explicit limit beside the requested
 //! [`SettledBox::step_ratio`], and [`SettledBox::halvings`] the causes.

@@ -31,9 +31,10 @@
 //!   `‖R‖ ≤ tol · scale` with the consistent tangent (at most `max_newton`
 //!   iterations), with the stick/slip states and slip directions unchanged
 //!   between the last two iterates. An update that would take a slipping
-//!   contact to slip the other way stops where that contact sticks (its
-//!   stick band is too narrow for a full update to land in, and Newton
-//!   would cycle between the two slip directions); a backtracking line
+//!   contact, whose slip has already reversed once in the step, to slip
+//!   the other way again stops where that contact sticks (its stick band
+//!   is too narrow for a full update to land in, and Newton would cycle
+//!   between the two slip directions); a backtracking line
 //!   search on `‖R‖` then halves a step that does not lower the residual
 //!   (at most 8 times).
 //!   A law that is not consistent ([`crate::law::TangentLaw::is_consistent`],

@@ -125,8 +125,8 @@ pub struct StepReport {
     pub residuals: Vec<f64>,
     /// Length of the update after each residual of `residuals` but the
     /// last: 1 is the full Newton update (after its scaling to the search
-    /// distance), shortened where a contact whose slip would reverse
-    /// sticks, then by the backtracking line search.
+    /// distance), shortened where a contact whose slip would reverse a
+    /// second time sticks, then by the backtracking line search.
     pub step_lengths: Vec<f64>,
     /// Open–close iterations of the last sub-step.
     pub open_close_iterations: usize,

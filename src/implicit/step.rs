@@ -1,8 +1,8 @@
 //! One trial step of the implicit driver: the linearised weak form
 //! assembled from the bodies and the contacts of the step, solved by an
 //! open–close iteration and then Newton–Raphson with a backtracking line
-//! search (paper 003, Fig. 5, written over the slots), each update stopped
-//! where a contact whose slip would reverse sticks.
+//! search (paper 003, Fig. 5, written over the slots), an update stopped
+//! where a contact whose slip would reverse a second time sticks.
 //!
 //! One step of size `Δt` solves for the increments `d` of all unknowns
 //!
@@ -456,14 +456,21 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         regimes: &[i8],
         reversed: &[bool],
     ) -> Result<f64, StepFailure> {
-        let along = |alpha: f64| -> Vec<f64> {
-            d.iter().zip(delta).map(|(x, dx)| x + alpha * dx).collect()
-        };
-        let regime_at = |c: &StepContact, x: &[f64]| -> Result<i8, StepFailure> {
-            let (_, response, _) = self.evaluate(c, x)?;
+        if !reversed.contains(&true) {
+            return Ok(1.0);
+        }
+        // The iterate `d + α delta`, written only for the two bodies of
+        // the contact evaluated (the pair query reads no other).
+        let mut x = d.to_vec();
+        let mut regime_along = |c: &StepContact, alpha: f64| -> Result<i8, StepFailure> {
+            for body in [c.a, c.b] {
+                for k in N * body..N * body + N {
+                    x[k] = d[k] + alpha * delta[k];
+                }
+            }
+            let (_, response, _) = self.evaluate(c, &x)?;
             Ok(regime_code(&response))
         };
-        let full = along(1.0);
         let mut bound = 1.0f64;
         for ((c, &now), _) in self
             .contacts
@@ -475,7 +482,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             if now < 2 {
                 continue;
             }
-            let end = regime_at(c, &full)?;
+            let end = regime_along(c, 1.0)?;
             if end < 2 || end == now {
                 continue;
             }
@@ -483,7 +490,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             let (mut low, mut high) = (0.0f64, 1.0f64);
             for _ in 0..STICK_SEARCH {
                 let mid = 0.5 * (low + high);
-                match regime_at(c, &along(mid))? {
+                match regime_along(c, mid)? {
                     r if r == now => low = mid,
                     0 | 1 => {
                         high = mid;
