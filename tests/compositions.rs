@@ -262,8 +262,9 @@ fn penalty_pushover_levels_off_at_the_lp_limit_load() {
 
 /// 64 ellipses (a/b = 2) settled in a box by the implicit driver (rigid
 /// bodies, Newmark β = 0.5625, γ = 1, return-mapping Coulomb) at a
-/// requested step of 20 explicit limits come to rest, and the walls carry
-/// their weight to 0.5 %.
+/// requested step of 20 explicit limits come to rest, the last 0.1 s at
+/// least in whole steps of that size, and the walls carry their weight to
+/// 0.5 %.
 #[test]
 fn implicit_ellipses_come_to_rest_on_the_walls() {
     use dismech::compositions::implicit_ellipses::{settle, EllipseBox};
@@ -271,19 +272,30 @@ fn implicit_ellipses_come_to_rest_on_the_walls() {
     assert!(setup.count >= 50 && setup.aspect == 2.0);
     let settled = settle(&setup).unwrap();
     println!(
-        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps, {} reductions ({:?}), rest at {:.3} s",
+        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps ({} whole; the last halving at {:.3} s, then {} whole steps), {} reductions ({:?}), {} redetections, rest at {:.3} s",
         settled.reaction_ratio(),
         settled.step_ratio(),
         settled.accepted_step_ratio(),
         settled.iterations_per_step(),
         settled.steps,
+        settled.whole_steps,
+        settled.last_halved_at,
+        settled.final_whole_steps(),
         settled.reductions,
         settled.halvings,
+        settled.redetections,
         settled.time
     );
     assert_eq!(settled.halvings.total(), settled.reductions);
     assert!(settled.at_rest, "largest speed {} m/s", settled.max_speed);
     assert!(settled.step_ratio() >= 20.0 * (1.0 - 1e-12));
+    // It settles at the requested step: the steps of its last 0.1 s (and
+    // more) are each taken whole.
+    assert!(
+        settled.final_whole_steps() as f64 * settled.dt >= 0.1,
+        "{} whole steps at the end",
+        settled.final_whole_steps()
+    );
     assert!(
         (settled.reaction_ratio() - 1.0).abs() <= 5e-3,
         "reaction ratio {}",

@@ -91,6 +91,100 @@ fn a_fast_tilted_ellipse_does_not_cross_into_a_floor_in_one_step() {
     );
 }
 
+/// With room to grow its search distance, the driver meets the same fast
+/// ellipse by detecting the step's contacts again at a distance that
+/// covers the motion and repeating the step at its size: no step is
+/// halved, and the ellipse still does not cross into the floor.
+#[test]
+fn a_fast_ellipse_is_detected_again_rather_than_halved() {
+    let (a, b, angle) = (0.2, 0.1, std::f64::consts::FRAC_PI_4);
+    let reach = ((a * angle.sin()).powi(2) + (b * angle.cos()).powi(2)).sqrt();
+    let mut e =
+        Body::<3>::ellipse(Point::new(0.0, reach + 0.008), a, b, angle, material(), 0).unwrap();
+    e.velocity[1] = -2.0;
+    let settings = ImplicitSettings {
+        search_distance: 0.005,
+        max_search_distance: Some(0.05),
+        ..ImplicitSettings::default()
+    };
+    let mut model = ImplicitDynamics::compose(
+        vec![e, floor(1)],
+        Rigid2,
+        law(1e8),
+        Newmark::new(0.5625, 1.0).unwrap(),
+        SparseLu::default(),
+        settings,
+    )
+    .unwrap();
+    let (mut reductions, mut redetections) = (0, 0);
+    let mut deepest = f64::INFINITY;
+    for _ in 0..20 {
+        let report = model.advance(0.01).unwrap();
+        assert_eq!(report.status, StepStatus::Converged);
+        reductions += report.reductions;
+        redetections += report.redetections;
+        deepest = deepest.min(lowest(&model.bodies()[0]));
+    }
+    println!("reductions {reductions}, redetections {redetections}, deepest {deepest:e} m");
+    assert_eq!(reductions, 0);
+    assert!(
+        redetections > 0,
+        "the first step must have been detected again"
+    );
+    assert!(
+        deepest > -0.005,
+        "the ellipse went {deepest:e} m into the floor"
+    );
+    assert!(model.search_distance() <= 0.05);
+}
+
+/// Mass-proportional damping `−α M v` with the trapezoidal rule (Newmark
+/// β = ¼, γ = ½, no damping of its own) turns a free body's velocity, in
+/// translation and rotation alike, by the factor `(1 − αΔt/2)/(1 + αΔt/2)`
+/// each step, exactly (from an acceleration consistent with the
+/// velocity).
+#[test]
+fn mass_damping_decays_a_free_body_by_the_trapezoidal_factor() {
+    let alpha = 2.0;
+    let mut e = Body::<3>::ellipse(Point::new(0.0, 1.0), 0.2, 0.1, 0.3, material(), 0).unwrap();
+    e.velocity = nalgebra::Vector3::new(1.0, -0.5, 3.0);
+    // Newmark needs the start acceleration consistent with the equation
+    // of motion, `a₀ = −α v₀`.
+    e.acceleration = -alpha * e.velocity;
+    let start = e.velocity;
+    let settings = ImplicitSettings {
+        gravity: Vec2::zeros(),
+        search_distance: 0.01,
+        mass_damping: alpha,
+        ..ImplicitSettings::default()
+    };
+    let mut model = ImplicitDynamics::compose(
+        vec![e],
+        Rigid2,
+        law(1e8),
+        Newmark::new(0.25, 0.5).unwrap(),
+        SparseLu::default(),
+        settings,
+    )
+    .unwrap();
+    let (dt, steps) = (1e-2, 100);
+    for _ in 0..steps {
+        assert_eq!(model.advance(dt).unwrap().status, StepStatus::Converged);
+    }
+    let factor = ((1.0 - 0.5 * alpha * dt) / (1.0 + 0.5 * alpha * dt)).powi(steps);
+    let v = model.bodies()[0].velocity;
+    for k in 0..3 {
+        assert!(
+            (v[k] - factor * start[k]).abs() <= 1e-9 * start[k].abs(),
+            "velocity {k}: {} against {}",
+            v[k],
+            factor * start[k]
+        );
+    }
+    // and the factor is the exponential decay to second order in αΔt
+    assert!((factor - (-alpha * dt * steps as f64).exp()).abs() < 1e-4);
+}
+
 /// A rigid model of `bodies` with the penalty law, Newmark β = 0.5625,
 /// γ = 1 (strong damping of the stiff contact modes) and the step started
 /// from the start-of-step configuration.

@@ -21,21 +21,31 @@
 //! [`Newmark::spectral_radius`]).
 //!
 //! The driver halves a step whose open–close or Newton iteration does not
-//! converge, or that moves a boundary point further than the search
-//! distance relative to a neighbour, and doubles it again after a success.
-//! While the columns collapse the ellipses spin fast
-//! ([`SettledBox::peak_spin`]; tens of rad/s) and boundary points move
-//! several centimetres in a step of 20 limits, more than the search
-//! distance: most halvings of the default run are that motion bound, a
-//! bound on the step's geometry rather than its stability (the rest are
-//! Newton and open–close iterations that did not converge within 40; the
-//! study reports each count). Once the packing is dense the steps are taken whole.
+//! converge and doubles it again after a success. While the columns
+//! collapse the ellipses spin fast ([`SettledBox::peak_spin`]; tens of
+//! rad/s) and boundary points move several centimetres in a step of 20
+//! limits, more than the search distance (30 mm, the smallest semi-minor
+//! axis): such a step would miss contacts, so it is detected again at a
+//! search distance that covers its motion, up to
+//! [`EllipseBox::max_search_distance`] (the smallest ellipse's length),
+//! and repeated at its size ([`ImplicitSettings::max_search_distance`]).
+//! The collapse — impacts, contacts opening and closing, slip reversing —
+//! is where Newton and the open–close iteration fail within 40 iterations
+//! and a step is halved; once the packing is dense the steps are taken
+//! whole, and it settles at the requested step.
 //! [`SettledBox::accepted_step_ratio`] reports the mean accepted sub-step
 //! against the explicit limit beside the requested
-//! [`SettledBox::step_ratio`], and [`SettledBox::halvings`] the causes.
+//! [`SettledBox::step_ratio`], [`SettledBox::halvings`] the causes,
+//! [`SettledBox::last_halved_at`] when the last halving was and
+//! [`SettledBox::whole_steps`] how many steps were taken whole.
 //!
-//! The search distance is the smallest semi-minor axis (30 mm): the
-//! largest motion in a step that keeps the pairs of a step neighbours.
+//! Ellipses balanced on one contact rock slowly (ω ≈ 5 rad/s), and
+//! Newmark's damping of so low a frequency at this step is small, so
+//! without more a packing reaches the rest criterion after anywhere from 1
+//! to more than 10 s. Mass-proportional damping `α = 2` /s
+//! ([`EllipseBox::mass_damping`]) takes a rocking amplitude down by `e`
+//! each second; it vanishes at rest, so the static state it leads to is a
+//! static state of the undamped packing.
 //!
 //! At rest the walls carry the weight: the sum of their vertical forces on
 //! the ellipses over the total weight is 1, to the precision of the rest.
@@ -81,9 +91,13 @@ pub struct EllipseBox {
     /// Gravity (m/s²).
     pub gravity: f64,
     /// Search distance of the implicit driver (m): pairs nearer than this
-    /// are contacts of a step, and no boundary point may move further
-    /// within one.
+    /// are contacts of a step.
     pub search_distance: f64,
+    /// Largest search distance a step may use when the bodies move fast
+    /// (m; [`ImplicitSettings::max_search_distance`]).
+    pub max_search_distance: f64,
+    /// Mass-proportional damping (1/s; [`ImplicitSettings::mass_damping`]).
+    pub mass_damping: f64,
     /// Most open–close and most Newton iterations of a step (each).
     pub max_iterations: usize,
 }
@@ -91,9 +105,10 @@ pub struct EllipseBox {
 impl Default for EllipseBox {
     /// 64 ellipses, a ∈ [0.06, 0.09] m, a/b = 2, in 8 columns; ρ = 2650
     /// kg/m³, penalty 1e8 N/m per m, μ = 0.5; Δt = 20 explicit limits;
-    /// Newmark β = 0.5625, γ = 1; at rest below 1e-4 m/s; search distance
-    /// 30 mm (the smallest semi-minor axis); at most 40 open–close and 40
-    /// Newton iterations a step.
+    /// Newmark β = 0.5625, γ = 1; mass damping 2 /s; at rest below 1e-4
+    /// m/s; search distance 30 mm (the smallest semi-minor axis), up to
+    /// 120 mm (the smallest ellipse's length) for a fast step; at most 40
+    /// open–close and 40 Newton iterations a step.
     fn default() -> Self {
         Self {
             count: 64,
@@ -110,6 +125,8 @@ impl Default for EllipseBox {
             max_time: 10.0,
             gravity: 9.81,
             search_distance: 0.03,
+            max_search_distance: 0.12,
+            mass_damping: 2.0,
             max_iterations: 40,
         }
     }
@@ -238,6 +255,14 @@ pub struct SettledBox {
     pub reductions: usize,
     /// Why, by kind of failure.
     pub halvings: Halvings,
+    /// Steps of `dt` taken whole (one sub-step, no halving).
+    pub whole_steps: usize,
+    /// Time at the end of the last step that had to be halved (s; 0 when
+    /// none was).
+    pub last_halved_at: f64,
+    /// Sub-steps repeated at the same size with the contacts detected at a
+    /// larger search distance.
+    pub redetections: usize,
     /// Newton and open–close iterations (linear solves), failed sub-steps
     /// included.
     pub iterations: usize,
@@ -276,6 +301,11 @@ impl SettledBox {
         self.time / self.substeps.max(1) as f64 / self.dt_explicit
     }
 
+    /// Steps from the last halving to the end, each taken whole.
+    pub fn final_whole_steps(&self) -> usize {
+        ((self.time - self.last_halved_at) / self.dt).round() as usize
+    }
+
     /// Mean iterations (linear solves) per step of `dt`.
     pub fn iterations_per_step(&self) -> f64 {
         self.iterations as f64 / self.steps.max(1) as f64
@@ -308,6 +338,8 @@ fn build(setup: &EllipseBox) -> Result<BoxModel> {
     let settings = ImplicitSettings {
         gravity: Vec2::new(0.0, -setup.gravity),
         search_distance: setup.search_distance,
+        max_search_distance: Some(setup.max_search_distance),
+        mass_damping: setup.mass_damping,
         predictor: Predictor::StartOfStep,
         max_open_close: setup.max_iterations,
         max_newton: setup.max_iterations,
@@ -352,6 +384,8 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
         .map(|b| b.area() * b.material().density * setup.gravity)
         .sum();
     let (mut steps, mut substeps, mut reductions, mut iterations) = (0, 0, 0, 0);
+    let mut redetections = 0;
+    let (mut whole_steps, mut last_halved_at) = (0, 0.0);
     let mut halvings = Halvings::default();
     let mut peak_spin = 0.0f64;
     let mut at_rest = false;
@@ -361,6 +395,12 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
         substeps += report.substeps;
         reductions += report.reductions;
         halvings.add(&report.halvings);
+        redetections += report.redetections;
+        if report.reductions == 0 {
+            whole_steps += 1;
+        } else {
+            last_halved_at = model.time();
+        }
         peak_spin = model.bodies()[..n]
             .iter()
             .fold(peak_spin, |m, b| m.max(b.velocity[2].abs()));
@@ -401,6 +441,9 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
         substeps,
         reductions,
         halvings,
+        whole_steps,
+        last_halved_at,
+        redetections,
         iterations,
         time: model.time(),
         at_rest,

@@ -24,6 +24,11 @@ use crate::query::variation::PairContact;
 use crate::query::Feature;
 use crate::shape::Segment;
 
+/// The search distance a step that moved a boundary point by `m` relative
+/// to a neighbour leaves to the next step (and a repeated step uses): `m`
+/// times this, within the settings' bounds.
+const SEARCH_MARGIN: f64 = 1.5;
+
 /// A penalty spring tying a material point of a body to its start position
 /// (the fixed point of classic DDA).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,6 +70,9 @@ pub struct ImplicitDynamics<const N: usize, K, L: TangentLaw<2>, I, S> {
     assembly: BlockAssembly,
     requested_dt: Option<f64>,
     current_dt: f64,
+    /// The search distance of the next step (adapted between
+    /// `settings.search_distance` and its largest value).
+    search: f64,
     solves: usize,
 }
 
@@ -90,6 +98,7 @@ where
         settings: ImplicitSettings,
     ) -> Result<Self> {
         settings.validate()?;
+        let settings_search = settings.search_distance;
         let assembly = BlockAssembly::new(bodies.len(), N, &[])?;
         let mut model = Self {
             bodies,
@@ -110,6 +119,7 @@ where
             assembly,
             requested_dt: None,
             current_dt: 0.0,
+            search: settings_search,
             solves: 0,
         };
         model.find_pairs();
@@ -234,10 +244,19 @@ where
         self.solver.factor_entries()
     }
 
+    /// The candidate pairs of the next step: boxes within its search
+    /// distance.
     fn find_pairs(&mut self) {
         let boxes: Vec<Aabb2> = self.bodies.iter().map(|b| b.geometry().aabb()).collect();
         self.grid
-            .candidate_pairs(&boxes, self.settings.search_distance, &mut self.pairs);
+            .candidate_pairs(&boxes, self.search, &mut self.pairs);
+    }
+
+    /// The search distance in use (m): `settings.search_distance`, or more
+    /// when [`ImplicitSettings::max_search_distance`] lets it follow the
+    /// bodies' motion.
+    pub fn search_distance(&self) -> f64 {
+        self.search
     }
 
     fn prescribed_mask(&self) -> Vec<bool> {
@@ -292,8 +311,15 @@ where
             contacts,
             dt,
             slip_regularization: self.settings.slip_regularization,
+            search: self.search,
         };
-        let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
+        let parts: Parts<N> = data.parts(
+            &coeffs,
+            &self.settings.gravity,
+            self.settings.mass_damping,
+            &self.fixed_points,
+            mask,
+        );
         data.iterate(
             d,
             &parts,
@@ -315,13 +341,8 @@ where
         v: &[f64],
     ) -> (Vec<f64>, Vec<f64>, Vec<i8>) {
         self.find_pairs();
-        let contacts = detect(
-            &self.bodies,
-            &self.pairs,
-            self.settings.search_distance,
-            &self.previous,
-        )
-        .expect("detection");
+        let contacts =
+            detect(&self.bodies, &self.pairs, self.search, &self.previous).expect("detection");
         let mask = self.prescribed_mask();
         let coeffs = self.integrator.coefficients(dt);
         self.update_pattern(&contacts, &mask).expect("pattern");
@@ -333,8 +354,15 @@ where
             contacts: &contacts,
             dt,
             slip_regularization: self.settings.slip_regularization,
+            search: self.search,
         };
-        let parts: Parts<N> = data.parts(&coeffs, &self.settings.gravity, &self.fixed_points, mask);
+        let parts: Parts<N> = data.parts(
+            &coeffs,
+            &self.settings.gravity,
+            self.settings.mass_damping,
+            &self.fixed_points,
+            mask,
+        );
         let eval = data
             .assemble(d, &parts, &mut self.assembly, true)
             .expect("assembly");
@@ -370,10 +398,10 @@ where
     /// boundary point of a body relative to another body it could reach
     /// ([`motion::relative_motion`]): the pairs are those whose boxes, each
     /// grown by the largest motion of its own boundary, come within the
-    /// search distance — the pairs near each other at the start and any
-    /// pair a fast body may run into within the step.
+    /// step's search distance — the pairs near each other at the start and
+    /// any pair a fast body may run into within the step.
     fn fastest_point(&mut self, d: &[f64]) -> (usize, f64) {
-        let d0 = self.settings.search_distance;
+        let d0 = self.search;
         let own: Vec<f64> = (0..self.bodies.len())
             .map(|i| motion::own_motion(&self.kinematics, &self.bodies[i], &body_dofs::<N>(d, i)))
             .collect();
@@ -556,6 +584,7 @@ where
             substeps: 0,
             reductions: 0,
             halvings: Halvings::default(),
+            redetections: 0,
             smallest_dt: dt,
             residuals: Vec::new(),
             step_lengths: Vec::new(),
@@ -563,27 +592,38 @@ where
             iterations: 0,
         };
         let solves = self.solves;
+        let (least, most) = (
+            self.settings.search_distance,
+            self.settings.largest_search_distance(),
+        );
         while end - self.time > 1e-12 * dt {
             let h = self.current_dt.min(end - self.time);
-            self.find_pairs();
-            let outcome = detect(
-                &self.bodies,
-                &self.pairs,
-                self.settings.search_distance,
-                &self.previous,
-            )
-            .map_err(|e| StepFailure::Variation(e.to_string()))
-            .and_then(|contacts| {
-                let trial = self.trial(h, &contacts)?;
-                let (block, motion) = self.fastest_point(&trial.d);
-                if motion > self.settings.search_distance {
-                    return Err(StepFailure::TooFast { block, motion });
+            let outcome = loop {
+                self.find_pairs();
+                let outcome = detect(&self.bodies, &self.pairs, self.search, &self.previous)
+                    .map_err(|e| StepFailure::Variation(e.to_string()))
+                    .and_then(|contacts| {
+                        let trial = self.trial(h, &contacts)?;
+                        let (block, motion) = self.fastest_point(&trial.d);
+                        if motion > self.search {
+                            return Err(StepFailure::TooFast { block, motion });
+                        }
+                        self.commit(&contacts, &trial)?;
+                        Ok((trial, motion))
+                    });
+                match outcome {
+                    // Detect again at a search distance that covers the
+                    // motion, and repeat the step at the same size.
+                    Err(StepFailure::TooFast { motion, .. }) if self.search < most => {
+                        self.search = (SEARCH_MARGIN * motion).clamp(least, most);
+                        report.redetections += 1;
+                    }
+                    _ => break outcome,
                 }
-                self.commit(&contacts, &trial)?;
-                Ok(trial)
-            });
+            };
             match outcome {
-                Ok(trial) => {
+                Ok((trial, motion)) => {
+                    self.search = (SEARCH_MARGIN * motion).clamp(least, most);
                     report.substeps += 1;
                     report.smallest_dt = report.smallest_dt.min(h);
                     report.residuals = trial.residuals;

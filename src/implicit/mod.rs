@@ -41,9 +41,18 @@
 //!   DDA's conventional friction) has no Newton phase: as in classic DDA
 //!   the step is accepted when the open/closed states no longer change,
 //!   and its tangent has no Hessian terms.
+//! * **Search distance**: a step whose boundary point moves further than
+//!   the search distance relative to a body it could reach may have missed
+//!   a contact. With [`ImplicitSettings::max_search_distance`] above the
+//!   search distance, such a step is detected again at a search distance
+//!   covering its motion (up to that bound) and repeated at its size
+//!   ([`StepReport::redetections`]), and the next step starts from the
+//!   search distance the last motion needed; otherwise it is halved.
+//! * **Damping**: [`ImplicitSettings::mass_damping`] adds `α M v` to the
+//!   residual (zero by default), for runs that must come to rest.
 //! * **Δt reduction**: a step whose iteration fails, whose solve is
-//!   singular, or which moves a point further than the search distance
-//!   relative to a neighbouring body is retried with half the step, down to
+//!   singular, or which moves a point further than the largest search
+//!   distance relative to a neighbouring body is retried with half the step, down to
 //!   `min_dt_ratio` times the requested step; after a successful sub-step
 //!   the step doubles again up to the requested one
 //!   ([`StepReport::halvings`] counts the causes). Past that bound

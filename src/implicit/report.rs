@@ -119,6 +119,10 @@ pub struct StepReport {
     pub reductions: usize,
     /// Why: the failures that caused the halvings, by kind.
     pub halvings: Halvings,
+    /// How many times a sub-step was detected again at a larger search
+    /// distance and repeated at the same size
+    /// ([`super::ImplicitSettings::max_search_distance`]).
+    pub redetections: usize,
     /// Smallest sub-step used (s).
     pub smallest_dt: f64,
     /// Relative residual norms of every iteration of the last sub-step.

@@ -30,6 +30,17 @@ pub struct ImplicitSettings {
     /// Search distance `d₀` of contact detection (m): pairs closer than this
     /// at the start of a step are contacts of the step.
     pub search_distance: f64,
+    /// Largest search distance a step may use (m), at least
+    /// `search_distance`. A trial step whose boundary point moves further
+    /// than the step's search distance relative to a body it could reach
+    /// would miss contacts; with room above `search_distance` the step is
+    /// then detected again at a search distance that covers the motion (up
+    /// to this) and repeated at the same size rather than halved, and the
+    /// next step starts from the search distance the last motion needed
+    /// (never below `search_distance`). Equal to `search_distance` (the
+    /// default) the search distance is fixed and a fast step is halved.
+    /// `None` takes `search_distance`.
+    pub max_search_distance: Option<f64>,
     /// Largest penetration accepted at the start (m).
     pub overlap_tolerance: f64,
     /// Most open–close iterations per step.
@@ -50,6 +61,13 @@ pub struct ImplicitSettings {
     /// slips may then turn freely and the matrix is singular. Zero keeps
     /// the exact consistent tangent (Newton's quadratic convergence).
     pub slip_regularization: f64,
+    /// Mass-proportional (Rayleigh) damping `α` (1/s): a force `−α M v`
+    /// on every body, with `v` the end-of-step velocity of the integrator.
+    /// It damps every motion at the rate `α/2`, rigid ones included (a
+    /// body falling freely reaches `g/α`), and vanishes at rest, so it
+    /// changes the path to a static state but not the state. Zero (the
+    /// default) adds none.
+    pub mass_damping: f64,
 }
 
 impl Default for ImplicitSettings {
@@ -57,6 +75,7 @@ impl Default for ImplicitSettings {
         Self {
             gravity: Vec2::new(0.0, -9.8),
             search_distance: 0.01,
+            max_search_distance: None,
             overlap_tolerance: 1e-6,
             max_open_close: 20,
             max_newton: 20,
@@ -64,11 +83,19 @@ impl Default for ImplicitSettings {
             min_dt_ratio: 1.0 / 64.0,
             predictor: Predictor::default(),
             slip_regularization: 0.0,
+            mass_damping: 0.0,
         }
     }
 }
 
 impl ImplicitSettings {
+    /// The largest search distance a step may use (m).
+    pub fn largest_search_distance(&self) -> f64 {
+        self.max_search_distance
+            .unwrap_or(self.search_distance)
+            .max(self.search_distance)
+    }
+
     /// Check every value.
     ///
     /// # Errors
@@ -76,8 +103,18 @@ impl ImplicitSettings {
     pub fn validate(&self) -> Result<()> {
         require_positive("search distance d0", self.search_distance)?;
         require_positive("overlap tolerance", self.overlap_tolerance)?;
+        if let Some(max) = self.max_search_distance {
+            if !(max.is_finite() && max >= self.search_distance) {
+                return Err(DismechError::InvalidParameter {
+                    name: "max_search_distance",
+                    value: max,
+                    requirement: "must be finite and at least search_distance",
+                });
+            }
+        }
         require_positive("residual tolerance", self.residual_tolerance)?;
         crate::error::require_non_negative("slip regularization", self.slip_regularization)?;
+        crate::error::require_non_negative("mass damping", self.mass_damping)?;
         if !(self.min_dt_ratio > 0.0 && self.min_dt_ratio <= 1.0) {
             return Err(DismechError::InvalidParameter {
                 name: "min_dt_ratio",

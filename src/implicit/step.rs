@@ -6,7 +6,7 @@
 //!
 //! One step of size `Δt` solves for the increments `d` of all unknowns
 //!
-//! `R(d) = M a₁(d) + K d + f_σ − f_ext + Σ_c (−t_n ∇g_n + t_s ∇g_s) + Σ_f k_f Jᵀ J d = 0`
+//! `R(d) = M a₁(d) + α M v₁(d) + K d + f_σ − f_ext + Σ_c (−t_n ∇g_n + t_s ∇g_s) + Σ_f k_f Jᵀ J d = 0`
 //!
 //! with `a₁ = c_a d − a_v v₀ − a_a a₀` from the integrator, the mass `M`
 //! and elastic stiffness `K` from the kinematics, the internal force `f_σ`
@@ -89,6 +89,9 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     /// Fraction of the normal stiffness added to the shear stiffness of a
     /// slipping contact in the tangent ([`super::ImplicitSettings::slip_regularization`]).
     pub slip_regularization: f64,
+    /// The step's search distance: the largest motion of a boundary point
+    /// in one Newton update.
+    pub search: f64,
 }
 
 /// A contact's regime as the iteration compares it: 0 open, 1 stick, 2 / 3
@@ -154,6 +157,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         &self,
         coeffs: &ImplicitCoefficients,
         gravity: &crate::math::Vec2,
+        mass_damping: f64,
         fixed_points: &[super::FixedPoint],
         mask: Vec<bool>,
     ) -> Parts<N> {
@@ -170,10 +174,18 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             let mut f = stress_force - ext;
             scale = scale.max(ext.norm()).max(stress_force.norm());
             let m = self.kinematics.mass(&moments, b.material().density);
-            k += m * coeffs.acceleration_per_increment;
+            // Inertia `M a₁` and damping `α M v₁`, with `a₁`, `v₁` linear
+            // in the increment by the integrator's coefficients.
+            k += m
+                * (coeffs.acceleration_per_increment
+                    + mass_damping * coeffs.velocity_per_increment);
             let hist = m
-                * (b.velocity * coeffs.acceleration_from_velocity
-                    + b.acceleration * coeffs.acceleration_from_acceleration);
+                * (b.velocity
+                    * (coeffs.acceleration_from_velocity
+                        + mass_damping * coeffs.velocity_from_velocity)
+                    + b.acceleration
+                        * (coeffs.acceleration_from_acceleration
+                            + mass_damping * coeffs.velocity_from_acceleration));
             f -= hist;
             scale = scale.max(hist.norm());
             block_k.push(k);
@@ -395,7 +407,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 .factor(matrix)
                 .and_then(|()| solver.solve_in_place(matrix, &mut delta))
                 .map_err(|e| StepFailure::Solve(e.to_string()))?;
-            self.limit_update(&d, &mut delta, settings.search_distance);
+            self.limit_update(&d, &mut delta, self.search);
             // A contact whose slip would reverse stops the update where it
             // sticks; then backtracking on ‖R‖ (consistent laws only): a
             // step that does not lower the residual is halved, up to

@@ -24,14 +24,17 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
              released in a box of three walls; penalty Coulomb contacts (k = {:e} N/m per m, μ = {}, \
              return mapping), Newmark β = {}, γ = {}, sparse LU. Requested Δt = {:.4e} s, {} times \
              the explicit limit 2√(m/k) = {:.4e} s of the lightest ellipse on one spring (rotation and \
-             several contacts only lower that limit). Rest: no boundary point faster than {:e} m/s. \
-             Search distance {} m, at most {} open–close and {} Newton iterations a step. The driver \
-             halves a step whose iteration fails or whose motion passes the search distance and \
-             doubles it after a success: the mean accepted sub-step and the causes of the halvings \
-             are reported beside the requested step. While the columns collapse, ellipses turn at \
-             up to {:.0} rad/s (the largest at the end of a step), so boundary points can move \
-             several centimetres in a step of 20 limits, more than the search distance: a halving \
-             for that motion is a bound on the step's geometry, not on its stability.",
+             several contacts only lower that limit). Rest: no boundary point faster than {:e} m/s; \
+             mass-proportional damping α = {} /s (it vanishes at rest) makes the rocking of ellipses \
+             balanced on one contact die out. Search distance {} m; a step whose boundary points move \
+             further relative to a neighbour is detected again at a search distance covering the \
+             motion (up to {} m) and repeated at its size. At most {} open–close and {} Newton \
+             iterations a step: a step whose iteration fails is halved, and doubled again after a \
+             success. While the columns collapse (ellipses turn at up to {:.0} rad/s, the largest at \
+             the end of a step) impacts, contacts opening and closing and slip reversing make the \
+             iterations fail and steps are halved; the last halving was at {:.2} s, and the {} steps \
+             from there to the end at {:.2} s were taken whole at the requested size. The mean \
+             accepted sub-step over the whole run is reported beside the requested step.",
             setup.count,
             setup.aspect,
             setup.semi_major.0,
@@ -46,10 +49,15 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
             setup.step_ratio,
             settled.dt_explicit,
             setup.rest_speed,
+            setup.mass_damping,
             setup.search_distance,
+            setup.max_search_distance,
             setup.max_iterations,
             setup.max_iterations,
-            settled.peak_spin
+            settled.peak_spin,
+            settled.last_halved_at,
+            settled.final_whole_steps(),
+            settled.time
         ),
     );
     c.check(
@@ -86,6 +94,34 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
             settled.accepted_step_ratio(),
         ),
         (
+            "implicit_ellipses.whole_step_fraction",
+            "steps taken whole (one sub-step of the requested size) over all steps",
+            "-",
+            "the others fell in the collapse",
+            settled.whole_steps as f64 / settled.steps.max(1) as f64,
+        ),
+        (
+            "implicit_ellipses.last_halving_time",
+            "time at the end of the last step that was halved",
+            "s",
+            "every later step was taken whole",
+            settled.last_halved_at,
+        ),
+        (
+            "implicit_ellipses.final_whole_steps",
+            "steps from the last halving to rest, each of the requested size",
+            "-",
+            "the packing settles at the requested step",
+            settled.final_whole_steps() as f64,
+        ),
+        (
+            "implicit_ellipses.redetections",
+            "steps detected again at a larger search distance and repeated at their size",
+            "-",
+            "fast steps of the collapse that were not halved",
+            settled.redetections as f64,
+        ),
+        (
             "implicit_ellipses.peak_spin",
             "largest angular speed of an ellipse at the end of a step",
             "rad/s",
@@ -94,9 +130,9 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
         ),
         (
             "implicit_ellipses.halvings.too_fast",
-            "halvings because a boundary point moved beyond the search distance",
+            "halvings because a boundary point moved beyond the largest search distance",
             "-",
-            "the motion bound of a step",
+            "the motion bound of a step, once the search distance cannot grow",
             settled.halvings.too_fast as f64,
         ),
         (
