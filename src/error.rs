@@ -223,6 +223,19 @@ pub enum DismechError {
         /// Largest penetration accepted at the start.
         tolerance: f64,
     },
+    /// Two polygon bodies cross at the start (edges crossing, no vertex of
+    /// either inside the other) by more than the tolerance.
+    #[error("blocks {a} and {b} cross at the start (their edges intersect), overlapping by {depth:.3e} m, more than the tolerance {tolerance:.3e} m")]
+    BlocksCross {
+        /// One block.
+        a: usize,
+        /// The other block.
+        b: usize,
+        /// Smallest overlap of their projections on their edge normals.
+        depth: f64,
+        /// Largest overlap accepted at the start.
+        tolerance: f64,
+    },
     /// A DDA step could not be completed even at the smallest time step.
     #[error("DDA step failed at t = {time:.6} s with dt = {dt:.3e} s: {reason}; reduce the time step or the contact penalty")]
     StepFailed {

@@ -22,7 +22,7 @@ use crate::math::{Aabb2, Point, Vec2};
 use crate::query::manifold::dispatch::contact_manifold_2d;
 use crate::query::variation::PairContact;
 use crate::query::Feature;
-use crate::shape::Segment;
+use crate::shape::{crossing_depth, Segment};
 
 /// The search distance a step that moved a boundary point by `m` relative
 /// to a neighbour leaves to the next step (and a repeated step uses): `m`
@@ -85,7 +85,9 @@ where
 {
     /// A model of `bodies` composed from the slots. Refuses invalid
     /// settings and bodies that overlap at the start by more than
-    /// `settings.overlap_tolerance` (the error names both bodies).
+    /// `settings.overlap_tolerance`: a vertex or a smooth boundary inside
+    /// another body, or two polygons whose edges cross (the error names
+    /// both bodies).
     ///
     /// # Errors
     /// As described.
@@ -128,7 +130,8 @@ where
     }
 
     /// Refuse a start where two bodies overlap by more than the tolerance,
-    /// measured by the explicit pair query of their shapes.
+    /// measured by the explicit pair query of their shapes, or where two
+    /// polygons' edges cross ([`crossing_depth`]).
     fn check_initial_overlaps(&self) -> Result<()> {
         let tolerance = self.settings.overlap_tolerance;
         let mut manifold = Vec::new();
@@ -145,6 +148,22 @@ where
                 .filter(|g| g.overlap > tolerance)
                 .max_by(|a, b| a.overlap.total_cmp(&b.overlap))
             else {
+                // Polygons may cross with no vertex inside the other.
+                if let (Some(a), Some(b)) = (self.bodies[i].polygon(), self.bodies[j].polygon()) {
+                    let world = |p: &PlacedPolygon| -> Vec<Point> {
+                        (0..p.vertex_count()).map(|v| p.vertex(v)).collect()
+                    };
+                    if let Some(depth) = crossing_depth(&world(a), &world(b)) {
+                        if depth > tolerance {
+                            return Err(DismechError::BlocksCross {
+                                a: i,
+                                b: j,
+                                depth,
+                                tolerance,
+                            });
+                        }
+                    }
+                }
                 continue;
             };
             // Name the body whose vertex (or whole boundary) penetrates.

@@ -24,7 +24,7 @@ mod segment;
 pub use circle::Circle;
 pub use column::Column;
 pub use ellipse::{Ellipse, MAX_ASPECT_RATIO};
-pub use polygon::Polygon;
+pub use polygon::{crossing_depth, Polygon};
 pub use segment::Segment;
 
 use crate::math::{Aabb2, Pose2};

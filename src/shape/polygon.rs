@@ -28,7 +28,7 @@ pub struct Polygon {
 }
 
 /// Whether segments pq and rs cross or touch.
-fn segments_meet(p: &Point, q: &Point, r: &Point, s: &Point) -> bool {
+pub(crate) fn segments_meet(p: &Point, q: &Point, r: &Point, s: &Point) -> bool {
     let d1 = cross(&(q - p), &(r - p));
     let d2 = cross(&(q - p), &(s - p));
     let d3 = cross(&(s - r), &(p - r));
@@ -65,6 +65,45 @@ fn moments(vertices: &[Point]) -> [f64; 6] {
     m
 }
 
+/// How deeply two polygons given by their world vertices (counter-clockwise)
+/// overlap when some edge of one crosses an edge of the other: the
+/// smallest overlap of their projections on the edge normals of both (the
+/// penetration depth for convex polygons; for concave ones that of their
+/// convex hulls). `None` when no two edges meet — the polygons are apart,
+/// or one holds a vertex of the other, which the contact manifold finds.
+///
+/// Two rectangles crossed as a plus sign hold no vertex of each other, so
+/// only this test sees their overlap.
+pub fn crossing_depth(a: &[Point], b: &[Point]) -> Option<f64> {
+    fn edges(v: &[Point]) -> impl Iterator<Item = (Point, Point)> + '_ {
+        let n = v.len();
+        (0..n).map(move |k| (v[k], v[(k + 1) % n]))
+    }
+    let meet = edges(a).any(|(p, q)| edges(b).any(|(r, s)| segments_meet(&p, &q, &r, &s)));
+    if !meet {
+        return None;
+    }
+    let span = |v: &[Point], m: &Vec2| {
+        v.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let x = p.coords.dot(m);
+                (lo.min(x), hi.max(x))
+            })
+    };
+    let depth = edges(a)
+        .chain(edges(b))
+        .filter_map(|(p, q)| {
+            let e = q - p;
+            Vec2::new(e.y, -e.x).try_normalize(0.0)
+        })
+        .map(|m| {
+            let ((a0, a1), (b0, b1)) = (span(a, &m), span(b, &m));
+            a1.min(b1) - a0.max(b0)
+        })
+        .fold(f64::INFINITY, f64::min);
+    Some(depth.max(0.0))
+}
+
 impl Polygon {
     /// A polygon from world vertices listed counter-clockwise; returns the
     /// polygon (in its centroid frame) and the centroid. Refuses fewer than
@@ -99,17 +138,33 @@ impl Polygon {
                 }
             }
         }
-        let m = moments(vertices);
-        let scale = vertices
+        // Orientation and area measured from the first vertex, against the
+        // polygon's own size, so that neither its size nor its distance from
+        // the origin decides.
+        let origin = vertices[0];
+        let relative: Vec<Point> = vertices.iter().map(|v| Point::from(v - origin)).collect();
+        let area = moments(&relative)[0];
+        let scale = relative
             .iter()
             .map(|v| v.coords.norm_squared())
             .fold(0.0, f64::max);
-        if m[0] <= 1e-14 * scale {
-            return Err(bad(if m[0] < 0.0 {
+        if !(area.is_finite() && scale.is_finite()) {
+            return Err(bad(
+                "its area overflows (coordinates too large; choose a smaller unit of length)",
+            ));
+        }
+        if area <= 1e-14 * scale {
+            return Err(bad(if area < 0.0 {
                 "its vertices run clockwise (list them counter-clockwise)"
             } else {
                 "its area is zero"
             }));
+        }
+        let m = moments(vertices);
+        if !m.iter().all(|x| x.is_finite()) {
+            return Err(bad(
+                "its moments of area overflow (coordinates too large; choose a smaller unit of length)",
+            ));
         }
         let centroid = Point::new(m[1] / m[0], m[2] / m[0]);
         let local: Vec<Point> = vertices.iter().map(|v| Point::from(v - centroid)).collect();

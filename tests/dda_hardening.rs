@@ -1,0 +1,118 @@
+//! Hostile DDA inputs: a block dropped through a base in one long step,
+//! blocks crossing at the start, and polygons at extreme scales.
+
+mod dda_common;
+
+use dda_common::material;
+use dismech::dda::{
+    Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed, StepStatus,
+};
+use dismech::error::DismechError;
+use dismech::math::Point;
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Point> {
+    vec![
+        Point::new(x0, y0),
+        Point::new(x1, y0),
+        Point::new(x1, y1),
+        Point::new(x0, y1),
+    ]
+}
+
+fn base() -> Block {
+    let mut b = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();
+    b.prescribed = Some(Prescribed::fixed());
+    b
+}
+
+fn law() -> PenaltyCoulomb {
+    PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap()
+}
+
+/// Lowest vertex of block 1.
+fn bottom(model: &DdaModel) -> f64 {
+    let p = model.blocks()[1].polygon().unwrap();
+    (0..p.vertex_count())
+        .map(|v| p.vertex(v).y)
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn drop(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
+    let block = Block::new(&rect(-0.5, height, 0.5, height + 0.5), material(), 1).unwrap();
+    let mut model = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap();
+    let mut deepest = f64::INFINITY;
+    let mut reductions = 0;
+    let mut converged = true;
+    for _ in 0..steps {
+        let report = model.advance(dt).unwrap();
+        reductions += report.reductions;
+        converged &= report.status == StepStatus::Converged;
+        deepest = deepest.min(bottom(&model));
+        if !converged {
+            break;
+        }
+    }
+    (deepest, reductions, converged)
+}
+
+/// A block 1 m above a fixed base, one step of 1 s: it must not end below
+/// the base with the step reported converged.
+#[test]
+fn block_one_metre_above_base_in_one_second_step_does_not_pass_through() {
+    let (deepest, reductions, converged) = drop(1.0, 1.0, 1);
+    println!("deepest {deepest:e}, reductions {reductions}, converged {converged}");
+    assert!(
+        !converged || deepest > -1e-3,
+        "ended {deepest:e} m below the base"
+    );
+}
+
+/// 2 cm above the base with steps of 0.1 s: the block lands without
+/// sinking into the base.
+#[test]
+fn block_two_centimetres_above_base_at_tenth_second_steps_does_not_sink() {
+    let (deepest, reductions, converged) = drop(0.02, 0.1, 5);
+    println!("deepest {deepest:e}, reductions {reductions}, converged {converged}");
+    assert!(
+        !converged || deepest > -1e-3,
+        "sank {deepest:e} m into the base"
+    );
+}
+
+/// Two rectangles crossing as a plus sign (no vertex of either inside the
+/// other) are refused at the start.
+#[test]
+fn crossing_rectangles_at_the_start_are_refused() {
+    let blocks = vec![
+        Block::new(&rect(-1.0, -0.1, 1.0, 0.1), material(), 0).unwrap(),
+        Block::new(&rect(-0.1, -1.0, 0.1, 1.0), material(), 1).unwrap(),
+    ];
+    match DdaModel::new(blocks, law(), DdaSettings::default()) {
+        Err(DismechError::BlocksCross {
+            a: 0, b: 1, depth, ..
+        }) => {
+            // the plus sign's arms overlap by 0.2 m along either axis
+            assert!((depth - 0.2).abs() < 1e-12, "depth {depth}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A counter-clockwise square is a valid block from a micrometre to 1e50
+/// m, at the origin or far from it; one whose moments of area overflow is
+/// refused for that, not as "clockwise" or "area zero".
+#[test]
+fn tiny_and_huge_counter_clockwise_squares_are_valid_or_refused_for_their_size() {
+    for side in [1e-6, 1e-3, 1.0, 1e3, 1e50] {
+        for at in [0.0, 1e3] {
+            let block = Block::new(&rect(at, at, at + side, at + side), material(), 0);
+            assert!(block.is_ok(), "side {side:e} at {at}: {block:?}");
+        }
+    }
+    match Block::new(&rect(0.0, 0.0, 1e200, 1e200), material(), 7) {
+        Err(DismechError::InvalidPolygon { block: 7, reason }) => {
+            assert!(reason.contains("overflow"), "{reason}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
