@@ -51,20 +51,19 @@ impl CellGrid {
         }
         self.cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
         self.origin = min;
-        // Cap the grid at about 4 cells per body so a far outlier cannot
-        // make it huge; a coarser grid is still correct, only slower.
+        // A dense grid of at most about 4 cells per body; bodies spread
+        // wider than that (a far outlier) go to the sparse grid instead,
+        // whose cost does not depend on the spread.
         let max_cells = (4 * n).max(16) as f64;
-        let mut columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
-        let mut rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
-        while columns * rows > max_cells {
-            self.cell_size *= 2.0;
-            columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
-            rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
+        let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
+        let rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
+        if columns * rows > max_cells || columns.is_nan() || rows.is_nan() {
+            self.sparse_pairs(boxes, margin, pairs);
+            return;
         }
         self.columns = columns as usize;
         self.rows = rows as usize;
         let cells = self.columns * self.rows;
-
         // Counting sort of bodies by cell.
         self.body_cell.clear();
         self.cell_start.clear();
@@ -109,6 +108,63 @@ impl CellGrid {
         pairs.sort_unstable();
     }
 
+    /// The cell `(row, column)` of a box's centre, unbounded (saturating
+    /// far away, which only merges far cells).
+    fn cell_key(&self, b: &Aabb2) -> (i64, i64) {
+        let cx = 0.5 * (b.min.x + b.max.x);
+        let cy = 0.5 * (b.min.y + b.max.y);
+        (
+            ((cy - self.origin.1) / self.cell_size).floor() as i64,
+            ((cx - self.origin.0) / self.cell_size).floor() as i64,
+        )
+    }
+
+    /// The candidate pairs by a sparse grid: the bodies sorted by cell, and
+    /// each body's neighbouring cells found by binary search among the
+    /// occupied ones (`O(n log n)` however far apart the bodies are).
+    fn sparse_pairs(&mut self, boxes: &[Aabb2], margin: f64, pairs: &mut Vec<(usize, usize)>) {
+        let n = boxes.len();
+        let keys: Vec<(i64, i64)> = boxes.iter().map(|b| self.cell_key(b)).collect();
+        self.sorted.clear();
+        self.sorted.extend(0..n);
+        self.sorted.sort_by_key(|&i| (keys[i], i));
+        // Occupied cells and where their bodies start in `sorted`.
+        let mut cells: Vec<(i64, i64)> = Vec::new();
+        self.cell_start.clear();
+        for (k, &i) in self.sorted.iter().enumerate() {
+            if cells.last() != Some(&keys[i]) {
+                cells.push(keys[i]);
+                self.cell_start.push(k);
+            }
+        }
+        self.cell_start.push(n);
+        self.columns = 0;
+        self.rows = 0;
+        self.body_cell.clear();
+        for i in 0..n {
+            let (row, col) = keys[i];
+            let grown = boxes[i].inflated(margin);
+            for dr in [-1i64, 0, 1] {
+                for dc in [-1i64, 0, 1] {
+                    let key = (row.saturating_add(dr), col.saturating_add(dc));
+                    if (dr != 0 || dc != 0) && key == keys[i] {
+                        continue; // saturated: the same cell again
+                    }
+                    let Ok(c) = cells.binary_search(&key) else {
+                        continue;
+                    };
+                    for &j in &self.sorted[self.cell_start[c]..self.cell_start[c + 1]] {
+                        if j > i && grown.intersects(&boxes[j]) {
+                            pairs.push((i, j));
+                        }
+                    }
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+    }
+
     fn cell_of(&self, x: f64, y: f64) -> usize {
         let col = (((x - self.origin.0) / self.cell_size).floor().max(0.0) as usize)
             .min(self.columns - 1);
@@ -150,5 +206,53 @@ mod tests {
             }
             prop_assert_eq!(pairs, brute);
         }
+
+        /// With bodies far apart (outliers up to 1e12 away) the sparse grid
+        /// finds the same pairs as the brute force.
+        #[test]
+        fn cell_grid_with_far_outliers_finds_exactly_the_overlapping_pairs(
+            centres in prop::collection::vec((-5.0f64..5.0, -5.0f64..5.0, 0.05f64..0.6), 2..60),
+            outliers in prop::collection::vec((-1e12f64..1e12, -1e12f64..1e12), 1..4),
+            margin in 0.0f64..0.2,
+        ) {
+            let mut boxes: Vec<Aabb2> = centres.iter().map(|&(x, y, h)| square(x, y, h)).collect();
+            boxes.extend(outliers.iter().map(|&(x, y)| square(x, y, 0.3)));
+            // and one twin of an outlier, touching it
+            let (x, y) = outliers[0];
+            boxes.push(square(x + 0.5, y, 0.3));
+            let mut grid = CellGrid::new();
+            let mut pairs = Vec::new();
+            grid.candidate_pairs(&boxes, margin, &mut pairs);
+            let mut brute = Vec::new();
+            for i in 0..boxes.len() {
+                for j in i + 1..boxes.len() {
+                    if boxes[i].inflated(margin).intersects(&boxes[j]) {
+                        brute.push((i, j));
+                    }
+                }
+            }
+            prop_assert_eq!(pairs, brute);
+        }
+    }
+
+    /// One body a kilometre away does not coarsen the grid: its neighbours
+    /// are still tested cell by cell (the sparse grid holds one cell per
+    /// occupied cell, not the whole span).
+    #[test]
+    fn a_far_outlier_does_not_coarsen_the_grid() {
+        let mut boxes: Vec<Aabb2> = (0..400)
+            .map(|k| square((k % 20) as f64, (k / 20) as f64, 0.4))
+            .collect();
+        boxes.push(square(1e3, 1e3, 0.4));
+        let mut grid = CellGrid::new();
+        let mut pairs = Vec::new();
+        grid.candidate_pairs(&boxes, 0.0, &mut pairs);
+        assert!(pairs.is_empty());
+        assert!(
+            (grid.cell_size - 0.8).abs() < 1e-12,
+            "cell size {}",
+            grid.cell_size
+        );
+        assert_eq!(grid.cell_start.len(), boxes.len() + 1);
     }
 }
