@@ -350,3 +350,33 @@ fn unstable_run_is_stopped_by_the_energy_watch() {
         "{err}"
     );
 }
+
+/// A scene that releases no energy — no gravity, or no particle — can come
+/// to rest: the rest test had nothing to compare the kinetic energy with
+/// and ran to the time limit.
+#[test]
+fn scenes_that_release_no_energy_can_be_at_rest() {
+    use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+    use dismech::integrate::ExplicitEuler;
+    use dismech::law::SpringDashpotCoulomb;
+    use dismech::math::{Point, Vec2};
+    use dismech::scene::{Frame, Scene};
+    let law = SpringDashpotCoulomb::katsuki(7.35e6, 0.3, 0.25, 0.577).unwrap();
+    let criterion = RestCriterion {
+        max_time: 1.0,
+        ..RestCriterion::default()
+    };
+    let weightless = {
+        let mut scene = Scene::new(Frame::open_box(1.0, 1.0).unwrap(), Vec2::zeros()).unwrap();
+        scene.add_circle(Point::new(0.5, 0.5), 0.1, 2690.0).unwrap();
+        scene
+    };
+    let empty = Scene::new(Frame::open_box(1.0, 1.0).unwrap(), Vec2::new(0.0, -9.8)).unwrap();
+    for (name, scene) in [("weightless disc", weightless), ("empty box", empty)] {
+        let mut sim =
+            DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default()).unwrap();
+        let outcome = sim.run_to_rest(&criterion, |_, _| {}).unwrap();
+        assert_eq!(outcome.status, RunStatus::AtRest, "{name}");
+        assert!(outcome.time < 0.5, "{name}: {}", outcome.time);
+    }
+}

@@ -41,7 +41,9 @@ impl Default for DemSettings {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RestCriterion {
     /// At rest when the kinetic energy is below this fraction of the
-    /// potential energy released since the start.
+    /// potential energy released since the start (when none is released —
+    /// no gravity, or nothing fell — of the initial kinetic energy; a
+    /// scene with neither is at rest when nothing moves).
     pub kinetic_to_released_ratio: f64,
     /// Do not stop before this simulated time (s).
     pub min_time: f64,
@@ -572,8 +574,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     available,
                 });
             }
+            // Kinetic energy against the energy released; with none
+            // released (no gravity, or nothing fell), against the initial
+            // kinetic energy; with neither, at rest when nothing moves.
             let ratio = if released > 0.0 {
                 kinetic / released
+            } else if self.initial_kinetic > 0.0 {
+                kinetic / self.initial_kinetic
+            } else if kinetic == 0.0 {
+                0.0
             } else {
                 f64::INFINITY
             };
