@@ -380,3 +380,22 @@ fn scenes_that_release_no_energy_can_be_at_rest() {
         assert!(outcome.time < 0.5, "{name}: {}", outcome.time);
     }
 }
+
+/// 20 000 coincident discs are refused at their first pair: the start
+/// check built all 2e8 candidate pairs (3.1 GB) before looking at one.
+#[test]
+fn twenty_thousand_coincident_discs_are_refused_at_the_first_pair() {
+    let mut scene = single_disc_scene(0.07, Point::new(1.0, 1.0));
+    for _ in 1..20_000 {
+        scene
+            .add_circle(Point::new(1.0, 1.0), 0.07, 2690.0)
+            .unwrap();
+    }
+    match default_simulation(scene).unwrap_err() {
+        DismechError::InitialOverlap { a, b, overlap, .. } => {
+            assert!(a < b);
+            approx::assert_relative_eq!(overlap, 0.14, max_relative = 1e-9);
+        }
+        other => panic!("{other}"),
+    }
+}

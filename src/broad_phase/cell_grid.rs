@@ -34,9 +34,36 @@ impl CellGrid {
         pairs: &mut Vec<(usize, usize)>,
     ) {
         pairs.clear();
+        let visited: Result<(), std::convert::Infallible> =
+            self.try_for_each_pair(boxes, margin, |i, j| {
+                pairs.push((i, j));
+                Ok(())
+            });
+        if visited.is_ok() {
+            pairs.sort_unstable();
+            pairs.dedup();
+        }
+    }
+
+    /// Visit the candidate pairs `(i, j)`, `i < j`, whose boxes (grown by
+    /// `margin`) overlap, without storing them, stopping at the first
+    /// error `visit` returns (e.g. a check that refuses the first
+    /// overlapping pair without building all pairs of a dense cluster).
+    /// The order is deterministic but not sorted, and a pair may be
+    /// visited twice when far cells merge (see [`Self::candidate_pairs`]
+    /// for the sorted list).
+    ///
+    /// # Errors
+    /// The first error of `visit`.
+    pub fn try_for_each_pair<E>(
+        &mut self,
+        boxes: &[Aabb2],
+        margin: f64,
+        mut visit: impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
         let n = boxes.len();
         if n < 2 {
-            return;
+            return Ok(());
         }
         let mut min = (f64::INFINITY, f64::INFINITY);
         let mut max = (f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -47,7 +74,7 @@ impl CellGrid {
             largest = largest.max(b.max.x - b.min.x).max(b.max.y - b.min.y);
         }
         if !(min.0.is_finite() && min.1.is_finite() && max.0.is_finite() && max.1.is_finite()) {
-            return;
+            return Ok(());
         }
         self.cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
         self.origin = min;
@@ -58,8 +85,7 @@ impl CellGrid {
         let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
         let rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
         if columns * rows > max_cells || columns.is_nan() || rows.is_nan() {
-            self.sparse_pairs(boxes, margin, pairs);
-            return;
+            return self.sparse_pairs(boxes, margin, visit);
         }
         self.columns = columns as usize;
         self.rows = rows as usize;
@@ -99,13 +125,13 @@ impl CellGrid {
                     let other = r as usize * self.columns + c as usize;
                     for &j in &self.sorted[self.cell_start[other]..self.cell_start[other + 1]] {
                         if j > i && grown.intersects(&boxes[j]) {
-                            pairs.push((i, j));
+                            visit(i, j)?;
                         }
                     }
                 }
             }
         }
-        pairs.sort_unstable();
+        Ok(())
     }
 
     /// The cell `(row, column)` of a box's centre, unbounded (saturating
@@ -122,7 +148,12 @@ impl CellGrid {
     /// The candidate pairs by a sparse grid: the bodies sorted by cell, and
     /// each body's neighbouring cells found by binary search among the
     /// occupied ones (`O(n log n)` however far apart the bodies are).
-    fn sparse_pairs(&mut self, boxes: &[Aabb2], margin: f64, pairs: &mut Vec<(usize, usize)>) {
+    fn sparse_pairs<E>(
+        &mut self,
+        boxes: &[Aabb2],
+        margin: f64,
+        mut visit: impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
         let n = boxes.len();
         let keys: Vec<(i64, i64)> = boxes.iter().map(|b| self.cell_key(b)).collect();
         self.sorted.clear();
@@ -155,14 +186,13 @@ impl CellGrid {
                     };
                     for &j in &self.sorted[self.cell_start[c]..self.cell_start[c + 1]] {
                         if j > i && grown.intersects(&boxes[j]) {
-                            pairs.push((i, j));
+                            visit(i, j)?;
                         }
                     }
                 }
             }
         }
-        pairs.sort_unstable();
-        pairs.dedup();
+        Ok(())
     }
 
     fn cell_of(&self, x: f64, y: f64) -> usize {

@@ -1,24 +1,29 @@
 //! Checks of a DEM set-up that concern the law and the shapes together.
 
+use crate::broad_phase::CellGrid;
 use crate::error::{DismechError, Result};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties};
+use crate::math::Aabb2;
 use crate::math::Pose2;
 use crate::query::manifold::dispatch::contact_manifold_2d;
 use crate::query::ContactGeometry;
 use crate::scene::Scene;
 use crate::shape::AnyShape2;
 
-/// Refuses a start where a candidate pair of particles (`pairs`, from the
-/// broad phase) or a particle and a wall overlap by more than `tolerance`
-/// at their deepest point; `manifold` is scratch space.
+/// Refuses a start where a candidate pair of particles (from the broad
+/// phase `grid` over the particles' `boxes`, visited one by one so that a
+/// dense cluster is refused at its first pair rather than after all its
+/// pairs are built) or a particle and a wall overlap by more than
+/// `tolerance` at their deepest point; `manifold` is scratch space.
 pub(crate) fn check_initial_overlaps(
     scene: &Scene,
-    pairs: &[(usize, usize)],
+    grid: &mut CellGrid,
+    boxes: &[Aabb2],
     tolerance: f64,
     manifold: &mut Vec<ContactGeometry>,
 ) -> Result<()> {
     let deepest = |points: &[ContactGeometry]| points.iter().map(|g| g.overlap).fold(0.0, f64::max);
-    for &(a, b) in pairs {
+    grid.try_for_each_pair(boxes, 0.0, |a, b| {
         let (pa, pb) = (&scene.particles[a], &scene.particles[b]);
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, manifold)?;
@@ -31,7 +36,8 @@ pub(crate) fn check_initial_overlaps(
                 tolerance,
             });
         }
-    }
+        Ok(())
+    })?;
     for (i, p) in scene.particles.iter().enumerate() {
         for (w, wall) in scene.frame.walls().iter().enumerate() {
             let shape = AnyShape2::Segment(*wall);

@@ -265,10 +265,14 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     fn check_initial_overlaps(&mut self) -> Result<()> {
-        self.update_pairs();
+        self.boxes.clear();
+        for p in &self.scene.particles {
+            self.boxes.push(p.shape.as_shape().aabb(&p.pose));
+        }
         check_initial_overlaps(
             &self.scene,
-            &self.pairs,
+            &mut self.grid,
+            &self.boxes,
             self.settings.initial_overlap_tolerance,
             &mut self.manifold,
         )
