@@ -103,7 +103,7 @@ pub enum DismechError {
         y: f64,
     },
     /// The kinetic energy grew beyond what the loads can supply.
-    #[error("energy blow-up at step {step}: kinetic energy {kinetic:.3e} J exceeds twice the energy supplied {available:.3e} J; the time step is above the stable limit of the packed assembly: reduce dt")]
+    #[error("energy blow-up at step {step}: kinetic energy {kinetic:.3e} J exceeds twice the energy supplied {available:.3e} J; the time step is above the stable limit of the packed assembly: reduce dt (the largest overlap at the start was {initial_overlap:.3e} m; the elastic energy of overlaps at the start is not counted as supplied, so if that is large, separate the particles at the start instead)")]
     EnergyBlowUp {
         /// Step number.
         step: u64,
@@ -111,6 +111,9 @@ pub enum DismechError {
         kinetic: f64,
         /// Released potential energy plus initial kinetic energy.
         available: f64,
+        /// Largest overlap between two particles, or a particle and a
+        /// wall, at the start (m).
+        initial_overlap: f64,
     },
     /// A contact was declared between bodies that do not touch.
     #[error("contact {contact} (element {body} with {partner}) is declared but the surfaces are {gap:.3e} m apart (negative: overlapping); they must touch within {tolerance:.1e} m")]

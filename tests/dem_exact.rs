@@ -399,3 +399,40 @@ fn twenty_thousand_coincident_discs_are_refused_at_the_first_pair() {
         other => panic!("{other}"),
     }
 }
+
+/// A step far above the stable limit flings a particle out of the frame
+/// between two energy checks: that is reported as the energy blow-up it is
+/// (reduce dt), not as a particle leaving the frame ("close the frame").
+#[test]
+fn particle_flung_out_by_a_large_time_step_is_an_energy_blow_up() {
+    let mut scene = Scene::new(Frame::open_box(2.0, 3.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
+    for i in 0..5 {
+        scene
+            .add_circle(Point::new(1.0, 0.0701 + 0.1401 * i as f64), 0.07, 2690.0)
+            .unwrap();
+    }
+    let settings = DemSettings {
+        dt: 5e-3,
+        check_stability: false,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(
+        scene,
+        constant_law(1e8, 0.5, Damping::None),
+        ExplicitEuler,
+        settings,
+    )
+    .unwrap();
+    match sim.run_to_rest(&RestCriterion::default(), |_, _| {}) {
+        Err(DismechError::EnergyBlowUp {
+            kinetic,
+            available,
+            initial_overlap,
+            ..
+        }) => {
+            assert!(kinetic > 2.0 * available);
+            assert_eq!(initial_overlap, 0.0);
+        }
+        other => panic!("expected an energy blow-up, got {other:?}"),
+    }
+}

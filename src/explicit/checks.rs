@@ -15,19 +15,22 @@ use crate::shape::AnyShape2;
 /// dense cluster is refused at its first pair rather than after all its
 /// pairs are built) or a particle and a wall overlap by more than
 /// `tolerance` at their deepest point; `manifold` is scratch space.
+/// Returns the largest overlap found (within the tolerance).
 pub(crate) fn check_initial_overlaps(
     scene: &Scene,
     grid: &mut CellGrid,
     boxes: &[Aabb2],
     tolerance: f64,
     manifold: &mut Vec<ContactGeometry>,
-) -> Result<()> {
+) -> Result<f64> {
     let deepest = |points: &[ContactGeometry]| points.iter().map(|g| g.overlap).fold(0.0, f64::max);
+    let mut largest = 0.0f64;
     grid.try_for_each_pair(boxes, 0.0, |a, b| {
         let (pa, pb) = (&scene.particles[a], &scene.particles[b]);
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, manifold)?;
         let overlap = deepest(manifold);
+        largest = largest.max(overlap);
         if overlap > tolerance {
             return Err(DismechError::InitialOverlap {
                 a,
@@ -44,6 +47,7 @@ pub(crate) fn check_initial_overlaps(
             manifold.clear();
             contact_manifold_2d(&p.shape, &p.pose, &shape, &Pose2::default(), manifold)?;
             let penetration = deepest(manifold);
+            largest = largest.max(penetration);
             if penetration > tolerance {
                 return Err(DismechError::StartsInsideWall {
                     body: i,
@@ -54,7 +58,7 @@ pub(crate) fn check_initial_overlaps(
             }
         }
     }
-    Ok(())
+    Ok(largest)
 }
 
 /// The geometry of a polygon's contact point: a vertex (radius of curvature

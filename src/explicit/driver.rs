@@ -144,6 +144,8 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     time: f64,
     initial_potential: f64,
     initial_kinetic: f64,
+    /// Largest overlap at the start (m).
+    initial_overlap: f64,
     /// Law state and overlap of each contact point at the previous step.
     /// (Keyed by small integers: a fast non-cryptographic hash.)
     history: FxHashMap<HistoryKey, (L::State, f64)>,
@@ -242,6 +244,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             time: 0.0,
             initial_potential: 0.0,
             initial_kinetic: 0.0,
+            initial_overlap: 0.0,
             history: FxHashMap::default(),
             next_history: FxHashMap::default(),
             manifold: Vec::new(),
@@ -258,13 +261,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             frame_reach: frame_reach(&scene),
             scene,
         };
-        sim.check_initial_overlaps()?;
+        sim.initial_overlap = sim.check_initial_overlaps()?;
         sim.initial_potential = sim.potential_energy();
         sim.initial_kinetic = sim.kinetic_energy();
         Ok(sim)
     }
 
-    fn check_initial_overlaps(&mut self) -> Result<()> {
+    fn check_initial_overlaps(&mut self) -> Result<f64> {
         self.boxes.clear();
         for p in &self.scene.particles {
             self.boxes.push(p.shape.as_shape().aabb(&p.pose));
@@ -521,6 +524,12 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 return Err(self.non_finite(i, "position or velocity"));
             }
             if !self.frame_reach.contains(&p.pose.position) {
+                // Flung out by an unstable step rather than pushed out by
+                // its loads: say so.
+                if let Some(blow_up) = self.energy_blow_up() {
+                    return Err(blow_up);
+                }
+                let p = &self.scene.particles[i];
                 return Err(DismechError::ParticleLeftFrame {
                     step: self.step,
                     time: self.time,
@@ -533,6 +542,23 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         self.step += 1;
         self.time += dt;
         Ok(())
+    }
+
+    /// [`DismechError::EnergyBlowUp`] when the kinetic energy exceeds
+    /// twice what gravity, the external forces and the initial motion can
+    /// supply (the sign of an unstable step).
+    fn energy_blow_up(&self) -> Option<DismechError> {
+        let kinetic = self.kinetic_energy();
+        let released = self.initial_potential - self.potential_energy();
+        let available = released.max(0.0) + self.initial_kinetic;
+        (kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0)).then_some(
+            DismechError::EnergyBlowUp {
+                step: self.step,
+                kinetic,
+                available,
+                initial_overlap: self.initial_overlap,
+            },
+        )
     }
 
     fn non_finite(&self, body: usize, quantity: &'static str) -> DismechError {
@@ -570,13 +596,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             }
             let kinetic = self.kinetic_energy();
             let released = self.initial_potential - self.potential_energy();
-            let available = released.max(0.0) + self.initial_kinetic;
-            if kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0) {
-                return Err(DismechError::EnergyBlowUp {
-                    step: self.step,
-                    kinetic,
-                    available,
-                });
+            if let Some(blow_up) = self.energy_blow_up() {
+                return Err(blow_up);
             }
             // Kinetic energy against the energy released; with none
             // released (no gravity, or nothing fell), against the initial
