@@ -148,6 +148,37 @@ pub enum DismechError {
         /// What is wrong.
         message: String,
     },
+    /// A value of a grid file's header cannot be used (a count that is not
+    /// a whole number, a cell size that is not positive, a coordinate or
+    /// NODATA value that is not a number...).
+    #[error("{file}, line {line}: `{key} {value}`: {requirement}")]
+    GridHeader {
+        /// The file (or the name given to the text).
+        file: String,
+        /// Line of the value, from 1.
+        line: usize,
+        /// The key as written in the file (e.g. `ncols`).
+        key: String,
+        /// The value as written in the file.
+        value: String,
+        /// What the value must satisfy.
+        requirement: String,
+    },
+    /// A grid file's header asks for more cells than a grid may hold
+    /// ([`crate::grid::MAX_GRID_CELLS`]); refused before any value is read.
+    #[error("{file}: ncols × nrows = {columns} × {rows} = {cells} cells, more than the {cap} cells a grid may hold; crop or coarsen the grid")]
+    GridTooLarge {
+        /// The file (or the name given to the text).
+        file: String,
+        /// `ncols` as given.
+        columns: u64,
+        /// `nrows` as given.
+        rows: u64,
+        /// Their exact product.
+        cells: u128,
+        /// The largest number of cells accepted.
+        cap: usize,
+    },
     /// A cell of a grid file cannot be used (no data inside the slide, a
     /// water table missing over a column, ...).
     #[error("{file}, grid row {row}, column {column}: {message}")]

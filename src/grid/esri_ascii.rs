@@ -12,12 +12,19 @@
 //! ```
 //!
 //! Keys are case-insensitive. Values may be spread over lines in any way;
-//! there must be exactly `ncols × nrows` of them. Errors name the file, the
-//! line and the column.
+//! there must be exactly `ncols × nrows` of them. A NODATA value of `nan`
+//! (as some GIS tools write) marks the cells written `nan`. Errors name the
+//! file, the line and the column, and for the header the key and its value.
+//!
+//! The header is checked before any value is read: `ncols` and `nrows` must
+//! be whole numbers written in digits, at least 1, with `ncols × nrows`
+//! (computed exactly) at most [`MAX_GRID_CELLS`]; the cell size, corner and
+//! grid extent must be finite. Memory for the values grows with the values
+//! actually read, never with the size the header claims.
 
 use std::path::Path;
 
-use super::Raster;
+use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::output::write_atomically;
 
@@ -43,7 +50,68 @@ pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
     parse_esri_ascii(&text, &name)
 }
 
+/// A header entry: key and value as written, and where the value stands.
+#[derive(Clone, Copy)]
+struct Entry<'a> {
+    key: &'a str,
+    value: &'a str,
+    line: usize,
+}
+
+impl Entry<'_> {
+    fn error(&self, file: &str, requirement: impl Into<String>) -> DismechError {
+        DismechError::GridHeader {
+            file: file.to_string(),
+            line: self.line,
+            key: self.key.to_string(),
+            value: self.value.to_string(),
+            requirement: requirement.into(),
+        }
+    }
+
+    /// The value as a count of cells: digits only, at least 1.
+    fn count(&self, file: &str) -> Result<u64> {
+        let digits = self.value.strip_prefix('+').unwrap_or(self.value);
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(self.error(
+                file,
+                "must be a whole number of cells written in digits (e.g. 24)",
+            ));
+        }
+        match digits.parse::<u64>() {
+            Ok(0) => Err(self.error(file, "must be at least 1")),
+            Ok(n) => Ok(n),
+            Err(_) => Err(self.error(
+                file,
+                format!("is far more than the {MAX_GRID_CELLS} cells a grid may hold"),
+            )),
+        }
+    }
+
+    /// The value as a number (`nan` and `inf` included).
+    fn number(&self, file: &str) -> Result<f64> {
+        self.value
+            .parse()
+            .map_err(|_| self.error(file, "is not a number"))
+    }
+
+    /// The value as a finite number.
+    fn finite(&self, file: &str) -> Result<f64> {
+        let v = self.number(file)?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.error(file, "must be a finite number"))
+        }
+    }
+}
+
 /// Parse the text of an ESRI ASCII grid; `name` is used in errors.
+///
+/// Errors: [`DismechError::GridHeader`] for a header value that cannot be
+/// used, [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`]
+/// cells, [`DismechError::GridFormat`] for anything else (a missing key, a
+/// value that is not a number, too few or too many values).
 pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
     // Tokens with their line and column.
     let mut tokens = text.lines().enumerate().flat_map(|(l, line)| {
@@ -64,7 +132,7 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
         }
         out
     });
-    let mut header: [Option<f64>; 6] = [None; 6];
+    let mut header: [Option<Entry>; 6] = [None; 6];
     let mut centred = (false, false);
     let keys = ["ncols", "nrows", "xll", "yll", "cellsize", "nodata_value"];
     let first_value;
@@ -92,7 +160,7 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
             first_value = (line, column, token);
             break;
         };
-        let Some((vline, vcolumn, value)) = tokens.next() else {
+        let Some((vline, _, value)) = tokens.next() else {
             return Err(format_error(
                 name,
                 line,
@@ -100,14 +168,6 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
                 format!("`{token}` has no value"),
             ));
         };
-        let parsed: f64 = value.parse().map_err(|_| {
-            format_error(
-                name,
-                vline,
-                vcolumn,
-                format!("`{value}` is not a number (value of `{token}`)"),
-            )
-        })?;
         if header[slot].is_some() {
             return Err(format_error(
                 name,
@@ -116,59 +176,79 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
                 format!("`{token}` is given twice"),
             ));
         }
-        header[slot] = Some(parsed);
+        header[slot] = Some(Entry {
+            key: token,
+            value,
+            line: vline,
+        });
     }
-    for (slot, key) in keys.iter().enumerate().take(5) {
-        if header[slot].is_none() {
-            let shown = match *key {
+    let required = |slot: usize| -> Result<Entry> {
+        header[slot].ok_or_else(|| {
+            let shown = match keys[slot] {
                 "xll" => "xllcorner or xllcenter",
                 "yll" => "yllcorner or yllcenter",
                 other => other,
             };
-            return Err(format_error(
-                name,
-                0,
-                0,
-                format!("the header has no `{shown}`"),
-            ));
-        }
+            format_error(name, 0, 0, format!("the header has no `{shown}`"))
+        })
+    };
+    let (ncols, nrows, xll, yll, size) = (
+        required(0)?,
+        required(1)?,
+        required(2)?,
+        required(3)?,
+        required(4)?,
+    );
+
+    // Size first: nothing is allocated from it before it is checked.
+    let (columns, rows) = (ncols.count(name)?, nrows.count(name)?);
+    let cells = u128::from(columns) * u128::from(rows);
+    if cells > MAX_GRID_CELLS as u128 {
+        return Err(DismechError::GridTooLarge {
+            file: name.to_string(),
+            columns,
+            rows,
+            cells,
+            cap: MAX_GRID_CELLS,
+        });
     }
-    let count = |v: f64, key: &str| -> Result<usize> {
-        if v.fract() == 0.0 && v >= 1.0 {
-            Ok(v as usize)
+    // Lossless: each factor is at most the product, at most MAX_GRID_CELLS.
+    let (columns, rows, cells) = (columns as usize, rows as usize, cells as usize);
+
+    let cell = size.finite(name)?;
+    if cell <= 0.0 {
+        return Err(size.error(name, "must be positive"));
+    }
+    let corner = |entry: Entry, centred: bool, count: usize| -> Result<f64> {
+        let v = entry.finite(name)?;
+        let start = if centred { v - 0.5 * cell } else { v };
+        let end = start + count as f64 * cell;
+        if start.is_finite() && end.is_finite() {
+            Ok(start)
         } else {
-            Err(format_error(
+            Err(entry.error(
                 name,
-                0,
-                0,
-                format!("`{key}` = {v} is not a positive whole number"),
+                format!(
+                    "the grid would reach past the largest finite coordinate ({count} cells of {cell} from there)"
+                ),
             ))
         }
     };
-    let columns = count(header[0].unwrap_or(0.0), "ncols")?;
-    let rows = count(header[1].unwrap_or(0.0), "nrows")?;
-    let cell = header[4].unwrap_or(0.0);
-    if !(cell.is_finite() && cell > 0.0) {
-        return Err(format_error(
-            name,
-            0,
-            0,
-            format!("`cellsize` = {cell} must be positive"),
-        ));
-    }
-    let shift = |c: bool| if c { 0.5 * cell } else { 0.0 };
-    let x0 = header[2].unwrap_or(0.0) - shift(centred.0);
-    let y0 = header[3].unwrap_or(0.0) - shift(centred.1);
-    let nodata = header[5];
+    let x0 = corner(xll, centred.0, columns)?;
+    let y0 = corner(yll, centred.1, rows)?;
+    let nodata = header[5].map(|entry| entry.number(name)).transpose()?;
+    let is_nodata = |v: f64| nodata.is_some_and(|n| n == v || (n.is_nan() && v.is_nan()));
 
-    let mut values = Vec::with_capacity(columns * rows);
+    // Each value takes at least two bytes of text (a digit and a separator):
+    // the capacity follows the text, never the header alone.
+    let mut values = Vec::with_capacity(cells.min(text.len() / 2 + 1));
     for (line, column, token) in std::iter::once(first_value).chain(tokens) {
-        if values.len() == columns * rows {
+        if values.len() == cells {
             return Err(format_error(
                 name,
                 line,
                 column,
-                format!("more values than ncols × nrows = {}", columns * rows),
+                format!("more values than ncols × nrows = {columns} × {rows} = {cells}"),
             ));
         }
         let value: f64 = token.parse().map_err(|_| {
@@ -180,7 +260,7 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
                 format!("`{token}` is not a number (grid row {r}, column {c})"),
             )
         })?;
-        if nodata == Some(value) {
+        if is_nodata(value) {
             values.push(None);
         } else if value.is_finite() {
             values.push(Some(value));
@@ -194,15 +274,15 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
             ));
         }
     }
-    if values.len() != columns * rows {
+    if values.len() != cells {
+        let (r, c) = (values.len() / columns, values.len() % columns);
         return Err(format_error(
             name,
             0,
             0,
             format!(
-                "{} values for ncols × nrows = {}",
+                "{} values for ncols × nrows = {columns} × {rows} = {cells}: the data stop in grid row {r} after {c} of {columns} values",
                 values.len(),
-                columns * rows
             ),
         ));
     }

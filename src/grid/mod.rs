@@ -6,4 +6,4 @@ mod esri_ascii;
 mod raster;
 
 pub use esri_ascii::{parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii};
-pub use raster::Raster;
+pub use raster::{Raster, MAX_GRID_CELLS};

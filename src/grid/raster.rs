@@ -2,6 +2,34 @@
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
 
+/// The largest number of cells a [`Raster`] may hold: 10^8, e.g. a grid of
+/// 10 000 × 10 000 cells.
+///
+/// A grid file states its size in its header; the reader checks that size
+/// against this cap before it allocates anything, so no header can make it
+/// ask for more memory than a workstation has. 10^8 cells hold 1.6 GB of
+/// values (16 bytes a cell) and need at least 200 MB of text to write down:
+/// a digital elevation model of 10 km × 10 km at 1 m, far more than any
+/// slope the HPM can solve (its bench of 100 × 100 columns and 5 layers
+/// already takes 7.4 GiB by sparse Cholesky), so the cap refuses no grid the
+/// analyses could use.
+pub const MAX_GRID_CELLS: usize = 100_000_000;
+
+/// `columns × rows`, checked: both at least 1 and the product at most
+/// [`MAX_GRID_CELLS`] (computed exactly, so it cannot wrap).
+fn cell_count(columns: usize, rows: usize) -> Result<usize> {
+    require_positive("raster columns", columns as f64)?;
+    require_positive("raster rows", rows as f64)?;
+    match columns.checked_mul(rows) {
+        Some(cells) if cells <= MAX_GRID_CELLS => Ok(cells),
+        _ => Err(DismechError::InvalidParameter {
+            name: "raster cell count (columns × rows)",
+            value: columns as f64 * rows as f64,
+            requirement: "must be at most MAX_GRID_CELLS = 10^8",
+        }),
+    }
+}
+
 /// Values on `rows × columns` square cells of side `cell_size`, row 0 the
 /// northernmost (top) row as in an ESRI ASCII file; `None` marks a cell
 /// without data.
@@ -27,6 +55,11 @@ fn cell_centre(x0: f64, y0: f64, rows: usize, cell: f64, row: usize, column: usi
 
 impl Raster {
     /// A raster from its values, row-major with row 0 at the top.
+    ///
+    /// Errors ([`DismechError::InvalidParameter`]): no column or row, more
+    /// than [`MAX_GRID_CELLS`] cells, a corner, cell size or far edge that
+    /// is not finite (or a cell size not positive), a number of values other
+    /// than `columns × rows`, a value that is not finite.
     pub fn new(
         columns: usize,
         rows: usize,
@@ -35,12 +68,19 @@ impl Raster {
         cell_size: f64,
         values: Vec<Option<f64>>,
     ) -> Result<Self> {
-        require_positive("raster columns", columns as f64)?;
-        require_positive("raster rows", rows as f64)?;
+        let cells = cell_count(columns, rows)?;
         require_finite("raster x of the lower-left corner", x_lower_left)?;
         require_finite("raster y of the lower-left corner", y_lower_left)?;
         require_positive("raster cell size", cell_size)?;
-        if values.len() != columns * rows {
+        require_finite(
+            "raster x of the right edge",
+            x_lower_left + columns as f64 * cell_size,
+        )?;
+        require_finite(
+            "raster y of the top edge",
+            y_lower_left + rows as f64 * cell_size,
+        )?;
+        if values.len() != cells {
             return Err(DismechError::InvalidParameter {
                 name: "raster value count",
                 value: values.len() as f64,
@@ -64,7 +104,8 @@ impl Raster {
         })
     }
 
-    /// A raster whose value at each cell is `f(x, y)` at the cell centre.
+    /// A raster whose value at each cell is `f(x, y)` at the cell centre;
+    /// errors as [`Raster::new`], the size checked before `f` is called.
     pub fn from_fn(
         columns: usize,
         rows: usize,
@@ -73,7 +114,7 @@ impl Raster {
         cell_size: f64,
         f: impl Fn(f64, f64) -> Option<f64>,
     ) -> Result<Self> {
-        let values = (0..rows * columns)
+        let values = (0..cell_count(columns, rows)?)
             .map(|k| {
                 let (x, y) = cell_centre(
                     x_lower_left,

@@ -152,6 +152,12 @@ impl SlopeGrids {
     }
 
     /// Read the three grids from ESRI ASCII files.
+    ///
+    /// Errors: those of [`crate::grid::parse_esri_ascii`] for each file (a
+    /// header over [`crate::grid::MAX_GRID_CELLS`] cells is refused before
+    /// its grid is allocated), then those of [`SlopeGrids::new`]; grids that
+    /// differ in shape, corner or cell size are refused before any cell is
+    /// looked at.
     pub fn read(ground: &Path, slip: &Path, water: Option<&Path>) -> Result<Self> {
         Self::new(
             NamedRaster::read(ground)?,
