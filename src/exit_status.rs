@@ -75,7 +75,7 @@ impl Exit {
             text.push_str(&format!("  {}  {}\n", exit.code(), exit.meaning()));
         }
         text.push_str(
-            "`reproduce all` exits 0 when every study passed, 1 when a check failed, and otherwise \
+            "\n`reproduce all` exits 0 when every study passed, 1 when a check failed, and otherwise \
              with the code of the first study that could not run.",
         );
         text

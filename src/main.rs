@@ -163,7 +163,16 @@ fn reproduce_command(study: &str, out: &Path, progress: bool) -> Exit {
 }
 
 fn main() -> ExitCode {
-    let matches = Cli::command().after_help(Exit::help()).get_matches();
+    let help = Exit::help();
+    let mut command = Cli::command().after_help(help.clone());
+    let names: Vec<String> = command
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    for name in names {
+        command = command.mut_subcommand(name, |c| c.after_help(help.clone()));
+    }
+    let matches = command.get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let exit = match cli.command {
         Command::LatticeLimitLoad {

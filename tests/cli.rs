@@ -92,18 +92,51 @@ fn unknown_study_exits_with_bad_input_code() {
 
 #[test]
 fn help_lists_the_exit_codes() {
-    let run = dismech(&["--help"]);
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    for line in [
-        "Exit status:",
-        "  0  success",
-        "  1  a study ran and wrote its results, but a check failed",
-        "  3  the lattice is locked",
-        "  5  a solver or simulation could not go on",
+    for args in [
+        &["--help"][..],
+        &["reproduce", "--help"],
+        &["lattice-limit-load", "--help"],
     ] {
-        assert!(stdout.contains(line), "{line:?} not in\n{stdout}");
+        let run = dismech(args);
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        for line in [
+            "Exit status:",
+            "  0  success",
+            "  1  a study ran and wrote its results, but a check failed",
+            "  3  the lattice is locked",
+            "  5  a solver or simulation could not go on",
+        ] {
+            assert!(stdout.contains(line), "{line:?} not in\n{stdout}");
+        }
+        assert_eq!(run.status.code(), Some(0));
     }
-    assert_eq!(run.status.code(), Some(0));
+}
+
+/// A study that cannot write its folder is reported as not run, with the
+/// output code, and the file in its way is left alone.
+#[test]
+fn study_that_cannot_write_exits_with_output_code() {
+    let out = scratch("blocked");
+    std::fs::write(out.join("yamada2000"), "not a folder").unwrap();
+    let run = dismech(&[
+        "reproduce",
+        "yamada2000",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("yamada2000  could not run: cannot write"),
+        "{stdout}"
+    );
+    assert_eq!(run.status.code(), Some(6), "{stdout}");
+    assert_eq!(
+        std::fs::read_to_string(out.join("yamada2000")).unwrap(),
+        "not a folder"
+    );
+    assert_eq!(contents(&out).len(), 1, "no staging folder is left");
+    std::fs::remove_dir_all(&out).unwrap();
 }
 
 /// Table 3 prints 8.07 for k = 4, n' = 2 where eq. (38) gives 16.49: the

@@ -35,11 +35,14 @@ pub struct StagedFolder {
 
 impl StagedFolder {
     /// Start writing the folder `target`: clean the leftovers of killed
-    /// runs and create an empty staging folder beside it.
+    /// runs and create an empty staging folder beside it. A target that
+    /// exists but is not a folder is refused here, before anything is
+    /// computed for it.
     pub fn new(target: &Path) -> Result<Self> {
         let (parent, name) = split(target)?;
         std::fs::create_dir_all(&parent).map_err(|e| output_error(&parent, e))?;
         recover(&parent, &name, target)?;
+        refuse_non_folder(target)?;
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(|e| output_error(&staging, e))?;
@@ -72,12 +75,7 @@ impl StagedFolder {
                 std::fs::rename(&self.target, &old).map_err(|e| output_error(&self.target, e))?;
                 true
             }
-            Ok(_) => {
-                return Err(output_error(
-                    &self.target,
-                    "it exists and is not a folder; it is not replaced",
-                ))
-            }
+            Ok(_) => return Err(not_a_folder(&self.target)),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
             Err(e) => return Err(output_error(&self.target, e)),
         };
@@ -100,6 +98,18 @@ impl Drop for StagedFolder {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
         }
+    }
+}
+
+fn not_a_folder(target: &Path) -> DismechError {
+    output_error(target, "it exists and is not a folder; it is not replaced")
+}
+
+/// Refuse a target that exists and is not a folder (a file, a link).
+fn refuse_non_folder(target: &Path) -> Result<()> {
+    match std::fs::symlink_metadata(target) {
+        Ok(meta) if !meta.is_dir() => Err(not_a_folder(target)),
+        _ => Ok(()),
     }
 }
 
@@ -227,7 +237,12 @@ mod tests {
         let out = scratch("file");
         let target = out.join("study");
         std::fs::write(&target, "mine").unwrap();
+        let err = StagedFolder::new(&target).unwrap_err();
+        assert!(err.to_string().contains("is not a folder"), "{err}");
+        // Made a file while the folder was being written.
+        std::fs::remove_file(&target).unwrap();
         let folder = StagedFolder::new(&target).unwrap();
+        std::fs::write(&target, "mine").unwrap();
         let err = folder.commit().unwrap_err();
         assert!(err.to_string().contains("is not a folder"), "{err}");
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "mine");
