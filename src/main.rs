@@ -1,16 +1,17 @@
 //! The `dismech` command line.
 
+mod exit_status;
 mod reproduce;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use dismech::error::DismechError;
-use dismech::limit::analyse;
 use dismech::limit::lattice::Lattice;
+use dismech::limit::{analyse, LimitStatus};
 use dismech::lp::LinearProgramSolver;
-use reproduce::StudyOptions;
+use exit_status::Exit;
 
 #[derive(Parser)]
 #[command(
@@ -27,6 +28,11 @@ struct Cli {
 enum Command {
     /// Reproduce a paper's examples and compare with its numbers, or run the
     /// cross-compositions against exact solutions and second methods.
+    ///
+    /// Each study's folder is replaced whole once the study has written
+    /// everything; a study that fails or is interrupted leaves the previous
+    /// folder as it was. `all` runs every study, whatever became of the
+    /// ones before, and ends with a table of each study's outcome.
     Reproduce {
         /// Study name (katsuki1990, yamada2000, hashimoto-dda, yamaguchi-hpm,
         /// compositions) or `all`.
@@ -40,6 +46,10 @@ enum Command {
     },
     /// Limit load of a lattice of rigid circles by LP (paper 002's U- and
     /// L-models; R = 1, C_p = 1).
+    ///
+    /// Prints one JSON object whatever the outcome; the exit status tells
+    /// a locked lattice (3) and a solver in trouble (5) from a found limit
+    /// load (0).
     LatticeLimitLoad {
         /// Lattice: `u` (half footing, symmetry wall) or `l`.
         #[arg(long, value_parser = ["u", "l"])]
@@ -72,7 +82,7 @@ fn lattice_limit_load(
     nprime: usize,
     rolling: bool,
     c_wall: f64,
-) -> Result<serde_json::Value, DismechError> {
+) -> Result<(serde_json::Value, LimitStatus), DismechError> {
     let mut lattice = if model == "u" {
         Lattice::u_model(m, n, nprime, rolling)
     } else {
@@ -84,7 +94,7 @@ fn lattice_limit_load(
     let result = analyse(&built, &mut LinearProgramSolver::default())?;
     let seconds = start.elapsed().as_secs_f64();
     let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
-    Ok(serde_json::json!({
+    let value = serde_json::json!({
         "model": model,
         "m": m,
         "n": n,
@@ -105,12 +115,66 @@ fn lattice_limit_load(
             "nonzeros": result.lp_size.2,
             "seconds": seconds,
         }
-    }))
+    });
+    Ok((value, result.status))
+}
+
+/// `lattice-limit-load`: the JSON object on stdout, the outcome in the
+/// exit status (and in words on stderr when no limit load was found).
+fn lattice_command(
+    model: &str,
+    m: usize,
+    n: usize,
+    nprime: usize,
+    rolling: bool,
+    c_wall: f64,
+) -> Exit {
+    match lattice_limit_load(model, m, n, nprime, rolling, c_wall) {
+        Ok((value, status)) => {
+            println!("{value}");
+            let exit = Exit::of_limit(&status);
+            if exit != Exit::Success {
+                eprintln!("no limit load ({status:?}): {}", exit.meaning());
+            }
+            exit
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            Exit::of_error(&e)
+        }
+    }
+}
+
+/// `reproduce`: every study named, each printed as it ends, then the table
+/// of outcomes.
+fn reproduce_command(study: &str, out: &Path, progress: bool) -> Exit {
+    let studies = match reproduce::select(study) {
+        Ok(studies) => studies,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Exit::of_error(&e);
+        }
+    };
+    let outcomes = reproduce::run_all(&studies, out, progress, |o| {
+        print!("{}", o.block(out));
+    });
+    println!("\n{}", reproduce::outcome::table(&outcomes));
+    reproduce::outcome::exit(&outcomes)
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match cli.command {
+    let help = Exit::help();
+    let mut command = Cli::command().after_help(help.clone());
+    let names: Vec<String> = command
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    for name in names {
+        command = command.mut_subcommand(name, |c| c.after_help(help.clone()));
+    }
+    let matches = command.get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let exit = match cli.command {
         Command::LatticeLimitLoad {
             model,
             m,
@@ -119,65 +183,8 @@ fn main() -> ExitCode {
             no_rolling,
             c_wall,
             json: _,
-        } => match lattice_limit_load(&model, m, n, nprime, !no_rolling, c_wall) {
-            Ok(value) => {
-                println!("{value}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
-            }
-        },
-        Command::Reproduce { study, out, quiet } => {
-            let options = StudyOptions {
-                out: out.clone(),
-                progress: !quiet,
-            };
-            match reproduce::run(&study, &options) {
-                Ok(summaries) => {
-                    let mut all_passed = true;
-                    for s in &summaries {
-                        println!("{} ({})", s.study, s.paper);
-                        for c in &s.checks {
-                            let paper = c
-                                .paper
-                                .map(|p| format!("{p}"))
-                                .unwrap_or_else(|| "-".into());
-                            println!(
-                                "  [{}] {:<34} computed {:>12.6e}  paper {:>8}  tol {:.1e}",
-                                if c.passed { "pass" } else { "FAIL" },
-                                c.id,
-                                c.computed,
-                                paper,
-                                c.tolerance
-                            );
-                        }
-                        for v in &s.values {
-                            let paper = v
-                                .paper
-                                .map(|p| format!("{p}"))
-                                .unwrap_or_else(|| "-".into());
-                            println!(
-                                "  [value] {:<33} computed {:>12.6e}  paper {:>8}",
-                                v.id, v.computed, paper
-                            );
-                        }
-                        println!("  written to {}", out.join(&s.study).display());
-                        all_passed &= s.all_passed();
-                    }
-                    if all_passed {
-                        ExitCode::SUCCESS
-                    } else {
-                        eprintln!("some checks failed (see summary.json)");
-                        ExitCode::from(2)
-                    }
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
-        }
-    }
+        } => lattice_command(&model, m, n, nprime, !no_rolling, c_wall),
+        Command::Reproduce { study, out, quiet } => reproduce_command(&study, &out, !quiet),
+    };
+    exit.into()
 }

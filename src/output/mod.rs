@@ -1,10 +1,18 @@
-//! Outputs: files written whole or not at all, the machine-readable
-//! `summary.json` of a reproduction, CSV tables and SVG plots.
+//! Outputs: files written whole or not at all, study folders swapped in
+//! whole, the machine-readable `summary.json` of a reproduction with the
+//! rule of each check, its console and report listings, CSV tables and SVG
+//! plots.
 
 mod atomic;
+mod folder;
+mod listing;
 pub mod map;
 pub mod plot;
+mod rule;
 mod summary;
 
 pub use atomic::{write_atomically, write_csv};
+pub use folder::StagedFolder;
+pub use listing::{check_line, checks_table, value_line};
+pub use rule::{number, Reference, Rule};
 pub use summary::{Check, Reported, Summary};

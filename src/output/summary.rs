@@ -4,26 +4,89 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use super::rule::Rule;
 use super::write_atomically;
 use crate::error::{DismechError, Result};
 
-/// One compared quantity.
+/// One judged quantity: a computed value, the [`Rule`] it must pass and,
+/// beside it, the paper's value if the paper gives one.
+///
+/// `rule`, `reference` and `passed` are derived from the same [`Rule`] by
+/// [`Check::new`]; `paper` is compared with only when `paper_tested` says
+/// so, otherwise it is shown beside the check for the reader.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Check {
     /// Stable identifier, e.g. `ex1.vertical_reaction_ratio`.
     pub id: String,
     /// What is compared, in words.
     pub description: String,
-    /// The paper's value, if the paper gives one.
+    /// The paper's value, if the paper gives one (tested by the rule or
+    /// not: see `paper_tested`).
     pub paper: Option<f64>,
     /// The value computed in this run.
     pub computed: f64,
     /// Unit of `paper` and `computed` (`"-"` for ratios).
     pub unit: String,
-    /// Tolerance of the check, in the sense of `description`.
+    /// The accepted difference of a "within" rule; 0 for a bound or a
+    /// condition.
     pub tolerance: f64,
     /// Whether the check passed.
     pub passed: bool,
+    /// The pass rule; written in words, with the values it compares with.
+    #[serde(serialize_with = "rule_in_words")]
+    pub rule: Rule,
+    /// The value the rule compares `computed` with (for alternatives, the
+    /// one met, else the first); `None` when the rule is a condition on
+    /// other numbers.
+    pub reference: Option<f64>,
+    /// Whether the rule compares `computed` with `paper`; when false, the
+    /// paper's value is only shown beside the check.
+    pub paper_tested: bool,
+}
+
+impl Check {
+    /// A check of `computed` by `rule`. The paper's value is the one the
+    /// rule compares with, if any; see [`Check::beside_paper`] for a paper
+    /// value the rule does not test.
+    pub fn new(
+        id: impl Into<String>,
+        description: impl Into<String>,
+        unit: impl Into<String>,
+        computed: f64,
+        rule: &Rule,
+    ) -> Self {
+        let paper = rule.paper_value();
+        Self {
+            id: id.into(),
+            description: description.into(),
+            paper,
+            computed,
+            unit: unit.into(),
+            tolerance: rule.tolerance(),
+            passed: rule.passes(computed),
+            rule: rule.clone(),
+            reference: rule.reference_for(computed).map(|r| r.value),
+            paper_tested: paper.is_some(),
+        }
+    }
+
+    /// Show the paper's value `paper` beside a check whose rule does not
+    /// compare with it (a trend, a different slope, a misprint).
+    pub fn beside_paper(mut self, paper: f64) -> Self {
+        if !self.paper_tested {
+            self.paper = Some(paper);
+        }
+        self
+    }
+
+    /// The paper's value when the rule does not compare with it.
+    pub fn untested_paper(&self) -> Option<f64> {
+        self.paper.filter(|_| !self.paper_tested)
+    }
+}
+
+fn rule_in_words<S: serde::Serializer>(rule: &Rule, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.serialize_str(&rule.words())
 }
 
 /// A number a study reports beside the paper's without a pass/fail

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 use super::StudyOptions;
 use dismech::error::Result;
-use dismech::output::{Check, Reported, Summary};
+use dismech::output::{self, Check, Reference, Reported, Summary};
 
 /// Name of the study and of its output folder.
 pub const NAME: &str = "compositions";
@@ -45,9 +45,9 @@ pub const COMPOSITIONS: &[Composition] = &[
 ];
 
 /// Run every composition and write the study's outputs into
-/// `out/compositions/`.
+/// `options.dir` (staged, to become `OUT/compositions/`).
 pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
-    let mut collector = Collector::new(options.out.join(NAME));
+    let mut collector = Collector::new(options.dir.clone());
     for composition in COMPOSITIONS {
         composition(&mut collector)?;
     }
@@ -69,30 +69,23 @@ pub enum Rule {
 }
 
 impl Rule {
-    fn passes(&self, computed: f64) -> bool {
-        match *self {
-            Rule::Near { target, tolerance } => (computed - target).abs() <= tolerance,
-            Rule::AtMost(tolerance) => computed <= tolerance,
+    /// The rule of the summary's check: a comparison with the bare
+    /// reference number (0 for a residual bounded by `AtMost`).
+    fn judged(self) -> output::Rule {
+        match self {
+            Rule::Near { target, tolerance } => {
+                output::Rule::near(Reference::number(target), tolerance)
+            }
+            Rule::AtMost(bound) => output::Rule::AtMost(Reference::number(bound)),
         }
     }
 
-    fn words(&self) -> String {
-        match *self {
-            Rule::Near { target, tolerance } => format!("within {tolerance:e} of {target}"),
-            Rule::AtMost(tolerance) => format!("at most {tolerance:e}"),
-        }
-    }
-
-    fn target(&self) -> f64 {
-        match *self {
+    /// The value the reference stands for, shown in the report: the
+    /// target, or 0 for a residual or an error.
+    fn ideal(self) -> f64 {
+        match self {
             Rule::Near { target, .. } => target,
             Rule::AtMost(_) => 0.0,
-        }
-    }
-
-    fn tolerance(&self) -> f64 {
-        match *self {
-            Rule::Near { tolerance, .. } | Rule::AtMost(tolerance) => tolerance,
         }
     }
 }
@@ -162,23 +155,16 @@ impl Collector {
     /// Add a check; its description states the quantity, the reference
     /// and the pass rule.
     pub fn check(&mut self, item: Item, rule: Rule, computed: f64) {
-        let passed = rule.passes(computed);
-        let reference = format!("{} ({})", fmt(rule.target()), item.reference);
-        self.row(&item, computed, &reference, &rule.words());
-        self.checks.push(Check {
-            id: item.id.into(),
-            description: format!(
-                "{}; reference: {}; passes when {}",
-                item.what,
-                item.reference,
-                rule.words()
-            ),
-            paper: Some(rule.target()),
+        let reference = format!("{} ({})", fmt(rule.ideal()), item.reference);
+        let judged = rule.judged();
+        self.row(&item, computed, &reference, &judged.words());
+        self.checks.push(Check::new(
+            item.id,
+            format!("{}; reference: {}", item.what, item.reference),
+            item.unit,
             computed,
-            unit: item.unit.into(),
-            tolerance: rule.tolerance(),
-            passed,
-        });
+            &judged,
+        ));
     }
 
     /// Add a value reported without a pass rule, beside its reference value
@@ -271,10 +257,10 @@ mod tests {
         c.value(item, None, 3.0);
         let passed: Vec<bool> = c.checks.iter().map(|k| k.passed).collect();
         assert_eq!(passed, [true, false, false]);
-        let description = &c.checks[0].description;
-        assert!(
-            description.contains("the exact value") && description.contains("within 1e-6 of 1")
-        );
+        assert!(c.checks[0].description.contains("the exact value"));
+        assert_eq!(c.checks[0].rule.words(), "within 1e-6 of 1");
+        assert_eq!(c.checks[0].reference, Some(1.0));
+        assert_eq!(c.checks[0].paper, None);
         assert_eq!(c.values.len(), 1);
         assert_eq!(c.report.matches("| `x.ratio` |").count(), 4);
     }

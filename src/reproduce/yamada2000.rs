@@ -28,7 +28,7 @@ use dismech::math::{perp, Point};
 use dismech::math::{SplitMix64, Vec2};
 use dismech::output::plot::mechanism_picture;
 use dismech::output::plot::{line_chart, Series};
-use dismech::output::{write_csv, Check, Summary};
+use dismech::output::{number, write_csv, Check, Reference, Rule, Summary};
 use dismech::reference::lattice_limit_load::{eq20, eq32, eq38};
 use dismech::reference::two_elements;
 use dismech::scene::{Frame, Scene};
@@ -66,10 +66,34 @@ const PRINT_TOLERANCE: f64 = 0.01;
 /// Relative agreement with a closed form.
 const FORMULA_TOLERANCE: f64 = 1e-6;
 
+/// Agreement of an LP optimum with a table entry: within one unit of the
+/// last printed digit of the paper's value.
+fn table_rule(table: f64) -> Rule {
+    Rule::near(Reference::paper(table), PRINT_TOLERANCE)
+}
+
+/// Agreement of an LP optimum with a closed form: within
+/// `FORMULA_TOLERANCE (1 + |formula|)`.
+fn formula_rule(formula: f64, formula_name: &str) -> Rule {
+    Rule::near(
+        Reference::named(formula_name, formula),
+        FORMULA_TOLERANCE * (1.0 + formula.abs()),
+    )
+}
+
+/// The rule of a table entry's check: the table's value (if the table
+/// gives one) or the closed form.
+fn entry_rule(table: Option<f64>, formula: f64, formula_name: &str) -> Rule {
+    match table {
+        Some(t) => Rule::AnyOf(vec![table_rule(t), formula_rule(formula, formula_name)]),
+        None => formula_rule(formula, formula_name),
+    }
+}
+
 /// Which reference an LP optimum agrees with.
 fn agreement(lp: f64, table: Option<f64>, formula: f64, formula_name: &str) -> String {
-    let table_ok = table.is_some_and(|t| (lp - t).abs() < PRINT_TOLERANCE);
-    let formula_ok = (lp - formula).abs() <= FORMULA_TOLERANCE * (1.0 + formula.abs());
+    let table_ok = table.is_some_and(|t| table_rule(t).passes(lp));
+    let formula_ok = formula_rule(formula, formula_name).passes(lp);
     match (table_ok, formula_ok) {
         (true, true) => "both".into(),
         (true, false) => "table only".into(),
@@ -87,9 +111,10 @@ fn gap(r: &LimitResult) -> f64 {
     (r.kinematic_load - r.static_load).abs() / (1.0 + r.kinematic_load.abs())
 }
 
-/// Run the study and write its outputs into `out/yamada2000/`.
+/// Run the study and write its outputs into `options.dir`
+/// (staged, to become `OUT/yamada2000/`).
 pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
-    let dir = options.out.join("yamada2000");
+    let dir = options.dir.clone();
     let mut solver = LinearProgramSolver::default();
     let mut checks = Vec::new();
     let mut files = Vec::new();
@@ -128,17 +153,13 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         exact.push((id, text, r.kinematic_load, value));
     }
     for (id, text, computed, paper) in exact {
-        checks.push(Check {
-            id: id.into(),
-            description: format!(
-                "{text}; LP optimum, passes within relative {FORMULA_TOLERANCE:e}"
-            ),
-            paper: Some(paper),
+        checks.push(Check::new(
+            id,
+            format!("{text}; LP optimum (relative tolerance {FORMULA_TOLERANCE:e})"),
+            "C_p",
             computed,
-            unit: "C_p".into(),
-            tolerance: FORMULA_TOLERANCE,
-            passed: (computed - paper).abs() <= FORMULA_TOLERANCE * paper,
-        });
+            &Rule::near(Reference::paper(paper), FORMULA_TOLERANCE * paper),
+        ));
     }
 
     // Table 1: rolling U-model.
@@ -159,17 +180,15 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                 r.static_load
             );
             rows.push(vec![k as f64, np as f64, paper, formula, lp, r.static_load]);
-            checks.push(Check {
-                id: format!("table1.k{k}.n{np}"),
-                description: format!(
-                    "rolling U-model P(k,k,n')/C_p by LP; passes when it equals Table 1 (±{PRINT_TOLERANCE}) or eq. (32) (relative {FORMULA_TOLERANCE:e}); agrees with: {agrees}; eq. (32) = {formula:.4}"
+            checks.push(Check::new(
+                format!("table1.k{k}.n{np}"),
+                format!(
+                    "rolling U-model P(k,k,n')/C_p by LP, against Table 1 (to its last printed digit) or eq. (32); agrees with: {agrees}"
                 ),
-                paper: Some(paper),
-                computed: lp,
-                unit: "C_p".into(),
-                tolerance: PRINT_TOLERANCE,
-                passed: agrees != "neither",
-            });
+                "C_p",
+                lp,
+                &entry_rule(Some(paper), formula, "eq. (32)"),
+            ));
         }
     }
     write_csv(
@@ -206,17 +225,15 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                 lp,
                 r.static_load,
             ]);
-            checks.push(Check {
-                id: format!("table3.k{k}.n{np}"),
-                description: format!(
-                    "non-rolling U-model P(k,k,n')/C_p by LP; passes when it equals Table 3 (±{PRINT_TOLERANCE}) or eq. (38) (relative {FORMULA_TOLERANCE:e}); agrees with: {agrees}"
+            checks.push(Check::new(
+                format!("table3.k{k}.n{np}"),
+                format!(
+                    "non-rolling U-model P(k,k,n')/C_p by LP, against Table 3 (to its last printed digit) or eq. (38); agrees with: {agrees}"
                 ),
-                paper,
-                computed: lp,
-                unit: "C_p".into(),
-                tolerance: PRINT_TOLERANCE,
-                passed: agrees != "neither",
-            });
+                "C_p",
+                lp,
+                &entry_rule(paper, formula, "eq. (38)"),
+            ));
         }
     }
     write_csv(
@@ -251,17 +268,15 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             at(64),
             at(256)
         );
-        checks.push(Check {
-            id: format!("eq20.cG_over_formula.m{m}"),
-            description: format!(
-                "rolling L-model c_G = P/(2 l_L) at n = 256 divided by eq. (20) ({formula:.4}); c_G rises towards eq. (20) as n grows; passes within 1 %"
+        checks.push(Check::new(
+            format!("eq20.cG_over_formula.m{m}"),
+            format!(
+                "rolling L-model c_G = P/(2 l_L) at n = 256 divided by eq. (20) ({formula:.4}); c_G rises towards eq. (20) as n grows"
             ),
-            paper: Some(1.0),
-            computed: ratio,
-            unit: "-".into(),
-            tolerance: 0.01,
-            passed: (ratio - 1.0).abs() <= 0.01,
-        });
+            "-",
+            ratio,
+            &Rule::near(Reference::number(1.0), 0.01),
+        ));
         series.push(Series {
             name: format!("m = {m} (LP)"),
             points: values.clone(),
@@ -478,27 +493,29 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             r.status,
             r.kinematic_load - r.static_load
         );
-        checks.push(Check {
-            id: format!("dem_to_lp.{label}.p_over_cp"),
-            description: format!("limit load of the DEM-settled polydisperse packing ({label}) by LP (no paper value); passes when a mechanism is found and primal and dual agree within 1e-6"),
-            paper: None,
-            computed: r.load.unwrap_or(f64::NAN),
-            unit: "C_p".into(),
-            tolerance: 1e-6,
-            passed: r.status == LimitStatus::Collapse && gap(&r) <= 1e-6,
-        });
+        checks.push(Check::new(
+            format!("dem_to_lp.{label}.p_over_cp"),
+            format!("limit load of the DEM-settled polydisperse packing ({label}) by LP (no paper value)"),
+            "C_p",
+            r.load.unwrap_or(f64::NAN),
+            &Rule::holds(
+                format!(
+                    "a mechanism is found (status {:?}) and primal and dual agree within 1e-6 (relative gap {})",
+                    r.status,
+                    number(gap(&r))
+                ),
+                r.status == LimitStatus::Collapse && gap(&r) <= 1e-6,
+            ),
+        ));
     }
 
-    checks.push(Check {
-        id: "primal_dual_gap.max".into(),
-        description: "largest |kinematic − static| / (1 + |P|) over every solved LP of the study"
-            .into(),
-        paper: None,
-        computed: max_gap,
-        unit: "-".into(),
-        tolerance: 1e-6,
-        passed: max_gap <= 1e-6,
-    });
+    checks.push(Check::new(
+        "primal_dual_gap.max",
+        "largest |kinematic − static| / (1 + |P|) over every solved LP of the study",
+        "-",
+        max_gap,
+        &Rule::AtMost(Reference::number(1e-6)),
+    ));
     Summary {
         study: "yamada2000".into(),
         paper: PAPER.into(),

@@ -33,7 +33,7 @@ use dismech::hpm::{
     NamedRaster, NonlinearSettings, Seismic, SlopeGrids,
 };
 use dismech::output::map::{cell_map, Arrow, MapCell};
-use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::output::{checks_table, number, write_csv, Check, Reference, Reported, Rule, Summary};
 use dismech::reference::PlanarSlab;
 
 /// File name of the paper.
@@ -133,25 +133,6 @@ fn paper_fs(key: &str) -> f64 {
         .iter()
         .find(|(k, _)| *k == key)
         .map_or(f64::NAN, |p| p.1)
-}
-
-fn check(
-    id: &str,
-    description: String,
-    paper: Option<f64>,
-    computed: f64,
-    tolerance: f64,
-    passed: bool,
-) -> Check {
-    Check {
-        id: id.into(),
-        description,
-        paper,
-        computed,
-        unit: "-".into(),
-        tolerance,
-        passed,
-    }
 }
 
 /// A column whose springs all slip has a local Fs of exactly 1, which the
@@ -349,9 +330,10 @@ fn area_at_or_below_one(model: &HpmModel, result: &HpmResult) -> f64 {
     local.iter().filter(|&&f| f <= 1.0 + AT_LIMIT).count() as f64 / local.len() as f64
 }
 
-/// Run the study and write its outputs into `out/yamaguchi-hpm/`.
+/// Run the study and write its outputs into `options.dir`
+/// (staged, to become `OUT/yamaguchi-hpm/`).
 pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
-    let dir = options.out.join("yamaguchi-hpm");
+    let dir = options.dir.clone();
     let material = HpmMaterial::paper();
     let settings = HpmSettings::default();
     // 1000 iterations keep the strength-reduction search (whose failing
@@ -400,21 +382,19 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             computed: sliding / exact,
             unit: "-".into(),
         });
-        checks.push(check(
-            &format!("{id}.fs_over_exact"),
-            format!("slab on a planar slip surface (dip {dip}°, k_h = {kh} towards the toe): elastic HPM Fs over (cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β)); passes within 1 %"),
-            Some(1.0),
+        checks.push(Check::new(
+            format!("{id}.fs_over_exact"),
+            format!("slab on a planar slip surface (dip {dip}°, k_h = {kh} towards the toe): elastic HPM Fs over the exact (cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))"),
+            "-",
             fs / exact,
-            0.01,
-            (fs / exact - 1.0).abs() <= 0.01,
+            &Rule::near(Reference::number(1.0), 0.01),
         ));
-        checks.push(check(
-            &format!("{id}.hovland_over_exact"),
-            format!("the same slab by Hovland's method over the exact Fs (k_h = {kh}); passes within 1 %"),
-            Some(1.0),
+        checks.push(Check::new(
+            format!("{id}.hovland_over_exact"),
+            format!("the same slab by Hovland's method over the exact Fs (k_h = {kh})"),
+            "-",
             hov / exact,
-            0.01,
-            (hov / exact - 1.0).abs() <= 0.01,
+            &Rule::near(Reference::number(1.0), 0.01),
         ));
     }
 
@@ -544,77 +524,108 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             .iter()
             .any(|(c, _, nl)| *c == case && nl.convergence.converged())
     };
-    checks.push(check(
-        "slope.fs.elastic.static",
-        "elastic HPM, static; the representative slope stands (passes when Fs > 1; the paper's slope of its missing Fig. 10 gives 1.764)".into(),
-        Some(1.764),
-        el_static,
-        1.0,
-        el_static > 1.0,
-    ));
-    checks.push(check(
-        "slope.fs.nonlinear.static",
-        format!("nonlinear HPM (Mohr–Coulomb, no tension), static: passes when the solve finds equilibrium (relative out-of-balance <= {:e}); the paper's 'within a few per cent of elastic' is reported as a value in report.md (1.747 against 1.764 in the paper)", nonlinear.tolerance),
-        Some(1.747),
-        nl_static,
-        nonlinear.tolerance,
-        converged("static"),
-    ));
-    checks.push(check(
-        "slope.fs.elastic.seismic",
-        format!("elastic HPM, k_h = {SEISMIC_COEFFICIENT} towards the toe: well below static (passes when Fs_seismic / Fs_static <= 0.8; paper 1.104 / 1.764 = 0.63)"),
-        Some(1.104),
-        el_seismic,
-        0.8,
-        el_seismic / el_static <= 0.8,
-    ));
-    checks.push(check(
-        "slope.fs.nonlinear.seismic",
-        format!("nonlinear HPM, k_h = {SEISMIC_COEFFICIENT} towards the toe: converged and well below static (passes when Fs_seismic / Fs_static <= 0.8; paper 1.155 / 1.747 = 0.66)"),
-        Some(1.155),
-        nl_seismic,
-        0.8,
-        converged("seismic") && nl_seismic / nl_static <= 0.8,
-    ));
+    checks.push(
+        Check::new(
+            "slope.fs.elastic.static",
+            "elastic HPM, static: the representative slope stands (the paper's 1.764 is of the slope of its missing Fig. 10, not this one)",
+            "-",
+            el_static,
+            &Rule::Above(Reference::number(1.0)),
+        )
+        .beside_paper(1.764),
+    );
+    checks.push(
+        Check::new(
+            "slope.fs.nonlinear.static",
+            "nonlinear HPM (Mohr–Coulomb, no tension), static (the paper's 'within a few per cent of elastic' is reported as a value in report.md)",
+            "-",
+            nl_static,
+            &Rule::holds(
+                format!(
+                    "the solve finds equilibrium (relative out-of-balance ≤ {})",
+                    number(nonlinear.tolerance)
+                ),
+                converged("static"),
+            ),
+        )
+        .beside_paper(1.747),
+    );
+    checks.push(
+        Check::new(
+            "slope.fs.elastic.seismic",
+            format!("elastic HPM, k_h = {SEISMIC_COEFFICIENT} towards the toe: well below static (the paper: 1.104 / 1.764 = 0.63 of static)"),
+            "-",
+            el_seismic,
+            &Rule::AtMost(Reference::named("0.8 × the static Fs", 0.8 * el_static)),
+        )
+        .beside_paper(1.104),
+    );
+    checks.push(
+        Check::new(
+            "slope.fs.nonlinear.seismic",
+            format!("nonlinear HPM, k_h = {SEISMIC_COEFFICIENT} towards the toe: converged and well below static (the paper: 1.155 / 1.747 = 0.66 of static)"),
+            "-",
+            nl_seismic,
+            &Rule::holds(
+                format!(
+                    "the solve finds equilibrium and Fs ≤ 0.8 × the static Fs = {}",
+                    number(0.8 * nl_static)
+                ),
+                converged("seismic") && nl_seismic / nl_static <= 0.8,
+            ),
+        )
+        .beside_paper(1.155),
+    );
     for case in ["static", "seismic"] {
         let hov = fs[&format!("hovland.{case}")];
-        checks.push(check(
-            &format!("slope.fs.hovland.{case}"),
-            format!("Hovland's 3D column method on the same grids, {case}; passes when it gives the same verdict as nonlinear HPM (Fs >= 1 exactly when the nonlinear solve finds equilibrium); its ratio to HPM is in report.md"),
-            None,
+        checks.push(Check::new(
+            format!("slope.fs.hovland.{case}"),
+            format!("Hovland's 3D column method on the same grids, {case} (its ratio to HPM is in report.md)"),
+            "-",
             hov,
-            1.0,
-            (hov >= 1.0) == converged(case),
+            &Rule::holds(
+                format!(
+                    "the same verdict as nonlinear HPM: Fs ≥ 1 exactly when the nonlinear solve finds equilibrium (it {})",
+                    if converged(case) { "does" } else { "does not" }
+                ),
+                (hov >= 1.0) == converged(case),
+            ),
         ));
     }
-    checks.push(check(
-        "slope.seismic.elastic_below_nonlinear",
-        format!("seismic: the elastic Fs lies below the nonlinear one, as in the paper (1.104 < 1.155); computed is elastic / nonlinear ({el_seismic:.4} / {nl_seismic:.4})"),
-        Some(1.104 / 1.155),
-        el_seismic / nl_seismic,
-        1.0,
-        el_seismic < nl_seismic,
-    ));
-    checks.push(check(
+    checks.push(
+        Check::new(
+            "slope.seismic.elastic_below_nonlinear",
+            format!("seismic: elastic Fs / nonlinear Fs ({el_seismic:.4} / {nl_seismic:.4}); the elastic Fs lies below the nonlinear one in the paper (1.104 < 1.155)"),
+            "-",
+            el_seismic / nl_seismic,
+            &Rule::Below(Reference::number(1.0)),
+        )
+        .beside_paper(1.104 / 1.155),
+    );
+    checks.push(Check::new(
         "slope.fs.strength_reduction.static",
-        "strength-reduction factor (largest F = c/c_F = tan φ / tan φ_F with equilibrium); passes when it agrees with the unreduced nonlinear run on stability (F > 1 exactly when the static nonlinear solve converged)".into(),
-        None,
+        "strength-reduction factor (largest F = c/c_F = tan φ / tan φ_F with equilibrium)",
+        "-",
         srf.safety_factor,
-        0.0,
-        (srf.safety_factor > 1.0) == converged("static"),
+        &Rule::holds(
+            format!(
+                "it agrees with the unreduced nonlinear run on stability: F > 1 exactly when the static nonlinear solve finds equilibrium (it {})",
+                if converged("static") { "does" } else { "does not" }
+            ),
+            (srf.safety_factor > 1.0) == converged("static"),
+        ),
     ));
     for (case, elastic, nl) in &results {
         let (a_el, a_nl) = (
             area_at_or_below_one(&model, elastic),
             area_at_or_below_one(&model, nl),
         );
-        checks.push(check(
-            &format!("slope.local_fs_le_1_area.{case}"),
-            format!("share of columns with local Fs <= 1, nonlinear (elastic: {a_el:.4}); the paper finds it wider in the nonlinear run: passes when nonlinear >= elastic"),
-            None,
+        checks.push(Check::new(
+            format!("slope.local_fs_le_1_area.{case}"),
+            "share of columns with local Fs <= 1, nonlinear; the paper finds it wider in the nonlinear run than in the elastic one",
+            "-",
             a_nl,
-            0.0,
-            a_nl >= a_el,
+            &Rule::AtLeast(Reference::named("the elastic share", a_el)),
         ));
     }
 
@@ -714,20 +725,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     )?;
     files.push("slope_fs.csv".into());
 
-    let _ = writeln!(
-        report,
-        "\n## Checks\n\n| id | paper | computed | passed |\n|---|---|---|---|"
-    );
-    for c in &checks {
-        let _ = writeln!(
-            report,
-            "| {} | {} | {:.5} | {} |",
-            c.id,
-            c.paper.map_or("–".into(), |p| format!("{p}")),
-            c.computed,
-            c.passed
-        );
-    }
+    let _ = write!(report, "\n## Checks\n\n{}", checks_table(&checks));
     let _ = writeln!(report, "\n## Choices where the paper is silent\n\n- Fig. 10 is missing: the slope above is ours, so its Fs are not the paper's numbers; the paper's are shown beside them for the trends.\n- k_n = (1 − ν)E'/((1 + ν)(1 − 2ν)h) (errata), k_s = k_t = E'/((1 + ν)h), p = {} (not given in the paper); h = cell size between columns, the distance between centroids between layers, the bottom element's mean thickness h_I on the slip surface.\n- Global Fs = Σ(c + σ tan φ)A / Σ|τ|A over the slip springs (2 × 2 Gauss points per column), the definition of the `slope.fs.*` and `*.fs_over_exact` checks; local Fs the same per column. Beside it, Fs along the sliding direction Σ(c + σ tan φ)A / Σ(τ·d_i)A (Hovland's one sliding direction; values `*.fs_sliding*`).\n- The (s, t, n) frame of eqs. (25)–(26) is made orthonormal (t by Gram–Schmidt against s).\n- Nonlinear: Mohr–Coulomb with no tension on the slip springs, one load step, initial-stiffness iteration with Aitken's relaxation to a relative out-of-balance force of {:e} within {} iterations; the strength-reduction factor is bracketed to 2 % and depends on that iteration limit.\n- k_h = 0.15 (the paper prints 1.5).\n", settings.penalty, nonlinear.tolerance, nonlinear.max_iterations);
     Summary {
         study: "yamaguchi-hpm".into(),

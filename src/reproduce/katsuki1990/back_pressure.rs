@@ -23,7 +23,7 @@ use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::math::Vec2;
 use dismech::output::plot::{line_chart, Series};
-use dismech::output::{write_csv, Check, Reported};
+use dismech::output::{write_csv, Check, Reference, Reported, Rule};
 
 /// The uniform back storage sand pressure (Pa).
 pub const BACK_PRESSURE: f64 = 100e3;
@@ -192,29 +192,25 @@ pub(super) fn example3_outputs(
         let name = pattern.name;
         let horizontal = run.horizontal_imbalance();
         let vertical = run.vertical_ratio();
-        checks.push(Check {
-            id: format!("ex3.horizontal_equilibrium.{name}"),
-            description: format!(
-                "pattern {name} under {} kPa back pressure: |sum of horizontal wall reactions + applied back force| / applied force at rest; passes when <= tolerance",
+        checks.push(Check::new(
+            format!("ex3.horizontal_equilibrium.{name}"),
+            format!(
+                "pattern {name} under {} kPa back pressure: |sum of horizontal wall reactions + applied back force| / applied force at rest",
                 BACK_PRESSURE / 1e3
             ),
-            paper: Some(0.0),
-            computed: horizontal,
-            unit: "-".into(),
-            tolerance: 0.005,
-            passed: horizontal <= 0.005,
-        });
-        checks.push(Check {
-            id: format!("ex3.vertical_reaction_ratio.{name}"),
-            description: format!(
-                "pattern {name} under back pressure: sum of vertical wall reactions / total weight at rest; passes when |ratio - 1| <= tolerance"
+            "-",
+            horizontal,
+            &Rule::near(Reference::number(0.0), 0.005),
+        ));
+        checks.push(Check::new(
+            format!("ex3.vertical_reaction_ratio.{name}"),
+            format!(
+                "pattern {name} under back pressure: sum of vertical wall reactions / total weight at rest"
             ),
-            paper: Some(1.0),
-            computed: vertical,
-            unit: "-".into(),
-            tolerance: 0.005,
-            passed: (vertical - 1.0).abs() <= 0.005,
-        });
+            "-",
+            vertical,
+            &Rule::near(Reference::number(1.0), 0.005),
+        ));
         let centroid = run.front_centroid_ratio();
         values.push(Reported {
             id: format!("ex3.front_centroid.{name}"),

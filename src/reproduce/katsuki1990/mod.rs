@@ -41,7 +41,7 @@ use dismech::error::Result;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, Series};
-use dismech::output::{write_csv, Check, Reported, Summary};
+use dismech::output::{write_csv, Check, Reference, Reported, Rule, Summary};
 use dismech::scene::{CircleRows, Scene};
 
 /// File name of the paper.
@@ -267,9 +267,10 @@ pub(crate) fn progress_bar(
     bar
 }
 
-/// Run Example 1 at full size and write its outputs into `out/katsuki1990/`.
+/// Run Example 1 at full size and write its outputs into `options.dir`
+/// (staged, to become `OUT/katsuki1990/`).
 pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
-    let dir = options.out.join("katsuki1990");
+    let dir = options.dir.clone();
     let config = FillConfig::paper();
     let limit = critical_time_step(&fill_scene(&config)?, &material_law()?);
     let bar = progress_bar(options, "katsuki1990 ex1", rest_criterion().max_time);
@@ -310,45 +311,37 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let horizontal = eq.horizontal_imbalance();
     let rest_ratio = outcome.kinetic_energy / outcome.released_potential_energy;
     let mut checks = vec![
-        Check {
-            id: "ex1.vertical_reaction_ratio".into(),
-            description: "sum of vertical wall reactions (bottom + side-wall friction) / total weight; passes when |ratio - 1| <= tolerance".into(),
-            paper: Some(1.0),
-            computed: vertical,
-            unit: "-".into(),
-            tolerance: 0.005,
-            passed: (vertical - 1.0).abs() <= 0.005,
-        },
-        Check {
-            id: "ex1.horizontal_imbalance_ratio".into(),
-            description: "|F_left + F_right| / total weight (horizontal reactions of the side walls cancel); passes when <= tolerance".into(),
-            paper: Some(0.0),
-            computed: horizontal,
-            unit: "-".into(),
-            tolerance: 0.01,
-            passed: horizontal <= 0.01,
-        },
-        Check {
-            id: "ex1.rest_kinetic_ratio".into(),
-            description: "kinetic energy / potential energy released at the end of the run; at rest when < tolerance".into(),
-            paper: None,
-            computed: rest_ratio,
-            unit: "-".into(),
-            tolerance: rest_criterion().kinetic_to_released_ratio,
-            passed: rest_ratio < rest_criterion().kinetic_to_released_ratio,
-        },
-        Check {
-            id: "ex1.stable_time_step".into(),
-            description: format!(
-                "estimated stable limit of the explicit step (s), governed by the {}; passes when the paper's dt = {TIME_STEP} s is below it",
+        Check::new(
+            "ex1.vertical_reaction_ratio",
+            "sum of vertical wall reactions (bottom + side-wall friction) / total weight",
+            "-",
+            vertical,
+            &Rule::near(Reference::paper(1.0), 0.005),
+        ),
+        Check::new(
+            "ex1.horizontal_imbalance_ratio",
+            "|F_left + F_right| / total weight (horizontal reactions of the side walls cancel)",
+            "-",
+            horizontal,
+            &Rule::near(Reference::paper(0.0), 0.01),
+        ),
+        Check::new(
+            "ex1.rest_kinetic_ratio",
+            "kinetic energy / potential energy released at the end of the run (at rest below the bound)",
+            "-",
+            rest_ratio,
+            &Rule::Below(Reference::number(rest_criterion().kinetic_to_released_ratio)),
+        ),
+        Check::new(
+            "ex1.stable_time_step",
+            format!(
+                "estimated stable limit of the explicit step (s), governed by the {}; the paper's dt = {TIME_STEP} s must be below it",
                 limit.governing
             ),
-            paper: Some(TIME_STEP),
-            computed: limit.dt,
-            unit: "s".into(),
-            tolerance: 0.0,
-            passed: TIME_STEP <= limit.dt,
-        },
+            "s",
+            limit.dt,
+            &Rule::AtLeast(Reference::paper(TIME_STEP)),
+        ),
     ];
     let spinner = if options.progress {
         indicatif::ProgressBar::new_spinner()
@@ -548,28 +541,29 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
 /// independent reference of [`dismech::reference::ellipse_contact`].
 fn random_pair_checks() -> Vec<Check> {
     let s = dismech::reference::ellipse_contact::random_pair_statistics_parallel(100_000, 2026);
-    let check = |id: &str, description: &str, computed: f64, tolerance: f64| Check {
-        id: id.into(),
-        description: description.into(),
-        paper: None,
-        computed,
-        unit: "-".into(),
-        tolerance,
-        passed: computed <= tolerance,
+    let check = |id: &str, description: &str, computed: f64, bound: f64| {
+        Check::new(
+            id,
+            description,
+            "-",
+            computed,
+            &Rule::AtMost(Reference::number(bound)),
+        )
     };
     vec![
-        Check {
-            id: "contact.random_pairs.count".into(),
-            description: format!(
-                "random ellipse pairs tested (aspect 1-5, size ratio 1-10, overlap -5 % to 20 % of the smaller b), {} of them in contact by the reference; passes when all 100000 ran",
+        Check::new(
+            "contact.random_pairs.count",
+            format!(
+                "random ellipse pairs tested (aspect 1-5, size ratio 1-10, overlap -5 % to 20 % of the smaller b), {} of them in contact by the reference",
                 s.in_contact
             ),
-            paper: None,
-            computed: s.count as f64,
-            unit: "-".into(),
-            tolerance: 0.0,
-            passed: s.count == 100_000 && s.in_contact > 0,
-        },
+            "-",
+            s.count as f64,
+            &Rule::holds(
+                "all 100000 pairs ran and the reference finds some of them in contact",
+                s.count == 100_000 && s.in_contact > 0,
+            ),
+        ),
         check(
             "contact.random_pairs.missed",
             "contacts the routine missed where the reference finds an overlap",

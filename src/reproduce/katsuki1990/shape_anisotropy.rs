@@ -27,7 +27,7 @@ use dismech::error::Result;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, outline_picture, scatter_chart, ForceMark, Series};
-use dismech::output::{write_csv, Check, Reported};
+use dismech::output::{write_csv, Check, Reference, Reported, Rule};
 
 /// A settled pattern and its earth pressure on the side walls.
 #[derive(Debug)]
@@ -161,37 +161,27 @@ pub(super) fn example2_outputs(
             || "the paper gives no number for B (only that A and B are small)".to_string(),
             |(lo, hi)| format!("paper: {lo}-{hi}"),
         );
-        checks.push(Check {
-            id: format!("ex2.vertical_reaction_ratio.{name}"),
-            description: format!(
-                "pattern {name}: sum of vertical wall reactions / total weight at rest; passes when |ratio - 1| <= tolerance"
-            ),
-            paper: Some(1.0),
-            computed: vertical,
-            unit: "-".into(),
-            tolerance: 0.005,
-            passed: (vertical - 1.0).abs() <= 0.005,
-        });
-        let agree = match (k_left, k_right, k) {
-            (Some(l), Some(r), Some(v)) => v.is_finite() && (l - r).abs() <= 0.05 * v.abs(),
-            _ => false,
-        };
-        checks.push(Check {
-            id: format!("ex2.K_left_right.{name}"),
-            description: format!(
-                "pattern {name}: representative K of the left wall vs the right wall of this mirror-symmetric layout (left {}, right {}); passes when they agree within 5 % of K",
+        checks.push(Check::new(
+            format!("ex2.vertical_reaction_ratio.{name}"),
+            format!("pattern {name}: sum of vertical wall reactions / total weight at rest"),
+            "-",
+            vertical,
+            &Rule::near(Reference::number(1.0), 0.005),
+        ));
+        checks.push(Check::new(
+            format!("ex2.K_left_right.{name}"),
+            format!(
+                "pattern {name}: |K of the left wall − K of the right wall| / K, of this mirror-symmetric layout (left {}, right {})",
                 fmt_option(k_left),
                 fmt_option(k_right),
             ),
-            paper: None,
-            computed: match (k_left, k_right) {
+            "-",
+            match (k_left, k_right) {
                 (Some(l), Some(r)) => (l - r).abs() / k.unwrap_or(f64::NAN).abs(),
                 _ => f64::NAN,
             },
-            unit: "-".into(),
-            tolerance: 0.05,
-            passed: agree,
-        });
+            &Rule::AtMost(Reference::number(0.05)),
+        ));
         let verdict = |value: Option<f64>| match (paper, value) {
             (Some((lo, hi)), Some(v)) if v >= lo && v <= hi => "within the paper's range",
             (Some(_), Some(_)) => "outside the paper's range",

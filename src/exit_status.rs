@@ -1,0 +1,157 @@
+//! The exit status of the `dismech` command: one code per kind of outcome,
+//! so that a script can tell a failed check from a locked model, a solver
+//! that gave up, bad input or an output that could not be written.
+
+use std::process::ExitCode;
+
+use dismech::error::{DismechError, SolveError};
+use dismech::limit::LimitStatus;
+
+/// What the command's exit code says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Exit {
+    /// Every check passed; the limit load was found.
+    Success,
+    /// A study ran and wrote its results, but a check failed.
+    CheckFailed,
+    /// Bad command line or bad input: a value out of range, a malformed
+    /// file, an unknown study (the code clap uses for usage errors).
+    BadInput,
+    /// The model cannot collapse: no finite load moves it (`Locked`).
+    Locked,
+    /// The model collapses under its own loads, before any plate load
+    /// (`Unbounded`).
+    Unbounded,
+    /// A solver or a simulation could not go on: an LP without a certified
+    /// optimum, a failed factorization, a DDA step that failed at the
+    /// smallest step, a blow-up.
+    SolverFailure,
+    /// An output could not be written.
+    OutputFailed,
+}
+
+impl Exit {
+    /// Every status, in the order of their codes.
+    pub const ALL: [Exit; 7] = [
+        Exit::Success,
+        Exit::CheckFailed,
+        Exit::BadInput,
+        Exit::Locked,
+        Exit::Unbounded,
+        Exit::SolverFailure,
+        Exit::OutputFailed,
+    ];
+
+    /// The process exit code.
+    pub fn code(self) -> u8 {
+        match self {
+            Exit::Success => 0,
+            Exit::CheckFailed => 1,
+            Exit::BadInput => 2,
+            Exit::Locked => 3,
+            Exit::Unbounded => 4,
+            Exit::SolverFailure => 5,
+            Exit::OutputFailed => 6,
+        }
+    }
+
+    /// What the code means, in a few words.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Exit::Success => "success: every check passed / the limit load was found",
+            Exit::CheckFailed => "a study ran and wrote its results, but a check failed",
+            Exit::BadInput => "bad command line or input (value out of range, unknown study)",
+            Exit::Locked => "the lattice is locked: no finite load makes it collapse",
+            Exit::Unbounded => "the model collapses under its own loads (no limit load)",
+            Exit::SolverFailure => "a solver or simulation could not go on (no certified optimum, failed step, blow-up)",
+            Exit::OutputFailed => "an output could not be written",
+        }
+    }
+
+    /// The table of codes printed after `--help`.
+    pub fn help() -> String {
+        let mut text = String::from("Exit status:\n");
+        for exit in Exit::ALL {
+            text.push_str(&format!("  {}  {}\n", exit.code(), exit.meaning()));
+        }
+        text.push_str(
+            "\n`reproduce all` exits 0 when every study passed, 1 when a check failed, and otherwise \
+             with the code of the first study that could not run.",
+        );
+        text
+    }
+
+    /// The status of a limit analysis.
+    pub fn of_limit(status: &LimitStatus) -> Self {
+        match status {
+            LimitStatus::Collapse => Exit::Success,
+            LimitStatus::Locked => Exit::Locked,
+            LimitStatus::Unbounded => Exit::Unbounded,
+            LimitStatus::SolverTrouble(_) => Exit::SolverFailure,
+        }
+    }
+
+    /// The status of a run stopped by `error`.
+    pub fn of_error(error: &DismechError) -> Self {
+        use DismechError as E;
+        match error {
+            E::Output { .. } => Exit::OutputFailed,
+            E::Solve(SolveError::InvalidSetting { .. }) => Exit::BadInput,
+            E::Solve(_)
+            | E::NonFinite { .. }
+            | E::ParticleLeftFrame { .. }
+            | E::EnergyBlowUp { .. }
+            | E::StepFailed { .. } => Exit::SolverFailure,
+            E::InvalidParameter { .. }
+            | E::UnstableTimeStep { .. }
+            | E::StartsInsideWall { .. }
+            | E::InitialOverlap { .. }
+            | E::FrameNotClosed { .. }
+            | E::DegenerateWall { .. }
+            | E::ContactNotTouching { .. }
+            | E::PlateTouchesNothing(_)
+            | E::DrivingSupportCount(_)
+            | E::GridFormat { .. }
+            | E::GridCell { .. }
+            | E::GridMismatch { .. }
+            | E::NoValidColumn { .. }
+            | E::InvalidPolygon { .. }
+            | E::LawUndefinedForShape { .. }
+            | E::InvalidBlock { .. }
+            | E::BlocksOverlap { .. }
+            | E::PenaltyModel(_)
+            | E::UnsupportedPair(..)
+            | E::NoSuchBody { .. }
+            | E::UnknownStudy(..) => Exit::BadInput,
+        }
+    }
+}
+
+impl From<Exit> for ExitCode {
+    fn from(exit: Exit) -> Self {
+        ExitCode::from(exit.code())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dismech::lp::LpStatus;
+
+    #[test]
+    fn codes_are_distinct_and_listed_in_the_help() {
+        let help = Exit::help();
+        for (i, exit) in Exit::ALL.iter().enumerate() {
+            assert_eq!(exit.code() as usize, i);
+            assert!(help.contains(&format!("  {}  {}", exit.code(), exit.meaning())));
+        }
+    }
+
+    #[test]
+    fn a_solver_in_trouble_exits_with_the_solver_code() {
+        let status = LimitStatus::SolverTrouble(LpStatus::MaxIterations);
+        assert_eq!(Exit::of_limit(&status), Exit::SolverFailure);
+        assert_eq!(Exit::of_limit(&LimitStatus::Locked), Exit::Locked);
+        assert_eq!(Exit::of_limit(&LimitStatus::Collapse), Exit::Success);
+    }
+}
