@@ -114,11 +114,14 @@ impl Exit {
             | E::GridFormat { .. }
             | E::GridCell { .. }
             | E::GridMismatch { .. }
+            | E::GridHeader { .. }
+            | E::GridTooLarge { .. }
             | E::NoValidColumn { .. }
             | E::InvalidPolygon { .. }
             | E::LawUndefinedForShape { .. }
             | E::InvalidBlock { .. }
             | E::BlocksOverlap { .. }
+            | E::BlocksCross { .. }
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
