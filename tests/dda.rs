@@ -4,7 +4,7 @@
 
 mod dda_common;
 
-use dda_common::material;
+use dda_common::{material, rect};
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PenaltyState,
     Prescribed, StepStatus,
@@ -36,15 +36,6 @@ fn input(overlap: f64, shear: f64) -> ContactInput<2> {
             mass_b: 1.0,
         },
     }
-}
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Point> {
-    vec![
-        Point::new(x0, y0),
-        Point::new(x1, y0),
-        Point::new(x1, y1),
-        Point::new(x0, y1),
-    ]
 }
 
 proptest! {

@@ -3,21 +3,11 @@
 
 mod dda_common;
 
-use dda_common::material;
+use dda_common::{material, rect};
 use dismech::dda::{
     Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed, StepStatus,
 };
 use dismech::error::DismechError;
-use dismech::math::Point;
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Point> {
-    vec![
-        Point::new(x0, y0),
-        Point::new(x1, y0),
-        Point::new(x1, y1),
-        Point::new(x0, y1),
-    ]
-}
 
 fn base() -> Block {
     let mut b = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();

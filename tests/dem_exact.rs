@@ -313,8 +313,9 @@ fn non_finite_state_stops_the_run_naming_step_and_particle() {
     }
 }
 
-#[test]
-fn unstable_run_is_stopped_by_the_energy_watch() {
+/// Five discs stacked in a box, a stiff undamped law and a step far above
+/// the stable limit (its check turned off).
+fn unstable_stack() -> DemSimulation<SpringDashpotCoulomb> {
     let mut scene = Scene::new(Frame::open_box(2.0, 3.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
     for i in 0..5 {
         scene
@@ -326,13 +327,18 @@ fn unstable_run_is_stopped_by_the_energy_watch() {
         check_stability: false,
         ..DemSettings::default()
     };
-    let mut sim = DemSimulation::new(
+    DemSimulation::new(
         scene,
         constant_law(1e8, 0.5, Damping::None),
         ExplicitEuler,
         settings,
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn unstable_run_is_stopped_by_the_energy_watch() {
+    let mut sim = unstable_stack();
     let err = sim
         .run_to_rest(
             &RestCriterion {
@@ -405,24 +411,7 @@ fn twenty_thousand_coincident_discs_are_refused_at_the_first_pair() {
 /// (reduce dt), not as a particle leaving the frame ("close the frame").
 #[test]
 fn particle_flung_out_by_a_large_time_step_is_an_energy_blow_up() {
-    let mut scene = Scene::new(Frame::open_box(2.0, 3.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
-    for i in 0..5 {
-        scene
-            .add_circle(Point::new(1.0, 0.0701 + 0.1401 * i as f64), 0.07, 2690.0)
-            .unwrap();
-    }
-    let settings = DemSettings {
-        dt: 5e-3,
-        check_stability: false,
-        ..DemSettings::default()
-    };
-    let mut sim = DemSimulation::new(
-        scene,
-        constant_law(1e8, 0.5, Damping::None),
-        ExplicitEuler,
-        settings,
-    )
-    .unwrap();
+    let mut sim = unstable_stack();
     match sim.run_to_rest(&RestCriterion::default(), |_, _| {}) {
         Err(DismechError::EnergyBlowUp {
             kinetic,

@@ -48,6 +48,32 @@ fn lowest<const N: usize>(b: &Body<N>) -> f64 {
     shape.as_shape().aabb(&pose).min.y
 }
 
+/// A tilted ellipse falling at 2 m/s from 8 mm above a floor, search
+/// distance 5 mm (growing up to `max_search` if given).
+fn fast_tilted_ellipse(
+    max_search: Option<f64>,
+) -> ImplicitDynamics<3, Rigid2, PenaltyCoulomb, Newmark, SparseLu> {
+    let (a, b, angle) = (0.2, 0.1, std::f64::consts::FRAC_PI_4);
+    let reach = ((a * angle.sin()).powi(2) + (b * angle.cos()).powi(2)).sqrt();
+    let mut e =
+        Body::<3>::ellipse(Point::new(0.0, reach + 0.008), a, b, angle, material(), 0).unwrap();
+    e.velocity[1] = -2.0;
+    let settings = ImplicitSettings {
+        search_distance: 0.005,
+        max_search_distance: max_search,
+        ..ImplicitSettings::default()
+    };
+    ImplicitDynamics::compose(
+        vec![e, floor(1)],
+        Rigid2,
+        law(1e8),
+        Newmark::new(0.5625, 1.0).unwrap(),
+        SparseLu::default(),
+        settings,
+    )
+    .unwrap()
+}
+
 /// Regression: the too-fast check probed an ellipse only at the ends of
 /// its axes, and only for pairs already near at the start of the step. A
 /// tilted ellipse falling at 2 m/s from 8 mm above a floor (search
@@ -57,24 +83,7 @@ fn lowest<const N: usize>(b: &Body<N>) -> f64 {
 /// distance, so the contact is found before it closes.
 #[test]
 fn a_fast_tilted_ellipse_does_not_cross_into_a_floor_in_one_step() {
-    let (a, b, angle) = (0.2, 0.1, std::f64::consts::FRAC_PI_4);
-    let reach = ((a * angle.sin()).powi(2) + (b * angle.cos()).powi(2)).sqrt();
-    let mut e =
-        Body::<3>::ellipse(Point::new(0.0, reach + 0.008), a, b, angle, material(), 0).unwrap();
-    e.velocity[1] = -2.0;
-    let settings = ImplicitSettings {
-        search_distance: 0.005,
-        ..ImplicitSettings::default()
-    };
-    let mut model = ImplicitDynamics::compose(
-        vec![e, floor(1)],
-        Rigid2,
-        law(1e8),
-        Newmark::new(0.5625, 1.0).unwrap(),
-        SparseLu::default(),
-        settings,
-    )
-    .unwrap();
+    let mut model = fast_tilted_ellipse(None);
     let mut reductions = 0;
     let mut deepest = f64::INFINITY;
     for _ in 0..20 {
@@ -97,25 +106,7 @@ fn a_fast_tilted_ellipse_does_not_cross_into_a_floor_in_one_step() {
 /// halved, and the ellipse still does not cross into the floor.
 #[test]
 fn a_fast_ellipse_is_detected_again_rather_than_halved() {
-    let (a, b, angle) = (0.2, 0.1, std::f64::consts::FRAC_PI_4);
-    let reach = ((a * angle.sin()).powi(2) + (b * angle.cos()).powi(2)).sqrt();
-    let mut e =
-        Body::<3>::ellipse(Point::new(0.0, reach + 0.008), a, b, angle, material(), 0).unwrap();
-    e.velocity[1] = -2.0;
-    let settings = ImplicitSettings {
-        search_distance: 0.005,
-        max_search_distance: Some(0.05),
-        ..ImplicitSettings::default()
-    };
-    let mut model = ImplicitDynamics::compose(
-        vec![e, floor(1)],
-        Rigid2,
-        law(1e8),
-        Newmark::new(0.5625, 1.0).unwrap(),
-        SparseLu::default(),
-        settings,
-    )
-    .unwrap();
+    let mut model = fast_tilted_ellipse(Some(0.05));
     let (mut reductions, mut redetections) = (0, 0);
     let mut deepest = f64::INFINITY;
     for _ in 0..20 {
