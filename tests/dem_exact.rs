@@ -425,3 +425,28 @@ fn particle_flung_out_by_a_large_time_step_is_an_energy_blow_up() {
         other => panic!("expected an energy blow-up, got {other:?}"),
     }
 }
+
+/// A run that does not come to rest at a time step near the estimated
+/// limit says so, naming the time step first: at 0.99 of the estimate the
+/// check passes, and a packing may then neither blow up nor settle.
+#[test]
+fn run_not_at_rest_near_the_stable_limit_names_the_time_step() {
+    let scene = single_disc_scene(0.07, Point::new(1.0, 1.5));
+    let law = katsuki_law();
+    let limit = dismech::explicit::critical_time_step(&scene, &law).dt;
+    let settings = DemSettings {
+        dt: 0.99 * limit,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
+    let criterion = RestCriterion {
+        max_time: 0.1,
+        ..RestCriterion::default()
+    };
+    let outcome = sim.run_to_rest(&criterion, |_, _| {}).unwrap();
+    assert_eq!(outcome.status, dismech::dem::RunStatus::TimeLimit);
+    let ratio = outcome.dt_over_stable_estimate.unwrap();
+    assert!((ratio - 0.99).abs() < 1e-12, "{ratio}");
+    let hint = outcome.not_at_rest_hint().unwrap();
+    assert!(hint.contains("time step is 0.99"), "{hint}");
+}

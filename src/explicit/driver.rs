@@ -97,6 +97,36 @@ pub struct RunOutcome {
     pub released_potential_energy: f64,
     /// Mean unbalanced force per particle / mean weight at the end.
     pub unbalanced_force_ratio: f64,
+    /// The time step over the stable limit estimated at the start
+    /// (`None` for a law without a stiffness bound).
+    pub dt_over_stable_estimate: Option<f64>,
+}
+
+impl RunOutcome {
+    /// What to change when a run did not come to rest: a time step near
+    /// the estimated limit is named first (the estimate is for one contact
+    /// per particle; a particle packed among `z` contacts is stable only
+    /// below about `1/√z` of it, and just above that a run neither blows up
+    /// nor settles). `None` when the run came to rest.
+    pub fn not_at_rest_hint(&self) -> Option<String> {
+        if self.status == RunStatus::AtRest {
+            return None;
+        }
+        let dt_hint = match self.dt_over_stable_estimate {
+            Some(ratio) if ratio > 0.3 => format!(
+                "the time step is {ratio:.2} of the single-contact stable estimate, and packed \
+                 particles with several contacts need less: try at most 0.3 of it; "
+            ),
+            _ => String::new(),
+        };
+        Some(format!(
+            "not at rest at t = {:.3} s (kinetic / released energy {:.3e}, unbalanced force {:.3e} \
+             of the weight): {dt_hint}otherwise raise max_time or add damping",
+            self.time,
+            self.kinetic_energy / self.released_potential_energy.max(f64::MIN_POSITIVE),
+            self.unbalanced_force_ratio
+        ))
+    }
 }
 
 /// What a contact touches.
@@ -146,6 +176,9 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     initial_kinetic: f64,
     /// Largest overlap at the start (m).
     initial_overlap: f64,
+    /// The stable time step estimated at the start, when the law bounds
+    /// its stiffness.
+    stable_estimate: Option<f64>,
     /// Law state and overlap of each contact point at the previous step.
     /// (Keyed by small integers: a fast non-cryptographic hash.)
     history: FxHashMap<HistoryKey, (L::State, f64)>,
@@ -191,17 +224,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     {
         require_positive("time step dt", settings.dt)?;
         check_law_for_polygons(&scene, &law, settings.dt, |pair| finite_bound(&law, pair))?;
-        if settings.check_stability {
-            let limit = critical_time_step(&scene, &law);
-            if settings.dt > limit.dt {
-                return Err(DismechError::UnstableTimeStep {
-                    dt: settings.dt,
-                    limit: limit.dt,
-                    governing: limit.governing,
-                });
-            }
+        let limit = critical_time_step(&scene, &law);
+        if settings.check_stability && settings.dt > limit.dt {
+            return Err(DismechError::UnstableTimeStep {
+                dt: settings.dt,
+                limit: limit.dt,
+                governing: limit.governing,
+            });
         }
-        Self::build(scene, law, integrator, settings)
+        let mut sim = Self::build(scene, law, integrator, settings)?;
+        sim.stable_estimate = Some(limit.dt).filter(|dt| dt.is_finite() && *dt > 0.0);
+        Ok(sim)
     }
 
     /// Set up a run with a law that has no stiffness bound: the stable-step
@@ -245,6 +278,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             initial_potential: 0.0,
             initial_kinetic: 0.0,
             initial_overlap: 0.0,
+            stable_estimate: None,
             history: FxHashMap::default(),
             next_history: FxHashMap::default(),
             manifold: Vec::new(),
@@ -637,6 +671,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     kinetic_energy: kinetic,
                     released_potential_energy: released,
                     unbalanced_force_ratio: unbalanced,
+                    dt_over_stable_estimate: self.stable_estimate.map(|l| self.settings.dt / l),
                 });
             }
         }

@@ -246,6 +246,9 @@ pub fn settle_scene(
     };
     let mut sim = DemSimulation::new(scene, material_law()?, ExplicitEuler, settings)?;
     let outcome = sim.run_to_rest(&rest_criterion(), on_check)?;
+    if let Some(hint) = outcome.not_at_rest_hint() {
+        eprintln!("  {hint}");
+    }
     Ok((sim, outcome))
 }
 
