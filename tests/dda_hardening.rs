@@ -106,3 +106,33 @@ fn tiny_and_huge_counter_clockwise_squares_are_valid_or_refused_for_their_size()
         other => panic!("{other:?}"),
     }
 }
+
+/// A block resting on a base with DDA's conventional friction at a
+/// penalty of 1e20: the contact states settle, but the equations then
+/// hold only to a residual of 1e-5, and the block's stresses were wrong
+/// (σx −5.0 kPa where 1e9 gives −0.68 kPa) under a Converged status. The
+/// step is now refused as imprecise, naming the penalty; at 1e9 it runs.
+#[test]
+fn conventional_law_at_penalty_1e20_is_refused_as_imprecise() {
+    let run = |penalty: f64| {
+        let law = PenaltyCoulomb::new(penalty, 0.5, FrictionIntegration::Conventional).unwrap();
+        let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap();
+        let mut model = DdaModel::new(vec![base(), block], law, DdaSettings::default()).unwrap();
+        let report = model.advance_or_stop(1e-3);
+        (report, model.blocks()[1].stress)
+    };
+    let (soft, stress) = run(1e9);
+    assert!(soft.is_ok(), "{soft:?}");
+    // The block's weight over its width, carried in σy.
+    let weight_stress = -2200.0 * 9.8 * 0.5;
+    assert!(
+        stress[1] < 0.0 && stress[1] > 2.0 * weight_stress,
+        "{stress:?}"
+    );
+    match run(1e20).0 {
+        Err(DismechError::StepFailed { reason, .. }) => {
+            assert!(reason.contains("lower the penalty"), "{reason}")
+        }
+        other => panic!("expected a refused step, got {other:?}"),
+    }
+}

@@ -34,6 +34,15 @@ pub enum StepFailure {
     Geometry(String),
     /// The contact normal of a smooth pair could not be found.
     Variation(String),
+    /// A law without a consistent tangent settled its contact states, but
+    /// the step's equations hold only to a residual no step of classic DDA
+    /// should leave (a penalty too stiff for double precision).
+    Imprecise {
+        /// Relative residual at the settled states.
+        residual: f64,
+        /// The largest accepted.
+        limit: f64,
+    },
 }
 
 impl std::fmt::Display for StepFailure {
@@ -45,6 +54,7 @@ impl std::fmt::Display for StepFailure {
             Self::TooFast { block, motion } => write!(f, "a point of body {block} moved {motion:.3e} m relative to a neighbour in one step, beyond the search distance"),
             Self::Geometry(m) => write!(f, "{m}"),
             Self::Variation(m) => write!(f, "contact geometry: {m}"),
+            Self::Imprecise { residual, limit } => write!(f, "the contact states settled but the equations hold only to a relative residual {residual:.3e} (more than {limit:.1e}): the contact penalty is too stiff for double precision against the bodies' stiffness and inertia; lower the penalty"),
         }
     }
 }
@@ -60,7 +70,7 @@ pub struct Halvings {
     /// [`StepFailure::TooFast`]: a motion beyond the search distance.
     pub too_fast: usize,
     /// The others: a failed linear solve, an invalid body, a contact
-    /// normal not found.
+    /// normal not found, an imprecise solve.
     pub other: usize,
 }
 
@@ -71,9 +81,10 @@ impl Halvings {
             StepFailure::OpenCloseNotSettled { .. } => self.open_close += 1,
             StepFailure::NewtonNotConverged { .. } => self.newton += 1,
             StepFailure::TooFast { .. } => self.too_fast += 1,
-            StepFailure::Solve(_) | StepFailure::Geometry(_) | StepFailure::Variation(_) => {
-                self.other += 1
-            }
+            StepFailure::Solve(_)
+            | StepFailure::Geometry(_)
+            | StepFailure::Variation(_)
+            | StepFailure::Imprecise { .. } => self.other += 1,
         }
     }
 

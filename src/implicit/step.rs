@@ -364,6 +364,16 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                     last_regimes.as_ref() == Some(&eval.regimes)
                         && rel <= settings.residual_tolerance
                 } else {
+                    // Classic DDA accepts settled states; a residual far
+                    // above the tolerance there is lost precision, not an
+                    // iteration to continue.
+                    let limit = settings.residual_tolerance.sqrt();
+                    if rel > limit {
+                        return Err(StepFailure::Imprecise {
+                            residual: rel,
+                            limit,
+                        });
+                    }
                     true
                 };
                 if done {
