@@ -258,9 +258,55 @@ pub enum DismechError {
         /// The operating system's message.
         message: String,
     },
+    /// Every valid column of the grids has zero thickness: the model has
+    /// no element.
+    #[error("no HPM element: the {valid} valid column(s) of `{ground}` over `{slip}` have zero thickness at all four corners (the slip surface meets the ground there); lower the slip surface under the slide")]
+    EmptyHpmModel {
+        /// The ground-surface raster.
+        ground: String,
+        /// The slip-surface raster.
+        slip: String,
+        /// Number of valid columns.
+        valid: usize,
+    },
+    /// The stiffness of an HPM model could not be factored, and the model
+    /// has features that make it ill-conditioned.
+    #[error(
+        "the HPM stiffness could not be factored ({reason}); the model is ill-conditioned: {}",
+        join(causes)
+    )]
+    IllConditioned {
+        /// What makes the model ill-conditioned, each with what to change.
+        causes: Vec<crate::hpm::IllConditioning>,
+        /// The linear solver's error.
+        reason: SolveError,
+    },
+    /// A strength-reduction search found equilibrium at every factor it
+    /// tried, up to its limit.
+    #[error("strength reduction: equilibrium at every factor tried up to F = {factor:.4e}; nothing drives this slide to failure (check the slip surface and the loads)")]
+    StrengthReductionNoFailure {
+        /// The largest factor tried.
+        factor: f64,
+    },
+    /// A strength-reduction search found no equilibrium at any factor it
+    /// tried, down to its limit.
+    #[error("strength reduction: no equilibrium even at F = {factor:.4e} (strength multiplied by {:.4e}); the slide cannot stand with a strength near the material's (see the nonlinear solve's residual)", 1.0 / .factor)]
+    StrengthReductionNoEquilibrium {
+        /// The smallest factor tried.
+        factor: f64,
+    },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),
+}
+
+/// The messages of `items`, separated by semicolons.
+fn join<T: std::fmt::Display>(items: &[T]) -> String {
+    items
+        .iter()
+        .map(|i| i.to_string())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// Shorthand for results with [`DismechError`].
