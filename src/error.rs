@@ -295,6 +295,33 @@ pub enum DismechError {
         /// The smallest factor tried.
         factor: f64,
     },
+    /// Two rigid elements of a limit analysis share their reference point.
+    #[error("element {body} has its reference point at ({x}, {y}), within {distance:.1e} m of that of element {existing}: two rigid elements cannot share a point (an element declared twice would double its strength and load)")]
+    DuplicateBody {
+        /// The element refused.
+        body: usize,
+        /// The element already there.
+        existing: usize,
+        /// Reference point x.
+        x: f64,
+        /// Reference point y.
+        y: f64,
+        /// The distance within which two reference points coincide.
+        distance: f64,
+    },
+    /// A contact repeats one already declared: the same pair at the same
+    /// point.
+    #[error("contact {contact} (element {body} with {partner}) repeats contact {existing}: the same pair at the same point would count its strength twice")]
+    DuplicateContact {
+        /// The contact refused.
+        contact: usize,
+        /// The contact it repeats.
+        existing: usize,
+        /// The element.
+        body: usize,
+        /// What it was declared against, in words.
+        partner: String,
+    },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),

@@ -418,3 +418,105 @@ fn static_lp_gives_the_kinematic_limit_load() {
     .unwrap();
     assert_eq!(locked.status, LimitStatus::Locked);
 }
+
+#[test]
+fn duplicate_contact_is_refused() {
+    // The two-element example with every contact declared twice needed
+    // twice the load: each strength counted twice.
+    let mut m = two_elements(1.0).unwrap();
+    let (left, e1, e2) = (Partner::Support(0), 0, 1);
+    let law = RigidPlastic::cohesive(1.0).unwrap();
+    match m.add_contact(e1, left, law) {
+        Err(DismechError::DuplicateContact {
+            contact,
+            existing,
+            body,
+            partner,
+            ..
+        }) => {
+            assert_eq!((contact, existing, body), (4, 0, e1));
+            assert_eq!(partner, "support `left wall`");
+        }
+        other => panic!("{other:?}"),
+    }
+    // The same pair named the other way round, by circle geometry or at the
+    // same point.
+    assert!(matches!(
+        m.add_contact(e2, Partner::Body(e1), law),
+        Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    let point = m.contacts()[2].point;
+    let normal = m.contacts()[2].normal;
+    assert!(matches!(
+        m.add_contact_at(e2, Partner::Body(e1), law, point, -normal),
+        Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    assert_eq!(m.contacts().len(), 4);
+    approx::assert_relative_eq!(
+        solve(&m).load.unwrap(),
+        two_elements_limit_load(1.0),
+        max_relative = 1e-7
+    );
+    // Two circles touch at one point: with a loose tolerance, the contact
+    // of overlapping circles named the other way round (its point on the
+    // other surface) is the same contact.
+    let mut m = LimitModel::new(0.01).unwrap();
+    let a = m.add_body(Point::new(0.0, 0.0), 1.0, true).unwrap();
+    let b = m.add_body(Point::new(1.995, 0.0), 1.0, true).unwrap();
+    m.add_contact(a, Partner::Body(b), law).unwrap();
+    assert!(matches!(
+        m.add_contact(b, Partner::Body(a), law),
+        Err(DismechError::DuplicateContact { existing: 0, .. })
+    ));
+    // Two points of one pair are two contacts: a second corner on a floor.
+    let (mut m, e) = element_on_floor(false, 1.0, RigidPlastic::cohesive(1.0).unwrap());
+    let floor = Partner::Support(0);
+    m.add_contact_at(e, floor, law, Point::new(0.5, 0.0), -Vec2::y())
+        .unwrap();
+    assert!(matches!(
+        m.add_contact_at(e, floor, law, Point::new(0.5, 0.0), -Vec2::y()),
+        Err(DismechError::DuplicateContact { .. })
+    ));
+}
+
+#[test]
+fn two_bodies_at_one_point_are_refused() {
+    // A third element at the second's centre carried the load a second
+    // time: the two-element example needed 2 (1 + √2) C.
+    let mut m = two_elements(1.0).unwrap();
+    let centre = m.bodies()[1].centre;
+    match m.add_body(centre, 1.0, true) {
+        Err(DismechError::DuplicateBody {
+            body,
+            existing,
+            x,
+            y,
+            ..
+        }) => {
+            assert_eq!((body, existing), (2, 1));
+            assert_eq!((x, y), (centre.x, centre.y));
+        }
+        other => panic!("{other:?}"),
+    }
+    // Whatever the shape, and within the tolerance (1e-9 m here).
+    let square = dismech::shape::Polygon::rectangle(1.0, 1.0).unwrap();
+    let near = dismech::math::Pose2::new(centre.x + 0.5e-9, centre.y, 0.3);
+    assert!(matches!(
+        m.add_shape(square.into(), near, false),
+        Err(DismechError::DuplicateBody { existing: 1, .. })
+    ));
+    assert_eq!(m.bodies().len(), 2);
+    // A loose contact tolerance (a DEM packing's overlaps) does not make
+    // near neighbours one point: within a millionth of the radius they are.
+    let mut m = LimitModel::new(0.1).unwrap();
+    m.add_body(Point::new(0.0, 0.0), 1.0, true).unwrap();
+    m.add_body(Point::new(0.05, 0.0), 1.0, true).unwrap();
+    assert!(matches!(
+        m.add_body(Point::new(0.05 + 0.5e-6, 0.0), 1.0, true),
+        Err(DismechError::DuplicateBody {
+            body: 2,
+            existing: 1,
+            ..
+        })
+    ));
+}
