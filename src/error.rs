@@ -322,6 +322,14 @@ pub enum DismechError {
         /// What it was declared against, in words.
         partner: String,
     },
+    /// A limit analysis without a limit load was asked for one.
+    #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
+    NoLimitLoad {
+        /// The analysis' status.
+        status: String,
+        /// What needed the load.
+        what: &'static str,
+    },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),

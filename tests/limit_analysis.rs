@@ -40,7 +40,8 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
             strength
         );
     }
-    let scale = 1.0 + r.kinematic_load.abs();
+    let (kinematic, statics) = (r.kinematic_load.unwrap(), r.static_load.unwrap());
+    let scale = 1.0 + kinematic.abs();
     for (i, b) in model.bodies().iter().enumerate() {
         let net = force[i] + b.load;
         assert!(
@@ -56,10 +57,8 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
         }
     }
     assert!(
-        (r.kinematic_load - r.static_load).abs() <= 1e-6 * scale,
-        "primal {} != dual {}",
-        r.kinematic_load,
-        r.static_load
+        (kinematic - statics).abs() <= 1e-6 * scale,
+        "primal {kinematic} != dual {statics}"
     );
 }
 
@@ -340,7 +339,7 @@ fn non_unique_optimum_is_detected_and_a_vertex_mechanism_recovered() {
             .zip(&u.vertex.slip)
             .map(|(c, s)| c.law.cohesion() * s.abs())
             .sum();
-        approx::assert_relative_eq!(dissipation, r.kinematic_load, max_relative = 1e-5);
+        approx::assert_relative_eq!(dissipation, r.kinematic_load.unwrap(), max_relative = 1e-5);
     }
 }
 
@@ -519,4 +518,34 @@ fn two_bodies_at_one_point_are_refused() {
             ..
         })
     ));
+}
+
+#[test]
+fn failed_solve_reports_no_load() {
+    // Two interior-point iterations: no optimum, and no load (the kinematic
+    // LP's last iterate read 11.14 as a load before).
+    use dismech::limit::analyse_static;
+    let model = Lattice::u_model(8, 8, 2, true).build().unwrap();
+    let mut solver = LinearProgramSolver {
+        max_iterations: 2,
+        ..LinearProgramSolver::default()
+    };
+    for r in [
+        analyse(&model, &mut solver).unwrap(),
+        analyse_static(&model, &mut solver).unwrap(),
+    ] {
+        assert!(
+            matches!(r.status, LimitStatus::SolverTrouble(_)),
+            "{:?}",
+            r.status
+        );
+        assert_eq!(
+            (r.load, r.kinematic_load, r.static_load),
+            (None, None, None)
+        );
+    }
+    // A locked lattice has none either.
+    let locked = solve(&Lattice::u_model(8, 4, 1, true).build().unwrap());
+    assert_eq!(locked.status, LimitStatus::Locked);
+    assert_eq!((locked.kinematic_load, locked.static_load), (None, None));
 }
