@@ -322,6 +322,16 @@ pub enum DismechError {
         /// What it was declared against, in words.
         partner: String,
     },
+    /// A lattice with more elements than the limit.
+    #[error("lattice of m = {m} columns × n = {n} elements exceeds the limit of {limit} elements (each needs about 13 kB for the LP and its factor); use a smaller m or n")]
+    LatticeTooLarge {
+        /// Columns.
+        m: usize,
+        /// Elements per column.
+        n: usize,
+        /// The largest number of elements accepted.
+        limit: usize,
+    },
     /// A limit analysis without a limit load was asked for one.
     #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
     NoLimitLoad {

@@ -521,6 +521,28 @@ fn two_bodies_at_one_point_are_refused() {
 }
 
 #[test]
+fn huge_lattice_is_refused() {
+    use dismech::limit::lattice::MAX_LATTICE_ELEMENTS;
+    for (m, n) in [(2, 1_000_000), (2, usize::MAX), (usize::MAX - 1, 3)] {
+        match Lattice::l_model(m, n, true).build() {
+            Err(DismechError::LatticeTooLarge {
+                m: gm,
+                n: gn,
+                limit,
+            }) => {
+                assert_eq!((gm, gn, limit), (m, n, MAX_LATTICE_ELEMENTS));
+            }
+            other => panic!("({m}, {n}): {:?}", other.map(|_| "built")),
+        }
+    }
+    // The cap itself is accepted.
+    let model = Lattice::l_model(2, MAX_LATTICE_ELEMENTS / 2, true)
+        .build()
+        .unwrap();
+    assert_eq!(model.bodies().len(), MAX_LATTICE_ELEMENTS);
+}
+
+#[test]
 fn failed_solve_reports_no_load() {
     // Two interior-point iterations: no optimum, and no load (the kinematic
     // LP's last iterate read 11.14 as a load before).
