@@ -305,9 +305,100 @@ pub enum DismechError {
         /// The operating system's message.
         message: String,
     },
+    /// Every valid column of the grids has zero thickness: the model has
+    /// no element.
+    #[error("no HPM element: the {valid} valid column(s) of `{ground}` over `{slip}` have zero thickness at all four corners (the slip surface meets the ground there); lower the slip surface under the slide")]
+    EmptyHpmModel {
+        /// The ground-surface raster.
+        ground: String,
+        /// The slip-surface raster.
+        slip: String,
+        /// Number of valid columns.
+        valid: usize,
+    },
+    /// The stiffness of an HPM model could not be factored, and the model
+    /// has features that make it ill-conditioned.
+    #[error(
+        "the HPM stiffness could not be factored ({reason}); the model is ill-conditioned: {}",
+        join(causes)
+    )]
+    IllConditioned {
+        /// What makes the model ill-conditioned, each with what to change.
+        causes: Vec<crate::hpm::IllConditioning>,
+        /// The linear solver's error.
+        reason: SolveError,
+    },
+    /// A strength-reduction search found equilibrium at every factor it
+    /// tried, up to its limit.
+    #[error("strength reduction: equilibrium at every factor tried up to F = {factor:.4e}; nothing drives this slide to failure (check the slip surface and the loads)")]
+    StrengthReductionNoFailure {
+        /// The largest factor tried.
+        factor: f64,
+    },
+    /// A strength-reduction search found no equilibrium at any factor it
+    /// tried, down to its limit.
+    #[error("strength reduction: no equilibrium even at F = {factor:.4e} (strength multiplied by {:.4e}); the slide cannot stand with a strength near the material's (see the nonlinear solve's residual)", 1.0 / .factor)]
+    StrengthReductionNoEquilibrium {
+        /// The smallest factor tried.
+        factor: f64,
+    },
+    /// Two rigid elements of a limit analysis share their reference point.
+    #[error("element {body} has its reference point at ({x}, {y}), within {distance:.1e} m of that of element {existing}: two rigid elements cannot share a point (an element declared twice would double its strength and load)")]
+    DuplicateBody {
+        /// The element refused.
+        body: usize,
+        /// The element already there.
+        existing: usize,
+        /// Reference point x.
+        x: f64,
+        /// Reference point y.
+        y: f64,
+        /// The distance within which two reference points coincide.
+        distance: f64,
+    },
+    /// A contact repeats one already declared: the same pair at the same
+    /// point.
+    #[error("contact {contact} (element {body} with {partner}) repeats contact {existing}: the same pair at the same point would count its strength twice")]
+    DuplicateContact {
+        /// The contact refused.
+        contact: usize,
+        /// The contact it repeats.
+        existing: usize,
+        /// The element.
+        body: usize,
+        /// What it was declared against, in words.
+        partner: String,
+    },
+    /// A lattice with more elements than the limit.
+    #[error("lattice of m = {m} columns × n = {n} elements exceeds the limit of {limit} elements (each needs about 13 kB for the LP and its factor); use a smaller m or n")]
+    LatticeTooLarge {
+        /// Columns.
+        m: usize,
+        /// Elements per column.
+        n: usize,
+        /// The largest number of elements accepted.
+        limit: usize,
+    },
+    /// A limit analysis without a limit load was asked for one.
+    #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
+    NoLimitLoad {
+        /// The analysis' status.
+        status: String,
+        /// What needed the load.
+        what: &'static str,
+    },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),
+}
+
+/// The messages of `items`, separated by semicolons.
+fn join<T: std::fmt::Display>(items: &[T]) -> String {
+    items
+        .iter()
+        .map(|i| i.to_string())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// Shorthand for results with [`DismechError`].

@@ -101,7 +101,13 @@ impl Exit {
             | E::NonFinite { .. }
             | E::ParticleLeftFrame { .. }
             | E::EnergyBlowUp { .. }
-            | E::StepFailed { .. } => Exit::SolverFailure,
+            | E::StepFailed { .. }
+            | E::IllConditioned { .. }
+            | E::NoLimitLoad { .. } => Exit::SolverFailure,
+            // Strength reduction: no factor fails the slope (it cannot
+            // collapse), or none holds it (it collapses under its weight).
+            E::StrengthReductionNoFailure { .. } => Exit::Locked,
+            E::StrengthReductionNoEquilibrium { .. } => Exit::Unbounded,
             E::InvalidParameter { .. }
             | E::UnstableTimeStep { .. }
             | E::StartsInsideWall { .. }
@@ -122,6 +128,10 @@ impl Exit {
             | E::InvalidBlock { .. }
             | E::BlocksOverlap { .. }
             | E::BlocksCross { .. }
+            | E::EmptyHpmModel { .. }
+            | E::DuplicateBody { .. }
+            | E::DuplicateContact { .. }
+            | E::LatticeTooLarge { .. }
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }

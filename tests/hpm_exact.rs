@@ -662,3 +662,197 @@ fn shape_matrix_moves_a_point_rigidly_for_rotation_dofs() {
     let d = displacement_at(&c, &u, &Point3::new(2.0, 0.0, 0.0));
     assert!((d - Vector3::new(0.0, 2e-3, 0.0)).norm() < 1e-15);
 }
+
+/// A flat slab (no dip) of 3 × 4 cells, `thickness` m thick.
+fn flat_slab(thickness: f64) -> SlopeGrids {
+    slab(3, 4, 0.0, 270.0, thickness, None)
+}
+
+#[test]
+fn empty_hpm_model_is_refused() {
+    // One valid cell (its centre's slip surface just under the ground), but
+    // every corner's slip height, interpolated from the cells around, lies
+    // above the ground and is lowered to it: a column of zero volume.
+    let ground = Raster::from_fn(3, 3, 0.0, 0.0, 10.0, |_, _| Some(10.0)).unwrap();
+    let slip = Raster::from_fn(3, 3, 0.0, 0.0, 10.0, |x, y| {
+        let centre = (x - 15.0).abs() < 1.0 && (y - 15.0).abs() < 1.0;
+        Some(if centre { 9.999 } else { 20.0 })
+    })
+    .unwrap();
+    let grids = SlopeGrids::new(
+        NamedRaster::new("ground.asc", ground),
+        NamedRaster::new("slip.asc", slip),
+        None,
+    )
+    .unwrap();
+    assert_eq!(grids.valid_cells(), vec![(1, 1)]);
+    match HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()) {
+        Err(DismechError::EmptyHpmModel {
+            ground,
+            slip,
+            valid,
+        }) => {
+            assert_eq!(
+                (ground.as_str(), slip.as_str(), valid),
+                ("ground.asc", "slip.asc", 1)
+            );
+        }
+        other => panic!("an empty model was not refused: {other:?}"),
+    }
+}
+
+#[test]
+fn nearly_incompressible_elastic_reports_residual() {
+    let grids = slab(4, 5, 22.0, 270.0, 6.0, None);
+    let nu = 0.4999999999;
+    let m = HpmMaterial {
+        poisson_ratio: nu,
+        ..material()
+    };
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let r = solver.elastic(&model, &Seismic::none()).unwrap();
+    // The reported residual is the solve's own: ‖F − K U‖ / ‖F‖.
+    let f = model.loads(&Seismic::none());
+    let ku = solver.stiffness().multiply(&r.displacements);
+    let out: f64 = f.iter().zip(&ku).map(|(a, b)| (a - b).powi(2)).sum();
+    let ff: f64 = f.iter().map(|a| a * a).sum();
+    let true_residual = (out / ff).sqrt();
+    match r.convergence {
+        Convergence::NotConverged { residual, .. } => {
+            assert!(residual > EQUILIBRIUM_TOLERANCE, "{residual}");
+            assert!(
+                (residual / true_residual - 1.0).abs() < 1e-9,
+                "{residual} vs {true_residual}"
+            );
+        }
+        other => panic!("ν = {nu} reported {other:?}"),
+    }
+    assert_eq!(
+        r.ill_conditioning,
+        vec![IllConditioning::NearlyIncompressible { poisson_ratio: nu }]
+    );
+    assert!(r.ill_conditioning[0].to_string().contains("nu <="));
+    // The same slab at the paper's ν solves to within the tolerance and
+    // lists nothing.
+    let model = HpmModel::new(&grids, &material(), &HpmSettings::default()).unwrap();
+    let r = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &Seismic::none())
+        .unwrap();
+    assert!(r.convergence.converged(), "{:?}", r.convergence);
+    assert!(r.ill_conditioning.is_empty());
+}
+
+#[test]
+fn stiff_penalty_elastic_reports_residual_and_names_p() {
+    let grids = slab(4, 5, 22.0, 270.0, 6.0, None);
+    let penalty = 1e12;
+    let settings = HpmSettings {
+        penalty,
+        ..HpmSettings::default()
+    };
+    let model = HpmModel::new(&grids, &material(), &settings).unwrap();
+    let r = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &Seismic::none())
+        .unwrap();
+    assert!(
+        matches!(r.convergence, Convergence::NotConverged { residual, .. } if residual > EQUILIBRIUM_TOLERANCE),
+        "{:?}",
+        r.convergence
+    );
+    assert_eq!(
+        r.ill_conditioning,
+        vec![IllConditioning::StiffPenalty { penalty }]
+    );
+}
+
+#[test]
+fn slip_surface_at_the_ground_is_named_when_the_factorization_fails() {
+    // 0.1 µm of soil over 10 m cells: the Cholesky factorization fails
+    // (a stiffness that is not finite, or not positive definite).
+    let grids = slab(3, 4, 22.0, 270.0, 1e-7, None);
+    let model = HpmModel::new(&grids, &material(), &HpmSettings::default()).unwrap();
+    match HpmSolver::new(&model) {
+        Err(DismechError::IllConditioned { causes, .. }) => {
+            assert_eq!(causes.len(), 1, "{causes:?}");
+            let IllConditioning::ThinColumn {
+                thickness,
+                cell_size,
+                ..
+            } = causes[0]
+            else {
+                panic!("{causes:?}");
+            };
+            assert!(thickness < THIN_COLUMN_RATIO * cell_size);
+            assert!(causes[0].to_string().contains("slip surface"));
+        }
+        Err(other) => panic!("{other}"),
+        Ok(_) => panic!("a 0.1 µm slab was factored"),
+    }
+}
+
+#[test]
+fn cohesionless_frictionless_fs_is_not_nan_converged() {
+    // On flat ground nothing drives: with c = φ = 0 the Fs would be 0 / 0.
+    let m = HpmMaterial {
+        cohesion: 0.0,
+        friction_angle_deg: 0.0,
+        ..HpmMaterial::paper()
+    };
+    match HpmModel::new(&flat_slab(6.0), &m, &HpmSettings::default()) {
+        Err(DismechError::InvalidParameter { name, value, .. }) => {
+            assert!(name.starts_with("cohesion c"), "{name}");
+            assert_eq!(value, 0.0);
+        }
+        other => panic!("c = φ = 0 was accepted: {other:?}"),
+    }
+    // Either alone is a strength.
+    for (cohesion, friction_angle_deg) in [(1.0e3, 0.0), (0.0, 20.0)] {
+        let m = HpmMaterial {
+            cohesion,
+            friction_angle_deg,
+            ..HpmMaterial::paper()
+        };
+        assert!(HpmModel::new(&flat_slab(6.0), &m, &HpmSettings::default()).is_ok());
+    }
+}
+
+#[test]
+fn strength_reduction_without_any_equilibrium_gives_no_factor() {
+    // c = 0 and φ = 0.001° under a 25° slope: no factor down to 1e-3 (tan φ
+    // × 1000 = 0.017 < tan 25°) holds it.
+    let m = HpmMaterial {
+        cohesion: 0.0,
+        friction_angle_deg: 0.001,
+        ..HpmMaterial::paper()
+    };
+    let grids = slab(3, 4, 25.0, 270.0, 5.0, None);
+    let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let settings = NonlinearSettings {
+        max_iterations: 100,
+        ..NonlinearSettings::default()
+    };
+    let mut solver = HpmSolver::new(&model).unwrap();
+    match strength_reduction(&mut solver, &model, &Seismic::none(), &settings, 0.02) {
+        Err(DismechError::StrengthReductionNoEquilibrium { factor }) => {
+            assert!(factor < MIN_REDUCTION_FACTOR, "{factor}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn strength_reduction_without_any_failure_gives_no_factor() {
+    // Flat ground: no shear, equilibrium whatever the strength.
+    let model = HpmModel::new(&flat_slab(6.0), &material(), &HpmSettings::default()).unwrap();
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let settings = NonlinearSettings::default();
+    match strength_reduction(&mut solver, &model, &Seismic::none(), &settings, 0.02) {
+        Err(DismechError::StrengthReductionNoFailure { factor }) => {
+            assert!(factor > MAX_REDUCTION_FACTOR, "{factor}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -40,7 +40,8 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
             strength
         );
     }
-    let scale = 1.0 + r.kinematic_load.abs();
+    let (kinematic, statics) = (r.kinematic_load.unwrap(), r.static_load.unwrap());
+    let scale = 1.0 + kinematic.abs();
     for (i, b) in model.bodies().iter().enumerate() {
         let net = force[i] + b.load;
         assert!(
@@ -56,10 +57,8 @@ fn assert_statically_admissible(model: &LimitModel, r: &LimitResult) {
         }
     }
     assert!(
-        (r.kinematic_load - r.static_load).abs() <= 1e-6 * scale,
-        "primal {} != dual {}",
-        r.kinematic_load,
-        r.static_load
+        (kinematic - statics).abs() <= 1e-6 * scale,
+        "primal {kinematic} != dual {statics}"
     );
 }
 
@@ -340,7 +339,7 @@ fn non_unique_optimum_is_detected_and_a_vertex_mechanism_recovered() {
             .zip(&u.vertex.slip)
             .map(|(c, s)| c.law.cohesion() * s.abs())
             .sum();
-        approx::assert_relative_eq!(dissipation, r.kinematic_load, max_relative = 1e-5);
+        approx::assert_relative_eq!(dissipation, r.kinematic_load.unwrap(), max_relative = 1e-5);
     }
 }
 
@@ -417,4 +416,158 @@ fn static_lp_gives_the_kinematic_limit_load() {
     )
     .unwrap();
     assert_eq!(locked.status, LimitStatus::Locked);
+}
+
+#[test]
+fn duplicate_contact_is_refused() {
+    // The two-element example with every contact declared twice needed
+    // twice the load: each strength counted twice.
+    let mut m = two_elements(1.0).unwrap();
+    let (left, e1, e2) = (Partner::Support(0), 0, 1);
+    let law = RigidPlastic::cohesive(1.0).unwrap();
+    match m.add_contact(e1, left, law) {
+        Err(DismechError::DuplicateContact {
+            contact,
+            existing,
+            body,
+            partner,
+            ..
+        }) => {
+            assert_eq!((contact, existing, body), (4, 0, e1));
+            assert_eq!(partner, "support `left wall`");
+        }
+        other => panic!("{other:?}"),
+    }
+    // The same pair named the other way round, by circle geometry or at the
+    // same point.
+    assert!(matches!(
+        m.add_contact(e2, Partner::Body(e1), law),
+        Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    let point = m.contacts()[2].point;
+    let normal = m.contacts()[2].normal;
+    assert!(matches!(
+        m.add_contact_at(e2, Partner::Body(e1), law, point, -normal),
+        Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    assert_eq!(m.contacts().len(), 4);
+    approx::assert_relative_eq!(
+        solve(&m).load.unwrap(),
+        two_elements_limit_load(1.0),
+        max_relative = 1e-7
+    );
+    // Two circles touch at one point: with a loose tolerance, the contact
+    // of overlapping circles named the other way round (its point on the
+    // other surface) is the same contact.
+    let mut m = LimitModel::new(0.01).unwrap();
+    let a = m.add_body(Point::new(0.0, 0.0), 1.0, true).unwrap();
+    let b = m.add_body(Point::new(1.995, 0.0), 1.0, true).unwrap();
+    m.add_contact(a, Partner::Body(b), law).unwrap();
+    assert!(matches!(
+        m.add_contact(b, Partner::Body(a), law),
+        Err(DismechError::DuplicateContact { existing: 0, .. })
+    ));
+    // Two points of one pair are two contacts: a second corner on a floor.
+    let (mut m, e) = element_on_floor(false, 1.0, RigidPlastic::cohesive(1.0).unwrap());
+    let floor = Partner::Support(0);
+    m.add_contact_at(e, floor, law, Point::new(0.5, 0.0), -Vec2::y())
+        .unwrap();
+    assert!(matches!(
+        m.add_contact_at(e, floor, law, Point::new(0.5, 0.0), -Vec2::y()),
+        Err(DismechError::DuplicateContact { .. })
+    ));
+}
+
+#[test]
+fn two_bodies_at_one_point_are_refused() {
+    // A third element at the second's centre carried the load a second
+    // time: the two-element example needed 2 (1 + √2) C.
+    let mut m = two_elements(1.0).unwrap();
+    let centre = m.bodies()[1].centre;
+    match m.add_body(centre, 1.0, true) {
+        Err(DismechError::DuplicateBody {
+            body,
+            existing,
+            x,
+            y,
+            ..
+        }) => {
+            assert_eq!((body, existing), (2, 1));
+            assert_eq!((x, y), (centre.x, centre.y));
+        }
+        other => panic!("{other:?}"),
+    }
+    // Whatever the shape, and within the tolerance (1e-9 m here).
+    let square = dismech::shape::Polygon::rectangle(1.0, 1.0).unwrap();
+    let near = dismech::math::Pose2::new(centre.x + 0.5e-9, centre.y, 0.3);
+    assert!(matches!(
+        m.add_shape(square.into(), near, false),
+        Err(DismechError::DuplicateBody { existing: 1, .. })
+    ));
+    assert_eq!(m.bodies().len(), 2);
+    // A loose contact tolerance (a DEM packing's overlaps) does not make
+    // near neighbours one point: within a millionth of the radius they are.
+    let mut m = LimitModel::new(0.1).unwrap();
+    m.add_body(Point::new(0.0, 0.0), 1.0, true).unwrap();
+    m.add_body(Point::new(0.05, 0.0), 1.0, true).unwrap();
+    assert!(matches!(
+        m.add_body(Point::new(0.05 + 0.5e-6, 0.0), 1.0, true),
+        Err(DismechError::DuplicateBody {
+            body: 2,
+            existing: 1,
+            ..
+        })
+    ));
+}
+
+#[test]
+fn huge_lattice_is_refused() {
+    use dismech::limit::lattice::MAX_LATTICE_ELEMENTS;
+    for (m, n) in [(2, 1_000_000), (2, usize::MAX), (usize::MAX - 1, 3)] {
+        match Lattice::l_model(m, n, true).build() {
+            Err(DismechError::LatticeTooLarge {
+                m: gm,
+                n: gn,
+                limit,
+            }) => {
+                assert_eq!((gm, gn, limit), (m, n, MAX_LATTICE_ELEMENTS));
+            }
+            other => panic!("({m}, {n}): {:?}", other.map(|_| "built")),
+        }
+    }
+    // The cap itself is accepted.
+    let model = Lattice::l_model(2, MAX_LATTICE_ELEMENTS / 2, true)
+        .build()
+        .unwrap();
+    assert_eq!(model.bodies().len(), MAX_LATTICE_ELEMENTS);
+}
+
+#[test]
+fn failed_solve_reports_no_load() {
+    // Two interior-point iterations: no optimum, and no load (the kinematic
+    // LP's last iterate read 11.14 as a load before).
+    use dismech::limit::analyse_static;
+    let model = Lattice::u_model(8, 8, 2, true).build().unwrap();
+    let mut solver = LinearProgramSolver {
+        max_iterations: 2,
+        ..LinearProgramSolver::default()
+    };
+    for r in [
+        analyse(&model, &mut solver).unwrap(),
+        analyse_static(&model, &mut solver).unwrap(),
+    ] {
+        assert!(
+            matches!(r.status, LimitStatus::SolverTrouble(_)),
+            "{:?}",
+            r.status
+        );
+        assert_eq!(
+            (r.load, r.kinematic_load, r.static_load),
+            (None, None, None)
+        );
+    }
+    // A locked lattice has none either.
+    let locked = solve(&Lattice::u_model(8, 4, 1, true).build().unwrap());
+    assert_eq!(locked.status, LimitStatus::Locked);
+    assert_eq!((locked.kinematic_load, locked.static_load), (None, None));
 }

@@ -142,7 +142,7 @@ pub struct PackingLimit {
     pub result: LimitResult,
     /// Equilibrium and strength of the dual contact forces.
     pub admissibility: Admissibility,
-    /// `|primal − dual| / max(1, |primal|)`.
+    /// `|primal − dual| / max(1, |primal|)`; NaN without a collapse.
     pub primal_dual_gap: f64,
 }
 
@@ -154,8 +154,10 @@ pub fn ellipse_packing_limit(packing: &EllipsePacking) -> Result<PackingLimit> {
     let (sim, _) = settle_ellipses(packing)?;
     let model = packing_limit_model(&sim)?;
     let result = analyse(&model, &mut LinearProgramSolver::default())?;
-    let gap =
-        (result.kinematic_load - result.static_load).abs() / result.kinematic_load.abs().max(1.0);
+    let gap = match (result.kinematic_load, result.static_load) {
+        (Some(primal), Some(dual)) => (primal - dual).abs() / primal.abs().max(1.0),
+        _ => f64::NAN,
+    };
     Ok(PackingLimit {
         size: (model.bodies().len(), model.contacts().len()),
         admissibility: admissibility(&model, &result),

@@ -3,7 +3,11 @@
 //! displacements and surface principal strains (paper 001, §5).
 //!
 //! * **Elastic**: one sparse Cholesky solve of eq. (4); the slip springs
-//!   are linear and may carry tension.
+//!   are linear and may carry tension. The result reports the solve's true
+//!   relative residual `‖F − K U‖ / ‖F‖`, recomputed from U, and is
+//!   [`Convergence::Converged`] only when it is at most
+//!   [`EQUILIBRIUM_TOLERANCE`] (and an iterative solver met its own
+//!   criterion).
 //! * **Nonlinear**: the slip springs follow [`MohrCoulombSpring`] (c, φ,
 //!   return mapping, no tension). The global equations are solved by the
 //!   initial-stiffness method with Aitken's relaxation: the elastic
@@ -12,7 +16,15 @@
 //!   `‖F − F_int‖ ≤ tol ‖F‖` (Euclidean norms over all DOFs); the load is
 //!   applied in one step. A run that does not reach the tolerance within
 //!   the iteration limit reports [`Convergence::NotConverged`] with its
-//!   last residual: there is no equilibrium it could find.
+//!   last residual: there is no equilibrium it could find. A residual that
+//!   is not finite (NaN, infinite) stops the iteration at once and is never
+//!   converged.
+//!
+//! A result that is not converged lists what in the model may spoil the
+//! solve ([`HpmResult::ill_conditioning`], from
+//! [`HpmModel::ill_conditioning`]), each with what to change; a
+//! factorization that fails on such a model is a
+//! [`DismechError::IllConditioned`] naming them.
 //!
 //! **Safety factors.** The paper states Fs for each run (§5, Table 2) but
 //! not its formula; two definitions are offered.
@@ -43,15 +55,21 @@
 
 use nalgebra::Vector3;
 
+use super::conditioning::IllConditioning;
 use super::material::Seismic;
 use super::model::{HpmModel, SlipSpring};
 use super::stiffness::BlockMatrix;
-use crate::error::Result;
+use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use crate::law::{MohrCoulombSpring, Regime, Strength};
 use crate::linsolve::{
     BlockJacobi, CgSettings, ConjugateGradient, LinearSolver, SolveStats, SparseCholesky,
 };
+
+/// Relative out-of-balance force `‖F − F_int‖ / ‖F‖` accepted as
+/// equilibrium: by the elastic analysis always, by the nonlinear one by
+/// default ([`NonlinearSettings::tolerance`]).
+pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
 
 /// Iteration limits of the nonlinear solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,10 +81,10 @@ pub struct NonlinearSettings {
 }
 
 impl Default for NonlinearSettings {
-    /// `tol = 1e-6`, 3000 iterations.
+    /// `tol =` [`EQUILIBRIUM_TOLERANCE`] (`1e-6`), 3000 iterations.
     fn default() -> Self {
         Self {
-            tolerance: 1e-6,
+            tolerance: EQUILIBRIUM_TOLERANCE,
             max_iterations: 3000,
         }
     }
@@ -75,15 +93,16 @@ impl Default for NonlinearSettings {
 /// Whether a solve reached equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Convergence {
-    /// Direct solve or converged iteration.
+    /// The relative out-of-balance force is within the tolerance.
     Converged {
-        /// Iterations (0 for the elastic solve, whose residual is that of
-        /// the direct solve).
+        /// Iterations (0 for the elastic solve by a direct solver, whose
+        /// residual is that of the direct solve).
         iterations: usize,
         /// Final relative out-of-balance force.
         residual: f64,
     },
-    /// The iteration limit was reached.
+    /// The iteration limit was reached, the residual is above the
+    /// tolerance (an ill-conditioned elastic solve) or it is not finite.
     NotConverged {
         /// Iterations made.
         iterations: usize,
@@ -141,6 +160,10 @@ pub struct HpmResult {
     pub tractions: Vec<SpringTraction>,
     /// Whether equilibrium was found.
     pub convergence: Convergence,
+    /// When not converged, what in the model may have spoiled the solve
+    /// ([`HpmModel::ill_conditioning`]), each with what to change; empty
+    /// when converged.
+    pub ill_conditioning: Vec<IllConditioning>,
 }
 
 /// The elastic stiffness of a model and a linear solver `S` for it,
@@ -161,8 +184,14 @@ pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
 impl HpmSolver<SparseCholesky> {
     /// Assemble the elastic stiffness of `model` and factorise it
     /// (sparse Cholesky).
+    ///
+    /// # Errors
+    /// A failed factorization: [`DismechError::IllConditioned`] naming
+    /// what to change when the model has a feature that makes it
+    /// ill-conditioned ([`HpmModel::ill_conditioning`]), the solver's error
+    /// otherwise.
     pub fn new(model: &HpmModel) -> Result<Self> {
-        Self::from_stiffness(model.stiffness())
+        Self::from_stiffness(model.stiffness()).map_err(|e| name_ill_conditioning(model, e))
     }
 
     /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
@@ -182,7 +211,7 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
             .map(|c| ELEMENT_DOF * c.elements.start..ELEMENT_DOF * c.elements.end)
             .collect();
         let solver = ConjugateGradient::new(settings, BlockJacobi::new(groups));
-        Self::with_solver(model.stiffness(), solver)
+        Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
     }
 }
 
@@ -210,10 +239,11 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         Ok((x, stats))
     }
 
-    /// Elastic analysis: one solve of eq. (4). With an iterative solver
-    /// the convergence reports its iterations and `NotConverged` if it
-    /// stopped at its limit; the residual is `‖F − K U‖ / ‖F‖` recomputed
-    /// from the returned U.
+    /// Elastic analysis: one solve of eq. (4). The residual is
+    /// `‖F − K U‖ / ‖F‖` recomputed from the returned U; the result is
+    /// `NotConverged` when it is above [`EQUILIBRIUM_TOLERANCE`] or not
+    /// finite, or when an iterative solver stopped at its limit (the
+    /// convergence then reports its iterations).
     pub fn elastic(&mut self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
         seismic.validate()?;
         self.elastic_with_loads(model, &model.loads(seismic))
@@ -264,9 +294,9 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         let mut last_correction: Option<Vec<f64>> = None;
         loop {
             let (residual, tractions) = self.out_of_balance(model, &laws, &f, &u);
-            let relative = norm(&residual) / f_norm;
+            let relative = relative_to(norm(&residual), f_norm);
             let done = relative <= settings.tolerance;
-            if done || iterations >= settings.max_iterations {
+            if done || iterations >= settings.max_iterations || !relative.is_finite() {
                 let convergence = if done {
                     Convergence::Converged {
                         iterations,
@@ -281,6 +311,7 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
                 return Ok(HpmResult {
                     displacements: u,
                     tractions,
+                    ill_conditioning: diagnosis(model, &convergence),
                     convergence,
                 });
             }
@@ -351,7 +382,7 @@ fn elastic_result(
 ) -> HpmResult {
     let ku = stiffness.multiply(&u);
     let out: Vec<f64> = f.iter().zip(&ku).map(|(a, b)| a - b).collect();
-    let residual = norm(&out) / norm(f);
+    let residual = relative_to(norm(&out), norm(f));
     let tractions = model
         .slip
         .iter()
@@ -368,7 +399,8 @@ fn elastic_result(
             }
         })
         .collect();
-    let convergence = if converged {
+    // `<=` is false for NaN: a residual that is not finite never converges.
+    let convergence = if converged && residual <= EQUILIBRIUM_TOLERANCE {
         Convergence::Converged {
             iterations,
             residual,
@@ -382,7 +414,44 @@ fn elastic_result(
     HpmResult {
         displacements: u,
         tractions,
+        ill_conditioning: diagnosis(model, &convergence),
         convergence,
+    }
+}
+
+/// `residual / reference`, the relative out-of-balance force; under no
+/// load (`reference` zero) 0 for a zero residual and infinite otherwise.
+fn relative_to(residual: f64, reference: f64) -> f64 {
+    if reference == 0.0 && residual == 0.0 {
+        0.0
+    } else if reference == 0.0 {
+        f64::INFINITY
+    } else {
+        residual / reference
+    }
+}
+
+/// What may have spoiled a solve that did not converge.
+fn diagnosis(model: &HpmModel, convergence: &Convergence) -> Vec<IllConditioning> {
+    if convergence.converged() {
+        Vec::new()
+    } else {
+        model.ill_conditioning()
+    }
+}
+
+/// A solver error on an ill-conditioned model, with what makes it so.
+fn name_ill_conditioning(model: &HpmModel, error: DismechError) -> DismechError {
+    match error {
+        DismechError::Solve(reason) => {
+            let causes = model.ill_conditioning();
+            if causes.is_empty() {
+                DismechError::Solve(reason)
+            } else {
+                DismechError::IllConditioned { causes, reason }
+            }
+        }
+        other => other,
     }
 }
 /// Add `A Nᵀ Rᵀ local` of a slip spring into `r` (the internal force of
@@ -533,5 +602,55 @@ impl HpmResult {
             .map(|(s, _)| s.point.point.area)
             .sum();
         yielded / total
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Raster;
+    use crate::hpm::{HpmMaterial, HpmSettings, NamedRaster, SlopeGrids};
+
+    /// A 2 × 2-cell slab 5 m thick on a plane dipping 20°.
+    fn slab() -> HpmModel {
+        let slope = 20f64.to_radians().tan();
+        let plane = |offset: f64| {
+            Raster::from_fn(2, 2, 0.0, 0.0, 10.0, move |_, y| Some(slope * y + offset)).unwrap()
+        };
+        let grids = SlopeGrids::new(
+            NamedRaster::new("ground", plane(5.0)),
+            NamedRaster::new("slip", plane(0.0)),
+            None,
+        )
+        .unwrap();
+        HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()).unwrap()
+    }
+
+    #[test]
+    fn elastic_nan_residual_is_not_converged() {
+        // A linear solver that returns NaN displacements while reporting
+        // success: the recomputed residual is NaN, which is not equilibrium.
+        let model = slab();
+        let f = model.loads(&Seismic::none());
+        let nan = vec![f64::NAN; model.dof()];
+        let r = elastic_result(&model, &model.stiffness(), &f, nan, 0, true);
+        match r.convergence {
+            Convergence::NotConverged { residual, .. } => assert!(residual.is_nan()),
+            other => panic!("NaN displacements reported {other:?}"),
+        }
+    }
+
+    #[test]
+    fn zero_load_has_zero_residual() {
+        let model = slab();
+        let f = vec![0.0; model.dof()];
+        let r = elastic_result(&model, &model.stiffness(), &f, f.clone(), 0, true);
+        assert_eq!(
+            r.convergence,
+            Convergence::Converged {
+                iterations: 0,
+                residual: 0.0
+            }
+        );
     }
 }

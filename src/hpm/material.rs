@@ -11,7 +11,7 @@ pub struct HpmMaterial {
     pub youngs_modulus: f64,
     /// Poisson's ratio ν, in [0, 0.5).
     pub poisson_ratio: f64,
-    /// Cohesion c on the slip surface (Pa).
+    /// Cohesion c on the slip surface (Pa); c and φ may not both be 0.
     pub cohesion: f64,
     /// Friction angle φ on the slip surface (degrees, in [0, 90)).
     pub friction_angle_deg: f64,
@@ -44,7 +44,8 @@ impl HpmMaterial {
         }
     }
 
-    /// Check every value; errors name the offending one.
+    /// Check every value; errors name the offending one. c = φ = 0 is
+    /// refused: the slip surface would have no strength.
     pub fn validate(&self) -> Result<()> {
         require_positive("Young's modulus E", self.youngs_modulus)?;
         let nu = self.poisson_ratio;
@@ -62,6 +63,13 @@ impl HpmMaterial {
                 name: "friction angle phi (degrees)",
                 value: phi,
                 requirement: "must lie in [0, 90)",
+            });
+        }
+        if self.cohesion == 0.0 && phi == 0.0 {
+            return Err(DismechError::InvalidParameter {
+                name: "cohesion c (with friction angle phi = 0)",
+                value: self.cohesion,
+                requirement: "c or phi must be > 0: a slip surface with neither has no strength, and its safety factor is 0 or undefined",
             });
         }
         require_positive("unit weight gamma_t", self.unit_weight)?;

@@ -19,6 +19,7 @@
 //! | model and assembly | `model.rs` | eqs. 4–10, 14–30 |
 //! | stiffness blocks and how the linear solvers read them | `stiffness.rs` | eq. 4 |
 //! | elastic and nonlinear analyses, Fs | `analysis.rs` | §5 |
+//! | what makes the stiffness ill-conditioned | `conditioning.rs` | (beyond the paper) |
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
@@ -51,6 +52,7 @@
 //! interpolated from the cell-centre values of the rasters.
 
 mod analysis;
+mod conditioning;
 mod face;
 mod grids;
 mod hovland;
@@ -65,12 +67,15 @@ pub use crate::kinematics::affine3::{
 };
 pub use analysis::{
     Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
-    SurfacePoint,
+    SurfacePoint, EQUILIBRIUM_TOLERANCE,
 };
+pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
 pub use stiffness::BlockMatrix;
-pub use strength_reduction::{strength_reduction, StrengthReduction};
+pub use strength_reduction::{
+    strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,
+};

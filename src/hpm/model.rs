@@ -18,7 +18,7 @@ use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, Slip
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
 use super::stiffness::BlockMatrix;
-use crate::error::Result;
+use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
 use crate::law::MohrCoulombSpring;
 use crate::shape::Column;
@@ -127,6 +127,12 @@ fn element_weight(
 
 impl HpmModel {
     /// Build the model; validates the material and settings.
+    ///
+    /// # Errors
+    /// An invalid material or setting; [`DismechError::EmptyHpmModel`]
+    /// when every valid column has zero thickness at all four corners (its
+    /// slip corners, lowered to the ground, leave no volume), so that there
+    /// is no element to analyse.
     pub fn new(grids: &SlopeGrids, material: &HpmMaterial, settings: &HpmSettings) -> Result<Self> {
         material.validate()?;
         settings.validate()?;
@@ -185,6 +191,14 @@ impl HpmModel {
                 cell: (r, c),
                 elements: first..elements.len(),
                 shape,
+            });
+        }
+
+        if elements.is_empty() {
+            return Err(DismechError::EmptyHpmModel {
+                ground: grids.ground().name.clone(),
+                slip: grids.slip().name.clone(),
+                valid: grids.valid_cells().len(),
             });
         }
 

@@ -6,14 +6,23 @@
 //! strength already fails) and then bisected; "no equilibrium" is a
 //! [`Convergence::NotConverged`] of the nonlinear solve within its
 //! iteration limit, so F depends (weakly) on that limit, which the result
-//! reports.
+//! reports. The search steps no further than [`MAX_REDUCTION_FACTOR`] up and
+//! [`MIN_REDUCTION_FACTOR`] down: a slide in equilibrium at every factor up to the
+//! first, or at none down to the second, has no bracket and gets a typed
+//! error rather than a factor that was never bracketed.
 
 use super::analysis::{Convergence, HpmSolver, NonlinearSettings};
 use super::material::Seismic;
 use super::model::HpmModel;
 use super::stiffness::BlockMatrix;
-use crate::error::{require_positive, Result};
+use crate::error::{require_positive, DismechError, Result};
 use crate::linsolve::LinearSolver;
+
+/// The largest factor the search steps up to (past 1000).
+pub const MAX_REDUCTION_FACTOR: f64 = 1e3;
+
+/// The smallest factor the search steps down to (below 0.001).
+pub const MIN_REDUCTION_FACTOR: f64 = 1e-3;
 
 /// The outcome of a strength-reduction search.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +38,13 @@ pub struct StrengthReduction {
 /// Search the strength-reduction factor to a bracket of relative width
 /// `resolution`, each trial a nonlinear solve with `solver` (a direct
 /// factor, or conjugate gradients).
+///
+/// # Errors
+/// A resolution that is not positive; a failed solve;
+/// [`DismechError::StrengthReductionNoFailure`] when every factor up to
+/// past [`MAX_REDUCTION_FACTOR`] finds equilibrium, and
+/// [`DismechError::StrengthReductionNoEquilibrium`] when none down to
+/// below [`MIN_REDUCTION_FACTOR`] does.
 pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
     solver: &mut HpmSolver<S>,
     model: &HpmModel,
@@ -52,8 +68,8 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
                 break;
             }
             lo = hi;
-            if lo > 1e3 {
-                break;
+            if lo > MAX_REDUCTION_FACTOR {
+                return Err(DismechError::StrengthReductionNoFailure { factor: lo });
             }
         }
     } else {
@@ -63,8 +79,8 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
                 break;
             }
             hi = lo;
-            if hi < 1e-3 {
-                break;
+            if hi < MIN_REDUCTION_FACTOR {
+                return Err(DismechError::StrengthReductionNoEquilibrium { factor: hi });
             }
         }
     }

@@ -31,10 +31,13 @@ pub struct LimitResult {
     /// [`LimitStatus::Collapse`].
     pub load: Option<f64>,
     /// Upper bound: the minimum of the kinematic LP (dissipation minus the
-    /// power of known loads, divided by the plate speed).
-    pub kinematic_load: f64,
-    /// Lower bound: the load in equilibrium with the dual contact forces.
-    pub static_load: f64,
+    /// power of known loads, divided by the plate speed); `None` unless the
+    /// status is [`LimitStatus::Collapse`] (a solve that stopped without an
+    /// optimum has no bound to report).
+    pub kinematic_load: Option<f64>,
+    /// Lower bound: the load in equilibrium with the dual contact forces;
+    /// `None` unless the status is [`LimitStatus::Collapse`].
+    pub static_load: Option<f64>,
     /// Velocity of each element `(velocity, angular velocity)` in the
     /// mechanism (plate at unit speed).
     pub velocities: Vec<(Vec2, f64)>,
@@ -217,8 +220,8 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
     let mut result = LimitResult {
         status,
         load: None,
-        kinematic_load: solution.objective / speed,
-        static_load: f64::NAN,
+        kinematic_load: None,
+        static_load: None,
         velocities: Vec::with_capacity(model.bodies().len()),
         slip: vec![0.0; contacts.len()],
         opening: vec![0.0; contacts.len()],
@@ -251,13 +254,15 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
     result.static_load = match (driver, live_row) {
         // The load that drives the plate balances the elements' push on it.
         (Driver::Plate { plate, speed }, _) => {
-            -plate_force.dot(&(model.supports()[plate].velocity / speed))
+            Some(-plate_force.dot(&(model.supports()[plate].velocity / speed)))
         }
         // The multiplier of the normalisation row (dual objective −y·1).
-        (Driver::Live(_), Some(row)) => -solution.equality_duals[row],
-        (Driver::Live(_), None) => f64::NAN,
+        (Driver::Live(_), Some(row)) => Some(-solution.equality_duals[row]),
+        (Driver::Live(_), None) => None,
     };
-    result.load = Some(result.kinematic_load);
+    let kinematic = solution.objective / speed;
+    result.kinematic_load = Some(kinematic);
+    result.load = Some(kinematic);
     Ok(result)
 }
 
@@ -373,11 +378,19 @@ pub struct Uniqueness {
 /// that optimal face. An interior-point solver returns a point inside the
 /// face, which may blend several optimal vertex mechanisms; a spread above
 /// `1e-4` (relative to the velocity scale) says the face is not a point.
+///
+/// # Errors
+/// [`DismechError::NoLimitLoad`] when `result` has no kinematic load (it
+/// is not a collapse); as [`analyse`] otherwise.
 pub fn mechanism_uniqueness<S: LpSolver>(
     model: &LimitModel,
     solver: &mut S,
     result: &LimitResult,
 ) -> Result<Uniqueness> {
+    let kinematic = result.kinematic_load.ok_or(DismechError::NoLimitLoad {
+        status: format!("{:?}", result.status),
+        what: "the uniqueness test of the mechanism",
+    })?;
     let KinematicLp {
         mut lp,
         dof,
@@ -386,7 +399,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
         ..
     } = build_kinematic_lp(model)?;
     let speed = driver.speed();
-    let optimum = result.kinematic_load * speed;
+    let optimum = kinematic * speed;
     let row: Vec<(usize, f64)> = lp
         .objective
         .iter()

@@ -11,11 +11,23 @@
 //! * symmetry wall y = −R (j = 0 of the even columns), smooth — U-model only;
 //! * loading plate x = R, smooth, moving in −x at unit speed: in the U-model
 //!   it touches column-0 elements j = 0 … n'−1, in the L-model all of them.
+//!
+//! A lattice has at most [`MAX_LATTICE_ELEMENTS`] elements (m × n).
 
 use super::model::{LimitModel, Partner};
 use crate::error::{DismechError, Result};
 use crate::law::RigidPlastic;
 use crate::math::{Point, Vec2};
+
+/// The largest lattice [`Lattice::build`] accepts, in elements (m × n).
+///
+/// The model, its kinematic LP and Clarabel's factor take about 8 kB per
+/// element for a narrow lattice and 13 kB for a square one (peak resident
+/// memory of `lattice-limit-load`: 1.5 GB for the L-model at m = 2,
+/// n = 10⁵; 1.1 GB at m = n = 300, solved in 86 s), so the cap keeps a
+/// solve near 1.5 GB and a few minutes, some 50 times the paper's largest
+/// lattice (m = 8, n = 256).
+pub const MAX_LATTICE_ELEMENTS: usize = 100_000;
 
 /// Which lattice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,6 +104,11 @@ impl Lattice {
     }
 
     /// Build the model.
+    ///
+    /// # Errors
+    /// m odd or below 2, n below 1, n' outside `1..=n`, a radius that is not
+    /// positive, or more than [`MAX_LATTICE_ELEMENTS`] elements
+    /// ([`DismechError::LatticeTooLarge`]).
     pub fn build(&self) -> Result<LimitModel> {
         if self.m < 2 || self.m % 2 != 0 {
             return Err(DismechError::InvalidParameter {
@@ -105,6 +122,17 @@ impl Lattice {
                 name: "n (elements per column)",
                 value: self.n as f64,
                 requirement: "must be >= 1",
+            });
+        }
+        if self
+            .m
+            .checked_mul(self.n)
+            .is_none_or(|elements| elements > MAX_LATTICE_ELEMENTS)
+        {
+            return Err(DismechError::LatticeTooLarge {
+                m: self.m,
+                n: self.n,
+                limit: MAX_LATTICE_ELEMENTS,
             });
         }
         if let LatticeKind::U { loaded } = self.kind {

@@ -1,6 +1,31 @@
 //! The data of a limit analysis: rigid bodies of any shape, straight
 //! supports, contacts with a strength, and what drives the collapse (a
 //! moving support, or a live load whose multiplier is sought).
+//!
+//! Nothing may be declared twice, since the LP would count it twice (a
+//! body's load and its contacts' strength, a contact's strength). Two
+//! points *coincide* when they are closer than the smaller of the model's
+//! contact tolerance and [`COINCIDENT_FRACTION`] of the bounding radius of
+//! the smaller body concerned (the contact tolerance alone can be loose,
+//! e.g. the overlap of bounding circles for a DEM packing of ellipses).
+//!
+//! * **duplicate bodies**: two bodies whose reference points coincide.
+//!   Rigid bodies do not overlap, so two of them cannot share a point;
+//!   this covers the same body declared twice, whatever its shape.
+//! * **duplicate contacts**: two contacts of the same pair (element with
+//!   element in either order, or element with support) whose points
+//!   coincide; and any second contact of a pair declared from circle
+//!   geometry ([`LimitModel::add_contact`]), since two circles, or a circle
+//!   and a line, touch at one point. Several points of one pair given
+//!   explicitly (the corners of a face on a floor) are distinct contacts.
+//!
+//! Both are refused when declared ([`DismechError::DuplicateBody`],
+//! [`DismechError::DuplicateContact`]), found through a hash of the
+//! reference points on cells of the tolerance's size and a list of the
+//! contacts of each pair, so that a model of many bodies is checked in
+//! linear time.
+
+use std::collections::HashMap;
 
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::law::{Strength, StrengthLaw};
@@ -39,6 +64,10 @@ impl LimitBody {
         self.shape.as_shape().bounding_radius()
     }
 }
+
+/// Fraction of a body's bounding radius within which two points coincide
+/// (see the module documentation).
+pub const COINCIDENT_FRACTION: f64 = 1e-6;
 
 /// What the LP reads of a contact's law: its linear strength
 /// `|T| ≤ c + N tan φ` and whether it may open.
@@ -144,6 +173,18 @@ pub struct LimitModel {
     contacts: Vec<LimitContact>,
     live_load: Option<LiveLoad>,
     tolerance: f64,
+    /// Bodies by the tolerance-sized cell of their reference point.
+    body_cells: HashMap<(i64, i64), Vec<usize>>,
+    /// Contacts by their pair (see [`pair_key`]).
+    pairs: HashMap<(usize, Partner), Vec<usize>>,
+}
+
+/// The pair of a contact, the same whichever element of two is named first.
+fn pair_key(body: usize, partner: Partner) -> (usize, Partner) {
+    match partner {
+        Partner::Body(j) => (body.min(j), Partner::Body(body.max(j))),
+        Partner::Support(_) => (body, partner),
+    }
 }
 
 impl LimitModel {
@@ -164,10 +205,40 @@ impl LimitModel {
 
     /// Add an element of any shape at `pose` (its position is the reference
     /// point of velocities, loads and moments); returns its index.
+    ///
+    /// # Errors
+    /// A non-finite pose; [`DismechError::DuplicateBody`] when an element
+    /// already has its reference point where this one has (see the module
+    /// documentation).
     pub fn add_shape(&mut self, shape: AnyShape2, pose: Pose2, rotates: bool) -> Result<usize> {
         require_finite("element centre x", pose.position.x)?;
         require_finite("element centre y", pose.position.y)?;
         require_finite("element angle", pose.angle)?;
+        let index = self.bodies.len();
+        let radius = shape.as_shape().bounding_radius();
+        let cell = self.cell(&pose.position);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let near = (cell.0.saturating_add(dx), cell.1.saturating_add(dy));
+                let Some(others) = self.body_cells.get(&near) else {
+                    continue;
+                };
+                for &existing in others {
+                    let other = &self.bodies[existing];
+                    let within = self.coincidence(radius.min(other.radius()));
+                    if (other.centre - pose.position).norm() <= within {
+                        return Err(DismechError::DuplicateBody {
+                            body: index,
+                            existing,
+                            x: pose.position.x,
+                            y: pose.position.y,
+                            distance: within,
+                        });
+                    }
+                }
+            }
+        }
+        self.body_cells.entry(cell).or_default().push(index);
         self.bodies.push(LimitBody {
             centre: pose.position,
             shape,
@@ -176,6 +247,53 @@ impl LimitModel {
             load: Vec2::zeros(),
         });
         Ok(self.bodies.len() - 1)
+    }
+
+    /// The distance within which two points of bodies whose smaller
+    /// bounding radius is `radius` coincide.
+    fn coincidence(&self, radius: f64) -> f64 {
+        self.tolerance.min(COINCIDENT_FRACTION * radius)
+    }
+
+    /// The tolerance-sized cell holding `point` (saturating far away).
+    fn cell(&self, point: &Point) -> (i64, i64) {
+        (
+            (point.x / self.tolerance).floor() as i64,
+            (point.y / self.tolerance).floor() as i64,
+        )
+    }
+
+    /// Record contact `contact` unless it repeats one of its pair: at a
+    /// coinciding point, or at all when `one_point` (circle geometry)
+    /// ([`DismechError::DuplicateContact`]).
+    fn push_contact(
+        &mut self,
+        contact: LimitContact,
+        partner_name: String,
+        one_point: bool,
+    ) -> Result<usize> {
+        let index = self.contacts.len();
+        let key = pair_key(contact.body, contact.partner);
+        let mut radius = self.bodies[contact.body].radius();
+        if let Partner::Body(j) = contact.partner {
+            radius = radius.min(self.bodies[j].radius());
+        }
+        let within = self.coincidence(radius);
+        let same_pair = self.pairs.get(&key).map(Vec::as_slice).unwrap_or(&[]);
+        if let Some(&existing) = same_pair
+            .iter()
+            .find(|&&c| one_point || (self.contacts[c].point - contact.point).norm() <= within)
+        {
+            return Err(DismechError::DuplicateContact {
+                contact: index,
+                existing,
+                body: contact.body,
+                partner: partner_name,
+            });
+        }
+        self.pairs.entry(key).or_default().push(index);
+        self.contacts.push(contact);
+        Ok(index)
     }
 
     /// Apply the reference live load `force` at `point` of `body`: the
@@ -247,6 +365,13 @@ impl LimitModel {
     /// circular element or a support), its geometry taken from the circles;
     /// the surfaces must touch. For other shapes give the contact point and
     /// normal with [`LimitModel::add_contact_at`].
+    ///
+    /// # Errors
+    /// An unknown element or support, a shape that is not a circle, surfaces
+    /// that do not touch within the tolerance
+    /// ([`DismechError::ContactNotTouching`]), or a contact of the same pair
+    /// already declared ([`DismechError::DuplicateContact`]: two circles,
+    /// or a circle and a line, touch at one point).
     pub fn add_contact(
         &mut self,
         body: usize,
@@ -311,14 +436,17 @@ impl LimitModel {
                 tolerance: self.tolerance,
             });
         }
-        self.contacts.push(LimitContact {
-            body,
-            partner,
-            law: PlasticContact::of(&law),
-            point,
-            normal,
-        });
-        Ok(index)
+        self.push_contact(
+            LimitContact {
+                body,
+                partner,
+                law: PlasticContact::of(&law),
+                point,
+                normal,
+            },
+            name,
+            true,
+        )
     }
 
     /// Declare a contact of `body` with `partner` at `point` with the unit
@@ -327,6 +455,12 @@ impl LimitModel {
     /// of a settled DEM packing. Against a support, the point must lie on
     /// its line within the model's tolerance and the normal must point into
     /// the support.
+    ///
+    /// # Errors
+    /// An unknown element or support, non-finite data, a support contact off
+    /// its line ([`DismechError::ContactNotTouching`]), or a contact of the
+    /// same pair already declared at this point
+    /// ([`DismechError::DuplicateContact`]; see the module documentation).
     pub fn add_contact_at(
         &mut self,
         body: usize,
@@ -350,11 +484,11 @@ impl LimitModel {
         }
         let length = require_positive("contact normal length", normal.norm())?;
         let normal = normal / length;
-        match partner {
+        let name = match partner {
             Partner::Body(j) if j >= count || j == body => {
                 return Err(DismechError::NoSuchBody { index: j, count });
             }
-            Partner::Body(_) => {}
+            Partner::Body(j) => format!("element {j}"),
             Partner::Support(s) => {
                 let support = self.supports.get(s).ok_or(DismechError::NoSuchBody {
                     index: s,
@@ -362,25 +496,30 @@ impl LimitModel {
                 })?;
                 let gap = (point - support.point).dot(&support.normal);
                 let facing = normal.dot(&support.normal) < 0.0;
+                let name = format!("support `{}`", support.name);
                 if gap.abs() > self.tolerance || !facing {
                     return Err(DismechError::ContactNotTouching {
                         contact: index,
                         body,
-                        partner: format!("support `{}`", support.name),
+                        partner: name,
                         gap,
                         tolerance: self.tolerance,
                     });
                 }
+                name
             }
-        }
-        self.contacts.push(LimitContact {
-            body,
-            partner,
-            law: PlasticContact::of(&law),
-            point,
-            normal,
-        });
-        Ok(index)
+        };
+        self.push_contact(
+            LimitContact {
+                body,
+                partner,
+                law: PlasticContact::of(&law),
+                point,
+                normal,
+            },
+            name,
+            false,
+        )
     }
 
     /// The elements.

@@ -112,8 +112,8 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
     let mut result = LimitResult {
         status,
         load: None,
-        kinematic_load: -solution.dual_objective,
-        static_load: -solution.objective,
+        kinematic_load: None,
+        static_load: None,
         velocities: Vec::new(),
         slip: vec![0.0; contacts],
         opening: vec![0.0; contacts],
@@ -145,6 +145,8 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
             .velocities
             .push((Vec2::new(y(0), y(1)) * scale, y(2) * scale));
     }
-    result.load = Some(result.static_load);
+    result.kinematic_load = Some(-solution.dual_objective);
+    result.static_load = Some(-solution.objective);
+    result.load = result.static_load;
     Ok(result)
 }

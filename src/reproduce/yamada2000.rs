@@ -106,9 +106,19 @@ fn solve(lattice: &Lattice, solver: &mut LinearProgramSolver) -> Result<LimitRes
     analyse(&lattice.build()?, solver)
 }
 
+/// The kinematic (upper-bound) load of a result, NaN without a collapse.
+fn upper(r: &LimitResult) -> f64 {
+    r.kinematic_load.unwrap_or(f64::NAN)
+}
+
+/// The static (lower-bound) load of a result, NaN without a collapse.
+fn lower(r: &LimitResult) -> f64 {
+    r.static_load.unwrap_or(f64::NAN)
+}
+
 /// Relative primal–dual gap of a solved LP.
 fn gap(r: &LimitResult) -> f64 {
-    (r.kinematic_load - r.static_load).abs() / (1.0 + r.kinematic_load.abs())
+    (upper(r) - lower(r)).abs() / (1.0 + upper(r).abs())
 }
 
 /// Run the study and write its outputs into `options.dir`
@@ -128,7 +138,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let mut exact = vec![(
         "sec2_2.two_elements",
         "two-element example of §2.2, P/C_p = 1 + √2",
-        two.kinematic_load,
+        upper(&two),
         1.0 + root2,
     )];
     for (id, text, k, np, value) in [
@@ -150,7 +160,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     ] {
         let r = solve(&Lattice::u_model(k, k, np, true), &mut solver)?;
         max_gap = max_gap.max(gap(&r));
-        exact.push((id, text, r.kinematic_load, value));
+        exact.push((id, text, upper(&r), value));
     }
     for (id, text, computed, paper) in exact {
         checks.push(Check::new(
@@ -172,14 +182,14 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             let r = solve(&Lattice::u_model(k, k, np, true), &mut solver)?;
             max_gap = max_gap.max(gap(&r));
             let formula = eq32(k, np);
-            let lp = r.kinematic_load;
+            let lp = upper(&r);
             let agrees = agreement(lp, Some(paper), formula, "eq. (32)");
             let _ = writeln!(
                 report,
                 "| {k} | {np} | {paper:.2} | {formula:.4} | {lp:.4} | {:.4} | {agrees} |",
-                r.static_load
+                lower(&r)
             );
-            rows.push(vec![k as f64, np as f64, paper, formula, lp, r.static_load]);
+            rows.push(vec![k as f64, np as f64, paper, formula, lp, lower(&r)]);
             checks.push(Check::new(
                 format!("table1.k{k}.n{np}"),
                 format!(
@@ -207,7 +217,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             let r = solve(&Lattice::u_model(k, k, np, false), &mut solver)?;
             max_gap = max_gap.max(gap(&r));
             let formula = eq38(k, np);
-            let lp = r.kinematic_load;
+            let lp = upper(&r);
             let agrees = agreement(lp, paper, formula, "eq. (38)");
             let shown = paper
                 .map(|p| format!("{p:.2}"))
@@ -215,7 +225,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             let _ = writeln!(
                 report,
                 "| {k} | {np} | {shown} | {formula:.4} | {lp:.4} | {:.4} | {agrees} |",
-                r.static_load
+                lower(&r)
             );
             rows.push(vec![
                 k as f64,
@@ -223,7 +233,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
                 paper.unwrap_or(f64::NAN),
                 formula,
                 lp,
-                r.static_load,
+                lower(&r),
             ]);
             checks.push(Check::new(
                 format!("table3.k{k}.n{np}"),
@@ -255,7 +265,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             let lattice = Lattice::l_model(m, n, true);
             let r = solve(&lattice, &mut solver)?;
             max_gap = max_gap.max(gap(&r));
-            let c_g = r.kinematic_load / (2.0 * lattice.plate_length());
+            let c_g = upper(&r) / (2.0 * lattice.plate_length());
             values.push((n as f64, c_g));
             rows.push(vec![m as f64, n as f64, c_g, formula]);
         }
@@ -434,7 +444,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             &format!(
                 "{figure}: {} U-model ({k},{k},{np}), P = {:.4} C_p; {note}",
                 if rolling { "rolling" } else { "non-rolling" },
-                r.kinematic_load
+                upper(&r)
             ),
             &model,
             &uniqueness.vertex,
@@ -443,7 +453,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             report,
             "| {figure} | ({k},{k},{np}) {} | {:.4} | {} | `{name}` |",
             if rolling { "rolling" } else { "non-rolling" },
-            r.kinematic_load,
+            upper(&r),
             uniqueness.unique
         );
         files.push(name);
@@ -475,15 +485,12 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             let note = uniqueness_note(&u);
             plot_mechanism(
                 &dir.join(&name),
-                &format!(
-                    "DEM packing, {label}: P = {:.3} C_p; {note}",
-                    r.kinematic_load
-                ),
+                &format!("DEM packing, {label}: P = {:.3} C_p; {note}", upper(&r)),
                 &model,
                 &u.vertex,
             )?;
             files.push(name.clone());
-            (format!("{:.4}", r.kinematic_load), u.unique.to_string())
+            (format!("{:.4}", upper(&r)), u.unique.to_string())
         } else {
             ("—".to_string(), "—".to_string())
         };
@@ -491,7 +498,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             report,
             "| {label} | {:?} | {shown} | {:.2e} | {unique} | `{name}` |",
             r.status,
-            r.kinematic_load - r.static_load
+            upper(&r) - lower(&r)
         );
         checks.push(Check::new(
             format!("dem_to_lp.{label}.p_over_cp"),
@@ -553,7 +560,7 @@ fn bearing_capacity_curves(
                     *max_gap = max_gap.max(gap(&r));
                     points.push((
                         np as f64 / k as f64,
-                        r.kinematic_load / (c_g * lattice.plate_length()),
+                        upper(&r) / (c_g * lattice.plate_length()),
                     ));
                 }
             }

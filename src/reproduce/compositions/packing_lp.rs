@@ -74,7 +74,7 @@ pub(super) fn packing_lp(c: &mut Collector) -> Result<()> {
             &c.dir().join("packing_dual_forces.svg"),
             &format!(
                 "Settled ellipses at collapse (P = {:.4} C): dual contact forces",
-                limit.result.kinematic_load
+                limit.result.kinematic_load.unwrap_or(f64::NAN)
             ),
             &limit.model,
             &limit.result,
