@@ -75,8 +75,8 @@ impl Exit {
             text.push_str(&format!("  {}  {}\n", exit.code(), exit.meaning()));
         }
         text.push_str(
-            "\n`reproduce all` exits 0 when every study passed, 1 when a check failed, and otherwise \
-             with the code of the first study that could not run.",
+            "\n`reproduce all` exits with the code of the first study that could not run; else 1 if a \
+             check failed; else 0.",
         );
         text
     }

@@ -272,7 +272,7 @@ fn implicit_ellipses_come_to_rest_on_the_walls() {
     assert!(setup.count >= 50 && setup.aspect == 2.0);
     let settled = settle(&setup).unwrap();
     println!(
-        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps ({} whole; the last halving at {:.3} s, then {} whole steps), {} reductions ({:?}), {} redetections, rest at {:.3} s",
+        "reaction / weight {:.7}, step ratio {} (accepted sub-steps {:.2}), {:.1} solves/step, {} steps ({} whole; the last step not whole ended at {:.3} s, then {} whole steps), {} reductions ({:?}), {} redetections, rest at {:.3} s",
         settled.reaction_ratio(),
         settled.step_ratio(),
         settled.accepted_step_ratio(),

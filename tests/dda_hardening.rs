@@ -8,6 +8,7 @@ use dismech::dda::{
     Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed, StepStatus,
 };
 use dismech::error::DismechError;
+use dismech::math::Point;
 
 fn base() -> Block {
     let mut b = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();
@@ -27,7 +28,7 @@ fn bottom(model: &DdaModel) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn drop(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
+fn drop_block(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
     let block = Block::new(&rect(-0.5, height, 0.5, height + 0.5), material(), 1).unwrap();
     let mut model = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap();
     let mut deepest = f64::INFINITY;
@@ -49,7 +50,7 @@ fn drop(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
 /// the base with the step reported converged.
 #[test]
 fn block_one_metre_above_base_in_one_second_step_does_not_pass_through() {
-    let (deepest, reductions, converged) = drop(1.0, 1.0, 1);
+    let (deepest, reductions, converged) = drop_block(1.0, 1.0, 1);
     println!("deepest {deepest:e}, reductions {reductions}, converged {converged}");
     assert!(
         !converged || deepest > -1e-3,
@@ -61,7 +62,7 @@ fn block_one_metre_above_base_in_one_second_step_does_not_pass_through() {
 /// sinking into the base.
 #[test]
 fn block_two_centimetres_above_base_at_tenth_second_steps_does_not_sink() {
-    let (deepest, reductions, converged) = drop(0.02, 0.1, 5);
+    let (deepest, reductions, converged) = drop_block(0.02, 0.1, 5);
     println!("deepest {deepest:e}, reductions {reductions}, converged {converged}");
     assert!(
         !converged || deepest > -1e-3,
@@ -95,8 +96,21 @@ fn crossing_rectangles_at_the_start_are_refused() {
 fn tiny_and_huge_counter_clockwise_squares_are_valid_or_refused_for_their_size() {
     for side in [1e-6, 1e-3, 1.0, 1e3, 1e50] {
         for at in [0.0, 1e3] {
-            let block = Block::new(&rect(at, at, at + side, at + side), material(), 0);
-            assert!(block.is_ok(), "side {side:e} at {at}: {block:?}");
+            let block = Block::new(&rect(at, at, at + side, at + side), material(), 0).unwrap();
+            let area = block.area();
+            // to the rounding of the corners' coordinates
+            let rounding = 4.0 * f64::EPSILON * (at + side);
+            assert!(
+                (area - side * side).abs() <= (1e-12 * side + 2.0 * rounding) * side,
+                "side {side:e} at {at}: area {area:e}"
+            );
+            let centre = block.centroid();
+            let expected = at + 0.5 * side;
+            assert!(
+                (centre.x - expected).abs() <= rounding + 1e-12 * side
+                    && (centre.y - expected).abs() <= rounding + 1e-12 * side,
+                "side {side:e} at {at}: centroid {centre:?}"
+            );
         }
     }
     match Block::new(&rect(0.0, 0.0, 1e200, 1e200), material(), 7) {
@@ -111,7 +125,8 @@ fn tiny_and_huge_counter_clockwise_squares_are_valid_or_refused_for_their_size()
 /// penalty of 1e20: the contact states settle, but the equations then
 /// hold only to a residual of 1e-5, and the block's stresses were wrong
 /// (σx −5.0 kPa where 1e9 gives −0.68 kPa) under a Converged status. The
-/// step is now refused as imprecise, naming the penalty; at 1e9 it runs.
+/// step is now refused as imprecise (residual 1.1e-5, limit 5e-6), naming
+/// the penalty; at 1e9 it runs.
 #[test]
 fn conventional_law_at_penalty_1e20_is_refused_as_imprecise() {
     let run = |penalty: f64| {
@@ -131,8 +146,32 @@ fn conventional_law_at_penalty_1e20_is_refused_as_imprecise() {
     );
     match run(1e20).0 {
         Err(DismechError::StepFailed { reason, .. }) => {
+            println!("{reason}");
             assert!(reason.contains("lower the penalty"), "{reason}")
         }
         other => panic!("expected a refused step, got {other:?}"),
     }
+}
+
+/// A block resting on the inner floor of an L-shaped block's notch, its
+/// edges collinear with the L's, touches without crossing: accepted.
+#[test]
+fn block_resting_in_a_concave_notch_is_not_refused_as_crossing() {
+    let l_block: Vec<Point> = [
+        (0.0, 0.0),
+        (2.0, 0.0),
+        (2.0, 1.0),
+        (1.0, 1.0),
+        (1.0, 2.0),
+        (0.0, 2.0),
+    ]
+    .iter()
+    .map(|&(x, y)| Point::new(x, y))
+    .collect();
+    let blocks = vec![
+        Block::new(&l_block, material(), 0).unwrap(),
+        Block::new(&rect(1.2, 1.0, 1.7, 1.5), material(), 1).unwrap(),
+        Block::new(&rect(1.0, 1.5, 1.5, 2.0), material(), 2).unwrap(),
+    ];
+    DdaModel::new(blocks, law(), DdaSettings::default()).unwrap();
 }

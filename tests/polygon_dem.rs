@@ -279,3 +279,31 @@ fn pile_of_random_polygons_and_discs_settles_with_the_walls_carrying_its_weight(
         .fold(0.0, f64::max);
     assert!(deepest < 0.01 * size, "deepest overlap {deepest}");
 }
+
+/// Two rectangles crossed as a plus sign (no corner of either inside the
+/// other) are refused at the start of a DEM run, like any overlap.
+#[test]
+fn crossing_rectangles_are_refused_at_the_start() {
+    let mut scene = floor_scene();
+    scene
+        .add_rectangle(Point::new(1.0, 1.0), 0.6, 0.1, 0.0, DENSITY)
+        .unwrap();
+    scene
+        .add_rectangle(Point::new(1.0, 1.0), 0.1, 0.6, 0.0, DENSITY)
+        .unwrap();
+    let settings = DemSettings {
+        dt: 1e-5,
+        ..DemSettings::default()
+    };
+    match DemSimulation::new(scene, law(1e7, Damping::Critical), ExplicitEuler, settings) {
+        Err(DismechError::InitialOverlap {
+            a: 0,
+            b: 1,
+            overlap,
+            ..
+        }) => {
+            assert!((overlap - 0.1).abs() < 1e-12, "overlap {overlap}")
+        }
+        other => panic!("expected an overlap, got {other:?}"),
+    }
+}

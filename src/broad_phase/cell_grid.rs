@@ -3,7 +3,10 @@
 use crate::math::Aabb2;
 
 /// A uniform grid of square cells, rebuilt every step from the bodies'
-/// bounding boxes.
+/// bounding boxes: dense (every cell of the span stored) while the span
+/// needs at most about 4 cells per body, sparse (only the occupied cells,
+/// found by binary search) when the bodies spread wider, e.g. around a far
+/// outlier.
 #[derive(Debug, Clone, Default)]
 pub struct CellGrid {
     cell_size: f64,
@@ -25,8 +28,8 @@ impl CellGrid {
     }
 
     /// Candidate pairs `(i, j)` with `i < j` whose bounding boxes (grown by
-    /// `margin`) overlap, written into `pairs` (cleared first), in a
-    /// deterministic order.
+    /// `margin`) overlap, written into `pairs` (cleared first), sorted and
+    /// each once.
     pub fn candidate_pairs(
         &mut self,
         boxes: &[Aabb2],

@@ -257,8 +257,8 @@ pub struct SettledBox {
     pub halvings: Halvings,
     /// Steps of `dt` taken whole (one sub-step, no halving).
     pub whole_steps: usize,
-    /// Time at the end of the last step that had to be halved (s; 0 when
-    /// none was).
+    /// Time at the end of the last step that was not taken whole (s; 0
+    /// when every step was).
     pub last_halved_at: f64,
     /// Sub-steps repeated at the same size with the contacts detected at a
     /// larger search distance.
@@ -301,7 +301,8 @@ impl SettledBox {
         self.time / self.substeps.max(1) as f64 / self.dt_explicit
     }
 
-    /// Steps from the last halving to the end, each taken whole.
+    /// Steps from the last one not taken whole to the end, each taken
+    /// whole.
     pub fn final_whole_steps(&self) -> usize {
         ((self.time - self.last_halved_at) / self.dt).round() as usize
     }
@@ -396,7 +397,9 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
         reductions += report.reductions;
         halvings.add(&report.halvings);
         redetections += report.redetections;
-        if report.reductions == 0 {
+        // Whole: one sub-step of the requested size (a step after a
+        // halving may take several sub-steps without halving again).
+        if report.reductions == 0 && report.substeps == 1 {
             whole_steps += 1;
         } else {
             last_halved_at = model.time();

@@ -8,12 +8,14 @@ use crate::math::Pose2;
 use crate::query::manifold::dispatch::contact_manifold_2d;
 use crate::query::ContactGeometry;
 use crate::scene::Scene;
-use crate::shape::AnyShape2;
+use crate::shape::{crossing_depth, AnyShape2};
 
 /// Refuses a start where a candidate pair of particles (from the broad
 /// phase `grid` over the particles' `boxes`, visited one by one so that a
 /// dense cluster is refused at its first pair rather than after all its
-/// pairs are built) or a particle and a wall overlap by more than
+/// pairs are built; polygons also when their edges cross with no vertex
+/// inside the other, [`crossing_depth`]) or a particle and a wall overlap
+/// by more than
 /// `tolerance` at their deepest point; `manifold` is scratch space.
 /// Returns the largest overlap found (within the tolerance).
 pub(crate) fn check_initial_overlaps(
@@ -29,7 +31,21 @@ pub(crate) fn check_initial_overlaps(
         let (pa, pb) = (&scene.particles[a], &scene.particles[b]);
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, manifold)?;
-        let overlap = deepest(manifold);
+        let mut overlap = deepest(manifold);
+        // Polygons may cross with no vertex inside the other.
+        if overlap <= tolerance {
+            if let (AnyShape2::Polygon(qa), AnyShape2::Polygon(qb)) = (&pa.shape, &pb.shape) {
+                let world = |q: &crate::shape::Polygon, pose: &Pose2| -> Vec<crate::math::Point> {
+                    q.vertices()
+                        .iter()
+                        .map(|v| pose.transform_point(v))
+                        .collect()
+                };
+                if let Some(depth) = crossing_depth(&world(qa, &pa.pose), &world(qb, &pb.pose)) {
+                    overlap = overlap.max(depth);
+                }
+            }
+        }
         largest = largest.max(overlap);
         if overlap > tolerance {
             return Err(DismechError::InitialOverlap {

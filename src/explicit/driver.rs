@@ -42,8 +42,8 @@ impl Default for DemSettings {
 pub struct RestCriterion {
     /// At rest when the kinetic energy is below this fraction of the
     /// potential energy released since the start (when none is released —
-    /// no gravity, or nothing fell — of the initial kinetic energy; a
-    /// scene with neither is at rest when nothing moves).
+    /// no gravity, nothing fell, or bodies rose — of the initial kinetic
+    /// energy; a scene with neither is at rest when nothing moves).
     pub kinetic_to_released_ratio: f64,
     /// Do not stop before this simulated time (s).
     pub min_time: f64,
@@ -97,6 +97,9 @@ pub struct RunOutcome {
     pub released_potential_energy: f64,
     /// Mean unbalanced force per particle / mean weight at the end.
     pub unbalanced_force_ratio: f64,
+    /// The kinetic energy over the energy the rest test compares it with
+    /// (see [`RestCriterion::kinetic_to_released_ratio`]).
+    pub rest_ratio: f64,
     /// The time step over the stable limit estimated at the start
     /// (`None` for a law without a stiffness bound).
     pub dt_over_stable_estimate: Option<f64>,
@@ -120,11 +123,9 @@ impl RunOutcome {
             _ => String::new(),
         };
         Some(format!(
-            "not at rest at t = {:.3} s (kinetic / released energy {:.3e}, unbalanced force {:.3e} \
-             of the weight): {dt_hint}otherwise raise max_time or add damping",
-            self.time,
-            self.kinetic_energy / self.released_potential_energy.max(f64::MIN_POSITIVE),
-            self.unbalanced_force_ratio
+            "not at rest at t = {:.3} s (kinetic energy {:.3e} of the rest test's reference, \
+             unbalanced force {:.3e} of the weight): {dt_hint}otherwise raise max_time or add damping",
+            self.time, self.rest_ratio, self.unbalanced_force_ratio
         ))
     }
 }
@@ -582,8 +583,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// twice what gravity, the external forces and the initial motion can
     /// supply (the sign of an unstable step).
     fn energy_blow_up(&self) -> Option<DismechError> {
-        let kinetic = self.kinetic_energy();
-        let released = self.initial_potential - self.potential_energy();
+        self.blow_up_at(
+            self.kinetic_energy(),
+            self.initial_potential - self.potential_energy(),
+        )
+    }
+
+    /// [`Self::energy_blow_up`] for the kinetic energy and the released
+    /// potential energy at hand.
+    fn blow_up_at(&self, kinetic: f64, released: f64) -> Option<DismechError> {
         let available = released.max(0.0) + self.initial_kinetic;
         (kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0)).then_some(
             DismechError::EnergyBlowUp {
@@ -593,6 +601,22 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 initial_overlap: self.initial_overlap,
             },
         )
+    }
+
+    /// The kinetic energy against the potential energy released; with
+    /// none released (no gravity, nothing fell, or bodies rose), against
+    /// the initial kinetic energy; with neither, 0 when nothing moves and
+    /// infinite otherwise.
+    fn rest_ratio(&self, kinetic: f64, released: f64) -> f64 {
+        if released > 0.0 {
+            kinetic / released
+        } else if self.initial_kinetic > 0.0 {
+            kinetic / self.initial_kinetic
+        } else if kinetic == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
     }
 
     fn non_finite(&self, body: usize, quantity: &'static str) -> DismechError {
@@ -609,7 +633,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// Stops with [`DismechError::EnergyBlowUp`] if the kinetic energy
     /// exceeds what gravity and the initial motion can supply (the sign of
     /// an unstable step). `on_check` is called at every check with the
-    /// current time and the ratio of kinetic to released energy (for
+    /// current time and the ratio the rest test reads (kinetic to released
+    /// energy, see [`RestCriterion::kinetic_to_released_ratio`]; for
     /// progress reporting).
     pub fn run_to_rest(
         &mut self,
@@ -630,21 +655,10 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             }
             let kinetic = self.kinetic_energy();
             let released = self.initial_potential - self.potential_energy();
-            if let Some(blow_up) = self.energy_blow_up() {
+            if let Some(blow_up) = self.blow_up_at(kinetic, released) {
                 return Err(blow_up);
             }
-            // Kinetic energy against the energy released; with none
-            // released (no gravity, or nothing fell), against the initial
-            // kinetic energy; with neither, at rest when nothing moves.
-            let ratio = if released > 0.0 {
-                kinetic / released
-            } else if self.initial_kinetic > 0.0 {
-                kinetic / self.initial_kinetic
-            } else if kinetic == 0.0 {
-                0.0
-            } else {
-                f64::INFINITY
-            };
+            let ratio = self.rest_ratio(kinetic, released);
             on_check(self.time, ratio);
             let unbalanced = self.unbalanced_force_ratio();
             if ratio < criterion.kinetic_to_released_ratio
@@ -671,6 +685,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     kinetic_energy: kinetic,
                     released_potential_energy: released,
                     unbalanced_force_ratio: unbalanced,
+                    rest_ratio: ratio,
                     dt_over_stable_estimate: self.stable_estimate.map(|l| self.settings.dt / l),
                 });
             }

@@ -39,8 +39,10 @@
 //!   (at most 8 times).
 //!   A law that is not consistent ([`crate::law::TangentLaw::is_consistent`],
 //!   DDA's conventional friction) has no Newton phase: as in classic DDA
-//!   the step is accepted when the open/closed states no longer change,
-//!   and its tangent has no Hessian terms.
+//!   the step is accepted when the open/closed states no longer change
+//!   (and refused as [`StepFailure::Imprecise`] if the equations then hold
+//!   only above a relative residual of 5e-6, the sign of a penalty too
+//!   stiff for double precision), and its tangent has no Hessian terms.
 //! * **Search distance**: a step whose boundary point moves further than
 //!   the search distance relative to a body it could reach may have missed
 //!   a contact. With [`ImplicitSettings::max_search_distance`] above the

@@ -127,10 +127,25 @@ fn split(target: &Path) -> Result<(PathBuf, String)> {
     Ok((parent, name))
 }
 
+/// Whether the process whose id ends the name `file_name` (after
+/// `prefix`) is still running, so that its folder belongs to a live run
+/// (another `reproduce` writing the same study) and must be left alone.
+/// Known where `/proc` lists the processes (Linux); elsewhere every such
+/// folder counts as left by a killed run.
+fn owned_by_a_live_run(file_name: &str, prefix: &str) -> bool {
+    let Some(pid) = file_name
+        .strip_prefix(prefix)
+        .and_then(|p| p.parse::<u32>().ok())
+    else {
+        return false;
+    };
+    pid != std::process::id() && Path::new("/proc").join(pid.to_string()).exists()
+}
+
 /// Clean what killed runs left beside `target`: staging folders are
 /// removed; a previous target moved aside is put back if the target is
 /// missing (killed between the two renames of a commit), removed
-/// otherwise.
+/// otherwise. Folders of runs still going are left alone.
 fn recover(parent: &Path, name: &str, target: &Path) -> Result<()> {
     let entries = std::fs::read_dir(parent).map_err(|e| output_error(parent, e))?;
     let (partial, old) = (format!(".{name}.partial-"), format!(".{name}.old-"));
@@ -141,6 +156,9 @@ fn recover(parent: &Path, name: &str, target: &Path) -> Result<()> {
             continue;
         };
         let path = entry.path();
+        if owned_by_a_live_run(file_name, &partial) || owned_by_a_live_run(file_name, &old) {
+            continue;
+        }
         if file_name.starts_with(&partial) {
             std::fs::remove_dir_all(&path).map_err(|e| output_error(&path, e))?;
         } else if file_name.starts_with(&old) {
@@ -216,12 +234,13 @@ mod tests {
     fn leftovers_of_a_killed_run_are_cleaned_or_restored() {
         let out = scratch("recover");
         let target = out.join("study");
-        // Killed while writing: a staging folder with a half-written file.
-        std::fs::create_dir_all(out.join(".study.partial-1")).unwrap();
-        std::fs::write(out.join(".study.partial-1/.a.csv.tmp1"), "half").unwrap();
+        // Killed while writing (no process has this id): a staging folder
+        // with a half-written file.
+        std::fs::create_dir_all(out.join(".study.partial-4294967294")).unwrap();
+        std::fs::write(out.join(".study.partial-4294967294/.a.csv.tmp1"), "half").unwrap();
         // Killed between the two renames of a commit: the target is aside.
-        std::fs::create_dir_all(out.join(".study.old-1")).unwrap();
-        std::fs::write(out.join(".study.old-1/a.csv"), "old").unwrap();
+        std::fs::create_dir_all(out.join(".study.old-4294967294")).unwrap();
+        std::fs::write(out.join(".study.old-4294967294/a.csv"), "old").unwrap();
         let folder = StagedFolder::new(&target).unwrap();
         assert_eq!(
             std::fs::read_to_string(target.join("a.csv")).unwrap(),
@@ -229,6 +248,20 @@ mod tests {
         );
         drop(folder);
         assert_eq!(names(&out), ["study"]);
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// The staging folder of a run still going (process 1 always is) is
+    /// not touched by another run of the same study.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_live_run_s_staging_folder_is_left_alone() {
+        let out = scratch("live");
+        let target = out.join("study");
+        std::fs::create_dir_all(out.join(".study.partial-1")).unwrap();
+        let folder = StagedFolder::new(&target).unwrap();
+        folder.commit().unwrap();
+        assert_eq!(names(&out), [".study.partial-1", "study"]);
         std::fs::remove_dir_all(&out).unwrap();
     }
 

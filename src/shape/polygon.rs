@@ -65,12 +65,29 @@ fn moments(vertices: &[Point]) -> [f64; 6] {
     m
 }
 
+/// Whether segments `pq` and `rs` cross strictly: each one's ends lie on
+/// opposite sides of the other's line by more than rounding (touching or
+/// collinear segments do not cross).
+fn segments_cross(p: &Point, q: &Point, r: &Point, s: &Point) -> bool {
+    let side = |a: &Point, b: &Point, c: &Point| {
+        let (e, f) = (b - a, c - a);
+        let d = cross(&e, &f);
+        if d.abs() <= 1e-12 * e.norm() * f.norm() {
+            0.0
+        } else {
+            d.signum()
+        }
+    };
+    side(p, q, r) * side(p, q, s) < 0.0 && side(r, s, p) * side(r, s, q) < 0.0
+}
+
 /// How deeply two polygons given by their world vertices (counter-clockwise)
-/// overlap when some edge of one crosses an edge of the other: the
+/// overlap when an edge of one crosses an edge of the other strictly: the
 /// smallest overlap of their projections on the edge normals of both (the
 /// penetration depth for convex polygons; for concave ones that of their
-/// convex hulls). `None` when no two edges meet — the polygons are apart,
-/// or one holds a vertex of the other, which the contact manifold finds.
+/// convex hulls). `None` when no two edges cross — the polygons are apart,
+/// touch along edges or at corners, or one holds a vertex of the other,
+/// which the contact manifold finds.
 ///
 /// Two rectangles crossed as a plus sign hold no vertex of each other, so
 /// only this test sees their overlap.
@@ -79,8 +96,8 @@ pub fn crossing_depth(a: &[Point], b: &[Point]) -> Option<f64> {
         let n = v.len();
         (0..n).map(move |k| (v[k], v[(k + 1) % n]))
     }
-    let meet = edges(a).any(|(p, q)| edges(b).any(|(r, s)| segments_meet(&p, &q, &r, &s)));
-    if !meet {
+    let cross_any = edges(a).any(|(p, q)| edges(b).any(|(r, s)| segments_cross(&p, &q, &r, &s)));
+    if !cross_any {
         return None;
     }
     let span = |v: &[Point], m: &Vec2| {
@@ -108,8 +125,9 @@ impl Polygon {
     /// A polygon from world vertices listed counter-clockwise; returns the
     /// polygon (in its centroid frame) and the centroid. Refuses fewer than
     /// three vertices, non-finite coordinates, a zero or negative
-    /// (clockwise) area and self-intersection; `block` names the block in
-    /// the error.
+    /// (clockwise) area (judged against the polygon's own size), moments
+    /// of area that overflow, and self-intersection; `block` names the
+    /// block in the error.
     pub fn from_world(vertices: &[Point], block: usize) -> Result<(Self, Point)> {
         let bad = |reason: &'static str| DismechError::InvalidPolygon { block, reason };
         if vertices.len() < 3 {
@@ -138,19 +156,20 @@ impl Polygon {
                 }
             }
         }
-        // Orientation and area measured from the first vertex, against the
-        // polygon's own size, so that neither its size nor its distance from
-        // the origin decides.
+        // Area and moments measured from the first vertex (not the world
+        // origin, against which a small block far away loses its area to
+        // cancellation), orientation against the polygon's own size.
         let origin = vertices[0];
         let relative: Vec<Point> = vertices.iter().map(|v| Point::from(v - origin)).collect();
-        let area = moments(&relative)[0];
+        let m = moments(&relative);
+        let area = m[0];
         let scale = relative
             .iter()
             .map(|v| v.coords.norm_squared())
             .fold(0.0, f64::max);
-        if !(area.is_finite() && scale.is_finite()) {
+        if !(m.iter().all(|x| x.is_finite()) && scale.is_finite()) {
             return Err(bad(
-                "its area overflows (coordinates too large; choose a smaller unit of length)",
+                "its moments of area overflow (coordinates too large; choose a smaller unit of length)",
             ));
         }
         if area <= 1e-14 * scale {
@@ -160,13 +179,7 @@ impl Polygon {
                 "its area is zero"
             }));
         }
-        let m = moments(vertices);
-        if !m.iter().all(|x| x.is_finite()) {
-            return Err(bad(
-                "its moments of area overflow (coordinates too large; choose a smaller unit of length)",
-            ));
-        }
-        let centroid = Point::new(m[1] / m[0], m[2] / m[0]);
+        let centroid = origin + Vec2::new(m[1] / area, m[2] / area);
         let local: Vec<Point> = vertices.iter().map(|v| Point::from(v - centroid)).collect();
         let c = moments(&local);
         let normals = (0..n)
@@ -188,7 +201,7 @@ impl Polygon {
                 normals,
                 reflex,
                 radius,
-                area: m[0],
+                area,
                 second_moments: [c[3], c[4], c[5]],
             },
             centroid,

@@ -32,7 +32,7 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
              iterations a step: a step whose iteration fails is halved, and doubled again after a \
              success. While the columns collapse (ellipses turn at up to {:.0} rad/s, the largest at \
              the end of a step) impacts, contacts opening and closing and slip reversing make the \
-             iterations fail and steps are halved; the last halving was at {:.2} s, and the {} steps \
+             iterations fail and steps are halved; the last step not taken whole ended at {:.2} s, and the {} steps \
              from there to the end at {:.2} s were taken whole at the requested size. The mean \
              accepted sub-step over the whole run is reported beside the requested step.",
             setup.count,
@@ -102,14 +102,14 @@ pub(super) fn implicit_ellipses(c: &mut Collector) -> Result<()> {
         ),
         (
             "implicit_ellipses.last_halving_time",
-            "time at the end of the last step that was halved",
+            "time at the end of the last step not taken whole (halved, or in sub-steps after a halving)",
             "s",
             "every later step was taken whole",
             settled.last_halved_at,
         ),
         (
             "implicit_ellipses.final_whole_steps",
-            "steps from the last halving to rest, each of the requested size",
+            "steps from the last one not taken whole to rest, each one sub-step of the requested size",
             "-",
             "the packing settles at the requested step",
             settled.final_whole_steps() as f64,
