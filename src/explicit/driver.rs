@@ -302,11 +302,16 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         Ok(sim)
     }
 
-    fn check_initial_overlaps(&mut self) -> Result<f64> {
+    /// The particles' bounding boxes, into `boxes`.
+    fn fill_boxes(&mut self) {
         self.boxes.clear();
         for p in &self.scene.particles {
             self.boxes.push(p.shape.as_shape().aabb(&p.pose));
         }
+    }
+
+    fn check_initial_overlaps(&mut self) -> Result<f64> {
+        self.fill_boxes();
         check_initial_overlaps(
             &self.scene,
             &mut self.grid,
@@ -390,10 +395,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     fn update_pairs(&mut self) {
-        self.boxes.clear();
-        for p in &self.scene.particles {
-            self.boxes.push(p.shape.as_shape().aabb(&p.pose));
-        }
+        self.fill_boxes();
         self.grid.candidate_pairs(&self.boxes, 0.0, &mut self.pairs);
     }
 

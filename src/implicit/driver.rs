@@ -615,6 +615,8 @@ where
             self.settings.search_distance,
             self.settings.largest_search_distance(),
         );
+        // The search distance that covers a step's motion, within bounds.
+        let search_after = |motion: f64| (SEARCH_MARGIN * motion).clamp(least, most);
         while end - self.time > 1e-12 * dt {
             let h = self.current_dt.min(end - self.time);
             let outcome = loop {
@@ -634,7 +636,7 @@ where
                     // Detect again at a search distance that covers the
                     // motion, and repeat the step at the same size.
                     Err(StepFailure::TooFast { motion, .. }) if self.search < most => {
-                        self.search = (SEARCH_MARGIN * motion).clamp(least, most);
+                        self.search = search_after(motion);
                         report.redetections += 1;
                     }
                     _ => break outcome,
@@ -642,7 +644,7 @@ where
             };
             match outcome {
                 Ok((trial, motion)) => {
-                    self.search = (SEARCH_MARGIN * motion).clamp(least, most);
+                    self.search = search_after(motion);
                     report.substeps += 1;
                     report.smallest_dt = report.smallest_dt.min(h);
                     report.residuals = trial.residuals;
