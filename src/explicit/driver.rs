@@ -100,25 +100,42 @@ pub struct RunOutcome {
     /// The kinetic energy over the energy the rest test compares it with
     /// (see [`RestCriterion::kinetic_to_released_ratio`]).
     pub rest_ratio: f64,
-    /// The time step over the stable limit estimated at the start
-    /// (`None` for a law without a stiffness bound).
+    /// The time step over the stable limit estimated at the start for one
+    /// contact per particle (`None` for a law without a stiffness bound).
     pub dt_over_stable_estimate: Option<f64>,
+    /// The most contact points any particle has at the end.
+    pub most_contacts: usize,
 }
 
 impl RunOutcome {
-    /// What to change when a run did not come to rest: a time step near
-    /// the estimated limit is named first (the estimate is for one contact
-    /// per particle; a particle packed among `z` contacts is stable only
-    /// below about `1/√z` of it, and just above that a run neither blows up
-    /// nor settles). `None` when the run came to rest.
+    /// The time step over the stable limit of the particle with the most
+    /// contacts at the end: the single-contact estimate over `√z`. With
+    /// `z` springs of the law's stiffness to identical neighbours, the
+    /// largest eigenvalue of `M⁻¹K` for that particle is at most `z` times
+    /// the single contact's (Gershgorin), so its stable step is at least
+    /// the single-contact one over `√z`; above it the run may neither blow
+    /// up nor settle.
+    pub fn dt_over_packed_estimate(&self) -> Option<f64> {
+        self.dt_over_stable_estimate
+            .map(|ratio| ratio * (self.most_contacts.max(1) as f64).sqrt())
+    }
+
+    /// What to change when a run did not come to rest, the time step first
+    /// when it is above the packed estimate
+    /// ([`Self::dt_over_packed_estimate`]). `None` when the run came to
+    /// rest.
     pub fn not_at_rest_hint(&self) -> Option<String> {
         if self.status == RunStatus::AtRest {
             return None;
         }
-        let dt_hint = match self.dt_over_stable_estimate {
-            Some(ratio) if ratio > 0.3 => format!(
-                "the time step is {ratio:.2} of the single-contact stable estimate, and packed \
-                 particles with several contacts need less: try at most 0.3 of it; "
+        let dt_hint = match (self.dt_over_stable_estimate, self.dt_over_packed_estimate()) {
+            (Some(single), Some(packed)) if packed > 1.0 => format!(
+                "the time step is {single:.2} of the single-contact stable estimate, but a \
+                 particle with {} contacts is stable only below 1/√{} of it (the time step is \
+                 {packed:.2} of that): reduce dt below {:.3} of the estimate; ",
+                self.most_contacts,
+                self.most_contacts,
+                1.0 / (self.most_contacts.max(1) as f64).sqrt()
             ),
             _ => String::new(),
         };
@@ -300,6 +317,18 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         sim.initial_potential = sim.potential_energy();
         sim.initial_kinetic = sim.kinetic_energy();
         Ok(sim)
+    }
+
+    /// The most contact points of any particle in the last step.
+    fn most_contacts(&self) -> usize {
+        let mut count = vec![0usize; self.scene.particles.len()];
+        for c in &self.contacts {
+            count[c.particle] += 1;
+            if let ContactTarget::Particle(j) = c.target {
+                count[j] += 1;
+            }
+        }
+        count.into_iter().max().unwrap_or(0)
     }
 
     /// The particles' bounding boxes, into `boxes`.
@@ -689,6 +718,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     unbalanced_force_ratio: unbalanced,
                     rest_ratio: ratio,
                     dt_over_stable_estimate: self.stable_estimate.map(|l| self.settings.dt / l),
+                    most_contacts: self.most_contacts(),
                 });
             }
         }
