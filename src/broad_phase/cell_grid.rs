@@ -98,9 +98,7 @@ impl CellGrid {
         self.cell_start.clear();
         self.cell_start.resize(cells + 1, 0);
         for b in boxes {
-            let cx = 0.5 * (b.min.x + b.max.x);
-            let cy = 0.5 * (b.min.y + b.max.y);
-            let cell = self.cell_of(cx, cy);
+            let cell = self.cell_of(b);
             self.body_cell.push(cell);
             self.cell_start[cell + 1] += 1;
         }
@@ -198,12 +196,12 @@ impl CellGrid {
         Ok(())
     }
 
-    fn cell_of(&self, x: f64, y: f64) -> usize {
-        let col = (((x - self.origin.0) / self.cell_size).floor().max(0.0) as usize)
-            .min(self.columns - 1);
-        let row =
-            (((y - self.origin.1) / self.cell_size).floor().max(0.0) as usize).min(self.rows - 1);
-        row * self.columns + col
+    /// The dense grid's cell of a box's centre (the key clamped to the
+    /// grid).
+    fn cell_of(&self, b: &Aabb2) -> usize {
+        let (row, col) = self.cell_key(b);
+        let clamp = |k: i64, count: usize| k.clamp(0, count as i64 - 1) as usize;
+        clamp(row, self.rows) * self.columns + clamp(col, self.columns)
     }
 }
 
