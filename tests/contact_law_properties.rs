@@ -193,16 +193,85 @@ fn law_rejects_bad_parameters_naming_them() {
         SpringDashpotCoulomb::new(NormalStiffness::Constant(1e6), 0.0, 0.5, Damping::None),
         SpringDashpotCoulomb::new(NormalStiffness::Constant(-1.0), 0.25, 0.5, Damping::None),
         SpringDashpotCoulomb::katsuki(73.55e6, 0.5, 0.25, 0.5),
+        SpringDashpotCoulomb::new(
+            NormalStiffness::Constant(1e6),
+            0.25,
+            0.5,
+            Damping::PerMass {
+                normal: -1.0,
+                shear: 0.0,
+            },
+        ),
+        SpringDashpotCoulomb::new(
+            NormalStiffness::Constant(1e6),
+            0.25,
+            0.5,
+            Damping::PerMass {
+                normal: 1.0,
+                shear: f64::NAN,
+            },
+        ),
     ];
     let names = [
         "friction coefficient mu",
         "stiffness ratio s",
         "normal stiffness k_n",
         "Poisson's ratio",
+        "normal damping gamma_n",
+        "shear damping gamma_s",
     ];
     for (result, name) in bad.into_iter().zip(names) {
         let message = result.unwrap_err().to_string();
         assert!(message.contains(name), "{message} does not name {name}");
+    }
+}
+
+/// LAMMPS' `gran/hooke` dashpots: `f_n = k_n δ + m_eff γ_n v_n` and, in
+/// stick, `f_s = k_s Δs + m_eff γ_s v_s`, with `m_eff = m_a m_b/(m_a + m_b)`
+/// between particles and `m_a` against a wall; written out by hand.
+#[test]
+fn per_mass_dashpots_give_the_effective_mass_times_gamma() {
+    let (k_n, ratio, gamma_n, gamma_s, dt) = (1.6e7, 2.0 / 7.0, 2000.0, 1000.0, 1e-4);
+    let law = SpringDashpotCoulomb::new(
+        NormalStiffness::Constant(k_n),
+        ratio,
+        0.577,
+        Damping::PerMass {
+            normal: gamma_n,
+            shear: gamma_s,
+        },
+    )
+    .unwrap();
+    let (previous_overlap, du_n, du_s) = (2e-5, 1e-6, 2e-7);
+    for (mass_b, m_eff) in [(25.0, 40.0 * 25.0 / 65.0), (f64::INFINITY, 40.0)] {
+        let input = ContactInput {
+            overlap: previous_overlap + du_n,
+            increment: Vector2::new(du_n, du_s),
+            dt,
+            is_new: false,
+            pair: PairProperties {
+                mass_b,
+                ..pair(0.01)
+            },
+        };
+        let r = law.evaluate(&input, &state(k_n * previous_overlap, 0.0));
+        assert_eq!(r.regime, Regime::Stick);
+        let normal = k_n * (previous_overlap + du_n) + m_eff * gamma_n * du_n / dt;
+        let shear = ratio * k_n * du_s + m_eff * gamma_s * du_s / dt;
+        approx::assert_relative_eq!(r.force[0], normal, max_relative = 1e-12);
+        approx::assert_relative_eq!(r.force[1], shear, max_relative = 1e-12);
+        // Opening fast: the dashpot would pull, the law clamps at zero.
+        let opening = ContactInput {
+            overlap: previous_overlap - 1e-5,
+            increment: Vector2::new(-1e-5, 0.0),
+            ..input
+        };
+        assert!(k_n * (previous_overlap - 1e-5) - m_eff * gamma_n * 1e-5 / dt < 0.0);
+        assert_eq!(
+            law.evaluate(&opening, &state(k_n * previous_overlap, 0.0))
+                .force[0],
+            0.0
+        );
     }
 }
 

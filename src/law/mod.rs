@@ -37,7 +37,7 @@ pub use mohr_coulomb::MohrCoulombSpring;
 pub use penalty_coulomb::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 pub use rigid_plastic::RigidPlastic;
 pub use spring_dashpot::{
-    Damping, NormalStiffness, SpringDashpotCoulomb, SpringState, SpringVector,
+    effective_mass, Damping, NormalStiffness, SpringDashpotCoulomb, SpringState, SpringVector,
 };
 pub use traits::{
     BoundedStiffness, ContactInput, ContactLaw, ContactResponse, PairProperties, Regime,

@@ -16,6 +16,14 @@
 //!   of curvature r1, r2 at the contact and the contact width B;
 //!   `k_s = s k_n`, `η_n = 2 √(m k_n)`, `η_s = η_n √s`.
 //!
+//! Besides the paper's critical dashpots, [`Damping::PerMass`] gives the
+//! dashpots of LAMMPS' `gran/hooke/history` (`η = m_eff γ`, with the
+//! effective mass `m_eff = m_a m_b / (m_a + m_b)`), so that a DEM run can
+//! be set up as the common codes set theirs up. The rest of the law is
+//! unchanged: the dashpots act in the normal direction and, while the
+//! contact sticks, in shear (LAMMPS keeps the shear dashpot in slip, inside
+//! the capped force; here slip drops it, as eq. 18 says).
+//!
 //! Choices where the paper is silent, stated here and in the reproduction
 //! report:
 //! * `m` in `η_n` is the smaller of the two masses (the particle's own mass
@@ -56,12 +64,29 @@ pub enum NormalStiffness {
 }
 
 /// Dashpots of the law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Damping {
     /// No dashpots (elastic contact).
     None,
     /// `η_n = 2 √(m k_n)`, `η_s = η_n √s` (paper 000 eq. 19).
     Critical,
+    /// Dashpots proportional to the effective mass of the pair,
+    /// `η_n = m_eff γ_n`, `η_s = m_eff γ_s`, with
+    /// `m_eff = m_a m_b / (m_a + m_b)` (the particle's own mass for a
+    /// wall): LAMMPS' `gran/hooke` damping, whose `γ` are in 1/s.
+    PerMass {
+        /// `γ_n` (1/s).
+        normal: f64,
+        /// `γ_s` (1/s); LAMMPS' default is `γ_n / 2`.
+        shear: f64,
+    },
+}
+
+/// The effective mass `m_a m_b / (m_a + m_b)` of a pair, written as
+/// `1 / (1/m_a + 1/m_b)` so that a wall's infinite mass leaves the
+/// particle's own.
+pub fn effective_mass(mass_a: f64, mass_b: f64) -> f64 {
+    1.0 / (1.0 / mass_a + 1.0 / mass_b)
 }
 
 /// The spring–dashpot–Coulomb law of paper 000.
@@ -128,6 +153,10 @@ impl SpringDashpotCoulomb {
         }
         require_positive("stiffness ratio s", stiffness_ratio)?;
         require_non_negative("friction coefficient mu", friction)?;
+        if let Damping::PerMass { normal, shear } = damping {
+            require_non_negative("normal damping gamma_n (1/s)", normal)?;
+            require_non_negative("shear damping gamma_s (1/s)", shear)?;
+        }
         Ok(Self {
             normal,
             stiffness_ratio,
@@ -184,6 +213,10 @@ impl SpringDashpotCoulomb {
                 let m = pair.mass_a.min(pair.mass_b);
                 let eta_n = 2.0 * (m * k_n).sqrt();
                 (eta_n, eta_n * self.stiffness_ratio.sqrt())
+            }
+            Damping::PerMass { normal, shear } => {
+                let m = effective_mass(pair.mass_a, pair.mass_b);
+                (m * normal, m * shear)
             }
         }
     }

@@ -1,0 +1,176 @@
+//! DEM throughput on the setup of the LAMMPS anchor
+//! (`../shared/anchors/lammps/in.disks2d`), printed as particle-steps per
+//! second of the timed steps.
+//!
+//! `NX × NY` disks on a square lattice of pitch 0.14 m (centres at
+//! `((i + ½) 0.14, (j + ½) 0.14)`), diameters uniform in [0.12, 0.138] m,
+//! density 2690 kg/m³ with LAMMPS' masses in 2D (a sphere's mass
+//! `ρ 4/3 π r³` and moment of inertia `0.4 m r²`: LAMMPS' `set density`
+//! makes 2D particles spheres), horizontal velocities uniform in ±0.1 m/s,
+//! walls at x = 0 and x = NX·0.14 m and a floor at y = 0, gravity 9.81 m/s².
+//! Contacts: linear spring `k_n = 1.6e7 N/m`, `k_s = 2/7 k_n`, dashpots
+//! `m_eff γ` with `γ_n = 2000 /s`, `γ_s = γ_n / 2`, Coulomb `μ = 0.577`;
+//! `Δt = 1e-4 s`. The run settles for SETTLE steps, then STEPS steps are
+//! timed.
+//!
+//! `--shape ellipse` replaces each disk by an ellipse of the same area
+//! (`a/b = 1.5`, `a b = r²`) and the same mass, inertia `m (a² + b²)/5`,
+//! all with the major axis at 45° (parallel ellipses at that angle clear
+//! the lattice's neighbours; the random orientations would not). An
+//! ellipse at 45° reaches 0.072 m from its centre in x and y, beyond the
+//! lattice's 0.07 m from the walls, so the ellipses' box is 2 cm wider and
+//! the lattice moved 1 cm right and up.
+//!
+//! ```text
+//! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --settle 20000 --steps 10000
+//! cargo run --release --example dem_throughput -- --nx 200 --ny 200 --threads 2
+//! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --shape ellipse
+//! ```
+//!
+//! The random numbers are not LAMMPS' (a different generator), so the
+//! packing is of the same kind, not the same disks.
+
+use std::time::Instant;
+
+use clap::{Parser, ValueEnum};
+use dismech::dem::{DemSettings, DemSimulation};
+use dismech::error::DismechError;
+use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
+use dismech::math::{Point, Pose2, Vec2};
+use dismech::scene::{Frame, Particle, Scene};
+use dismech::shape::{AnyShape2, Circle, Ellipse, MassProperties};
+use rand::{RngExt, SeedableRng};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum ShapeChoice {
+    Disk,
+    Ellipse,
+}
+
+/// DEM particle-steps per second on the LAMMPS anchor's setup.
+#[derive(Debug, Parser)]
+struct Args {
+    /// Columns of the lattice.
+    #[arg(long, default_value_t = 100)]
+    nx: usize,
+    /// Rows of the lattice.
+    #[arg(long, default_value_t = 100)]
+    ny: usize,
+    /// Steps to settle before timing.
+    #[arg(long, default_value_t = 20_000)]
+    settle: u64,
+    /// Steps timed.
+    #[arg(long, default_value_t = 10_000)]
+    steps: u64,
+    /// Particle shape.
+    #[arg(long, value_enum, default_value_t = ShapeChoice::Disk)]
+    shape: ShapeChoice,
+    /// Threads of the force loop (rayon's pool).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Seed of the diameters and velocities.
+    #[arg(long, default_value_t = 4321)]
+    seed: u64,
+}
+
+const PITCH: f64 = 0.14;
+const DENSITY: f64 = 2690.0;
+const K_N: f64 = 1.6e7;
+const GAMMA_N: f64 = 2000.0;
+
+fn scene(args: &Args) -> Result<Scene, DismechError> {
+    let margin = match args.shape {
+        ShapeChoice::Disk => 0.0,
+        ShapeChoice::Ellipse => 0.01,
+    };
+    let width = args.nx as f64 * PITCH + 2.0 * margin;
+    let height = args.ny as f64 * PITCH * 1.5;
+    let mut scene = Scene::new(Frame::open_box(width, height)?, Vec2::new(0.0, -9.81))?;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(args.seed);
+    for j in 0..args.ny {
+        for i in 0..args.nx {
+            let r = 0.5 * (0.12 + 0.018 * rng.random::<f64>());
+            let vx = 0.2 * (rng.random::<f64>() - 0.5);
+            let mass = DENSITY * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+            let (shape, inertia): (AnyShape2, f64) = match args.shape {
+                ShapeChoice::Disk => (Circle::new(r)?.into(), 0.4 * mass * r * r),
+                ShapeChoice::Ellipse => {
+                    let b = r / 1.5f64.sqrt();
+                    let a = 1.5 * b;
+                    (Ellipse::new(a, b)?.into(), mass * (a * a + b * b) / 5.0)
+                }
+            };
+            let centre = Point::new(
+                margin + (i as f64 + 0.5) * PITCH,
+                margin + (j as f64 + 0.5) * PITCH,
+            );
+            let mut p = Particle::at_rest(shape, centre, MassProperties { mass, inertia });
+            if args.shape == ShapeChoice::Ellipse {
+                p.pose = Pose2::new(centre.x, centre.y, std::f64::consts::FRAC_PI_4);
+            }
+            p.velocity = Vec2::new(vx, 0.0);
+            scene.particles.push(p);
+        }
+    }
+    Ok(scene)
+}
+
+/// Peak resident memory of the process (bytes), from /proc.
+fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = Args::parse();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build_global()?;
+    let law = SpringDashpotCoulomb::new(
+        NormalStiffness::Constant(K_N),
+        2.0 / 7.0,
+        0.577,
+        Damping::PerMass {
+            normal: GAMMA_N,
+            shear: GAMMA_N / 2.0,
+        },
+    )?;
+    let settings = DemSettings {
+        dt: 1e-4,
+        ..DemSettings::default()
+    };
+    let scene = scene(&args)?;
+    let n = scene.particles.len();
+    let rss_before = peak_resident_bytes();
+    let mut sim = DemSimulation::new(scene, law, dismech::integrate::ExplicitEuler, settings)?;
+    let started = Instant::now();
+    for _ in 0..args.settle {
+        sim.step()?;
+    }
+    let settle_seconds = started.elapsed().as_secs_f64();
+    let timed = Instant::now();
+    for _ in 0..args.steps {
+        sim.step()?;
+    }
+    let seconds = timed.elapsed().as_secs_f64();
+    let rate = (n as f64) * (args.steps as f64) / seconds;
+    let rss = match (rss_before, peak_resident_bytes()) {
+        (Some(before), Some(after)) => format!(
+            "{:.0} B/particle",
+            after.saturating_sub(before) as f64 / n as f64
+        ),
+        _ => "unknown".into(),
+    };
+    println!(
+        "{:?} n={n} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
+         {rate:.4e} particle-steps/s; peak memory of the run {rss}; kinetic energy {:.4e} J",
+        args.shape,
+        args.threads,
+        args.settle,
+        args.steps,
+        sim.kinetic_energy()
+    );
+    Ok(())
+}
