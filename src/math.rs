@@ -54,11 +54,13 @@ pub fn rotate(v: &Vec2, angle: f64) -> Vec2 {
 }
 
 /// The left perpendicular of `v`: `v` turned by +90°.
+#[inline]
 pub fn perp(v: &Vec2) -> Vec2 {
     Vec2::new(-v.y, v.x)
 }
 
 /// The scalar 2D cross product `a × b = a.x b.y − a.y b.x`.
+#[inline]
 pub fn cross(a: &Vec2, b: &Vec2) -> f64 {
     a.x * b.y - a.y * b.x
 }

@@ -1,19 +1,29 @@
 //! The explicit loop: contact forces, accelerations, the integrator.
 
-use rustc_hash::FxHashMap;
+use std::sync::OnceLock;
+
+use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
+use super::neighbours::NeighbourList;
+use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
-use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties, Regime};
+use crate::law::{BoundedStiffness, ContactLaw, Regime};
 use crate::linsolve::{solve_lumped_into, LumpedSystem};
-use crate::math::{Aabb2, Point, Pose2, Vec2};
-use crate::query::manifold::dispatch::contact_manifold_2d;
-use crate::query::{moment_about, relative_increment, ContactFeatures, ContactGeometry};
-use crate::scene::Scene;
-use crate::shape::AnyShape2;
+use crate::math::{Aabb2, Point, Vec2};
+use crate::query::{ContactFeatures, ContactGeometry};
+use crate::scene::{Particle, Scene};
+
+/// From this many particles on, the contact and update loops run on
+/// rayon's threads (when it has more than one); below it the fork costs
+/// more than it saves. The results do not depend on it.
+const PARALLEL_MIN_PARTICLES: usize = 2000;
+
+/// The smallest share of a parallel loop one thread takes.
+const PARALLEL_MIN_CHUNK: usize = 256;
 
 /// Settings of a DEM run; validated by [`ExplicitDynamics::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,6 +35,13 @@ pub struct DemSettings {
     pub initial_overlap_tolerance: f64,
     /// Refuse a time step above the estimated stable limit (on by default).
     pub check_stability: bool,
+    /// Skin of the neighbour list (m): pairs whose bounding boxes are
+    /// closer than this are listed, and the list is built again once a
+    /// particle's boundary has moved half of it. It changes the speed,
+    /// not the forces (the list holds every touching pair). `None` (the
+    /// default) takes 0.15 of the smallest particle's bounding radius;
+    /// 0 builds the list at every step that moves a particle.
+    pub neighbour_skin: Option<f64>,
 }
 
 impl Default for DemSettings {
@@ -33,6 +50,24 @@ impl Default for DemSettings {
             dt: 1e-4,
             initial_overlap_tolerance: 1e-6,
             check_stability: true,
+            neighbour_skin: None,
+        }
+    }
+}
+
+impl DemSettings {
+    /// The skin for `scene`: the setting, or 0.15 of the smallest bounding
+    /// radius (0 for a scene without particles).
+    fn skin_for(&self, scene: &Scene) -> Result<f64> {
+        match self.neighbour_skin {
+            Some(skin) => require_non_negative("neighbour_skin", skin),
+            None => Ok(0.15
+                * scene
+                    .particles
+                    .iter()
+                    .map(|p| p.shape.as_shape().bounding_radius())
+                    .fold(f64::INFINITY, f64::min)
+                    .min(f64::MAX)),
         }
     }
 }
@@ -176,10 +211,6 @@ pub struct ContactRecord {
     pub features: ContactFeatures,
 }
 
-/// What the contact history is kept by: the particle, what it touches and
-/// the features of the contact point.
-type HistoryKey = (usize, ContactTarget, ContactFeatures);
-
 /// An explicit DEM simulation: a scene, a contact law and an integrator,
 /// plus the workspaces of the loop.
 #[derive(Debug)]
@@ -197,19 +228,17 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     /// The stable time step estimated at the start, when the law bounds
     /// its stiffness.
     stable_estimate: Option<f64>,
-    /// Law state and overlap of each contact point at the previous step.
-    /// (Keyed by small integers: a fast non-cryptographic hash.)
-    history: FxHashMap<HistoryKey, (L::State, f64)>,
-    next_history: FxHashMap<HistoryKey, (L::State, f64)>,
+    /// The listed pairs with their contact points' history and last
+    /// results.
+    neighbours: NeighbourList<L::State>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
     increments: Vec<(Vec2, f64)>,
     grid: CellGrid,
     boxes: Vec<Aabb2>,
-    pairs: Vec<(usize, usize)>,
     system: LumpedSystem,
-    acceleration: Vec<f64>,
-    contacts: Vec<ContactRecord>,
+    /// The last step's contacts as records, made when first asked for.
+    records: OnceLock<Vec<ContactRecord>>,
     /// The box of the walls grown by its own size on every side but the
     /// top (particles may be dropped from high above an open box): a
     /// particle whose centre leaves it has left the frame.
@@ -283,6 +312,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             settings.initial_overlap_tolerance,
         )?;
         let n = scene.particles.len();
+        let skin = settings.skin_for(&scene)?;
         let mut mass = Vec::with_capacity(3 * n);
         for p in &scene.particles {
             mass.extend_from_slice(&[p.mass, p.mass, p.inertia]);
@@ -297,22 +327,21 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             initial_kinetic: 0.0,
             initial_overlap: 0.0,
             stable_estimate: None,
-            history: FxHashMap::default(),
-            next_history: FxHashMap::default(),
+            neighbours: NeighbourList::new(skin, &scene.particles),
             manifold: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             grid: CellGrid::new(),
             boxes: Vec::with_capacity(n),
-            pairs: Vec::new(),
             system: LumpedSystem {
                 force: vec![0.0; 3 * n],
                 mass,
             },
-            acceleration: vec![0.0; 3 * n],
-            contacts: Vec::new(),
+            records: OnceLock::new(),
             frame_reach: frame_reach(&scene),
             scene,
         };
+        // The masses, checked once (the loop divides by them).
+        solve_lumped_into(&sim.system, &mut Vec::new())?;
         sim.initial_overlap = sim.check_initial_overlaps()?;
         sim.initial_potential = sim.potential_energy();
         sim.initial_kinetic = sim.kinetic_energy();
@@ -322,10 +351,10 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// The most contact points of any particle in the last step.
     fn most_contacts(&self) -> usize {
         let mut count = vec![0usize; self.scene.particles.len()];
-        for c in &self.contacts {
-            count[c.particle] += 1;
-            if let ContactTarget::Particle(j) = c.target {
-                count[j] += 1;
+        for slot in &self.neighbours.slots {
+            count[slot.a] += slot.points.len();
+            if let ContactTarget::Particle(j) = slot.target {
+                count[j] += slot.points.len();
             }
         }
         count.into_iter().max().unwrap_or(0)
@@ -370,9 +399,33 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         self.step
     }
 
-    /// The contacts of the last step.
+    /// The contacts of the last step: particle pairs by (A, B), then walls
+    /// by (particle, wall), each pair's points in the manifold's order.
+    /// Made from the neighbour list when first asked for after a step (a
+    /// run that never asks makes none).
     pub fn contacts(&self) -> &[ContactRecord] {
-        &self.contacts
+        self.records.get_or_init(|| {
+            self.neighbours
+                .slots
+                .iter()
+                .flat_map(|slot| {
+                    slot.points.iter().map(move |p| ContactRecord {
+                        particle: slot.a,
+                        target: slot.target,
+                        point: p.point,
+                        force_on_target: p.force_on_b,
+                        normal: p.normal,
+                        regime: p.regime,
+                        features: p.features,
+                    })
+                })
+                .collect()
+        })
+    }
+
+    /// How many times the neighbour list has been built.
+    pub fn neighbour_list_builds(&self) -> u64 {
+        self.neighbours.builds()
     }
 
     /// Total kinetic energy (J/m).
@@ -398,10 +451,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// Sum of the forces the particles exert on wall `wall` in the last step
     /// (N/m); the wall's reaction on the particles is its negative.
     pub fn wall_load(&self, wall: usize) -> Vec2 {
-        self.contacts
+        self.neighbours
+            .slots
             .iter()
-            .filter(|c| c.target == ContactTarget::Wall(wall))
-            .map(|c| c.force_on_target)
+            .filter(|slot| slot.target == ContactTarget::Wall(wall))
+            .flat_map(|slot| slot.points.iter().map(|p| p.force_on_b))
             .sum()
     }
 
@@ -423,187 +477,154 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         }
     }
 
-    fn update_pairs(&mut self) {
-        self.fill_boxes();
-        self.grid.candidate_pairs(&self.boxes, 0.0, &mut self.pairs);
-    }
-
-    /// Evaluate one contact, accumulate its forces into the force vector and
-    /// record it.
-    fn apply_contact(
-        &mut self,
-        a: usize,
-        target: ContactTarget,
-        geometry: &ContactGeometry,
-        centre_b: Point,
-        increment_b: (Vec2, f64),
-        mass_b: f64,
-    ) {
-        let pa = &self.scene.particles[a];
-        let increment_a = self.increments[a];
-        let mut du = relative_increment(
-            geometry,
-            &pa.pose.position,
-            (&increment_a.0, increment_a.1),
-            &centre_b,
-            (&increment_b.0, increment_b.1),
-        );
-        let key = (a, target, geometry.features);
-        let previous = self.history.get(&key);
-        // The normal increment is the change of the overlap itself: exact
-        // for any shape. (The relative velocity at the chord midpoint misses
-        // the motion of the deepest point when a non-circular body rolls,
-        // and an incremental spring fed with it gains energy.)
-        if let Some((_, previous_overlap)) = previous {
-            du[0] = geometry.overlap - previous_overlap;
-        }
-        let input = ContactInput {
-            overlap: geometry.overlap,
-            increment: du.into(),
-            dt: self.settings.dt,
-            is_new: previous.is_none(),
-            pair: PairProperties {
-                curvature_radius_a: geometry.curvature_radius_a,
-                curvature_radius_b: geometry.curvature_radius_b,
-                width: geometry.width,
-                mass_a: pa.mass,
-                mass_b,
-            },
-        };
-        let default_state = L::State::default();
-        let response = self
-            .law
-            .evaluate(&input, previous.map_or(&default_state, |(state, _)| state));
-        let force_on_b =
-            geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
-        let moment_a = moment_about(&pa.pose.position, &geometry.point, &(-force_on_b));
-        self.system.force[3 * a] -= force_on_b.x;
-        self.system.force[3 * a + 1] -= force_on_b.y;
-        self.system.force[3 * a + 2] += moment_a;
-        if let ContactTarget::Particle(b) = target {
-            let moment_b = moment_about(&centre_b, &geometry.point, &force_on_b);
-            self.system.force[3 * b] += force_on_b.x;
-            self.system.force[3 * b + 1] += force_on_b.y;
-            self.system.force[3 * b + 2] += moment_b;
-        }
-        self.next_history
-            .insert(key, (response.state, geometry.overlap));
-        self.contacts.push(ContactRecord {
-            particle: a,
-            target,
-            point: geometry.point,
-            force_on_target: force_on_b,
-            normal: geometry.normal,
-            regime: response.regime,
-            features: geometry.features,
-        });
-    }
-
     /// Advance one step.
+    ///
+    /// The forces are summed per particle in a fixed order (its weight,
+    /// then its pairs in the list's order, each pair's points in the
+    /// manifold's order), whatever the number of threads, so a run is the
+    /// same to the last bit on one thread or many.
     pub fn step(&mut self) -> Result<()> {
         let n = self.scene.particles.len();
-        let g = self.scene.gravity;
-        for (i, p) in self.scene.particles.iter().enumerate() {
-            self.system.force[3 * i] = p.mass * g.x + p.external_force.x;
-            self.system.force[3 * i + 1] = p.mass * g.y + p.external_force.y;
-            self.system.force[3 * i + 2] = 0.0;
-        }
-        self.contacts.clear();
-        self.next_history.clear();
-
-        // Particle pairs from the broad phase; each contact point of a pair
-        // in the order the manifold gives them.
-        self.update_pairs();
-        let mut manifold = std::mem::take(&mut self.manifold);
-        for k in 0..self.pairs.len() {
-            let (a, b) = self.pairs[k];
-            let (pa, pb) = (&self.scene.particles[a], &self.scene.particles[b]);
-            manifold.clear();
-            contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, &mut manifold)?;
-            let (centre_b, mass_b) = (pb.pose.position, pb.mass);
-            for geometry in &manifold {
-                self.apply_contact(
-                    a,
-                    ContactTarget::Particle(b),
-                    geometry,
-                    centre_b,
-                    self.increments[b],
-                    mass_b,
-                );
-            }
-        }
-        // Walls: few, tested against each particle's box.
-        for a in 0..n {
-            for w in 0..self.scene.frame.walls().len() {
-                let wall = self.scene.frame.walls()[w];
-                let wall_box = Aabb2::from_corners(wall.start, wall.end);
-                if !wall_box.intersects(&self.boxes[a]) {
-                    continue;
-                }
-                let pa = &self.scene.particles[a];
-                let shape = AnyShape2::Segment(wall);
-                manifold.clear();
-                contact_manifold_2d(
-                    &pa.shape,
-                    &pa.pose,
-                    &shape,
-                    &Pose2::default(),
-                    &mut manifold,
-                )?;
-                for geometry in &manifold {
-                    self.apply_contact(
-                        a,
-                        ContactTarget::Wall(w),
-                        geometry,
-                        geometry.point,
-                        (Vec2::zeros(), 0.0),
-                        f64::INFINITY,
-                    );
-                }
-            }
-        }
-        self.manifold = manifold;
-        std::mem::swap(&mut self.history, &mut self.next_history);
-
-        for (i, f) in self.system.force.iter().enumerate() {
-            if !f.is_finite() {
-                return Err(self.non_finite(i / 3, "force"));
-            }
-        }
-        solve_lumped_into(&self.system, &mut self.acceleration)?;
         let dt = self.settings.dt;
-        for i in 0..n {
-            let p = &mut self.scene.particles[i];
+        let parallel = n >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1;
+        self.records = OnceLock::new();
+        self.neighbours.update(
+            &self.scene.particles,
+            self.scene.frame.walls(),
+            &mut self.grid,
+        );
+
+        // The contact points of every listed pair.
+        let context = PairContext {
+            law: &self.law,
+            dt,
+            particles: &self.scene.particles,
+            increments: &self.increments,
+            walls: self.scene.frame.walls(),
+        };
+        let slots = &mut self.neighbours.slots;
+        if parallel {
+            slots
+                .par_iter_mut()
+                .with_min_len(PARALLEL_MIN_CHUNK)
+                .try_for_each_init(Vec::new, |manifold, slot| context.evaluate(slot, manifold))?;
+        } else {
+            let manifold = &mut self.manifold;
+            slots
+                .iter_mut()
+                .try_for_each(|slot| context.evaluate(slot, manifold))?;
+        }
+
+        // Each particle's force: its weight and external force, then its
+        // pairs' forces in the list's order.
+        let neighbours = &self.neighbours;
+        let particles = &self.scene.particles;
+        let g = self.scene.gravity;
+        let gather = |(i, force): (usize, &mut [f64])| {
+            let p = &particles[i];
+            force[0] = p.mass * g.x + p.external_force.x;
+            force[1] = p.mass * g.y + p.external_force.y;
+            force[2] = 0.0;
+            for incidence in neighbours.incidence_of(i) {
+                for point in &neighbours.slots[incidence.slot].points {
+                    if incidence.is_b {
+                        force[0] += point.force_on_b.x;
+                        force[1] += point.force_on_b.y;
+                        force[2] += point.moment_b;
+                    } else {
+                        force[0] -= point.force_on_b.x;
+                        force[1] -= point.force_on_b.y;
+                        force[2] += point.moment_a;
+                    }
+                }
+            }
+        };
+        let force = &mut self.system.force;
+        if parallel {
+            force
+                .par_chunks_mut(3)
+                .enumerate()
+                .with_min_len(PARALLEL_MIN_CHUNK)
+                .for_each(gather);
+        } else {
+            force.chunks_mut(3).enumerate().for_each(gather);
+        }
+        if let Some(i) = self.system.force.iter().position(|f| !f.is_finite()) {
+            return Err(self.non_finite(i / 3, "force"));
+        }
+
+        // Velocities and positions from `M a = f` (the diagonal mass:
+        // `a = f / m` per DOF, as `solve_lumped_into`, whose checks of the
+        // masses were made at the start); how far each boundary has moved
+        // since the list was built, and the first particle that went wrong.
+        let integrator = &self.integrator;
+        let (force, mass) = (&self.system.force, &self.system.mass);
+        let neighbours = &self.neighbours;
+        let reach = self.frame_reach;
+        let advance = |(i, (p, increment)): (usize, (&mut Particle, &mut (Vec2, f64)))| {
             let mut dx = [0.0; 3];
             let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
             for d in 0..3 {
-                dx[d] = self
-                    .integrator
-                    .step(dt, self.acceleration[3 * i + d], &mut velocity[d]);
+                let acceleration = force[3 * i + d] / mass[3 * i + d];
+                dx[d] = integrator.step(dt, acceleration, &mut velocity[d]);
             }
             p.velocity = Vec2::new(velocity[0], velocity[1]);
             p.angular_velocity = velocity[2];
             p.pose.position += Vec2::new(dx[0], dx[1]);
             p.pose.angle += dx[2];
-            self.increments[i] = (Vec2::new(dx[0], dx[1]), dx[2]);
-            if !(dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite())) {
+            *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
+            let finite = dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
+            let wrong = !(finite && reach.contains(&p.pose.position));
+            (neighbours.travel(i, p), wrong.then_some(i))
+        };
+        let combine = |x: (f64, Option<usize>), y: (f64, Option<usize>)| {
+            let first = match (x.1, y.1) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+            (x.0.max(y.0), first)
+        };
+        let (travel, wrong) = if parallel {
+            self.scene
+                .particles
+                .par_iter_mut()
+                .zip(self.increments.par_iter_mut())
+                .enumerate()
+                .with_min_len(PARALLEL_MIN_CHUNK)
+                .map(advance)
+                .reduce(|| (0.0, None), combine)
+        } else {
+            self.scene
+                .particles
+                .iter_mut()
+                .zip(self.increments.iter_mut())
+                .enumerate()
+                .map(advance)
+                .fold((0.0, None), combine)
+        };
+        self.neighbours.note_travel(travel);
+        if let Some(i) = wrong {
+            let (dx, turn) = self.increments[i];
+            let p = &self.scene.particles[i];
+            let finite = dx.iter().all(|v| v.is_finite())
+                && turn.is_finite()
+                && p.velocity.iter().all(|v| v.is_finite())
+                && p.angular_velocity.is_finite();
+            if !finite {
                 return Err(self.non_finite(i, "position or velocity"));
             }
-            if !self.frame_reach.contains(&p.pose.position) {
-                // Flung out by an unstable step rather than pushed out by
-                // its loads: say so.
-                if let Some(blow_up) = self.energy_blow_up() {
-                    return Err(blow_up);
-                }
-                let p = &self.scene.particles[i];
-                return Err(DismechError::ParticleLeftFrame {
-                    step: self.step,
-                    time: self.time,
-                    body: i,
-                    x: p.pose.position.x,
-                    y: p.pose.position.y,
-                });
+            // Flung out by an unstable step rather than pushed out by its
+            // loads: say so.
+            if let Some(blow_up) = self.energy_blow_up() {
+                return Err(blow_up);
             }
+            return Err(DismechError::ParticleLeftFrame {
+                step: self.step,
+                time: self.time,
+                body: i,
+                x: p.pose.position.x,
+                y: p.pose.position.y,
+            });
         }
         self.step += 1;
         self.time += dt;

@@ -34,6 +34,8 @@
 
 mod checks;
 mod driver;
+mod neighbours;
+mod pair_forces;
 mod stability;
 
 pub use driver::{

@@ -60,8 +60,9 @@ impl ImplicitCoefficients {
 }
 
 /// An explicit scheme for `M a = f`: each DOF advances from the
-/// acceleration at the start of the step.
-pub trait ExplicitIntegrator {
+/// acceleration at the start of the step. Shared by the threads that
+/// advance the bodies, hence `Sync`.
+pub trait ExplicitIntegrator: Sync {
     /// Advance one DOF: update the velocity in place and return the
     /// displacement increment of the step.
     fn step(&self, dt: f64, acceleration: f64, velocity: &mut f64) -> f64;

@@ -141,8 +141,9 @@ pub struct StiffnessBound {
 ///
 /// `evaluate` is a pure function of the input and the previous state: the
 /// caller keeps the returned state only when the step is accepted, so that
-/// implicit methods can evaluate trial states freely.
-pub trait ContactLaw<const D: usize> {
+/// implicit methods can evaluate trial states freely. A law is shared by
+/// the threads that evaluate a step's contacts, hence `Sync`.
+pub trait ContactLaw<const D: usize>: Sync {
     /// History carried from step to step (spring forces, elastic slip).
     type State: Clone + Default + std::fmt::Debug + Send + Sync;
 

@@ -12,6 +12,7 @@ use crate::shape::Circle;
 /// the chord) and the width is the chord length, as paper 000 defines them
 /// for ellipses (for circles the construction is exact and closed-form).
 /// Coincident centres have no defined normal; +x is used.
+#[inline]
 pub fn contact_circle_circle(
     a: &Circle,
     pose_a: &Pose2,

@@ -71,6 +71,7 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     /// Unit tangent: the normal turned by +90°.
+    #[inline]
     pub fn tangent(&self) -> Vec2 {
         perp(&self.normal)
     }
@@ -105,6 +106,7 @@ impl ContactGeometry {
 /// contact point normally too. (The DEM takes the normal increment of a
 /// continuing contact from the change of overlap instead, which equals this
 /// `Δu_n` for circles and stays exact for rolling ellipses.)
+#[inline]
 pub fn relative_increment(
     geometry: &ContactGeometry,
     centre_a: &Point,
@@ -121,6 +123,7 @@ pub fn relative_increment(
 }
 
 /// The moment about `centre` of a force `force` applied at `point`.
+#[inline]
 pub fn moment_about(centre: &Point, point: &Point, force: &Vec2) -> f64 {
     cross(&(point - centre), force)
 }

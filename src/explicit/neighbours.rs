@@ -1,0 +1,249 @@
+//! The neighbour list of the explicit driver: candidate pairs found once
+//! with a skin and kept over the steps until some particle has moved far
+//! enough to meet a pair that is not in it; each pair carries its contact
+//! points' history, so nothing is hashed or rebuilt per step.
+//!
+//! A pair is listed when the particles' bounding boxes are closer than the
+//! skin `s` (in x or y). Every boundary point of a particle moves by at
+//! most `|Δx| + R |Δφ|` (`R` its bounding radius) since the list was
+//! built; while that stays at or below `s/2` for every particle, two boxes
+//! apart by more than `s` at the build are still apart, so the list holds
+//! every pair whose boxes touch, which are the pairs a per-step broad phase
+//! would find. Walls are listed per particle the same way. The list is
+//! therefore exact, not an approximation: the forces are those of a broad
+//! phase rebuilt every step.
+
+use smallvec::SmallVec;
+
+use super::driver::ContactTarget;
+use crate::broad_phase::CellGrid;
+use crate::law::Regime;
+use crate::math::{Aabb2, Point, Vec2};
+use crate::query::ContactFeatures;
+use crate::scene::Particle;
+use crate::shape::Segment;
+
+/// One contact point of a pair: the law's history and the last step's
+/// result.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct PointContact<S> {
+    /// The features that name the point across steps.
+    pub features: ContactFeatures,
+    /// The law's state after the last step.
+    pub state: S,
+    /// The overlap at the last step (m).
+    pub overlap: f64,
+    /// Contact point (world).
+    pub point: Point,
+    /// Normal from A to B.
+    pub normal: Vec2,
+    /// Force exerted by A on B.
+    pub force_on_b: Vec2,
+    /// Moment of B's force on A about A's centre.
+    pub moment_a: f64,
+    /// Moment of A's force on B about B's centre (0 for a wall).
+    pub moment_b: f64,
+    /// Regime of the law.
+    pub regime: Regime,
+}
+
+/// The contact points of one pair; most pairs have at most one.
+pub(super) type PairPoints<S> = SmallVec<[PointContact<S>; 1]>;
+
+/// A listed pair: a particle and what it may touch, and the contact points
+/// of the last step.
+#[derive(Debug, Clone)]
+pub(super) struct PairSlot<S> {
+    /// The particle (A).
+    pub a: usize,
+    /// What it touches (B): a particle of higher index, or a wall.
+    pub target: ContactTarget,
+    /// The contact points of the last step, in the manifold's order.
+    pub points: PairPoints<S>,
+}
+
+impl<S> PairSlot<S> {
+    /// The order of the list: particle pairs by (A, B), then walls by
+    /// (particle, wall).
+    fn order(&self) -> (bool, usize, usize) {
+        match self.target {
+            ContactTarget::Particle(b) => (false, self.a, b),
+            ContactTarget::Wall(w) => (true, self.a, w),
+        }
+    }
+}
+
+/// Which side of a listed pair a particle is.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Incidence {
+    /// The pair's index in the list.
+    pub slot: usize,
+    /// The particle is B (else A).
+    pub is_b: bool,
+}
+
+/// The listed pairs, what each particle takes part in, and the poses the
+/// list was built at.
+#[derive(Debug, Clone)]
+pub(super) struct NeighbourList<S> {
+    skin: f64,
+    /// Pairs, ordered as [`PairSlot::order`].
+    pub slots: Vec<PairSlot<S>>,
+    /// The pairs of particle `i` are `incidence[start[i]..start[i + 1]]`,
+    /// in the list's order.
+    incidence_start: Vec<usize>,
+    incidence: Vec<Incidence>,
+    /// Centre and angle of each particle at the build.
+    reference: Vec<(Point, f64)>,
+    /// Bounding radius of each particle.
+    radius: Vec<f64>,
+    /// Whether the list must be built before the next step.
+    stale: bool,
+    builds: u64,
+    boxes: Vec<Aabb2>,
+    pairs: Vec<(usize, usize)>,
+}
+
+impl<S> NeighbourList<S> {
+    /// An empty list with skin `skin` (m), built at the first step.
+    pub fn new(skin: f64, particles: &[Particle]) -> Self {
+        Self {
+            skin,
+            slots: Vec::new(),
+            incidence_start: Vec::new(),
+            incidence: Vec::new(),
+            reference: Vec::new(),
+            radius: particles
+                .iter()
+                .map(|p| p.shape.as_shape().bounding_radius())
+                .collect(),
+            stale: true,
+            builds: 0,
+            boxes: Vec::new(),
+            pairs: Vec::new(),
+        }
+    }
+
+    /// How many times the list was built.
+    pub fn builds(&self) -> u64 {
+        self.builds
+    }
+
+    /// The pairs particle `i` takes part in.
+    pub fn incidence_of(&self, i: usize) -> &[Incidence] {
+        &self.incidence[self.incidence_start[i]..self.incidence_start[i + 1]]
+    }
+
+    /// Build the list again if a particle has moved half the skin since
+    /// the last build (or it was never built).
+    pub fn update(&mut self, particles: &[Particle], walls: &[Segment], grid: &mut CellGrid) {
+        if self.stale {
+            self.build(particles, walls, grid);
+        }
+    }
+
+    /// The bound on how far particle `i`'s boundary has moved since the
+    /// build, `|Δx| + R |Δφ|`.
+    pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
+        let (centre, angle) = self.reference[i];
+        (particle.pose.position - centre).norm()
+            + self.radius[i] * (particle.pose.angle - angle).abs()
+    }
+
+    /// Mark the list for a build when the largest travel of the step
+    /// exceeds half the skin (or is not a number).
+    pub fn note_travel(&mut self, largest: f64) {
+        if largest.is_nan() || largest > 0.5 * self.skin {
+            self.stale = true;
+        }
+    }
+
+    fn build(&mut self, particles: &[Particle], walls: &[Segment], grid: &mut CellGrid) {
+        let n = particles.len();
+        self.boxes.clear();
+        self.boxes
+            .extend(particles.iter().map(|p| p.shape.as_shape().aabb(&p.pose)));
+        grid.candidate_pairs(&self.boxes, self.skin, &mut self.pairs);
+        let wall_boxes: Vec<Aabb2> = walls
+            .iter()
+            .map(|w| Aabb2::from_corners(w.start, w.end))
+            .collect();
+
+        // New slots in the list's order, each taking the points of the
+        // same pair in the old list (both are sorted: a merge).
+        let mut old = std::mem::take(&mut self.slots).into_iter().peekable();
+        let mut slots = Vec::with_capacity(self.pairs.len() + n);
+        let particle_pairs = self
+            .pairs
+            .iter()
+            .map(|&(a, b)| (a, ContactTarget::Particle(b)));
+        let boxes = &self.boxes;
+        let skin = self.skin;
+        let wall_pairs = (0..n).flat_map(|a| {
+            let grown = boxes[a].inflated(skin);
+            wall_boxes
+                .iter()
+                .enumerate()
+                .filter(move |(_, wall)| grown.intersects(wall))
+                .map(move |(w, _)| (a, ContactTarget::Wall(w)))
+        });
+        for (a, target) in particle_pairs.chain(wall_pairs) {
+            let mut slot = PairSlot {
+                a,
+                target,
+                points: PairPoints::new(),
+            };
+            let order = slot.order();
+            while old.peek().is_some_and(|s| s.order() < order) {
+                old.next();
+            }
+            if let Some(previous) = old.next_if(|s| s.order() == order) {
+                slot.points = previous.points;
+            }
+            slots.push(slot);
+        }
+        self.slots = slots;
+
+        // Each particle's pairs, in the list's order (a counting sort).
+        self.incidence_start.clear();
+        self.incidence_start.resize(n + 1, 0);
+        for slot in &self.slots {
+            self.incidence_start[slot.a + 1] += 1;
+            if let ContactTarget::Particle(b) = slot.target {
+                self.incidence_start[b + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            self.incidence_start[i + 1] += self.incidence_start[i];
+        }
+        let mut fill = self.incidence_start.clone();
+        self.incidence.clear();
+        self.incidence.resize(
+            self.incidence_start[n],
+            Incidence {
+                slot: 0,
+                is_b: false,
+            },
+        );
+        for (k, slot) in self.slots.iter().enumerate() {
+            self.incidence[fill[slot.a]] = Incidence {
+                slot: k,
+                is_b: false,
+            };
+            fill[slot.a] += 1;
+            if let ContactTarget::Particle(b) = slot.target {
+                self.incidence[fill[b]] = Incidence {
+                    slot: k,
+                    is_b: true,
+                };
+                fill[b] += 1;
+            }
+        }
+
+        self.reference.clear();
+        self.reference
+            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
+        self.stale = false;
+        self.builds += 1;
+    }
+}

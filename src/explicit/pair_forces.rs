@@ -1,0 +1,157 @@
+//! The contact points of one listed pair: the geometry, the relative
+//! motion at each point and the law, with the point's history taken from
+//! the pair itself.
+
+use super::driver::ContactTarget;
+use super::neighbours::{PairPoints, PairSlot, PointContact};
+use crate::error::Result;
+use crate::law::{ContactInput, ContactLaw, PairProperties};
+use crate::math::{Point, Pose2, Vec2};
+use crate::query::manifold::dispatch::{contact_2d, contact_manifold_2d};
+use crate::query::{moment_about, relative_increment, ContactGeometry};
+use crate::scene::Particle;
+use crate::shape::{AnyShape2, Segment};
+
+/// What every pair of one step reads: the law, the step and the bodies.
+pub(super) struct PairContext<'a, L> {
+    pub law: &'a L,
+    pub dt: f64,
+    pub particles: &'a [Particle],
+    /// Each particle's increment of the previous step (translation,
+    /// rotation).
+    pub increments: &'a [(Vec2, f64)],
+    pub walls: &'a [Segment],
+}
+
+/// B's centre, its increment of the last step and its mass; `None` for a
+/// wall, whose centre is taken at each contact point (it does not move).
+type Other = Option<(Point, (Vec2, f64), f64)>;
+
+impl<L: ContactLaw<2>> PairContext<'_, L> {
+    /// The pair's contact points now, each continuing the history of the
+    /// point with the same features at the last step; `manifold` is
+    /// scratch space for pairs with a polygon, which may touch at several
+    /// points (the others touch at one at most and skip it).
+    ///
+    /// # Errors
+    /// The geometry's, for a pair it does not support.
+    pub fn evaluate(
+        &self,
+        slot: &mut PairSlot<L::State>,
+        manifold: &mut Vec<ContactGeometry>,
+    ) -> Result<()> {
+        let pa = &self.particles[slot.a];
+        let wall;
+        let (shape_b, pose_b, other): (&AnyShape2, &Pose2, Other) = match slot.target {
+            ContactTarget::Particle(b) => {
+                let pb = &self.particles[b];
+                let other = Some((pb.pose.position, self.increments[b], pb.mass));
+                (&pb.shape, &pb.pose, other)
+            }
+            ContactTarget::Wall(w) => {
+                wall = AnyShape2::Segment(self.walls[w]);
+                (&wall, &WALL_POSE, None)
+            }
+        };
+        let polygon = |shape: &AnyShape2| matches!(shape, AnyShape2::Polygon(_));
+        if !(polygon(&pa.shape) || polygon(shape_b)) {
+            // One point at most: updated in place.
+            match contact_2d(&pa.shape, &pa.pose, shape_b, pose_b)? {
+                None => slot.points.clear(),
+                Some(geometry) => {
+                    let previous = slot
+                        .points
+                        .first()
+                        .filter(|p| p.features == geometry.features);
+                    let point = self.point_contact(slot, &geometry, other, previous);
+                    if slot.points.len() == 1 {
+                        slot.points[0] = point;
+                    } else {
+                        slot.points.clear();
+                        slot.points.push(point);
+                    }
+                }
+            }
+            return Ok(());
+        }
+        manifold.clear();
+        contact_manifold_2d(&pa.shape, &pa.pose, shape_b, pose_b, manifold)?;
+        let mut points = PairPoints::new();
+        for geometry in manifold.iter() {
+            let previous = slot.points.iter().find(|p| p.features == geometry.features);
+            points.push(self.point_contact(slot, geometry, other, previous));
+        }
+        slot.points = points;
+        Ok(())
+    }
+
+    /// One contact point of the pair: its relative motion, the law, and
+    /// the force and moments on the two bodies.
+    #[inline]
+    fn point_contact(
+        &self,
+        slot: &PairSlot<L::State>,
+        geometry: &ContactGeometry,
+        other: Other,
+        previous: Option<&PointContact<L::State>>,
+    ) -> PointContact<L::State> {
+        let pa = &self.particles[slot.a];
+        let increment_a = self.increments[slot.a];
+        let (centre_b, increment_b, mass_b) =
+            other.unwrap_or((geometry.point, (Vec2::zeros(), 0.0), f64::INFINITY));
+        let mut du = relative_increment(
+            geometry,
+            &pa.pose.position,
+            (&increment_a.0, increment_a.1),
+            &centre_b,
+            (&increment_b.0, increment_b.1),
+        );
+        // The normal increment is the change of the overlap itself: exact
+        // for any shape. (The relative velocity at the chord midpoint
+        // misses the motion of the deepest point when a non-circular body
+        // rolls, and an incremental spring fed with it gains energy.)
+        if let Some(previous) = previous {
+            du[0] = geometry.overlap - previous.overlap;
+        }
+        let input = ContactInput {
+            overlap: geometry.overlap,
+            increment: du.into(),
+            dt: self.dt,
+            is_new: previous.is_none(),
+            pair: PairProperties {
+                curvature_radius_a: geometry.curvature_radius_a,
+                curvature_radius_b: geometry.curvature_radius_b,
+                width: geometry.width,
+                mass_a: pa.mass,
+                mass_b,
+            },
+        };
+        let response = match previous {
+            Some(previous) => self.law.evaluate(&input, &previous.state),
+            None => self.law.evaluate(&input, &L::State::default()),
+        };
+        let force_on_b =
+            geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
+        let moment_b = match other {
+            Some(_) => moment_about(&centre_b, &geometry.point, &force_on_b),
+            None => 0.0,
+        };
+        PointContact {
+            features: geometry.features,
+            state: response.state,
+            overlap: geometry.overlap,
+            point: geometry.point,
+            normal: geometry.normal,
+            force_on_b,
+            moment_a: moment_about(&pa.pose.position, &geometry.point, &(-force_on_b)),
+            moment_b,
+            regime: response.regime,
+        }
+    }
+}
+
+/// The frame's walls are given in world coordinates.
+const WALL_POSE: Pose2 = Pose2 {
+    position: Point::new(0.0, 0.0),
+    angle: 0.0,
+};
