@@ -5,7 +5,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::neighbours::NeighbourList;
+use super::neighbours::{NeighbourList, PairForce, PairSlot};
 use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
@@ -237,6 +237,8 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     grid: CellGrid,
     boxes: Vec<Aabb2>,
     system: LumpedSystem,
+    /// Each particle's weight and external force, `m g + f_ext` (N/m).
+    applied: Vec<Vec2>,
     /// The last step's contacts as records, made when first asked for.
     records: OnceLock<Vec<ContactRecord>>,
     /// The box of the walls grown by its own size on every side but the
@@ -337,6 +339,16 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 mass,
             },
             records: OnceLock::new(),
+            applied: scene
+                .particles
+                .iter()
+                .map(|p| {
+                    Vec2::new(
+                        p.mass * scene.gravity.x + p.external_force.x,
+                        p.mass * scene.gravity.y + p.external_force.y,
+                    )
+                })
+                .collect(),
             frame_reach: frame_reach(&scene),
             scene,
         };
@@ -503,38 +515,59 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             walls: self.scene.frame.walls(),
         };
         let slots = &mut self.neighbours.slots;
+        let forces = &mut self.neighbours.forces;
+        let evaluate =
+            |manifold: &mut Vec<ContactGeometry>,
+             (slot, force): (&mut PairSlot<L::State>, &mut PairForce)| {
+                context.evaluate(slot, force, manifold)
+            };
         if parallel {
             slots
                 .par_iter_mut()
+                .zip(forces.par_iter_mut())
                 .with_min_len(PARALLEL_MIN_CHUNK)
-                .try_for_each_init(Vec::new, |manifold, slot| context.evaluate(slot, manifold))?;
+                .try_for_each_init(Vec::new, evaluate)?;
         } else {
             let manifold = &mut self.manifold;
             slots
                 .iter_mut()
-                .try_for_each(|slot| context.evaluate(slot, manifold))?;
+                .zip(forces.iter_mut())
+                .try_for_each(|pair| evaluate(manifold, pair))?;
         }
 
         // Each particle's force: its weight and external force, then its
         // pairs' forces in the list's order.
         let neighbours = &self.neighbours;
-        let particles = &self.scene.particles;
-        let g = self.scene.gravity;
+        let applied = &self.applied;
         let gather = |(i, force): (usize, &mut [f64])| {
-            let p = &particles[i];
-            force[0] = p.mass * g.x + p.external_force.x;
-            force[1] = p.mass * g.y + p.external_force.y;
+            force[0] = applied[i].x;
+            force[1] = applied[i].y;
             force[2] = 0.0;
-            for incidence in neighbours.incidence_of(i) {
-                for point in &neighbours.slots[incidence.slot].points {
-                    if incidence.is_b {
-                        force[0] += point.force_on_b.x;
-                        force[1] += point.force_on_b.y;
-                        force[2] += point.moment_b;
-                    } else {
-                        force[0] -= point.force_on_b.x;
-                        force[1] -= point.force_on_b.y;
-                        force[2] += point.moment_a;
+            let mut add = |is_b: bool, force_on_b: Vec2, moment_a: f64, moment_b: f64| {
+                if is_b {
+                    force[0] += force_on_b.x;
+                    force[1] += force_on_b.y;
+                    force[2] += moment_b;
+                } else {
+                    force[0] -= force_on_b.x;
+                    force[1] -= force_on_b.y;
+                    force[2] += moment_a;
+                }
+            };
+            for &incidence in neighbours.incidence_of(i) {
+                let pair = &neighbours.forces[incidence.slot()];
+                match pair.points {
+                    0 => {}
+                    1 => add(
+                        incidence.is_b(),
+                        pair.force_on_b,
+                        pair.moment_a,
+                        pair.moment_b,
+                    ),
+                    _ => {
+                        for p in &neighbours.slots[incidence.slot()].points {
+                            add(incidence.is_b(), p.force_on_b, p.moment_a, p.moment_b);
+                        }
                     }
                 }
             }

@@ -73,13 +73,62 @@ impl<S> PairSlot<S> {
     }
 }
 
-/// Which side of a listed pair a particle is.
+/// A pair's force for the per-particle sums, apart from the points so
+/// that the sums read little memory: the first point's force and moments
+/// and how many points the pair has (a pair of several points is summed
+/// from its points).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct PairForce {
+    /// Force exerted by A on B at the first point.
+    pub force_on_b: Vec2,
+    /// Its moment about A's centre.
+    pub moment_a: f64,
+    /// Its moment about B's centre.
+    pub moment_b: f64,
+    /// The pair's number of contact points.
+    pub points: usize,
+}
+
+impl PairForce {
+    /// The summary of a pair's points.
+    pub fn of<S>(points: &[PointContact<S>]) -> Self {
+        match points.first() {
+            Some(p) => Self::of_point(p, points.len()),
+            None => Self::default(),
+        }
+    }
+
+    /// The summary of a pair of `points` points whose first is `first`.
+    #[inline]
+    pub fn of_point<S>(first: &PointContact<S>, points: usize) -> Self {
+        Self {
+            force_on_b: first.force_on_b,
+            moment_a: first.moment_a,
+            moment_b: first.moment_b,
+            points,
+        }
+    }
+}
+
+/// Which side of a listed pair a particle is: the pair's index in the
+/// list times two, plus one when the particle is B.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Incidence {
+pub(super) struct Incidence(usize);
+
+impl Incidence {
+    fn new(slot: usize, is_b: bool) -> Self {
+        Self(2 * slot + usize::from(is_b))
+    }
+
     /// The pair's index in the list.
-    pub slot: usize,
-    /// The particle is B (else A).
-    pub is_b: bool,
+    pub fn slot(self) -> usize {
+        self.0 / 2
+    }
+
+    /// Whether the particle is the pair's B.
+    pub fn is_b(self) -> bool {
+        self.0 % 2 == 1
+    }
 }
 
 /// The listed pairs, what each particle takes part in, and the poses the
@@ -89,6 +138,8 @@ pub(super) struct NeighbourList<S> {
     skin: f64,
     /// Pairs, ordered as [`PairSlot::order`].
     pub slots: Vec<PairSlot<S>>,
+    /// Each pair's force summary, beside `slots`.
+    pub forces: Vec<PairForce>,
     /// The pairs of particle `i` are `incidence[start[i]..start[i + 1]]`,
     /// in the list's order.
     incidence_start: Vec<usize>,
@@ -110,6 +161,7 @@ impl<S> NeighbourList<S> {
         Self {
             skin,
             slots: Vec::new(),
+            forces: Vec::new(),
             incidence_start: Vec::new(),
             incidence: Vec::new(),
             reference: Vec::new(),
@@ -142,12 +194,14 @@ impl<S> NeighbourList<S> {
         }
     }
 
-    /// The bound on how far particle `i`'s boundary has moved since the
-    /// build, `|Δx| + R |Δφ|`.
+    /// A bound on how far particle `i`'s boundary has moved since the
+    /// build, `|Δx| + |Δy| + R |Δφ|` (at least `|Δx| + R |Δφ|`, without a
+    /// square root).
+    #[inline]
     pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
         let (centre, angle) = self.reference[i];
-        (particle.pose.position - centre).norm()
-            + self.radius[i] * (particle.pose.angle - angle).abs()
+        let moved = particle.pose.position - centre;
+        moved.x.abs() + moved.y.abs() + self.radius[i] * (particle.pose.angle - angle).abs()
     }
 
     /// Mark the list for a build when the largest travel of the step
@@ -202,6 +256,9 @@ impl<S> NeighbourList<S> {
             }
             slots.push(slot);
         }
+        self.forces.clear();
+        self.forces
+            .extend(slots.iter().map(|slot| PairForce::of(&slot.points)));
         self.slots = slots;
 
         // Each particle's pairs, in the list's order (a counting sort).
@@ -218,24 +275,13 @@ impl<S> NeighbourList<S> {
         }
         let mut fill = self.incidence_start.clone();
         self.incidence.clear();
-        self.incidence.resize(
-            self.incidence_start[n],
-            Incidence {
-                slot: 0,
-                is_b: false,
-            },
-        );
+        self.incidence
+            .resize(self.incidence_start[n], Incidence::new(0, false));
         for (k, slot) in self.slots.iter().enumerate() {
-            self.incidence[fill[slot.a]] = Incidence {
-                slot: k,
-                is_b: false,
-            };
+            self.incidence[fill[slot.a]] = Incidence::new(k, false);
             fill[slot.a] += 1;
             if let ContactTarget::Particle(b) = slot.target {
-                self.incidence[fill[b]] = Incidence {
-                    slot: k,
-                    is_b: true,
-                };
+                self.incidence[fill[b]] = Incidence::new(k, true);
                 fill[b] += 1;
             }
         }

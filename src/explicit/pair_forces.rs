@@ -3,10 +3,12 @@
 //! the pair itself.
 
 use super::driver::ContactTarget;
-use super::neighbours::{PairPoints, PairSlot, PointContact};
+use super::neighbours::{PairForce, PairPoints, PairSlot, PointContact};
 use crate::error::Result;
 use crate::law::{ContactInput, ContactLaw, PairProperties};
 use crate::math::{Point, Pose2, Vec2};
+use crate::query::manifold::circle_circle::contact_circle_circle;
+use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d, contact_manifold_2d};
 use crate::query::{moment_about, relative_increment, ContactGeometry};
 use crate::scene::Particle;
@@ -29,15 +31,19 @@ type Other = Option<(Point, (Vec2, f64), f64)>;
 
 impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// The pair's contact points now, each continuing the history of the
-    /// point with the same features at the last step; `manifold` is
-    /// scratch space for pairs with a polygon, which may touch at several
-    /// points (the others touch at one at most and skip it).
+    /// point with the same features at the last step, and the pair's force
+    /// summary; `manifold` is scratch space for pairs with a polygon,
+    /// which may touch at several points (the others touch at one at most
+    /// and skip it; circles against circles and walls, the commonest
+    /// pairs, call their geometry directly rather than through the
+    /// dispatch).
     ///
     /// # Errors
     /// The geometry's, for a pair it does not support.
     pub fn evaluate(
         &self,
         slot: &mut PairSlot<L::State>,
+        force: &mut PairForce,
         manifold: &mut Vec<ContactGeometry>,
     ) -> Result<()> {
         let pa = &self.particles[slot.a];
@@ -53,36 +59,63 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 (&wall, &WALL_POSE, None)
             }
         };
-        let polygon = |shape: &AnyShape2| matches!(shape, AnyShape2::Polygon(_));
-        if !(polygon(&pa.shape) || polygon(shape_b)) {
-            // One point at most: updated in place.
-            match contact_2d(&pa.shape, &pa.pose, shape_b, pose_b)? {
-                None => slot.points.clear(),
-                Some(geometry) => {
-                    let previous = slot
-                        .points
-                        .first()
-                        .filter(|p| p.features == geometry.features);
-                    let point = self.point_contact(slot, &geometry, other, previous);
-                    if slot.points.len() == 1 {
-                        slot.points[0] = point;
-                    } else {
-                        slot.points.clear();
-                        slot.points.push(point);
-                    }
-                }
+        let single = match (&pa.shape, shape_b) {
+            (AnyShape2::Circle(ca), AnyShape2::Circle(cb)) => {
+                contact_circle_circle(ca, &pa.pose, cb, pose_b)
             }
+            (AnyShape2::Circle(c), AnyShape2::Segment(s)) => contact_circle_segment(c, &pa.pose, s),
+            (AnyShape2::Polygon(_), _) | (_, AnyShape2::Polygon(_)) => {
+                *force = self.evaluate_manifold(slot, manifold, shape_b, pose_b, other)?;
+                return Ok(());
+            }
+            _ => contact_2d(&pa.shape, &pa.pose, shape_b, pose_b)?,
+        };
+        let Some(geometry) = single else {
+            slot.points.clear();
+            *force = PairForce::default();
             return Ok(());
+        };
+        // One point: updated in place.
+        let previous = slot
+            .points
+            .first()
+            .filter(|p| p.features == geometry.features)
+            .map(|p| (p.state.clone(), p.overlap));
+        let point = self.point_contact(slot.a, &geometry, other, previous);
+        *force = PairForce::of_point(&point, 1);
+        if slot.points.len() == 1 {
+            slot.points[0] = point;
+        } else {
+            slot.points.clear();
+            slot.points.push(point);
         }
+        Ok(())
+    }
+
+    /// [`Self::evaluate`] for a pair with a polygon: every point of its
+    /// manifold.
+    fn evaluate_manifold(
+        &self,
+        slot: &mut PairSlot<L::State>,
+        manifold: &mut Vec<ContactGeometry>,
+        shape_b: &AnyShape2,
+        pose_b: &Pose2,
+        other: Other,
+    ) -> Result<PairForce> {
+        let pa = &self.particles[slot.a];
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, shape_b, pose_b, manifold)?;
         let mut points = PairPoints::new();
         for geometry in manifold.iter() {
-            let previous = slot.points.iter().find(|p| p.features == geometry.features);
-            points.push(self.point_contact(slot, geometry, other, previous));
+            let previous = slot
+                .points
+                .iter()
+                .find(|p| p.features == geometry.features)
+                .map(|p| (p.state.clone(), p.overlap));
+            points.push(self.point_contact(slot.a, geometry, other, previous));
         }
         slot.points = points;
-        Ok(())
+        Ok(PairForce::of(&slot.points))
     }
 
     /// One contact point of the pair: its relative motion, the law, and
@@ -90,13 +123,13 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     #[inline]
     fn point_contact(
         &self,
-        slot: &PairSlot<L::State>,
+        a: usize,
         geometry: &ContactGeometry,
         other: Other,
-        previous: Option<&PointContact<L::State>>,
+        previous: Option<(L::State, f64)>,
     ) -> PointContact<L::State> {
-        let pa = &self.particles[slot.a];
-        let increment_a = self.increments[slot.a];
+        let pa = &self.particles[a];
+        let increment_a = self.increments[a];
         let (centre_b, increment_b, mass_b) =
             other.unwrap_or((geometry.point, (Vec2::zeros(), 0.0), f64::INFINITY));
         let mut du = relative_increment(
@@ -110,8 +143,8 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         // for any shape. (The relative velocity at the chord midpoint
         // misses the motion of the deepest point when a non-circular body
         // rolls, and an incremental spring fed with it gains energy.)
-        if let Some(previous) = previous {
-            du[0] = geometry.overlap - previous.overlap;
+        if let Some((_, previous_overlap)) = previous {
+            du[0] = geometry.overlap - previous_overlap;
         }
         let input = ContactInput {
             overlap: geometry.overlap,
@@ -126,10 +159,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 mass_b,
             },
         };
-        let response = match previous {
-            Some(previous) => self.law.evaluate(&input, &previous.state),
-            None => self.law.evaluate(&input, &L::State::default()),
-        };
+        let response = self.law.evaluate(
+            &input,
+            &previous.map(|(state, _)| state).unwrap_or_default(),
+        );
         let force_on_b =
             geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
         let moment_b = match other {

@@ -82,11 +82,16 @@ pub enum Damping {
     },
 }
 
-/// The effective mass `m_a m_b / (m_a + m_b)` of a pair, written as
-/// `1 / (1/m_a + 1/m_b)` so that a wall's infinite mass leaves the
-/// particle's own.
+/// The effective mass `m_a m_b / (m_a + m_b)` of a pair; a wall's (or any
+/// body's) infinite mass leaves the other's own.
 pub fn effective_mass(mass_a: f64, mass_b: f64) -> f64 {
-    1.0 / (1.0 / mass_a + 1.0 / mass_b)
+    if mass_b.is_infinite() {
+        mass_a
+    } else if mass_a.is_infinite() {
+        mass_b
+    } else {
+        mass_a * mass_b / (mass_a + mass_b)
+    }
 }
 
 /// The spring–dashpot–Coulomb law of paper 000.
