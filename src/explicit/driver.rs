@@ -17,6 +17,32 @@ use crate::math::{Aabb2, Point, Vec2};
 use crate::query::{ContactFeatures, ContactGeometry};
 use crate::scene::{Particle, Scene};
 
+/// What the per-particle update of a step found: the largest travel since
+/// the neighbour list was built, and the first particle whose force, or
+/// whose new position or velocity, went wrong.
+#[derive(Debug, Clone, Copy, Default)]
+struct StepCheck {
+    travel: f64,
+    bad_force: Option<usize>,
+    wrong: Option<usize>,
+}
+
+impl StepCheck {
+    /// Both parts' findings (the order does not matter: the largest
+    /// travel, the first particles).
+    fn combine(self, other: Self) -> Self {
+        let first = |x: Option<usize>, y: Option<usize>| match (x, y) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        Self {
+            travel: self.travel.max(other.travel),
+            bad_force: first(self.bad_force, other.bad_force),
+            wrong: first(self.wrong, other.wrong),
+        }
+    }
+}
+
 /// From this many particles on, the contact and update loops run on
 /// rayon's threads (when it has more than one); below it the fork costs
 /// more than it saves. The results do not depend on it.
@@ -535,11 +561,21 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .try_for_each(|pair| evaluate(manifold, pair))?;
         }
 
-        // Each particle's force: its weight and external force, then its
-        // pairs' forces in the list's order.
+        // Per particle: its force (its weight and external force, then its
+        // pairs' forces in the list's order), then, when finite, its
+        // velocities and position from `M a = f` (the diagonal mass:
+        // `a = f / m` per DOF, as `solve_lumped_into`, whose checks of the
+        // masses were made at the start); and how far its boundary has
+        // moved since the list was built.
         let neighbours = &self.neighbours;
         let applied = &self.applied;
-        let gather = |(i, force): (usize, &mut [f64])| {
+        let integrator = &self.integrator;
+        let mass = &self.system.mass;
+        let reach = self.frame_reach;
+        let update = |(i, (force, (p, increment))): (
+            usize,
+            (&mut [f64], (&mut Particle, &mut (Vec2, f64))),
+        )| {
             force[0] = applied[i].x;
             force[1] = applied[i].y;
             force[2] = 0.0;
@@ -571,34 +607,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     }
                 }
             }
-        };
-        let force = &mut self.system.force;
-        if parallel {
-            force
-                .par_chunks_mut(3)
-                .enumerate()
-                .with_min_len(PARALLEL_MIN_CHUNK)
-                .for_each(gather);
-        } else {
-            force.chunks_mut(3).enumerate().for_each(gather);
-        }
-        if let Some(i) = self.system.force.iter().position(|f| !f.is_finite()) {
-            return Err(self.non_finite(i / 3, "force"));
-        }
-
-        // Velocities and positions from `M a = f` (the diagonal mass:
-        // `a = f / m` per DOF, as `solve_lumped_into`, whose checks of the
-        // masses were made at the start); how far each boundary has moved
-        // since the list was built, and the first particle that went wrong.
-        let integrator = &self.integrator;
-        let (force, mass) = (&self.system.force, &self.system.mass);
-        let neighbours = &self.neighbours;
-        let reach = self.frame_reach;
-        let advance = |(i, (p, increment)): (usize, (&mut Particle, &mut (Vec2, f64)))| {
+            if !force.iter().all(|f| f.is_finite()) {
+                return StepCheck {
+                    travel: 0.0,
+                    bad_force: Some(i),
+                    wrong: None,
+                };
+            }
             let mut dx = [0.0; 3];
             let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
             for d in 0..3 {
-                let acceleration = force[3 * i + d] / mass[3 * i + d];
+                let acceleration = force[d] / mass[3 * i + d];
                 dx[d] = integrator.step(dt, acceleration, &mut velocity[d]);
             }
             p.velocity = Vec2::new(velocity[0], velocity[1]);
@@ -608,33 +627,35 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
             let finite = dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
             let wrong = !(finite && reach.contains(&p.pose.position));
-            (neighbours.travel(i, p), wrong.then_some(i))
+            StepCheck {
+                travel: neighbours.travel(i, p),
+                bad_force: None,
+                wrong: wrong.then_some(i),
+            }
         };
-        let combine = |x: (f64, Option<usize>), y: (f64, Option<usize>)| {
-            let first = match (x.1, y.1) {
-                (Some(a), Some(b)) => Some(a.min(b)),
-                (a, b) => a.or(b),
-            };
-            (x.0.max(y.0), first)
-        };
-        let (travel, wrong) = if parallel {
-            self.scene
-                .particles
-                .par_iter_mut()
-                .zip(self.increments.par_iter_mut())
+        let force = &mut self.system.force;
+        let particles = &mut self.scene.particles;
+        let increments = &mut self.increments;
+        let check = if parallel {
+            force
+                .par_chunks_mut(3)
+                .zip(particles.par_iter_mut().zip(increments.par_iter_mut()))
                 .enumerate()
                 .with_min_len(PARALLEL_MIN_CHUNK)
-                .map(advance)
-                .reduce(|| (0.0, None), combine)
+                .map(update)
+                .reduce(StepCheck::default, StepCheck::combine)
         } else {
-            self.scene
-                .particles
-                .iter_mut()
-                .zip(self.increments.iter_mut())
+            force
+                .chunks_mut(3)
+                .zip(particles.iter_mut().zip(increments.iter_mut()))
                 .enumerate()
-                .map(advance)
-                .fold((0.0, None), combine)
+                .map(update)
+                .fold(StepCheck::default(), StepCheck::combine)
         };
+        if let Some(i) = check.bad_force {
+            return Err(self.non_finite(i, "force"));
+        }
+        let (travel, wrong) = (check.travel, check.wrong);
         self.neighbours.note_travel(travel);
         if let Some(i) = wrong {
             let (dx, turn) = self.increments[i];

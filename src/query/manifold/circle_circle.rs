@@ -21,6 +21,13 @@ pub fn contact_circle_circle(
 ) -> Option<ContactGeometry> {
     let (ra, rb) = (a.radius(), b.radius());
     let delta = pose_b.position - pose_a.position;
+    // Clearly apart, without the square root: the margin 1e-12 covers the
+    // rounding of both sides, so this refuses only pairs the test below
+    // refuses too.
+    let reach = ra + rb;
+    if delta.norm_squared() > reach * reach * (1.0 + 1e-12) {
+        return None;
+    }
     let distance = delta.norm();
     let overlap = ra + rb - distance;
     if overlap <= 0.0 {
