@@ -130,7 +130,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()?;
-    pool.install(|| run(&args)).map_err(|e| e as Box<dyn std::error::Error>)
+    pool.install(|| run(&args))
+        .map_err(|e| e as Box<dyn std::error::Error>)
 }
 
 fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {

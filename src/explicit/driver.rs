@@ -30,6 +30,7 @@ struct StepCheck {
 impl StepCheck {
     /// Both parts' findings (the order does not matter: the largest
     /// travel, the first particles).
+    #[inline]
     fn combine(self, other: Self) -> Self {
         let first = |x: Option<usize>, y: Option<usize>| match (x, y) {
             (Some(a), Some(b)) => Some(a.min(b)),

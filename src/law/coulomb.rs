@@ -45,6 +45,7 @@ pub struct ShearStep<const D: usize> {
 /// `increment` the shear increment in components `1..D`; `normal_force` is
 /// the `t_n` the strength is taken at and `normal_stiffness` its derivative
 /// with respect to `Δu_n` (for the coupling term of the tangent).
+#[inline]
 pub fn shear_step<const D: usize>(
     strength: &Strength,
     shear_stiffness: f64,

@@ -195,6 +195,7 @@ impl SpringDashpotCoulomb {
     }
 
     /// Normal stiffness `k_n` for a pair (eq. 19 or the constant).
+    #[inline]
     pub fn normal_stiffness(&self, pair: &PairProperties) -> f64 {
         match self.normal {
             NormalStiffness::Constant(k) => k,
@@ -211,6 +212,7 @@ impl SpringDashpotCoulomb {
         }
     }
 
+    #[inline]
     fn damping_coefficients(&self, k_n: f64, pair: &PairProperties) -> (f64, f64) {
         match self.damping {
             Damping::None => (0.0, 0.0),
@@ -246,6 +248,7 @@ fn effective_radii(pair: &PairProperties) -> (f64, f64) {
 
 impl SpringDashpotCoulomb {
     /// One evaluation with its consistent tangent.
+    #[inline]
     fn respond<const D: usize>(
         &self,
         input: &ContactInput<D>,
@@ -312,6 +315,7 @@ impl SpringDashpotCoulomb {
 impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
     type State = SpringState<D>;
 
+    #[inline]
     fn evaluate(
         &self,
         input: &ContactInput<D>,

@@ -117,6 +117,7 @@ impl Strength {
     /// The shear the contact can carry under the normal force `normal`:
     /// `c + μ t_n` (written `c + μ t_n` so that `c = 0` gives `μ t_n`
     /// exactly).
+    #[inline]
     pub fn limit(&self, normal: f64) -> f64 {
         self.cohesion + self.friction * normal
     }
