@@ -17,6 +17,13 @@ use crate::math::{Aabb2, Point, Vec2};
 use crate::query::{ContactFeatures, ContactGeometry};
 use crate::scene::{Particle, Scene};
 
+/// One particle's share of a step's update: its index, its force (three
+/// entries), the particle and its increment.
+type ParticleUpdate<'a> = (
+    usize,
+    (&'a mut [f64], (&'a mut Particle, &'a mut (Vec2, f64))),
+);
+
 /// What the per-particle update of a step found: the largest travel since
 /// the neighbour list was built, and the first particle whose force, or
 /// whose new position or velocity, went wrong.
@@ -573,10 +580,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let integrator = &self.integrator;
         let mass = &self.system.mass;
         let reach = self.frame_reach;
-        let update = |(i, (force, (p, increment))): (
-            usize,
-            (&mut [f64], (&mut Particle, &mut (Vec2, f64))),
-        )| {
+        let update = |(i, (force, (p, increment))): ParticleUpdate<'_>| {
             force[0] = applied[i].x;
             force[1] = applied[i].y;
             force[2] = 0.0;
