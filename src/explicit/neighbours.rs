@@ -4,12 +4,14 @@
 //! points' history, so nothing is hashed or rebuilt per step.
 //!
 //! A pair is listed when the particles' bounding boxes are closer than the
-//! skin `s` (in x or y). Every boundary point of a particle moves by at
-//! most `|Δx| + R |Δφ|` (`R` its bounding radius) since the list was
-//! built; while that stays at or below `s/2` for every particle, two boxes
-//! apart by more than `s` at the build are still apart, so the list holds
-//! every pair whose boxes touch, which are the pairs a per-step broad phase
-//! would find. Walls are listed per particle the same way. The list is
+//! skin `s` (in x and y) and so are their bounding circles. Every boundary
+//! point of a particle moves by at most `|Δx| + R |Δφ|` (`R` its bounding
+//! radius) since the list was built; while that stays at or below `s/2`
+//! for every particle, two boxes (or bounding circles) apart by more than
+//! `s` at the build are still apart, so the list holds every pair whose
+//! boxes and bounding circles touch, a superset of the pairs that touch:
+//! the narrow phase sees every pair a per-step broad phase would give it
+//! that can touch. Walls are listed per particle the same way. The list is
 //! therefore exact, not an approximation: the forces are those of a broad
 //! phase rebuilt every step.
 
@@ -218,6 +220,17 @@ impl<S> NeighbourList<S> {
         self.boxes
             .extend(particles.iter().map(|p| p.shape.as_shape().aabb(&p.pose)));
         grid.candidate_pairs(&self.boxes, self.skin, &mut self.pairs);
+        // Of those, the pairs whose bounding circles are also closer than
+        // the skin (a circle's box corner is far from the circle: a square
+        // packing's diagonal neighbours have touching boxes); a pair
+        // dropped here only when clearly beyond, against rounding.
+        let radius = &self.radius;
+        let skin = self.skin;
+        self.pairs.retain(|&(a, b)| {
+            let reach = radius[a] + radius[b] + skin;
+            let apart = (particles[b].pose.position - particles[a].pose.position).norm_squared();
+            apart <= reach * reach * (1.0 + 1e-12)
+        });
         let wall_boxes: Vec<Aabb2> = walls
             .iter()
             .map(|w| Aabb2::from_corners(w.start, w.end))
@@ -232,7 +245,6 @@ impl<S> NeighbourList<S> {
             .iter()
             .map(|&(a, b)| (a, ContactTarget::Particle(b)));
         let boxes = &self.boxes;
-        let skin = self.skin;
         let wall_pairs = (0..n).flat_map(|a| {
             let grown = boxes[a].inflated(skin);
             wall_boxes
