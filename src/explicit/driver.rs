@@ -69,12 +69,15 @@ pub struct DemSettings {
     pub initial_overlap_tolerance: f64,
     /// Refuse a time step above the estimated stable limit (on by default).
     pub check_stability: bool,
-    /// Skin of the neighbour list (m): pairs whose bounding boxes are
-    /// closer than this are listed, and the list is built again once a
-    /// particle's boundary has moved half of it. It changes the speed,
-    /// not the forces (the list holds every touching pair). `None` (the
-    /// default) takes 0.15 of the smallest particle's bounding radius;
-    /// 0 builds the list at every step that moves a particle.
+    /// Skin of the neighbour list (m): pairs whose bounding boxes and
+    /// bounding circles are both closer than this are listed, and the list
+    /// is built again once a particle's boundary may have moved half of it
+    /// (`|Δx| + |Δy| + R |Δφ|` since the build, `R` the bounding radius).
+    /// It changes the speed, not the forces (the list holds every pair
+    /// that can touch). `None` (the default) takes 0.15 of the smallest
+    /// particle's bounding radius; 0 builds the list at every step that
+    /// moves a particle. A larger skin builds less often and lists more
+    /// pairs that do not touch.
     pub neighbour_skin: Option<f64>,
 }
 
