@@ -584,37 +584,33 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let mass = &self.system.mass;
         let reach = self.frame_reach;
         let update = |(i, (force, (p, increment))): ParticleUpdate<'_>| {
-            force[0] = applied[i].x;
-            force[1] = applied[i].y;
-            force[2] = 0.0;
+            // B's side adds the force on B, A's subtracts it (`+ (−f)` and
+            // `− f` round alike); a pair without points adds zeros, which
+            // leave a sum as it is (a sum that starts at −0 turns +0, which
+            // nothing downstream tells apart).
+            let mut sum = [applied[i].x, applied[i].y, 0.0];
             let mut add = |is_b: bool, force_on_b: Vec2, moment_a: f64, moment_b: f64| {
-                if is_b {
-                    force[0] += force_on_b.x;
-                    force[1] += force_on_b.y;
-                    force[2] += moment_b;
-                } else {
-                    force[0] -= force_on_b.x;
-                    force[1] -= force_on_b.y;
-                    force[2] += moment_a;
-                }
+                let sign = if is_b { 1.0 } else { -1.0 };
+                sum[0] += sign * force_on_b.x;
+                sum[1] += sign * force_on_b.y;
+                sum[2] += if is_b { moment_b } else { moment_a };
             };
             for &incidence in neighbours.incidence_of(i) {
                 let pair = &neighbours.forces[incidence.slot()];
-                match pair.points {
-                    0 => {}
-                    1 => add(
+                if pair.points <= 1 {
+                    add(
                         incidence.is_b(),
                         pair.force_on_b,
                         pair.moment_a,
                         pair.moment_b,
-                    ),
-                    _ => {
-                        for p in &neighbours.slots[incidence.slot()].points {
-                            add(incidence.is_b(), p.force_on_b, p.moment_a, p.moment_b);
-                        }
+                    );
+                } else {
+                    for p in &neighbours.slots[incidence.slot()].points {
+                        add(incidence.is_b(), p.force_on_b, p.moment_a, p.moment_b);
                     }
                 }
             }
+            force.copy_from_slice(&sum);
             if !force.iter().all(|f| f.is_finite()) {
                 return StepCheck {
                     travel: 0.0,
