@@ -84,6 +84,7 @@ impl Aabb2 {
     }
 
     /// Whether two boxes overlap (touching counts).
+    #[inline]
     pub fn intersects(&self, other: &Aabb2) -> bool {
         self.min.x <= other.max.x
             && other.min.x <= self.max.x
@@ -100,11 +101,13 @@ impl Aabb2 {
     }
 
     /// Whether `p` lies in the box (the boundary counts).
+    #[inline]
     pub fn contains(&self, p: &Point) -> bool {
         (self.min.x..=self.max.x).contains(&p.x) && (self.min.y..=self.max.y).contains(&p.y)
     }
 
     /// The box grown by `margin` on every side.
+    #[inline]
     pub fn inflated(&self, margin: f64) -> Self {
         Self {
             min: Point::new(self.min.x - margin, self.min.y - margin),

@@ -4,9 +4,10 @@
 //! points' history, so nothing is hashed or rebuilt per step.
 //!
 //! A pair is listed when the particles' bounding boxes are closer than the
-//! skin `s` (in x and y) and so are their bounding circles. Every boundary
-//! point of a particle moves by at most `|Δx| + R |Δφ|` (`R` its bounding
-//! radius) since the list was built; while that stays at or below `s/2`
+//! skin `s` (in x and y) and so are their bounding circles. A particle's
+//! box and bounding circle move by at most `|Δx| + R |Δφ|` (`R` its
+//! bounding radius; 0 for a circle, whose box and circle a turn does not
+//! move) since the list was built; while that stays at or below `s/2`
 //! for every particle, two boxes (or bounding circles) apart by more than
 //! `s` at the build are still apart, so the list holds every pair whose
 //! boxes and bounding circles touch, a superset of the pairs that touch:
@@ -23,7 +24,7 @@ use crate::law::Regime;
 use crate::math::{Aabb2, Point, Vec2};
 use crate::query::ContactFeatures;
 use crate::scene::Particle;
-use crate::shape::Segment;
+use crate::shape::{AnyShape2, Segment};
 
 /// One contact point of a pair: the law's history and the last step's
 /// result.
@@ -150,6 +151,10 @@ pub(super) struct NeighbourList<S> {
     reference: Vec<(Point, f64)>,
     /// Bounding radius of each particle.
     radius: Vec<f64>,
+    /// How far a turn of one radian moves each particle's box and bounding
+    /// circle at most: its bounding radius, or 0 for a circle about its
+    /// centre (neither moves when it turns).
+    turn_arm: Vec<f64>,
     /// Whether the list must be built before the next step.
     stale: bool,
     builds: u64,
@@ -167,6 +172,13 @@ impl<S> NeighbourList<S> {
             incidence_start: Vec::new(),
             incidence: Vec::new(),
             reference: Vec::new(),
+            turn_arm: particles
+                .iter()
+                .map(|p| match p.shape {
+                    AnyShape2::Circle(_) => 0.0,
+                    _ => p.shape.as_shape().bounding_radius(),
+                })
+                .collect(),
             radius: particles
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
@@ -184,6 +196,7 @@ impl<S> NeighbourList<S> {
     }
 
     /// The pairs particle `i` takes part in.
+    #[inline]
     pub fn incidence_of(&self, i: usize) -> &[Incidence] {
         &self.incidence[self.incidence_start[i]..self.incidence_start[i + 1]]
     }
@@ -196,14 +209,14 @@ impl<S> NeighbourList<S> {
         }
     }
 
-    /// A bound on how far particle `i`'s boundary has moved since the
-    /// build, `|Δx| + |Δy| + R |Δφ|` (at least `|Δx| + R |Δφ|`, without a
-    /// square root).
+    /// A bound on how far particle `i`'s box and bounding circle have
+    /// moved since the build, `|Δx| + |Δy| + R |Δφ|` (at least
+    /// `|Δx| + R |Δφ|`, without a square root; `R` = 0 for a circle).
     #[inline]
     pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
         let (centre, angle) = self.reference[i];
         let moved = particle.pose.position - centre;
-        moved.x.abs() + moved.y.abs() + self.radius[i] * (particle.pose.angle - angle).abs()
+        moved.x.abs() + moved.y.abs() + self.turn_arm[i] * (particle.pose.angle - angle).abs()
     }
 
     /// Mark the list for a build when the largest travel of the step
