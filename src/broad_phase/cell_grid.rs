@@ -19,6 +19,8 @@ pub struct CellGrid {
     sorted: Vec<usize>,
     /// The cell of each body.
     body_cell: Vec<usize>,
+    /// Scratch of the counting sort.
+    fill: Vec<usize>,
 }
 
 impl CellGrid {
@@ -43,7 +45,11 @@ impl CellGrid {
                 Ok(())
             });
         if visited.is_ok() {
-            pairs.sort_unstable();
+            // Visited by ascending i: sorting each i's few partners sorts
+            // the whole list.
+            for partners in pairs.chunk_by_mut(|x, y| x.0 == y.0) {
+                partners.sort_unstable();
+            }
             pairs.dedup();
         }
     }
@@ -52,7 +58,7 @@ impl CellGrid {
     /// `margin`) overlap, without storing them, stopping at the first
     /// error `visit` returns (e.g. a check that refuses the first
     /// overlapping pair without building all pairs of a dense cluster).
-    /// The order is deterministic but not sorted, and a pair may be
+    /// The order is deterministic, by ascending `i` (not by `j`), and a pair may be
     /// visited twice when far cells merge (see [`Self::candidate_pairs`]
     /// for the sorted list).
     ///
@@ -107,7 +113,9 @@ impl CellGrid {
         }
         self.sorted.clear();
         self.sorted.resize(n, 0);
-        let mut fill = self.cell_start.clone();
+        let fill = &mut self.fill;
+        fill.clear();
+        fill.extend_from_slice(&self.cell_start);
         for (i, &cell) in self.body_cell.iter().enumerate() {
             self.sorted[fill[cell]] = i;
             fill[cell] += 1;

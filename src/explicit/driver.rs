@@ -31,7 +31,7 @@ type ParticleUpdate<'a> = (
 struct StepCheck {
     travel: f64,
     bad_force: Option<usize>,
-    wrong: Option<usize>,
+    bad_motion: Option<usize>,
 }
 
 impl StepCheck {
@@ -43,10 +43,16 @@ impl StepCheck {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
         };
+        // A travel that is not a number stays so (`max` would drop it).
+        let travel = if self.travel.is_nan() || other.travel.is_nan() {
+            f64::NAN
+        } else {
+            self.travel.max(other.travel)
+        };
         Self {
-            travel: self.travel.max(other.travel),
+            travel,
             bad_force: first(self.bad_force, other.bad_force),
-            wrong: first(self.wrong, other.wrong),
+            bad_motion: first(self.bad_motion, other.bad_motion),
         }
     }
 }
@@ -71,13 +77,15 @@ pub struct DemSettings {
     pub check_stability: bool,
     /// Skin of the neighbour list (m): pairs whose bounding boxes and
     /// bounding circles are both closer than this are listed, and the list
-    /// is built again once a particle's boundary may have moved half of it
-    /// (`|Δx| + |Δy| + R |Δφ|` since the build, `R` the bounding radius).
+    /// is built again once a particle's box may have moved half of it
+    /// (`|Δx| + |Δy| + R |Δφ|` since the build, `R` the bounding radius,
+    /// 0 for a circle, whose box a turn does not move).
     /// It changes the speed, not the forces (the list holds every pair
     /// that can touch). `None` (the default) takes 0.15 of the smallest
     /// particle's bounding radius; 0 builds the list at every step that
     /// moves a particle. A larger skin builds less often and lists more
-    /// pairs that do not touch.
+    /// pairs that do not touch (a skin as large as the scene lists every
+    /// pair: n² of them).
     pub neighbour_skin: Option<f64>,
 }
 
@@ -94,7 +102,8 @@ impl Default for DemSettings {
 
 impl DemSettings {
     /// The skin for `scene`: the setting, or 0.15 of the smallest bounding
-    /// radius (0 for a scene without particles).
+    /// radius (for a scene without particles, which has no pairs, a huge
+    /// finite one).
     fn skin_for(&self, scene: &Scene) -> Result<f64> {
         match self.neighbour_skin {
             Some(skin) => require_non_negative("neighbour_skin", skin),
@@ -528,6 +537,9 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
     /// Advance one step.
     ///
+    /// After an error the scene is not specified (some particles may have
+    /// moved): the run has gone wrong and should not be continued.
+    ///
     /// The forces are summed per particle in a fixed order (its weight,
     /// then its pairs in the list's order, each pair's points in the
     /// manifold's order), whatever the number of threads, so a run is the
@@ -550,6 +562,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             particles: &self.scene.particles,
             increments: &self.increments,
             walls: self.scene.frame.walls(),
+            wall_boxes: &self.neighbours.wall_boxes,
         };
         let slots = &mut self.neighbours.slots;
         let forces = &mut self.neighbours.forces;
@@ -597,7 +610,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             };
             for &incidence in neighbours.incidence_of(i) {
                 let pair = &neighbours.forces[incidence.slot()];
-                if pair.points <= 1 {
+                if pair.count <= 1 {
                     add(
                         incidence.is_b(),
                         pair.force_on_b,
@@ -615,7 +628,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 return StepCheck {
                     travel: 0.0,
                     bad_force: Some(i),
-                    wrong: None,
+                    bad_motion: None,
                 };
             }
             let mut dx = [0.0; 3];
@@ -630,11 +643,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             p.pose.angle += dx[2];
             *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
             let finite = dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
-            let wrong = !(finite && reach.contains(&p.pose.position));
+            let bad_motion = !(finite && reach.contains(&p.pose.position));
             StepCheck {
                 travel: neighbours.travel(i, p),
                 bad_force: None,
-                wrong: wrong.then_some(i),
+                bad_motion: bad_motion.then_some(i),
             }
         };
         let force = &mut self.system.force;
@@ -656,12 +669,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .map(update)
                 .fold(StepCheck::default(), StepCheck::combine)
         };
+        self.neighbours.note_travel(check.travel);
         if let Some(i) = check.bad_force {
             return Err(self.non_finite(i, "force"));
         }
-        let (travel, wrong) = (check.travel, check.wrong);
-        self.neighbours.note_travel(travel);
-        if let Some(i) = wrong {
+        if let Some(i) = check.bad_motion {
             let (dx, turn) = self.increments[i];
             let p = &self.scene.particles[i];
             let finite = dx.iter().all(|v| v.is_finite())

@@ -6,7 +6,7 @@
 //! | slot or step | piece |
 //! |---|---|
 //! | candidate pairs | a neighbour list with a skin ([`DemSettings::neighbour_skin`]), built by [`crate::broad_phase::CellGrid`] when a particle has moved half the skin |
-//! | pair geometry | [`crate::query::manifold::dispatch::contact_manifold_2d`] (several points for polygons) |
+//! | pair geometry | [`crate::query::manifold::dispatch::contact_manifold_2d`] (several points for polygons; circles against circles and walls call [`crate::query::manifold::circle_circle`] and [`crate::query::manifold::circle_segment`] directly) |
 //! | relative motion at the contact | [`crate::query::relative_increment`] |
 //! | contact force and history | any [`crate::law::ContactLaw<2>`] with a [`crate::law::BoundedStiffness`], e.g. [`crate::law::SpringDashpotCoulomb`] |
 //! | `M a = f` | [`crate::linsolve::LumpedSystem`] (diagonal mass) |
@@ -27,8 +27,10 @@
 //! non-circular body rolls and its deepest point moves along its boundary.
 //!
 //! The list holds every pair that can touch until it is built again (see
-//! the skin's docs), so the forces are those of a broad phase run at every
-//! step, to the last bit: the skin sets the speed only. From 2000
+//! the skin's docs), and a wall's geometry is asked only when the
+//! particle's box meets the wall's (the wall queries are one-sided), so the
+//! forces are those of a broad phase run at every step, to the last bit:
+//! the skin sets the speed only. From 2000
 //! particles on, the pairs' contact points and the particles' updates are
 //! computed on rayon's threads (run the stepping loop inside a
 //! `ThreadPool::install` so that its thread is one of the pool's); each

@@ -89,7 +89,7 @@ pub(super) struct PairForce {
     /// Its moment about B's centre.
     pub moment_b: f64,
     /// The pair's number of contact points.
-    pub points: usize,
+    pub count: usize,
 }
 
 impl PairForce {
@@ -108,7 +108,7 @@ impl PairForce {
             force_on_b: first.force_on_b,
             moment_a: first.moment_a,
             moment_b: first.moment_b,
-            points,
+            count: points,
         }
     }
 }
@@ -141,8 +141,16 @@ pub(super) struct NeighbourList<S> {
     skin: f64,
     /// Pairs, ordered as [`PairSlot::order`].
     pub slots: Vec<PairSlot<S>>,
+    /// Scratch of the build's counting sort.
+    fill: Vec<usize>,
+    /// The buffer of the next build's `slots`.
+    spare: Vec<PairSlot<S>>,
     /// Each pair's force summary, beside `slots`.
     pub forces: Vec<PairForce>,
+    /// The walls' boxes (a wall's geometry is asked only when the
+    /// particle's box meets its box, as a per-step broad phase would: the
+    /// wall queries are one-sided and report a particle behind the wall).
+    pub wall_boxes: Vec<Aabb2>,
     /// The pairs of particle `i` are `incidence[start[i]..start[i + 1]]`,
     /// in the list's order.
     incidence_start: Vec<usize>,
@@ -168,7 +176,10 @@ impl<S> NeighbourList<S> {
         Self {
             skin,
             slots: Vec::new(),
+            fill: Vec::new(),
+            spare: Vec::new(),
             forces: Vec::new(),
+            wall_boxes: Vec::new(),
             incidence_start: Vec::new(),
             incidence: Vec::new(),
             reference: Vec::new(),
@@ -210,19 +221,33 @@ impl<S> NeighbourList<S> {
     }
 
     /// A bound on how far particle `i`'s box and bounding circle have
-    /// moved since the build, `|Δx| + |Δy| + R |Δφ|` (at least
-    /// `|Δx| + R |Δφ|`, without a square root; `R` = 0 for a circle).
+    /// moved since the build, `|Δx| + R |Δφ|` (`R` = 0 for a circle); while
+    /// it is clearly below the build's limit it is taken without a square
+    /// root, as `|Δx| + |Δy| + R |Δφ|`.
     #[inline]
     pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
         let (centre, angle) = self.reference[i];
         let moved = particle.pose.position - centre;
-        moved.x.abs() + moved.y.abs() + self.turn_arm[i] * (particle.pose.angle - angle).abs()
+        let turned = self.turn_arm[i] * (particle.pose.angle - angle).abs();
+        let rough = moved.x.abs() + moved.y.abs() + turned;
+        if rough <= self.limit() {
+            rough
+        } else {
+            moved.norm() + turned
+        }
+    }
+
+    /// The largest travel the list stands: half the skin, less a hair so
+    /// that the rounding of the boxes cannot lose a pair whose gap was
+    /// exactly the skin.
+    fn limit(&self) -> f64 {
+        0.5 * self.skin * (1.0 - 1e-9)
     }
 
     /// Mark the list for a build when the largest travel of the step
-    /// exceeds half the skin (or is not a number).
+    /// exceeds [`Self::limit`] (or is not a number).
     pub fn note_travel(&mut self, largest: f64) {
-        if largest.is_nan() || largest > 0.5 * self.skin {
+        if largest.is_nan() || largest > self.limit() {
             self.stale = true;
         }
     }
@@ -244,15 +269,19 @@ impl<S> NeighbourList<S> {
             let apart = (particles[b].pose.position - particles[a].pose.position).norm_squared();
             apart <= reach * reach * (1.0 + 1e-12)
         });
-        let wall_boxes: Vec<Aabb2> = walls
-            .iter()
-            .map(|w| Aabb2::from_corners(w.start, w.end))
-            .collect();
+        self.wall_boxes.clear();
+        self.wall_boxes
+            .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
+        let wall_boxes = &self.wall_boxes;
 
         // New slots in the list's order, each taking the points of the
         // same pair in the old list (both are sorted: a merge).
-        let mut old = std::mem::take(&mut self.slots).into_iter().peekable();
-        let mut slots = Vec::with_capacity(self.pairs.len() + n);
+        // (The two lists swap their buffers at every build: a large list
+        // is not given back to the system and asked for again.)
+        let mut previous_slots = std::mem::take(&mut self.slots);
+        let mut old = previous_slots.drain(..).peekable();
+        let mut slots = std::mem::take(&mut self.spare);
+        slots.clear();
         let particle_pairs = self
             .pairs
             .iter()
@@ -281,6 +310,8 @@ impl<S> NeighbourList<S> {
             }
             slots.push(slot);
         }
+        drop(old);
+        self.spare = previous_slots;
         self.forces.clear();
         self.forces
             .extend(slots.iter().map(|slot| PairForce::of(&slot.points)));
@@ -298,7 +329,9 @@ impl<S> NeighbourList<S> {
         for i in 0..n {
             self.incidence_start[i + 1] += self.incidence_start[i];
         }
-        let mut fill = self.incidence_start.clone();
+        let fill = &mut self.fill;
+        fill.clear();
+        fill.extend_from_slice(&self.incidence_start);
         self.incidence.clear();
         self.incidence
             .resize(self.incidence_start[n], Incidence::new(0, false));

@@ -6,7 +6,7 @@ use super::driver::ContactTarget;
 use super::neighbours::{PairForce, PairPoints, PairSlot, PointContact};
 use crate::error::Result;
 use crate::law::{ContactInput, ContactLaw, PairProperties};
-use crate::math::{Point, Pose2, Vec2};
+use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::query::manifold::circle_circle::contact_circle_circle;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d, contact_manifold_2d};
@@ -23,6 +23,8 @@ pub(super) struct PairContext<'a, L> {
     /// rotation).
     pub increments: &'a [(Vec2, f64)],
     pub walls: &'a [Segment],
+    /// The walls' boxes.
+    pub wall_boxes: &'a [Aabb2],
 }
 
 /// B's centre, its increment of the last step and its mass; `None` for a
@@ -55,6 +57,16 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 (&pb.shape, &pb.pose, other)
             }
             ContactTarget::Wall(w) => {
+                if !pa
+                    .shape
+                    .as_shape()
+                    .aabb(&pa.pose)
+                    .intersects(&self.wall_boxes[w])
+                {
+                    slot.points.clear();
+                    *force = PairForce::default();
+                    return Ok(());
+                }
                 wall = AnyShape2::Segment(self.walls[w]);
                 (&wall, &WALL_POSE, None)
             }
