@@ -281,7 +281,6 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     manifold: Vec<ContactGeometry>,
     increments: Vec<(Vec2, f64)>,
     grid: CellGrid,
-    boxes: Vec<Aabb2>,
     system: LumpedSystem,
     /// Each particle's weight and external force, `m g + f_ext` (N/m).
     applied: Vec<Vec2>,
@@ -379,7 +378,6 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             manifold: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             grid: CellGrid::new(),
-            boxes: Vec::with_capacity(n),
             system: LumpedSystem {
                 force: vec![0.0; 3 * n],
                 mass,
@@ -418,20 +416,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         count.into_iter().max().unwrap_or(0)
     }
 
-    /// The particles' bounding boxes, into `boxes`.
-    fn fill_boxes(&mut self) {
-        self.boxes.clear();
-        for p in &self.scene.particles {
-            self.boxes.push(p.shape.as_shape().aabb(&p.pose));
-        }
-    }
-
     fn check_initial_overlaps(&mut self) -> Result<f64> {
-        self.fill_boxes();
+        let boxes: Vec<Aabb2> = self
+            .scene
+            .particles
+            .iter()
+            .map(|p| p.shape.as_shape().aabb(&p.pose))
+            .collect();
         check_initial_overlaps(
             &self.scene,
             &mut self.grid,
-            &self.boxes,
+            &boxes,
             self.settings.initial_overlap_tolerance,
             &mut self.manifold,
         )
