@@ -312,9 +312,10 @@ impl<S> NeighbourList<S> {
         }
         drop(old);
         self.spare = previous_slots;
+        // The summaries are written by the step's evaluation, which
+        // follows every build.
         self.forces.clear();
-        self.forces
-            .extend(slots.iter().map(|slot| PairForce::of(&slot.points)));
+        self.forces.resize(slots.len(), PairForce::default());
         self.slots = slots;
 
         // Each particle's pairs, in the list's order (a counting sort).
