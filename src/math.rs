@@ -2,6 +2,8 @@
 
 use nalgebra::{Point2, Vector2};
 
+pub mod real_roots;
+
 /// A 2D vector (m, N, m/s…).
 pub type Vec2 = Vector2<f64>;
 /// A 2D point (m).

@@ -1,0 +1,620 @@
+//! Real roots of cubics and quartics without eigenvalues or closed forms,
+//! by isolating them between critical points (the approach of C. Yuksel,
+//! "High-Performance Polynomial Root Finding for Graphics", HPG 2022).
+//!
+//! Between two consecutive critical points a polynomial is monotonic, so
+//! it has at most one root there, and one exactly when its values at the
+//! two ends differ in sign. The critical points of a quartic are the roots
+//! of its cubic derivative, found the same way from the roots of the
+//! quadratic second derivative (closed form). Each root is then refined by
+//! Newton's method inside its bracket, with a bisection whenever a step
+//! would leave the bracket, so it converges whatever the start. Beyond the
+//! outermost critical point the bracket's far end is found by stepping out
+//! with doubling steps from a second-order estimate of the root.
+//!
+//! A root where the polynomial touches zero without crossing it (even
+//! multiplicity) is found only when its computed value at the critical
+//! point is exactly zero or crosses zero by round-off: such a root is
+//! ill-conditioned in any method, and [`quartic_nonpositive`] states what
+//! it reports in terms of the sign of the polynomial, which is what its
+//! users need.
+
+/// Up to four real numbers in increasing order.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RealRoots {
+    values: [f64; 4],
+    len: usize,
+}
+
+impl RealRoots {
+    /// The roots, increasing.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+
+    /// How many roots.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// No root.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Append `x` (callers push in increasing order); beyond four the
+    /// value is dropped.
+    fn push(&mut self, x: f64) {
+        if self.len < 4 {
+            self.values[self.len] = x;
+            self.len += 1;
+        }
+    }
+}
+
+/// Most Newton or bisection steps per root: a bisection from a bracket
+/// spanning the whole range of doubles to one ulp takes about 2100; the
+/// brackets here come from doubling steps out of a second-order estimate,
+/// so Newton ends in a handful.
+const MAX_REFINEMENTS: usize = 2200;
+
+/// Value, first and second derivative of the polynomial with
+/// coefficients `c`, highest power first (Horner, three chains side by
+/// side).
+#[inline]
+fn with_slopes<const N: usize>(c: &[f64; N], x: f64) -> Eval {
+    let mut v = c[0];
+    let mut d1 = 0.0;
+    let mut d2 = 0.0;
+    for &k in &c[1..] {
+        d2 = d2 * x + d1;
+        d1 = d1 * x + v;
+        v = v * x + k;
+    }
+    Eval {
+        value: v,
+        slope: d1,
+        curvature: 2.0 * d2,
+    }
+}
+
+/// A polynomial's value and first two derivatives at a point.
+#[derive(Debug, Clone, Copy)]
+struct Eval {
+    value: f64,
+    slope: f64,
+    curvature: f64,
+}
+
+/// Value of the quartic `c[0] x⁴ + … + c[4]` (Horner).
+#[inline]
+pub fn quartic_value(c: &[f64; 5], x: f64) -> f64 {
+    (((c[0] * x + c[1]) * x + c[2]) * x + c[3]) * x + c[4]
+}
+
+/// The real roots of `a x² + b x + c` (`a ≠ 0`), increasing, by the
+/// cancellation-free pair of formulas; `None` when there are none.
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    let disc = b * b - 4.0 * a * c;
+    if disc.is_nan() || disc < 0.0 || a == 0.0 {
+        return None;
+    }
+    let q = -0.5 * (b + disc.sqrt().copysign(b));
+    let r1 = q / a;
+    let r2 = if q != 0.0 { c / q } else { r1 };
+    Some((r1.min(r2), r1.max(r2)))
+}
+
+/// Whether a step `dx` at `x` is below the resolution of doubles there (an
+/// absolute floor keeps a root at zero from taking many steps).
+#[inline]
+fn negligible(dx: f64, x: f64) -> bool {
+    dx.abs() <= f64::EPSILON * x.abs().max(1e-8)
+}
+
+/// The root of `f` between `neg` (where `f < 0`) and `pos` (where
+/// `f > 0`), in either order, from `start` (clamped into the bracket; `at`
+/// its evaluation, if known) by Halley's method, bisecting whenever a step
+/// would leave the bracket. It stops when a step is below the resolution
+/// of doubles.
+fn bracketed_root(
+    f: impl Fn(f64) -> Eval,
+    mut neg: f64,
+    mut pos: f64,
+    start: f64,
+    mut at: Option<Eval>,
+) -> f64 {
+    let (lo, hi) = (neg.min(pos), neg.max(pos));
+    let mut x = if (lo..=hi).contains(&start) {
+        start
+    } else {
+        at = None;
+        0.5 * (lo + hi)
+    };
+    for _ in 0..MAX_REFINEMENTS {
+        let e = at.take().unwrap_or_else(|| f(x));
+        let v = e.value;
+        if v == 0.0 || v.is_nan() {
+            return x;
+        }
+        if v < 0.0 {
+            neg = x;
+        } else {
+            pos = x;
+        }
+        let (lo, hi) = (neg.min(pos), neg.max(pos));
+        // Halley: dx = f f' / (f'² − f f''/2), or Newton's f / f' where
+        // the correction is large (far from the root).
+        let (slope2, half_bend) = (e.slope * e.slope, 0.5 * v * e.curvature);
+        let dx = if half_bend.abs() < 0.5 * slope2 {
+            v * e.slope / (slope2 - half_bend)
+        } else {
+            v / e.slope
+        };
+        let next = x - dx;
+        if next > lo && next < hi {
+            if negligible(dx, x) {
+                return next;
+            }
+            x = next;
+        } else {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                // The bracket is two neighbouring doubles.
+                return x;
+            }
+            x = mid;
+        }
+    }
+    x
+}
+
+/// From `from`, where `f` has the sign `sign_from` (±1), step in
+/// direction `dir` (±1) by `h`, 2h, 4h, … until the sign flips (or the
+/// value is zero): the last point with the old sign, the first with the
+/// new, and the evaluation at the first step. `None` when no flip is found
+/// before the steps overflow (or a value is not a number).
+fn step_out(
+    f: impl Fn(f64) -> Eval,
+    from: f64,
+    sign_from: f64,
+    dir: f64,
+    h: f64,
+) -> Option<(f64, f64, Eval)> {
+    let scale = from.abs().max(1e-8);
+    let mut h = if h.is_finite() && h > f64::EPSILON * scale {
+        h
+    } else {
+        f64::EPSILON * scale
+    };
+    let mut inner = from;
+    let mut first = None;
+    while h.is_finite() {
+        let x = from + dir * h;
+        let e = f(x);
+        let first = *first.get_or_insert(e);
+        if e.value.is_nan() {
+            return None;
+        }
+        if e.value * sign_from <= 0.0 {
+            return Some((inner, x, first));
+        }
+        inner = x;
+        h *= 2.0;
+    }
+    None
+}
+
+/// The root of `f` beyond `from` (value `v_from`) in direction `dir`, `f`
+/// monotonic there and changing sign, `h` an estimate of the distance to
+/// it.
+fn root_beyond(
+    f: impl Fn(f64) -> Eval + Copy,
+    from: f64,
+    v_from: f64,
+    dir: f64,
+    h: f64,
+) -> Option<f64> {
+    if v_from == 0.0 {
+        return Some(from);
+    }
+    let sign = v_from.signum();
+    let (inner, outer, first) = step_out(f, from, sign, dir, h)?;
+    let start = from + dir * h;
+    Some(if sign < 0.0 {
+        bracketed_root(f, inner, outer, start, Some(first))
+    } else {
+        bracketed_root(f, outer, inner, start, Some(first))
+    })
+}
+
+/// The real roots where the cubic `c[0] x³ + c[1] x² + c[2] x + c[3]`
+/// (`c[0] > 0`) changes sign, increasing (a double root, where it touches
+/// zero without crossing, is not reported; a triple root is, once). Empty
+/// when `c[0]` is not positive.
+pub fn cubic_crossings(c: [f64; 4]) -> RealRoots {
+    let mut roots = RealRoots::default();
+    if c[0].is_nan() || c[0] <= 0.0 {
+        return roots;
+    }
+    let f = |x: f64| with_slopes(&c, x);
+    // The critical points: roots of 3c₀x² + 2c₁x + c₂.
+    match quadratic_roots(3.0 * c[0], 2.0 * c[1], c[2]) {
+        Some((x1, x2)) if x1 < x2 => {
+            let (v1, v2) = (f(x1).value, f(x2).value);
+            // Rising to a local maximum at x1, falling to a local minimum
+            // at x2, rising again.
+            let curvature = |x: f64| (6.0 * c[0] * x + 2.0 * c[1]).abs();
+            let estimate = |x: f64, v: f64| (2.0 * v.abs() / curvature(x)).sqrt();
+            if v1 > 0.0 {
+                if let Some(r) = root_beyond(f, x1, v1, -1.0, estimate(x1, v1)) {
+                    roots.push(r);
+                }
+            }
+            if v1 > 0.0 && v2 < 0.0 {
+                roots.push(bracketed_root(f, x2, x1, 0.5 * (x1 + x2), None));
+            }
+            if v2 < 0.0 {
+                if let Some(r) = root_beyond(f, x2, v2, 1.0, estimate(x2, v2)) {
+                    roots.push(r);
+                }
+            }
+        }
+        _ => {
+            // Monotonic: one root, out from the inflection point, at about
+            // a Newton step (or, where the slope vanishes, the cube root of
+            // the third-order estimate).
+            let x0 = -c[1] / (3.0 * c[0]);
+            let e = f(x0);
+            let (v, d) = (e.value, e.slope);
+            let h = if d > 0.0 {
+                (v / d).abs()
+            } else {
+                (v.abs() / c[0]).cbrt()
+            };
+            if let Some(r) = root_beyond(f, x0, v, -v.signum(), h) {
+                roots.push(r);
+            }
+        }
+    }
+    roots
+}
+
+/// The ends of the closed intervals on which the quartic
+/// `p(x) = c[0] x⁴ + c[1] x³ + c[2] x² + c[3] x + c[4]` (`c[0] > 0`) is not
+/// positive, increasing: an even count, 0, 2 or 4. Between consecutive
+/// pairs `p > 0`; a root where `p` touches zero from above is the interval
+/// `[x, x]`, reported twice, and a root where it touches zero from below
+/// joins two intervals, so it is not reported. Empty when `c[0]` is not
+/// positive or a coefficient is not finite.
+pub fn quartic_nonpositive(c: [f64; 5]) -> RealRoots {
+    let mut roots = RealRoots::default();
+    if c.iter().any(|v| !v.is_finite()) || c[0] <= 0.0 {
+        return roots;
+    }
+    let p = |x: f64| with_slopes(&c, x);
+    let curvature = |x: f64| (12.0 * c[0] * x + 6.0 * c[1]) * x + 2.0 * c[2];
+    // The critical points: where the derivative changes sign, alternately
+    // a minimum, a maximum and a minimum.
+    let critical = cubic_crossings([4.0 * c[0], 3.0 * c[1], 2.0 * c[2], c[3]]);
+    let critical = critical.as_slice();
+    if critical.len() % 2 == 0 {
+        // None found (a coefficient overflowed far out): nothing to say.
+        return roots;
+    }
+    let values: [f64; 3] =
+        std::array::from_fn(|k| critical.get(k).map_or(0.0, |&x| quartic_value(&c, x)));
+    // Distance from a minimum `x` of value `v ≤ 0` to the roots beside it,
+    // by the second-order Taylor estimate.
+    let estimate = |x: f64, v: f64| (-2.0 * v / curvature(x)).sqrt();
+    let (first, last) = (critical[0], critical[critical.len() - 1]);
+    let (v_first, v_last) = (values[0], values[critical.len() - 1]);
+    // Left of the first minimum, p falls from +∞.
+    if v_first < 0.0 {
+        if let Some(r) = root_beyond(p, first, v_first, -1.0, estimate(first, v_first)) {
+            roots.push(r);
+        }
+    } else if v_first == 0.0 {
+        roots.push(first);
+    }
+    if critical.len() == 3 {
+        let (middle, v_middle) = (critical[1], values[1]);
+        // Rising from the first minimum to the maximum, falling to the
+        // second minimum: a root on each side where the maximum is
+        // positive and the minimum not.
+        if v_middle > 0.0 {
+            if v_first <= 0.0 {
+                roots.push(root_between(p, first, v_first, middle, estimate));
+            }
+            if v_last <= 0.0 {
+                roots.push(root_between(p, last, v_last, middle, estimate));
+            }
+        }
+    }
+    // Right of the last minimum, p rises to +∞.
+    if v_last < 0.0 {
+        if let Some(r) = root_beyond(p, last, v_last, 1.0, estimate(last, v_last)) {
+            roots.push(r);
+        }
+    } else if v_last == 0.0 {
+        roots.push(last);
+    }
+    if roots.len() % 2 == 1 {
+        // A root was not found (overflow far out): report none rather than
+        // a wrong pairing.
+        return RealRoots::default();
+    }
+    roots
+}
+
+/// The root between the minimum `min` of value `v_min ≤ 0` and the
+/// maximum `max` (value positive), from the Taylor estimate at the minimum.
+fn root_between(
+    p: impl Fn(f64) -> Eval,
+    min: f64,
+    v_min: f64,
+    max: f64,
+    estimate: impl Fn(f64, f64) -> f64,
+) -> f64 {
+    if v_min == 0.0 {
+        return min;
+    }
+    let start = min + (max - min).signum() * estimate(min, v_min);
+    bracketed_root(p, min, max, start, None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// `k ∏ (x − rᵢ)` for four roots (or three: a cubic in `c[..4]`).
+    fn from_roots(k: f64, roots: &[f64]) -> [f64; 5] {
+        let mut c = vec![k];
+        for &r in roots {
+            let mut next = c.clone();
+            next.push(0.0);
+            for (m, &v) in c.iter().enumerate() {
+                next[m + 1] -= r * v;
+            }
+            c = next;
+        }
+        c.resize(5, 0.0);
+        [c[0], c[1], c[2], c[3], c[4]]
+    }
+
+    /// `k (x − r₀)(x − r₁)(x² + βx + γ)`.
+    fn times_quadratic(k: f64, roots: [f64; 2], beta: f64, gamma: f64) -> [f64; 5] {
+        let (a0, a1, a2) = (k, -k * (roots[0] + roots[1]), k * roots[0] * roots[1]);
+        [
+            a0,
+            a0 * beta + a1,
+            a0 * gamma + a1 * beta + a2,
+            a1 * gamma + a2 * beta,
+            a2 * gamma,
+        ]
+    }
+
+    /// How far a simple root `e` of the quartic `c` may move when the
+    /// coefficients are rounded and the quartic evaluated in doubles: the
+    /// evaluation's error bound over the slope, with room.
+    fn root_tolerance(c: &[f64; 5], e: f64) -> f64 {
+        let magnitude = c.iter().fold(0.0, |m, v| m * e.abs() + v.abs());
+        let slope = with_slopes(c, e).slope.abs();
+        64.0 * f64::EPSILON * (magnitude / slope + e.abs()) + 1e-20
+    }
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol * (1.0 + b.abs())
+    }
+
+    #[test]
+    fn four_distinct_roots_are_found_exactly() {
+        let c = from_roots(2.0, &[-3.0, -0.5, 0.25, 4.0]);
+        let r = quartic_nonpositive(c);
+        assert_eq!(r.len(), 4);
+        for (x, e) in r.as_slice().iter().zip([-3.0, -0.5, 0.25, 4.0]) {
+            assert!(close(*x, e, 1e-15), "{x} vs {e}");
+        }
+    }
+
+    #[test]
+    fn two_real_roots_and_a_complex_pair() {
+        let c = times_quadratic(0.7, [-1.25, 0.5], 1.0, 3.0);
+        let r = quartic_nonpositive(c);
+        assert_eq!(r.as_slice().len(), 2);
+        assert!(close(r.as_slice()[0], -1.25, 1e-15) && close(r.as_slice()[1], 0.5, 1e-15));
+        // No real root at all.
+        assert!(quartic_nonpositive([1.0, 0.0, 2.0, 0.0, 1.5]).is_empty());
+    }
+
+    #[test]
+    fn double_roots_follow_the_sign_of_the_quartic() {
+        // (x − 1)² (x + 2)(x − 3): p ≤ 0 on [−2, 3], touching zero at 1.
+        let r = quartic_nonpositive(from_roots(1.0, &[1.0, 1.0, -2.0, 3.0]));
+        assert_eq!(r.len(), 2);
+        assert!(close(r.as_slice()[0], -2.0, 1e-15) && close(r.as_slice()[1], 3.0, 1e-15));
+        // (x − 1)² ((x − 3)² + 1): p ≤ 0 only at 1, reported as [1, 1].
+        let r = quartic_nonpositive(times_quadratic(1.0, [1.0, 1.0], -6.0, 10.0));
+        assert_eq!(r.len(), 2);
+        assert!(close(r.as_slice()[0], 1.0, 1e-7) && close(r.as_slice()[1], 1.0, 1e-7));
+        // Two double roots (x − 1)²(x + 2)²: p ≤ 0 at −2 and at 1.
+        let r = quartic_nonpositive(from_roots(1.0, &[1.0, 1.0, -2.0, -2.0]));
+        assert_eq!(r.len(), 4);
+        for (x, e) in r.as_slice().iter().zip([-2.0, -2.0, 1.0, 1.0]) {
+            assert!(close(*x, e, 1e-7), "{x} vs {e}");
+        }
+        // A quadruple root.
+        let r = quartic_nonpositive(from_roots(3.0, &[0.5; 4]));
+        assert_eq!(r.len(), 2);
+        assert!(close(r.as_slice()[0], 0.5, 1e-3) && close(r.as_slice()[1], 0.5, 1e-3));
+    }
+
+    #[test]
+    fn a_shallow_dip_gives_both_close_roots() {
+        // (x − 1)² − 1e-12 times a positive quadratic: roots 1 ± 1e-6.
+        for &delta in &[1e-3, 1e-6, 1e-7] {
+            let c = times_quadratic(1.0, [1.0 - delta, 1.0 + delta], 0.4, 2.0);
+            let r = quartic_nonpositive(c);
+            assert_eq!(r.len(), 2, "{delta}");
+            let [x1, x2] = [r.as_slice()[0], r.as_slice()[1]];
+            // The root's condition: ε / (2δ) relative.
+            let tol = 1e-15 / delta;
+            assert!(
+                close(x1, 1.0 - delta, tol) && close(x2, 1.0 + delta, tol),
+                "{x1} {x2}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_small_leading_coefficient_puts_roots_far_out() {
+        // ε (x − 1e6)(x + 1e6) … scaled: roots ±1e6 and 1, 2.
+        let c = from_roots(1e-12, &[-1e6, 1.0, 2.0, 1e6]);
+        let r = quartic_nonpositive(c);
+        assert_eq!(r.len(), 4);
+        for (x, e) in r.as_slice().iter().zip([-1e6, 1.0, 2.0, 1e6]) {
+            assert!(close(*x, e, 1e-12), "{x} vs {e}");
+        }
+        // Leading coefficient 1e-14 of the rest, complex far roots.
+        let c = times_quadratic(1.0, [-0.3, 0.7], 0.0, 1e14);
+        let c = c.map(|v| v * 1e-14);
+        let r = quartic_nonpositive(c);
+        assert_eq!(r.len(), 2);
+        assert!(close(r.as_slice()[0], -0.3, 1e-14) && close(r.as_slice()[1], 0.7, 1e-14));
+    }
+
+    #[test]
+    fn degenerate_input_gives_no_roots_rather_than_a_panic() {
+        assert!(quartic_nonpositive([0.0, 1.0, 0.0, -1.0, 0.0]).is_empty());
+        assert!(quartic_nonpositive([-1.0, 0.0, 0.0, 0.0, 1.0]).is_empty());
+        assert!(quartic_nonpositive([1.0, f64::NAN, 0.0, 0.0, -1.0]).is_empty());
+        assert!(quartic_nonpositive([1.0, 0.0, 0.0, 0.0, f64::INFINITY]).is_empty());
+        assert!(cubic_crossings([0.0, 1.0, 0.0, -1.0]).is_empty());
+        let r = quartic_nonpositive([1e-300, 0.0, 0.0, 0.0, -1e300]);
+        assert!(r.len() % 2 == 0);
+    }
+
+    #[test]
+    fn cubic_crossings_of_known_cubics() {
+        let c = from_roots(2.0, &[1.0, 2.0, -0.5]);
+        let r = cubic_crossings([c[0], c[1], c[2], c[3]]);
+        assert_eq!(r.len(), 3);
+        for (x, e) in r.as_slice().iter().zip([-0.5, 1.0, 2.0]) {
+            assert!(close(*x, e, 1e-15), "{x} vs {e}");
+        }
+        // One real root, x³ + x + 10 = 0 at −2.
+        let r = cubic_crossings([1.0, 0.0, 1.0, 10.0]);
+        assert_eq!(r.len(), 1);
+        assert!(close(r.as_slice()[0], -2.0, 1e-15));
+        // A triple root.
+        let r = cubic_crossings([1.0, -3.0, 3.0, -1.0]);
+        assert_eq!(r.len(), 1);
+        assert!(close(r.as_slice()[0], 1.0, 1e-5));
+        // A double root and a simple one: (x − 1)²(x + 1); only −1 crosses.
+        let r = cubic_crossings([1.0, -1.0, -1.0, 1.0]);
+        assert_eq!(r.as_slice(), &[-1.0]);
+    }
+
+    /// The real roots by the eigenvalues of the companion matrix.
+    fn eigen_roots(c: &[f64; 5]) -> Vec<f64> {
+        let m = nalgebra::Matrix4::new(
+            -c[1] / c[0],
+            -c[2] / c[0],
+            -c[3] / c[0],
+            -c[4] / c[0],
+            1.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+        );
+        let mut r: Vec<f64> = m
+            .complex_eigenvalues()
+            .iter()
+            .filter(|z| z.im.abs() <= 1e-9 * (1.0 + z.re.abs()))
+            .map(|z| z.re)
+            .collect();
+        r.sort_by(f64::total_cmp);
+        r
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// Four well-separated roots (at least 1e-3 apart relative to the
+        /// spread) are all found to near round-off.
+        #[test]
+        fn constructed_quartics_give_back_their_roots(
+            k in 1e-3f64..1e3, mut r in prop::array::uniform4(-10.0f64..10.0)
+        ) {
+            r.sort_by(f64::total_cmp);
+            let spread = r[3] - r[0];
+            prop_assume!(r.windows(2).all(|w| w[1] - w[0] > 1e-2 * spread));
+            let c = from_roots(k, &r);
+            let found = quartic_nonpositive(c);
+            prop_assert_eq!(found.len(), 4);
+            for (x, e) in found.as_slice().iter().zip(r) {
+                prop_assert!((x - e).abs() <= root_tolerance(&c, e), "{:?} vs {:?}", found, r);
+            }
+        }
+
+        /// Two real roots and a complex pair: both roots.
+        #[test]
+        fn two_real_roots_with_a_complex_pair(
+            k in 1e-3f64..1e3, mut r in prop::array::uniform2(-5.0f64..5.0),
+            re in -5.0f64..5.0, im in 1e-2f64..5.0
+        ) {
+            r.sort_by(f64::total_cmp);
+            prop_assume!(r[1] - r[0] > 1e-3);
+            let c = times_quadratic(k, r, -2.0 * re, re * re + im * im);
+            let found = quartic_nonpositive(c);
+            prop_assert_eq!(found.len(), 2);
+            for (x, e) in found.as_slice().iter().zip(r) {
+                prop_assert!((x - e).abs() <= root_tolerance(&c, e), "{:?} vs {:?}", found, r);
+            }
+        }
+
+        /// Random coefficients: the roots are the eigenvalue solver's real
+        /// roots where these are clearly simple, each a root to round-off,
+        /// and the sign of p between them is as stated.
+        #[test]
+        fn random_quartics_agree_with_the_companion_eigenvalues(
+            c0 in 1e-3f64..10.0, rest in prop::array::uniform4(-10.0f64..10.0)
+        ) {
+            let c = [c0, rest[0], rest[1], rest[2], rest[3]];
+            let found = quartic_nonpositive(c);
+            let found = found.as_slice();
+            prop_assert!(found.len() % 2 == 0);
+            prop_assert!(found.windows(2).all(|w| w[0] <= w[1]));
+            let magnitude = |x: f64| c.iter().fold(0.0, |m, v| m * x.abs() + v.abs());
+            for &x in found {
+                prop_assert!(quartic_value(&c, x).abs() <= 1e-13 * magnitude(x), "{:?} {:?}", c, found);
+            }
+            for (k, w) in found.windows(2).enumerate() {
+                let mid = quartic_value(&c, 0.5 * (w[0] + w[1]));
+                prop_assert!(if k % 2 == 0 { mid <= 0.0 } else { mid > 0.0 }, "{:?} {:?}", c, found);
+            }
+            // Every eigenvalue root where p clearly changes sign is found.
+            for e in eigen_roots(&c) {
+                let d = with_slopes(&c, e).slope;
+                let h = 1e-6 * (1.0 + e.abs());
+                let crosses = quartic_value(&c, e - h) * quartic_value(&c, e + h) < 0.0
+                    && d.abs() > 1e-4 * magnitude(e);
+                if crosses {
+                    prop_assert!(
+                        found.iter().any(|x| (x - e).abs() <= 1e-9 * (1.0 + e.abs())),
+                        "{:?}: {} not in {:?}", c, e, found
+                    );
+                }
+            }
+        }
+    }
+}
