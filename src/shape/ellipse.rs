@@ -92,6 +92,11 @@ impl Ellipse {
     ) -> Option<(f64, f64)> {
         let o = pose.inverse_transform_point(origin);
         let d = rotate(direction, -pose.angle);
+        self.line_crossings_local(&o, &d)
+    }
+
+    /// [`Self::line_crossings`] for a line given in the body frame.
+    pub fn line_crossings_local(&self, o: &Point, d: &Vec2) -> Option<(f64, f64)> {
         let (ia2, ib2) = (1.0 / (self.a * self.a), 1.0 / (self.b * self.b));
         let qa = d.x * d.x * ia2 + d.y * d.y * ib2;
         let qb = 2.0 * (o.x * d.x * ia2 + o.y * d.y * ib2);
@@ -109,6 +114,22 @@ impl Ellipse {
             (0.0, 0.0)
         };
         Some((r1.min(r2), r1.max(r2)))
+    }
+
+    /// Radius of curvature at the boundary point seen from the centre
+    /// through the body-frame point `local`: [`Self::curvature_radius`] at
+    /// the parametric angle `t` of `(x/a, y/b) = r (cos t, sin t)`, without
+    /// the angle, `ρ = q^{3/2} / (a b)` with
+    /// `q = a² sin² t + b² cos² t = (a² (y/b)² + b² (x/a)²) / r²`.
+    pub fn curvature_radius_at(&self, local: &Point) -> f64 {
+        let (x, y) = (local.x / self.a, local.y / self.b);
+        let r2 = x * x + y * y;
+        let q = if r2 > 0.0 {
+            (self.a * self.a * y * y + self.b * self.b * x * x) / r2
+        } else {
+            self.b * self.b
+        };
+        q * q.sqrt() / (self.a * self.b)
     }
 }
 
@@ -230,6 +251,24 @@ mod tests {
         let e = Ellipse::new(2.0, 1.0).unwrap();
         approx::assert_relative_eq!(e.curvature_radius(0.0), 0.5);
         approx::assert_relative_eq!(e.curvature_radius(std::f64::consts::FRAC_PI_2), 4.0);
+    }
+
+    #[test]
+    fn curvature_radius_at_a_point_equals_the_radius_at_its_parametric_angle() {
+        let e = Ellipse::new(2.5, 0.7).unwrap();
+        for k in 0..1000 {
+            let t = -3.2 + k as f64 * 0.0064;
+            let at = e.curvature_radius(t);
+            // On the boundary and off it along the same ray from the centre.
+            for scale in [1.0, 0.3, 1.7] {
+                let p = Point::from(e.local_point(t).coords * scale);
+                approx::assert_relative_eq!(e.curvature_radius_at(&p), at, max_relative = 1e-14);
+            }
+        }
+        approx::assert_relative_eq!(
+            e.curvature_radius_at(&Point::origin()),
+            e.curvature_radius(0.0)
+        );
     }
 
     #[test]

@@ -8,9 +8,18 @@
 //! `p(t) = cᵢ + Rᵢ (aᵢ cos t, bᵢ sin t)`, put into the implicit equation of
 //! ellipse j gives `g(t) = c₀ + c₁ cos t + s₁ sin t + c₂ cos 2t + s₂ sin 2t`,
 //! whose zeros are the intersection points; with `u = tan((t − t₀)/2)` it is
-//! a real quartic, solved through the eigenvalues of its companion matrix
-//! and polished by Newton on `g`. The shift `t₀` puts `u = ∞` at the point
-//! of i farthest from j, where `g > 0`, so no root is lost.
+//! the real quartic `(1 + u²)² g`. Its roots are isolated between its
+//! critical points and refined by a safeguarded Halley iteration
+//! ([`crate::math::real_roots::quartic_nonpositive`]), which returns the
+//! ends of the arcs where i's boundary lies inside j; a shallow contact,
+//! two close roots about a minimum of g, is found as long as the computed
+//! minimum is negative. The shift `t₀` puts `u = ∞` at the point of i
+//! farthest from j, where `g > 0`, so no root is lost there. The crossing
+//! points follow from the rational parametrisation
+//! `cos(t − t₀) = (1 − u²)/(1 + u²)`, `sin(t − t₀) = 2u/(1 + u²)`, and the
+//! whole geometry is computed in i's body frame from the cosines and sines
+//! of the two bodies' angles: two `sin_cos` per pair, no other
+//! trigonometry.
 //!
 //! As in the paper, the contact point is the midpoint M of the chord P1P2,
 //! the normal is perpendicular to the chord (from i towards j), the contact
@@ -21,138 +30,126 @@
 //! deeper lens is taken.
 
 use super::{ContactFeatures, ContactGeometry};
+use crate::math::real_roots::{quartic_nonpositive, quartic_value};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::shape::{Ellipse, Segment};
-use nalgebra::Matrix4;
 
-/// `g(t) = c₀ + c₁ cos t + s₁ sin t + c₂ cos 2t + s₂ sin 2t`.
+/// A rotation by an angle, as its cosine and sine.
 #[derive(Debug, Clone, Copy)]
-struct TrigQuadratic {
-    c0: f64,
-    c1: f64,
-    s1: f64,
-    c2: f64,
-    s2: f64,
+struct Turn {
+    c: f64,
+    s: f64,
 }
 
-impl TrigQuadratic {
-    fn value(&self, t: f64) -> f64 {
-        self.c0
-            + self.c1 * t.cos()
-            + self.s1 * t.sin()
-            + self.c2 * (2.0 * t).cos()
-            + self.s2 * (2.0 * t).sin()
+impl Turn {
+    fn of(angle: f64) -> Self {
+        let (s, c) = angle.sin_cos();
+        Self { c, s }
     }
 
-    fn derivative(&self, t: f64) -> f64 {
-        -self.c1 * t.sin() + self.s1 * t.cos() - 2.0 * self.c2 * (2.0 * t).sin()
-            + 2.0 * self.s2 * (2.0 * t).cos()
+    fn apply(&self, v: &Vec2) -> Vec2 {
+        Vec2::new(self.c * v.x - self.s * v.y, self.s * v.x + self.c * v.y)
     }
 
-    /// The implicit function of `j` along the boundary of `i`.
-    fn along(i: &Ellipse, pose_i: &Pose2, j: &Ellipse, pose_j: &Pose2) -> Self {
-        let d = pose_j.inverse_transform_point(&pose_i.position).coords;
-        let (s, c) = (pose_i.angle - pose_j.angle).sin_cos();
+    fn undo(&self, v: &Vec2) -> Vec2 {
+        Vec2::new(self.c * v.x + self.s * v.y, -self.s * v.x + self.c * v.y)
+    }
+
+    /// `self` after `other` undone: the rotation by the difference of the
+    /// angles.
+    fn relative_to(&self, other: &Turn) -> Turn {
+        Turn {
+            c: self.c * other.c + self.s * other.s,
+            s: self.s * other.c - self.c * other.s,
+        }
+    }
+}
+
+/// The boundary of ellipse `i` in its body frame, `(a cos t, b sin t)`,
+/// against the implicit function of ellipse `j`, as the quartic
+/// `(1 + u²)² g(t)` in `u = tan((t − t₀)/2)`.
+struct BoundaryQuartic {
+    /// Coefficients, highest power first.
+    p: [f64; 5],
+    /// `(cos t₀, sin t₀)`.
+    start: Turn,
+}
+
+impl BoundaryQuartic {
+    /// `g(t) = c₀ + c₁ cos t + s₁ sin t + c₂ cos 2t + s₂ sin 2t`, the
+    /// implicit function of `j` at `i`'s boundary point `t`, for `i`'s
+    /// centre at `d` in `j`'s frame and `i`'s frame turned by `relative`
+    /// from `j`'s, then as a quartic in `u` from `t₀ = ` the angle of
+    /// `start`.
+    fn new(i: &Ellipse, j: &Ellipse, d: &Vec2, relative: &Turn, start: Turn) -> Self {
+        let (c, s) = (relative.c, relative.s);
         // q(t) = d + M (cos t, sin t), M = R(φi − φj) diag(ai, bi).
         let m = [[c * i.a(), -s * i.b()], [s * i.a(), c * i.b()]];
         let w = [1.0 / (j.a() * j.a()), 1.0 / (j.b() * j.b())];
-        let mut g = Self {
-            c0: -1.0,
-            c1: 0.0,
-            s1: 0.0,
-            c2: 0.0,
-            s2: 0.0,
-        };
+        let (mut c0, mut c1, mut s1, mut c2, mut s2) = (-1.0, 0.0, 0.0, 0.0, 0.0);
         for k in 0..2 {
             let (dk, a, b) = (d[k], m[k][0], m[k][1]);
-            g.c0 += w[k] * (dk * dk + 0.5 * (a * a + b * b));
-            g.c1 += w[k] * 2.0 * dk * a;
-            g.s1 += w[k] * 2.0 * dk * b;
-            g.c2 += w[k] * 0.5 * (a * a - b * b);
-            g.s2 += w[k] * a * b;
+            c0 += w[k] * (dk * dk + 0.5 * (a * a + b * b));
+            c1 += w[k] * 2.0 * dk * a;
+            s1 += w[k] * 2.0 * dk * b;
+            c2 += w[k] * 0.5 * (a * a - b * b);
+            s2 += w[k] * a * b;
         }
-        g
+        // The same terms about t₀: cos(t₀ + θ) etc.
+        let (ct, st) = (start.c, start.s);
+        let (c2t, s2t) = (ct * ct - st * st, 2.0 * st * ct);
+        let (c1, s1) = (c1 * ct + s1 * st, -c1 * st + s1 * ct);
+        let (c2, s2) = (c2 * c2t + s2 * s2t, -c2 * s2t + s2 * c2t);
+        // cos θ = (1 − u²)/(1 + u²), sin θ = 2u/(1 + u²).
+        Self {
+            p: [
+                c0 - c1 + c2,
+                2.0 * s1 - 4.0 * s2,
+                2.0 * c0 - 6.0 * c2,
+                2.0 * s1 + 4.0 * s2,
+                c0 + c1 + c2,
+            ],
+            start,
+        }
     }
 
-    /// All zeros in [t₀ − π, t₀ + π), sorted, given `g(t₀ + π) > 0`.
-    fn zeros(&self, t0: f64) -> Vec<f64> {
-        let (s0, c0) = t0.sin_cos();
-        let (s20, c20) = (2.0 * t0).sin_cos();
-        let c1 = self.c1 * c0 + self.s1 * s0;
-        let s1 = -self.c1 * s0 + self.s1 * c0;
-        let c2 = self.c2 * c20 + self.s2 * s20;
-        let s2 = -self.c2 * s20 + self.s2 * c20;
-        // (1 + u²)² g as a quartic in u = tan((t − t₀)/2), highest first.
-        let p = [
-            self.c0 - c1 + c2,
-            2.0 * s1 - 4.0 * s2,
-            2.0 * self.c0 - 6.0 * c2,
-            2.0 * s1 + 4.0 * s2,
-            self.c0 + c1 + c2,
-        ];
-        let scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if p[0].abs() <= 1e-14 * scale {
-            return Vec::new();
-        }
-        let companion = Matrix4::new(
-            -p[1] / p[0],
-            -p[2] / p[0],
-            -p[3] / p[0],
-            -p[4] / p[0],
-            1.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            1.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            1.0,
-            0.0,
-        );
-        let mut roots: Vec<f64> = companion
-            .complex_eigenvalues()
-            .iter()
-            .filter(|z| z.im.abs() <= 1e-6 * (1.0 + z.re.abs()))
-            .map(|z| t0 + 2.0 * z.re.atan())
-            .map(|t| self.polish(t))
-            .collect();
-        roots.sort_by(f64::total_cmp);
-        roots.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        roots
+    /// `g` at `t₀ + π` (`u = ∞`).
+    fn at_infinity(&self) -> f64 {
+        self.p[0]
     }
 
-    /// A few Newton steps on g, kept only while they reduce |g|.
-    fn polish(&self, mut t: f64) -> f64 {
-        for _ in 0..8 {
-            let (g, dg) = (self.value(t), self.derivative(t));
-            if dg == 0.0 {
-                break;
-            }
-            let next = t - g / dg;
-            if self.value(next).abs() < g.abs() {
-                t = next;
-            } else {
-                break;
-            }
-        }
-        t
+    /// The sign of `g` at `u`.
+    fn value(&self, u: f64) -> f64 {
+        quartic_value(&self.p, u)
     }
+
+    /// `(cos t, sin t)` at `u`, by the rational parametrisation about t₀.
+    fn direction(&self, u: f64) -> Vec2 {
+        let (cos, sin) = if u.abs() <= 1.0 {
+            let w = 1.0 + u * u;
+            ((1.0 - u * u) / w, 2.0 * u / w)
+        } else {
+            // Far out, in v = 1/u.
+            let v = 1.0 / u;
+            let w = v * v + 1.0;
+            ((v * v - 1.0) / w, 2.0 * v / w)
+        };
+        self.start.apply(&Vec2::new(cos, sin))
+    }
+}
+
+/// How far ellipse `e` turned by `turn` reaches from its centre along the
+/// unit direction `u`: `√((a u₁)² + (b u₂)²)`, with `(u₁, u₂)` the
+/// direction in the ellipse's axes.
+fn support(e: &Ellipse, turn: &Turn, u: &Vec2) -> f64 {
+    let local = turn.undo(u);
+    let (x, y) = (e.a() * local.x, e.b() * local.y);
+    (x * x + y * y).sqrt()
 }
 
 /// The parametric angle of a body-frame point of `e`.
 pub(crate) fn parametric_angle_of(e: &Ellipse, local: &Point) -> f64 {
     (local.y / e.b()).atan2(local.x / e.a())
-}
-
-/// How far ellipse `e` at `pose` reaches from its centre along the unit
-/// direction `u`: `√((a u₁)² + (b u₂)²)`, with `(u₁, u₂)` the direction in
-/// the ellipse's axes.
-fn support(e: &Ellipse, pose: &Pose2, u: &Vec2) -> f64 {
-    let local = pose.inverse_transform_vector(u);
-    (e.a() * local.x).hypot(e.b() * local.y)
 }
 
 /// Contact of ellipse `i` at `pose_i` with ellipse `j` at `pose_j` (a circle
@@ -168,6 +165,7 @@ pub fn contact_ellipse_ellipse(
     if distance >= i.a() + j.a() {
         return None;
     }
+    let (turn_i, turn_j) = (Turn::of(pose_i.angle), Turn::of(pose_j.angle));
     // Apart along the line of centres: the two supports along it fall
     // short of the distance, by a margin (1e-6 of it) that keeps the
     // decision clear of the root finder's tolerances below, so no pair it
@@ -175,22 +173,37 @@ pub fn contact_ellipse_ellipse(
     // for most neighbours of a packing that do not touch.
     if distance > 0.0 {
         let direction = between / distance;
-        let reach = support(i, pose_i, &direction) + support(j, pose_j, &direction);
+        let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
         if reach < distance * (1.0 - 1e-6) {
             return None;
         }
     }
-    let g = TrigQuadratic::along(i, pose_i, j, pose_j);
     // t₀ + π: the point of i farthest from j's centre, where g > 0 unless i
     // lies inside j.
-    let away = pose_i.inverse_transform_vector(&(-between));
-    let t_far = (i.b() * away.y).atan2(i.a() * away.x);
-    let t0 = t_far - std::f64::consts::PI;
-    if g.value(t_far) <= 0.0 {
+    let away = turn_i.undo(&(-between));
+    let (x, y) = (i.a() * away.x, i.b() * away.y);
+    let length = (x * x + y * y).sqrt();
+    let start = if length > 0.0 {
+        Turn {
+            c: -x / length,
+            s: -y / length,
+        }
+    } else {
+        Turn { c: -1.0, s: 0.0 }
+    };
+    let relative = turn_i.relative_to(&turn_j);
+    let d = turn_j.undo(&(-between));
+    let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
+    if quartic.at_infinity() <= 0.0 {
         return Some(containment(i, pose_i, j, pose_j));
     }
-    let roots = g.zeros(t0);
-    if roots.len() < 2 {
+    let scale = quartic.p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let roots = if quartic.p[0] > 1e-14 * scale {
+        quartic_nonpositive(quartic.p)
+    } else {
+        Default::default()
+    };
+    if roots.is_empty() {
         // No crossing: apart, or j entirely inside i.
         return if i.implicit(pose_i, &pose_j.position) < 0.0 {
             Some(containment(i, pose_i, j, pose_j))
@@ -198,76 +211,102 @@ pub fn contact_ellipse_ellipse(
             None
         };
     }
-    // Arcs between consecutive zeros where i's boundary is inside j: each
-    // bounds one lens of overlap. With four crossings there are two; the
-    // deeper one (by overlap, which does not depend on the order of the
-    // pair) is the contact.
-    let mut best: Option<ContactGeometry> = None;
-    for k in 0..roots.len() {
-        let start = roots[k];
-        let end = if k + 1 < roots.len() {
-            roots[k + 1]
-        } else {
-            roots[0] + std::f64::consts::TAU
-        };
-        if g.value(0.5 * (start + end)) >= 0.0 {
+    // The arcs of i's boundary inside j lie between pairs of roots in
+    // increasing u (counter-clockwise); each bounds one lens of overlap.
+    // With four crossings there are two; the deeper one (by overlap, which
+    // does not depend on the order of the pair) is the contact.
+    let pair = Pair {
+        i,
+        j,
+        d,
+        relative,
+        quartic: &quartic,
+    };
+    let mut best: Option<Lens> = None;
+    for ends in roots.as_slice().chunks_exact(2) {
+        let (start, end) = (ends[0], ends[1]);
+        let inside = quartic.value(0.5 * (start + end)) < 0.0;
+        if !inside {
             continue;
         }
-        if let Some(lens) = lens_geometry(i, pose_i, j, pose_j, start, end) {
+        if let Some(lens) = pair.lens(start, end) {
             if best.is_none_or(|b| lens.overlap > b.overlap) {
                 best = Some(lens);
             }
         }
     }
-    best
-}
-
-/// The contact geometry of the lens bounded by i's boundary arc
-/// `[start, end]` (inside j).
-fn lens_geometry(
-    i: &Ellipse,
-    pose_i: &Pose2,
-    j: &Ellipse,
-    pose_j: &Pose2,
-    start: f64,
-    end: f64,
-) -> Option<ContactGeometry> {
-    let p1 = i.world_point(pose_i, start);
-    let p2 = i.world_point(pose_i, end);
-    let midpoint = Point::from(0.5 * (p1.coords + p2.coords));
-    let chord = p2 - p1;
-    let width = chord.norm();
-    let arc_point = i.world_point(pose_i, 0.5 * (start + end));
-    let mut normal = if width > 0.0 {
-        perp(&(chord / width))
-    } else {
-        (arc_point - midpoint)
-            .try_normalize(0.0)
-            .unwrap_or_else(Vec2::x)
-    };
-    if normal.dot(&(arc_point - midpoint)) < 0.0 {
-        normal = -normal;
-    }
-    // Crossings of the normal line through M with both boundaries.
-    let (_, s_i) = i.line_crossings(pose_i, &midpoint, &normal)?;
-    let (s_j, _) = j.line_crossings(pose_j, &midpoint, &normal)?;
-    let on_i = midpoint + normal * s_i;
-    let on_j = midpoint + normal * s_j;
-    Some(ContactGeometry {
-        point: midpoint,
-        normal,
-        overlap: (s_i - s_j).max(0.0),
-        width,
-        curvature_radius_a: i.curvature_radius(parametric_angle_of(
-            i,
-            &pose_i.inverse_transform_point(&on_i),
-        )),
-        curvature_radius_b: j.curvature_radius(parametric_angle_of(
-            j,
-            &pose_j.inverse_transform_point(&on_j),
-        )),
+    best.map(|lens| ContactGeometry {
+        point: pose_i.position + turn_i.apply(&lens.point.coords),
+        normal: turn_i.apply(&lens.normal),
+        overlap: lens.overlap,
+        width: lens.width,
+        curvature_radius_a: lens.curvature_radius_i,
+        curvature_radius_b: lens.curvature_radius_j,
         features: ContactFeatures::WHOLE,
     })
+}
+
+/// A pair of ellipses seen from `i`'s body frame.
+struct Pair<'a> {
+    i: &'a Ellipse,
+    j: &'a Ellipse,
+    /// `i`'s centre in `j`'s frame.
+    d: Vec2,
+    /// `i`'s frame turned from `j`'s.
+    relative: Turn,
+    quartic: &'a BoundaryQuartic,
+}
+
+/// A lens's contact geometry in `i`'s body frame.
+#[derive(Debug, Clone, Copy)]
+struct Lens {
+    point: Point,
+    normal: Vec2,
+    overlap: f64,
+    width: f64,
+    curvature_radius_i: f64,
+    curvature_radius_j: f64,
+}
+
+impl Pair<'_> {
+    /// `i`'s boundary point at `u`, body frame.
+    fn boundary_point(&self, u: f64) -> Point {
+        let direction = self.quartic.direction(u);
+        Point::new(self.i.a() * direction.x, self.i.b() * direction.y)
+    }
+
+    /// The contact geometry of the lens bounded by i's boundary arc from
+    /// `start` to `end` (inside j).
+    fn lens(&self, start: f64, end: f64) -> Option<Lens> {
+        let (i, j) = (self.i, self.j);
+        let p1 = self.boundary_point(start);
+        let p2 = self.boundary_point(end);
+        let midpoint = Point::from(0.5 * (p1.coords + p2.coords));
+        let chord = p2 - p1;
+        let width = chord.norm();
+        // The arc runs counter-clockwise from P1 to P2, so it lies to the
+        // right of the chord: the normal from i into j is the chord's
+        // right perpendicular. A chord too short to have a direction
+        // takes i's outward normal there.
+        let normal = if width > 0.0 {
+            -perp(&(chord / width))
+        } else {
+            i.outward_normal(&midpoint)
+        };
+        // Crossings of the normal line through M with both boundaries.
+        let (_, s_i) = i.line_crossings_local(&midpoint, &normal)?;
+        let midpoint_j = Point::from(self.d + self.relative.apply(&midpoint.coords));
+        let normal_j = self.relative.apply(&normal);
+        let (s_j, _) = j.line_crossings_local(&midpoint_j, &normal_j)?;
+        Some(Lens {
+            point: midpoint,
+            normal,
+            overlap: (s_i - s_j).max(0.0),
+            width,
+            curvature_radius_i: i.curvature_radius_at(&(midpoint + normal * s_i)),
+            curvature_radius_j: j.curvature_radius_at(&(midpoint_j + normal_j * s_j)),
+        })
+    }
 }
 
 /// One ellipse inside the other: no chord exists; push along the line of
