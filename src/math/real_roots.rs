@@ -113,34 +113,40 @@ fn negligible(dx: f64, x: f64) -> bool {
 }
 
 /// The root of `f` between `neg` (where `f < 0`) and `pos` (where
-/// `f > 0`), in either order, from `start` (clamped into the bracket; `at`
-/// its evaluation, if known) by Halley's method, bisecting whenever a step
-/// would leave the bracket. It stops when a step is below the resolution
-/// of doubles.
+/// `f > 0`), in either order, from `start` (`at` its evaluation, if known)
+/// by Halley's method. One end may be infinite: the root lies beyond the
+/// other, found by doubling the distance from `anchor` whenever a step
+/// would leave the bracket; in a finite bracket such a step is replaced by
+/// a bisection. It stops when a step is below the resolution of doubles,
+/// or when the steps shrink fast enough (at least tenfold, as Halley's and
+/// Newton's do near a simple root) that the error left after the last one,
+/// `|dx| (|dx| / |previous dx|)²` at Newton's quadratic rate, is. `None`
+/// when the iterate or a value stops being a number.
 fn bracketed_root(
     f: impl Fn(f64) -> Eval,
     mut neg: f64,
     mut pos: f64,
+    anchor: f64,
     start: f64,
     mut at: Option<Eval>,
-) -> f64 {
-    let (lo, hi) = (neg.min(pos), neg.max(pos));
-    let mut x = if (lo..=hi).contains(&start) {
-        start
-    } else {
-        at = None;
-        0.5 * (lo + hi)
-    };
+) -> Option<f64> {
+    let mut x = start;
+    let mut previous = f64::INFINITY;
     for _ in 0..MAX_REFINEMENTS {
+        if !x.is_finite() {
+            return None;
+        }
         let e = at.take().unwrap_or_else(|| f(x));
         let v = e.value;
-        if v == 0.0 || v.is_nan() {
-            return x;
+        if v == 0.0 {
+            return Some(x);
         }
         if v < 0.0 {
             neg = x;
-        } else {
+        } else if v > 0.0 {
             pos = x;
+        } else {
+            return None;
         }
         let (lo, hi) = (neg.min(pos), neg.max(pos));
         // Halley: dx = f f' / (f'² − f f''/2), or Newton's f / f' where
@@ -153,79 +159,54 @@ fn bracketed_root(
         };
         let next = x - dx;
         if next > lo && next < hi {
-            if negligible(dx, x) {
-                return next;
+            let step = dx.abs();
+            // (No rate before the second step: `previous` is infinite.)
+            let rate = step / previous;
+            let fast = previous.is_finite() && rate <= 0.1;
+            if negligible(step, x) || (fast && negligible(step * rate * rate, x)) {
+                return Some(next);
             }
+            previous = step;
             x = next;
         } else {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                // The bracket is two neighbouring doubles.
-                return x;
+            previous = f64::INFINITY;
+            if lo.is_finite() && hi.is_finite() {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    // The bracket is two neighbouring doubles.
+                    return Some(x);
+                }
+                x = mid;
+            } else {
+                let (end, dir) = if hi.is_finite() {
+                    (hi, -1.0)
+                } else {
+                    (lo, 1.0)
+                };
+                let gap = (end - anchor).abs();
+                x = end + dir * gap.max(f64::EPSILON * anchor.abs().max(1e-8));
             }
-            x = mid;
         }
     }
-    x
-}
-
-/// From `from`, where `f` has the sign `sign_from` (±1), step in
-/// direction `dir` (±1) by `h`, 2h, 4h, … until the sign flips (or the
-/// value is zero): the last point with the old sign, the first with the
-/// new, and the evaluation at the first step. `None` when no flip is found
-/// before the steps overflow (or a value is not a number).
-fn step_out(
-    f: impl Fn(f64) -> Eval,
-    from: f64,
-    sign_from: f64,
-    dir: f64,
-    h: f64,
-) -> Option<(f64, f64, Eval)> {
-    let scale = from.abs().max(1e-8);
-    let mut h = if h.is_finite() && h > f64::EPSILON * scale {
-        h
-    } else {
-        f64::EPSILON * scale
-    };
-    let mut inner = from;
-    let mut first = None;
-    while h.is_finite() {
-        let x = from + dir * h;
-        let e = f(x);
-        let first = *first.get_or_insert(e);
-        if e.value.is_nan() {
-            return None;
-        }
-        if e.value * sign_from <= 0.0 {
-            return Some((inner, x, first));
-        }
-        inner = x;
-        h *= 2.0;
-    }
-    None
+    Some(x)
 }
 
 /// The root of `f` beyond `from` (value `v_from`) in direction `dir`, `f`
 /// monotonic there and changing sign, `h` an estimate of the distance to
 /// it.
-fn root_beyond(
-    f: impl Fn(f64) -> Eval + Copy,
-    from: f64,
-    v_from: f64,
-    dir: f64,
-    h: f64,
-) -> Option<f64> {
+fn root_beyond(f: impl Fn(f64) -> Eval, from: f64, v_from: f64, dir: f64, h: f64) -> Option<f64> {
     if v_from == 0.0 {
         return Some(from);
     }
-    let sign = v_from.signum();
-    let (inner, outer, first) = step_out(f, from, sign, dir, h)?;
-    let start = from + dir * h;
-    Some(if sign < 0.0 {
-        bracketed_root(f, inner, outer, start, Some(first))
+    let scale = f64::EPSILON * from.abs().max(1e-8);
+    let h = if h.is_finite() && h > scale { h } else { scale };
+    let beyond = dir * f64::INFINITY;
+    let (neg, pos) = if v_from < 0.0 {
+        (from, beyond)
     } else {
-        bracketed_root(f, outer, inner, start, Some(first))
-    })
+        (beyond, from)
+    };
+    bracketed_root(f, neg, pos, from, from + dir * h, None)
 }
 
 /// The real roots where the cubic `c[0] x³ + c[1] x² + c[2] x + c[3]`
@@ -252,7 +233,9 @@ pub fn cubic_crossings(c: [f64; 4]) -> RealRoots {
                 }
             }
             if v1 > 0.0 && v2 < 0.0 {
-                roots.push(bracketed_root(f, x2, x1, 0.5 * (x1 + x2), None));
+                if let Some(r) = bracketed_root(f, x2, x1, x1, 0.5 * (x1 + x2), None) {
+                    roots.push(r);
+                }
             }
             if v2 < 0.0 {
                 if let Some(r) = root_beyond(f, x2, v2, 1.0, estimate(x2, v2)) {
@@ -293,7 +276,6 @@ pub fn quartic_nonpositive(c: [f64; 5]) -> RealRoots {
         return roots;
     }
     let p = |x: f64| with_slopes(&c, x);
-    let curvature = |x: f64| (12.0 * c[0] * x + 6.0 * c[1]) * x + 2.0 * c[2];
     // The critical points: where the derivative changes sign, alternately
     // a minimum, a maximum and a minimum.
     let critical = cubic_crossings([4.0 * c[0], 3.0 * c[1], 2.0 * c[2], c[3]]);
@@ -302,44 +284,35 @@ pub fn quartic_nonpositive(c: [f64; 5]) -> RealRoots {
         // None found (a coefficient overflowed far out): nothing to say.
         return roots;
     }
-    let values: [f64; 3] =
-        std::array::from_fn(|k| critical.get(k).map_or(0.0, |&x| quartic_value(&c, x)));
-    // Distance from a minimum `x` of value `v ≤ 0` to the roots beside it,
-    // by the second-order Taylor estimate.
-    let estimate = |x: f64, v: f64| (-2.0 * v / curvature(x)).sqrt();
-    let (first, last) = (critical[0], critical[critical.len() - 1]);
-    let (v_first, v_last) = (values[0], values[critical.len() - 1]);
+    let first = Minimum::of(&c, critical[0]);
+    let last = match critical {
+        [_, _, last] => Minimum::of(&c, *last),
+        _ => first,
+    };
+    let mut push = |r: Option<f64>| -> bool { r.map(|r| roots.push(r)).is_some() };
     // Left of the first minimum, p falls from +∞.
-    if v_first < 0.0 {
-        if let Some(r) = root_beyond(p, first, v_first, -1.0, estimate(first, v_first)) {
-            roots.push(r);
-        }
-    } else if v_first == 0.0 {
-        roots.push(first);
+    let mut found = true;
+    if first.value <= 0.0 {
+        found &= push(root_beyond(p, first.at, first.value, -1.0, -first.left));
     }
     if critical.len() == 3 {
-        let (middle, v_middle) = (critical[1], values[1]);
+        let middle = critical[1];
         // Rising from the first minimum to the maximum, falling to the
         // second minimum: a root on each side where the maximum is
         // positive and the minimum not.
-        if v_middle > 0.0 {
-            if v_first <= 0.0 {
-                roots.push(root_between(p, first, v_first, middle, estimate));
-            }
-            if v_last <= 0.0 {
-                roots.push(root_between(p, last, v_last, middle, estimate));
+        if quartic_value(&c, middle) > 0.0 {
+            for m in [&first, &last] {
+                if m.value <= 0.0 {
+                    found &= push(m.root_towards(p, middle));
+                }
             }
         }
     }
     // Right of the last minimum, p rises to +∞.
-    if v_last < 0.0 {
-        if let Some(r) = root_beyond(p, last, v_last, 1.0, estimate(last, v_last)) {
-            roots.push(r);
-        }
-    } else if v_last == 0.0 {
-        roots.push(last);
+    if last.value <= 0.0 {
+        found &= push(root_beyond(p, last.at, last.value, 1.0, last.right));
     }
-    if roots.len() % 2 == 1 {
+    if !found || roots.len() % 2 == 1 {
         // A root was not found (overflow far out): report none rather than
         // a wrong pairing.
         return RealRoots::default();
@@ -347,20 +320,51 @@ pub fn quartic_nonpositive(c: [f64; 5]) -> RealRoots {
     roots
 }
 
-/// The root between the minimum `min` of value `v_min ≤ 0` and the
-/// maximum `max` (value positive), from the Taylor estimate at the minimum.
-fn root_between(
-    p: impl Fn(f64) -> Eval,
-    min: f64,
-    v_min: f64,
-    max: f64,
-    estimate: impl Fn(f64, f64) -> f64,
-) -> f64 {
-    if v_min == 0.0 {
-        return min;
+/// A local minimum of a quartic with the distances to the roots beside it
+/// by the second-order Taylor model `v + s h + κ h²/2` there (`s`, the
+/// slope, is zero to round-off): `left < 0 < right`.
+#[derive(Debug, Clone, Copy)]
+struct Minimum {
+    at: f64,
+    value: f64,
+    left: f64,
+    right: f64,
+}
+
+impl Minimum {
+    fn of(c: &[f64; 5], at: f64) -> Self {
+        let e = with_slopes(c, at);
+        let (v, s, k) = (e.value, e.slope, e.curvature);
+        let root = (s * s - 2.0 * k * v).max(0.0).sqrt();
+        // Cancellation-free: (−s ± root)/κ = 2v / (−s ∓ root).
+        let (left, right) = if s >= 0.0 {
+            (-(s + root) / k, 2.0 * v / -(s + root))
+        } else {
+            (2.0 * v / (root - s), (root - s) / k)
+        };
+        Self {
+            at,
+            value: v,
+            left,
+            right,
+        }
     }
-    let start = min + (max - min).signum() * estimate(min, v_min);
-    bracketed_root(p, min, max, start, None)
+
+    /// The root between this minimum (value ≤ 0) and the maximum `max`
+    /// (value positive).
+    fn root_towards(&self, p: impl Fn(f64) -> Eval, max: f64) -> Option<f64> {
+        if self.value == 0.0 {
+            return Some(self.at);
+        }
+        let h = if max > self.at { self.right } else { self.left };
+        let start = self.at + h;
+        let start = if (self.at.min(max)..=self.at.max(max)).contains(&start) {
+            start
+        } else {
+            0.5 * (self.at + max)
+        };
+        bracketed_root(p, self.at, max, self.at, start, None)
+    }
 }
 
 #[cfg(test)]
