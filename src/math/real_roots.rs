@@ -626,8 +626,11 @@ mod tests {
                 let crosses = quartic_value(&c, e - h) * quartic_value(&c, e + h) < 0.0
                     && d.abs() > 1e-4 * magnitude(e);
                 if crosses {
+                    // (The eigenvalues themselves are off by up to ~1e-8
+                    // relative when c[0] is tiny: the sign change they
+                    // locate is what must be found.)
                     prop_assert!(
-                        found.iter().any(|x| (x - e).abs() <= 1e-9 * (1.0 + e.abs())),
+                        found.iter().any(|x| (e - h..=e + h).contains(x)),
                         "{:?}: {} not in {:?}", c, e, found
                     );
                 }

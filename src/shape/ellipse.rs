@@ -119,15 +119,16 @@ impl Ellipse {
     /// Radius of curvature at the boundary point seen from the centre
     /// through the body-frame point `local`: [`Self::curvature_radius`] at
     /// the parametric angle `t` of `(x/a, y/b) = r (cos t, sin t)`, without
-    /// the angle, `ρ = q^{3/2} / (a b)` with
-    /// `q = a² sin² t + b² cos² t = (a² (y/b)² + b² (x/a)²) / r²`.
+    /// the angle: `ρ = q^{3/2} / (a b)` with
+    /// `q = a² sin² t + b² cos² t = (a⁴ y² + b⁴ x²) / (b² x² + a² y²)`.
     pub fn curvature_radius_at(&self, local: &Point) -> f64 {
-        let (x, y) = (local.x / self.a, local.y / self.b);
-        let r2 = x * x + y * y;
+        let (a2, b2) = (self.a * self.a, self.b * self.b);
+        let (x2, y2) = (local.x * local.x, local.y * local.y);
+        let r2 = b2 * x2 + a2 * y2;
         let q = if r2 > 0.0 {
-            (self.a * self.a * y * y + self.b * self.b * x * x) / r2
+            (a2 * a2 * y2 + b2 * b2 * x2) / r2
         } else {
-            self.b * self.b
+            b2
         };
         q * q.sqrt() / (self.a * self.b)
     }

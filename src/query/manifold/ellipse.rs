@@ -126,13 +126,13 @@ impl BoundaryQuartic {
     /// `(cos t, sin t)` at `u`, by the rational parametrisation about t₀.
     fn direction(&self, u: f64) -> Vec2 {
         let (cos, sin) = if u.abs() <= 1.0 {
-            let w = 1.0 + u * u;
-            ((1.0 - u * u) / w, 2.0 * u / w)
+            let w = 1.0 / (1.0 + u * u);
+            ((1.0 - u * u) * w, 2.0 * u * w)
         } else {
             // Far out, in v = 1/u.
             let v = 1.0 / u;
-            let w = v * v + 1.0;
-            ((v * v - 1.0) / w, 2.0 * v / w)
+            let w = 1.0 / (v * v + 1.0);
+            ((v * v - 1.0) * w, 2.0 * v * w)
         };
         self.start.apply(&Vec2::new(cos, sin))
     }
@@ -172,7 +172,7 @@ pub fn contact_ellipse_ellipse(
     // would find touching is refused here. This spares the root finding
     // for most neighbours of a packing that do not touch.
     if distance > 0.0 {
-        let direction = between / distance;
+        let direction = between * (1.0 / distance);
         let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
         if reach < distance * (1.0 - 1e-6) {
             return None;
@@ -184,9 +184,10 @@ pub fn contact_ellipse_ellipse(
     let (x, y) = (i.a() * away.x, i.b() * away.y);
     let length = (x * x + y * y).sqrt();
     let start = if length > 0.0 {
+        let inverse = -1.0 / length;
         Turn {
-            c: -x / length,
-            s: -y / length,
+            c: x * inverse,
+            s: y * inverse,
         }
     } else {
         Turn { c: -1.0, s: 0.0 }
@@ -289,7 +290,7 @@ impl Pair<'_> {
         // right perpendicular. A chord too short to have a direction
         // takes i's outward normal there.
         let normal = if width > 0.0 {
-            -perp(&(chord / width))
+            -perp(&(chord * (1.0 / width)))
         } else {
             i.outward_normal(&midpoint)
         };
