@@ -5,7 +5,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::neighbours::{BlockSlots, NeighbourList, PairForce, PairSlot, BLOCK};
+use super::neighbours::{BlockSlots, NeighbourList, PairForce, PointContact, BLOCK};
 use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
@@ -28,12 +28,16 @@ type BlockUpdate<'a> = (
 /// centre of each contact point of a pair, in the manifold's order, from
 /// its summary (a pair of one point) or its points.
 #[inline]
-fn for_each_point<S>(slot: &PairSlot<S>, pair: &PairForce, mut add: impl FnMut(Vec2, f64, f64)) {
+fn for_each_point<'a, S: 'a>(
+    pair: &PairForce,
+    points: impl FnOnce() -> &'a [PointContact<S>],
+    mut add: impl FnMut(Vec2, f64, f64),
+) {
     match pair.count {
         0 => {}
         1 => add(pair.force_on_b, pair.moment_a, pair.moment_b),
         _ => {
-            for p in &slot.points {
+            for p in points() {
                 add(p.force_on_b, p.moment_a, p.moment_b);
             }
         }
@@ -585,7 +589,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     sum.copy_from_slice(&[weight.x, weight.y, 0.0]);
                 }
                 let local = |i: usize| 3 * (i - block.start);
-                for (slot, summary) in block.pairs.iter_mut().zip(block.forces.iter_mut()) {
+                let mut cross_out = block.cross_out.iter_mut();
+                for slot in block.pairs.iter_mut() {
                     let mut pair = PairForce::default();
                     context.evaluate(slot, &mut pair, manifold)?;
                     let ContactTarget::Particle(b) = slot.target else {
@@ -594,28 +599,38 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     let a = local(slot.a);
                     let b = (b - block.start < BLOCK).then(|| local(b));
                     if b.is_none() {
-                        *summary = pair;
-                    }
-                    for_each_point(slot, &pair, |force_on_b, moment_a, moment_b| {
-                        force[a] -= force_on_b.x;
-                        force[a + 1] -= force_on_b.y;
-                        force[a + 2] += moment_a;
-                        if let Some(b) = b {
-                            force[b] += force_on_b.x;
-                            force[b + 1] += force_on_b.y;
-                            force[b + 2] += moment_b;
+                        if let Some(summary) = cross_out.next() {
+                            *summary = pair;
                         }
-                    });
+                    }
+                    for_each_point(
+                        &pair,
+                        || &slot.points,
+                        |force_on_b, moment_a, moment_b| {
+                            force[a] -= force_on_b.x;
+                            force[a + 1] -= force_on_b.y;
+                            force[a + 2] += moment_a;
+                            if let Some(b) = b {
+                                force[b] += force_on_b.x;
+                                force[b + 1] += force_on_b.y;
+                                force[b + 2] += moment_b;
+                            }
+                        },
+                    );
                 }
                 for slot in block.walls.iter_mut() {
                     let mut pair = PairForce::default();
                     context.evaluate(slot, &mut pair, manifold)?;
                     let a = local(slot.a);
-                    for_each_point(slot, &pair, |force_on_b, moment_a, _| {
-                        force[a] -= force_on_b.x;
-                        force[a + 1] -= force_on_b.y;
-                        force[a + 2] += moment_a;
-                    });
+                    for_each_point(
+                        &pair,
+                        || &slot.points,
+                        |force_on_b, moment_a, _| {
+                            force[a] -= force_on_b.x;
+                            force[a + 1] -= force_on_b.y;
+                            force[a + 2] += moment_a;
+                        },
+                    );
                 }
                 Ok::<(), DismechError>(())
             };
@@ -644,17 +659,18 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let reach = self.frame_reach;
         let update = |(k, (force, (particles, increments))): BlockUpdate<'_>| {
             let start = k * BLOCK;
-            for &s in neighbours.cross_in(k) {
-                let slot = &neighbours.slots[s];
-                let ContactTarget::Particle(b) = slot.target else {
-                    continue;
-                };
-                let b = 3 * (b - start);
-                for_each_point(slot, &neighbours.forces[s], |force_on_b, _, moment_b| {
-                    force[b] += force_on_b.x;
-                    force[b + 1] += force_on_b.y;
-                    force[b + 2] += moment_b;
-                });
+            for cross in neighbours.cross_in(k) {
+                let b = 3 * (cross.b - start);
+                let points = || neighbours.slots[cross.slot].points.as_slice();
+                for_each_point(
+                    neighbours.cross_force(cross),
+                    points,
+                    |force_on_b, _, moment_b| {
+                        force[b] += force_on_b.x;
+                        force[b + 1] += force_on_b.y;
+                        force[b + 2] += moment_b;
+                    },
+                );
             }
             let mut check = StepCheck::default();
             for (offset, ((force, p), increment)) in force

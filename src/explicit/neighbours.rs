@@ -114,15 +114,26 @@ impl PairForce {
 /// order.
 pub(super) const BLOCK: usize = 1024;
 
+/// A pair whose A and B are in different blocks, as B's block sees it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct CrossIn {
+    /// Its force summary's index among those of the crossing pairs.
+    pub summary: usize,
+    /// Its index in the list.
+    pub slot: usize,
+    /// Its B.
+    pub b: usize,
+}
+
 /// One block's share of the list, to evaluate and add up.
 pub(super) struct BlockSlots<'a, S> {
     /// Its first particle.
     pub start: usize,
     /// Its particle pairs (A in the block), in the list's order.
     pub pairs: &'a mut [PairSlot<S>],
-    /// Their force summaries, beside `pairs` (written for the pairs whose
-    /// B is in a later block).
-    pub forces: &'a mut [PairForce],
+    /// The force summaries of its pairs whose B is in a later block, in
+    /// the list's order.
+    pub cross_out: &'a mut [PairForce],
     /// Its walls' pairs (the particle in the block), in the list's order.
     pub walls: &'a mut [PairSlot<S>],
 }
@@ -138,8 +149,11 @@ pub(super) struct NeighbourList<S> {
     fill: Vec<usize>,
     /// The buffer of the next build's `slots`.
     spare: Vec<PairSlot<S>>,
-    /// Each pair's force summary, beside `slots`.
-    pub forces: Vec<PairForce>,
+    /// The force summaries of the pairs whose A and B are in different
+    /// blocks, in the list's order (block `k`'s from
+    /// `cross_out_start[k]`).
+    cross_forces: Vec<PairForce>,
+    cross_out_start: Vec<usize>,
     /// The walls' boxes (a wall's geometry is asked only when the
     /// particle's box meets its box, as a per-step broad phase would: the
     /// wall queries are one-sided and report a particle behind the wall).
@@ -151,9 +165,10 @@ pub(super) struct NeighbourList<S> {
     block_pairs: Vec<usize>,
     block_walls: Vec<usize>,
     /// The pairs whose B is in block `k` and A in an earlier one are
-    /// `cross_in[cross_in_start[k]..cross_in_start[k + 1]]`, ascending.
+    /// `cross_in[cross_in_start[k]..cross_in_start[k + 1]]`, in the list's
+    /// order.
     cross_in_start: Vec<usize>,
-    cross_in: Vec<usize>,
+    cross_in: Vec<CrossIn>,
     /// Centre and angle of each particle at the build.
     reference: Vec<(Point, f64)>,
     /// Bounding radius of each particle.
@@ -184,7 +199,8 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             slots: Vec::new(),
             fill: Vec::new(),
             spare: Vec::new(),
-            forces: Vec::new(),
+            cross_forces: Vec::new(),
+            cross_out_start: Vec::new(),
             wall_boxes: Vec::new(),
             particle_pairs: 0,
             block_pairs: Vec::new(),
@@ -221,8 +237,14 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// The pairs whose B is in block `k` and whose A is in an earlier
     /// block, in the list's order.
     #[inline]
-    pub fn cross_in(&self, k: usize) -> &[usize] {
+    pub fn cross_in(&self, k: usize) -> &[CrossIn] {
         &self.cross_in[self.cross_in_start[k]..self.cross_in_start[k + 1]]
+    }
+
+    /// The force summary of a pair that crosses blocks.
+    #[inline]
+    pub fn cross_force(&self, cross: &CrossIn) -> &PairForce {
+        &self.cross_forces[cross.summary]
     }
 
     /// Each block's share of the list, mutable, in the blocks' order; and
@@ -231,20 +253,21 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         let blocks = self.block_pairs.len().saturating_sub(1);
         let mut shares = Vec::with_capacity(blocks);
         let (mut pairs, mut walls) = self.slots.split_at_mut(self.particle_pairs);
-        let mut forces = self.forces.as_mut_slice();
+        let mut cross_forces = self.cross_forces.as_mut_slice();
         for k in 0..blocks {
             let (block_pairs, rest) = std::mem::take(&mut pairs)
                 .split_at_mut(self.block_pairs[k + 1] - self.block_pairs[k]);
             pairs = rest;
-            let (block_forces, rest) = std::mem::take(&mut forces).split_at_mut(block_pairs.len());
-            forces = rest;
+            let (cross_out, rest) = std::mem::take(&mut cross_forces)
+                .split_at_mut(self.cross_out_start[k + 1] - self.cross_out_start[k]);
+            cross_forces = rest;
             let (block_walls, rest) = std::mem::take(&mut walls)
                 .split_at_mut(self.block_walls[k + 1] - self.block_walls[k]);
             walls = rest;
             shares.push(BlockSlots {
                 start: k * BLOCK,
                 pairs: block_pairs,
-                forces: block_forces,
+                cross_out,
                 walls: block_walls,
             });
         }
@@ -412,12 +435,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         count_from(&mut self.first_pair, 0, &self.pairs);
         count_from(&mut self.first_wall, self.pairs.len(), &self.wall_pairs);
         self.particle_pairs = self.pairs.len();
-        // The summaries of the pairs that cross blocks are written by the
-        // step's evaluation, which follows every build.
-        self.forces.clear();
-        self.forces
-            .resize(self.particle_pairs, PairForce::default());
-
         // Each block's pairs, and the pairs that cross into it (a counting
         // sort by B's block, which keeps the list's order in each).
         let blocks = n.div_ceil(BLOCK);
@@ -431,27 +448,46 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             self.block_walls
                 .push(self.particle_pairs + walls.partition_point(|s| s.a < first));
         }
+        // The pairs that cross blocks: their summaries by A's block in the
+        // list's order, and where each goes by B's block (a counting sort
+        // that keeps the list's order in each).
+        let block_of = |i: usize| i / BLOCK;
+        let crosses = |&(a, b): &(usize, usize)| block_of(a) != block_of(b);
+        self.cross_out_start.clear();
+        self.cross_out_start.resize(blocks + 1, 0);
         self.cross_in_start.clear();
         self.cross_in_start.resize(blocks + 1, 0);
-        for &(a, b) in &self.pairs {
-            if a / BLOCK != b / BLOCK {
-                self.cross_in_start[b / BLOCK + 1] += 1;
-            }
+        for &(a, b) in self.pairs.iter().filter(|pair| crosses(pair)) {
+            self.cross_out_start[block_of(a) + 1] += 1;
+            self.cross_in_start[block_of(b) + 1] += 1;
         }
         for k in 0..blocks {
+            self.cross_out_start[k + 1] += self.cross_out_start[k];
             self.cross_in_start[k + 1] += self.cross_in_start[k];
         }
         let fill = &mut self.fill;
         fill.clear();
         fill.extend_from_slice(&self.cross_in_start);
         self.cross_in.clear();
-        self.cross_in.resize(self.cross_in_start[blocks], 0);
-        for (s, &(a, b)) in self.pairs.iter().enumerate() {
-            if a / BLOCK != b / BLOCK {
-                self.cross_in[fill[b / BLOCK]] = s;
-                fill[b / BLOCK] += 1;
+        self.cross_in.resize(
+            self.cross_in_start[blocks],
+            CrossIn {
+                summary: 0,
+                slot: 0,
+                b: 0,
+            },
+        );
+        let mut summary = 0;
+        for (slot, &(a, b)) in self.pairs.iter().enumerate() {
+            if crosses(&(a, b)) {
+                self.cross_in[fill[block_of(b)]] = CrossIn { summary, slot, b };
+                fill[block_of(b)] += 1;
+                summary += 1;
             }
         }
+        // Written by the step's evaluation, which follows every build.
+        self.cross_forces.clear();
+        self.cross_forces.resize(summary, PairForce::default());
 
         self.reference.clear();
         self.reference
