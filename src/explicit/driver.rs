@@ -553,7 +553,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// moved): the run has gone wrong and should not be continued.
     ///
     /// The forces are summed per particle in a fixed order (its weight,
-    /// then its pairs in the list's order, each pair's points in the
+    /// then its pairs in the list's order but for those whose A lies in an
+    /// earlier block of particles, then those; each pair's points in the
     /// manifold's order), whatever the number of threads, so a run is the
     /// same to the last bit on one thread or many.
     pub fn step(&mut self) -> Result<()> {
