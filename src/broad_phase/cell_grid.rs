@@ -87,16 +87,14 @@ impl CellGrid {
                 let first = part * PARALLEL_BODIES;
                 for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
                     let start = found.len();
-                    let visited: Result<(), std::convert::Infallible> =
+                    let _: Result<(), std::convert::Infallible> =
                         grid.visit_partners(i, boxes, margin, &mut |i, j| {
                             if keep(i, j) {
                                 found.push((i, j));
                             }
                             Ok(())
                         });
-                    if visited.is_ok() {
-                        found[start..].sort_unstable();
-                    }
+                    found[start..].sort_unstable();
                 }
                 found.dedup();
                 found

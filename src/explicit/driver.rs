@@ -5,7 +5,9 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::neighbours::{BlockSlots, NeighbourList, PairForce, PointContact, BLOCK};
+use super::neighbours::{
+    crosses_blocks, BlockSlots, NeighbourList, PairForce, PointContact, BLOCK,
+};
 use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
@@ -549,8 +551,9 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
     /// Advance one step.
     ///
-    /// After an error the scene is not specified (some particles may have
-    /// moved): the run has gone wrong and should not be continued.
+    /// After an error the scene and the forces are not specified (some
+    /// particles may have moved, some forces be of this step): the run has
+    /// gone wrong and should not be continued.
     ///
     /// The forces are summed per particle in a fixed order (its weight,
     /// then its pairs in the list's order but for those whose A lies in an
@@ -594,16 +597,24 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 for slot in block.pairs.iter_mut() {
                     let mut pair = PairForce::default();
                     context.evaluate(slot, &mut pair, manifold)?;
+                    // (The block's particle pairs, never a wall.)
                     let ContactTarget::Particle(b) = slot.target else {
                         continue;
                     };
                     let a = local(slot.a);
-                    let b = (b - block.start < BLOCK).then(|| local(b));
-                    if b.is_none() {
-                        if let Some(summary) = cross_out.next() {
+                    // B's entries when B is in the block; a pair across
+                    // blocks keeps its summary for B instead, in the
+                    // build's order of those pairs.
+                    let b_local = if crosses_blocks(slot.a, b) {
+                        let summary = cross_out.next();
+                        debug_assert!(summary.is_some(), "a crossing the build did not count");
+                        if let Some(summary) = summary {
                             *summary = pair;
                         }
-                    }
+                        None
+                    } else {
+                        Some(local(b))
+                    };
                     for_each_point(
                         &pair,
                         || &slot.points,
@@ -611,7 +622,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                             force[a] -= force_on_b.x;
                             force[a + 1] -= force_on_b.y;
                             force[a + 2] += moment_a;
-                            if let Some(b) = b {
+                            if let Some(b) = b_local {
                                 force[b] += force_on_b.x;
                                 force[b + 1] += force_on_b.y;
                                 force[b + 2] += moment_b;
@@ -619,6 +630,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         },
                     );
                 }
+                debug_assert!(cross_out.next().is_none(), "a crossing not evaluated");
                 for slot in block.walls.iter_mut() {
                     let mut pair = PairForce::default();
                     context.evaluate(slot, &mut pair, manifold)?;

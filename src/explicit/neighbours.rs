@@ -114,6 +114,12 @@ impl PairForce {
 /// order.
 pub(super) const BLOCK: usize = 1024;
 
+/// Whether the pair of particles `a` and `b` lies across blocks.
+#[inline]
+pub(super) fn crosses_blocks(a: usize, b: usize) -> bool {
+    a / BLOCK != b / BLOCK
+}
+
 /// A pair whose A and B are in different blocks, as B's block sees it.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct CrossIn {
@@ -138,7 +144,7 @@ pub(super) struct BlockSlots<'a, S> {
     pub walls: &'a mut [PairSlot<S>],
 }
 
-/// The listed pairs, what each particle takes part in, and the poses the
+/// The listed pairs, how their forces are gathered by blocks, and the poses the
 /// list was built at.
 #[derive(Debug, Clone)]
 pub(super) struct NeighbourList<S> {
@@ -161,7 +167,8 @@ pub(super) struct NeighbourList<S> {
     /// How many of the pairs are particle pairs (the walls' follow).
     particle_pairs: usize,
     /// Where each block's particle pairs start in `slots`, and where its
-    /// walls' pairs start (`BLOCK`-many blocks, and one more entry each).
+    /// walls' pairs start (one entry a block, `n.div_ceil(BLOCK)` of them,
+    /// and one more each).
     block_pairs: Vec<usize>,
     block_walls: Vec<usize>,
     /// The pairs whose B is in block `k` and A in an earlier one are
@@ -177,8 +184,8 @@ pub(super) struct NeighbourList<S> {
     /// circle at most: its bounding radius, or 0 for a circle about its
     /// centre (neither moves when it turns).
     turn_arm: Vec<f64>,
-    /// The particle pairs and the wall pairs of the last build, `(A, B)`
-    /// and `(particle, wall)`, in the list's order.
+    /// The wall pairs of the last build, `(particle, wall)`, in the list's
+    /// order.
     wall_pairs: Vec<(usize, usize)>,
     /// Where particle `a`'s pairs, and its walls' pairs, start in
     /// `slots` (`n + 1` entries each, empty before the first build).
@@ -187,7 +194,9 @@ pub(super) struct NeighbourList<S> {
     /// Whether the list must be built before the next step.
     stale: bool,
     builds: u64,
+    /// The particles' boxes at the last build.
     boxes: Vec<Aabb2>,
+    /// The particle pairs of the last build, `(A, B)`, in the list's order.
     pairs: Vec<(usize, usize)>,
 }
 
@@ -435,8 +444,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         count_from(&mut self.first_pair, 0, &self.pairs);
         count_from(&mut self.first_wall, self.pairs.len(), &self.wall_pairs);
         self.particle_pairs = self.pairs.len();
-        // Each block's pairs, and the pairs that cross into it (a counting
-        // sort by B's block, which keeps the list's order in each).
+        // Where each block's pairs start.
         let blocks = n.div_ceil(BLOCK);
         let (pairs, walls) = self.slots.split_at(self.particle_pairs);
         self.block_pairs.clear();
@@ -452,7 +460,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         // list's order, and where each goes by B's block (a counting sort
         // that keeps the list's order in each).
         let block_of = |i: usize| i / BLOCK;
-        let crosses = |&(a, b): &(usize, usize)| block_of(a) != block_of(b);
+        let crosses = |&(a, b): &(usize, usize)| crosses_blocks(a, b);
         self.cross_out_start.clear();
         self.cross_out_start.resize(blocks + 1, 0);
         self.cross_in_start.clear();
