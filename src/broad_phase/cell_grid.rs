@@ -30,7 +30,7 @@ pub struct CellGrid {
     occupied: Vec<(i64, i64)>,
 }
 
-/// How many bodies one task of [`CellGrid::candidate_pairs_parallel`]
+/// How many bodies one task of [`CellGrid::candidate_pairs_filtered`]
 /// searches.
 const PARALLEL_BODIES: usize = 512;
 
@@ -65,14 +65,16 @@ impl CellGrid {
         }
     }
 
-    /// [`Self::candidate_pairs`], searched on rayon's threads by ranges of
-    /// `i` and concatenated in order, keeping only the pairs `keep`
-    /// accepts: the same list as the serial search filtered by `keep`.
-    pub fn candidate_pairs_parallel(
+    /// [`Self::candidate_pairs`] keeping only the pairs `keep` accepts,
+    /// searched by ranges of `i` (on rayon's threads when `parallel`) and
+    /// concatenated in order: the same list as the serial search filtered
+    /// by `keep`, whatever the threads.
+    pub fn candidate_pairs_filtered(
         &mut self,
         boxes: &[Aabb2],
         margin: f64,
         keep: impl Fn(usize, usize) -> bool + Sync,
+        parallel: bool,
         pairs: &mut Vec<(usize, usize)>,
     ) {
         pairs.clear();
@@ -80,28 +82,31 @@ impl CellGrid {
             return;
         }
         let grid = &*self;
-        let parts: Vec<Vec<(usize, usize)>> = (0..boxes.len().div_ceil(PARALLEL_BODIES))
-            .into_par_iter()
-            .map(|part| {
-                let mut found = Vec::new();
-                let first = part * PARALLEL_BODIES;
-                for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
-                    let start = found.len();
-                    let _: Result<(), std::convert::Infallible> =
-                        grid.visit_partners(i, boxes, margin, &mut |i, j| {
-                            if keep(i, j) {
-                                found.push((i, j));
-                            }
-                            Ok(())
-                        });
-                    found[start..].sort_unstable();
-                }
-                found.dedup();
-                found
-            })
-            .collect();
-        pairs.reserve(parts.iter().map(Vec::len).sum());
-        for part in parts {
+        let search = |part: usize| {
+            let mut found = Vec::new();
+            let first = part * PARALLEL_BODIES;
+            for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
+                let start = found.len();
+                let _: Result<(), std::convert::Infallible> =
+                    grid.visit_partners(i, boxes, margin, &mut |i, j| {
+                        if keep(i, j) {
+                            found.push((i, j));
+                        }
+                        Ok(())
+                    });
+                found[start..].sort_unstable();
+            }
+            found.dedup();
+            found
+        };
+        let parts = boxes.len().div_ceil(PARALLEL_BODIES);
+        let found: Vec<Vec<(usize, usize)>> = if parallel {
+            (0..parts).into_par_iter().map(search).collect()
+        } else {
+            (0..parts).map(search).collect()
+        };
+        pairs.reserve(found.iter().map(Vec::len).sum());
+        for part in found {
             pairs.extend_from_slice(&part);
         }
     }
@@ -346,10 +351,11 @@ mod tests {
     }
 
     proptest! {
-        /// The parallel search, in tasks of 512 bodies, gives the serial
-        /// list filtered by `keep`, in the same order, dense or sparse.
+        /// The filtered search, in tasks of 512 bodies on one thread or
+        /// rayon's, gives the serial list filtered by `keep`, in the same
+        /// order, dense or sparse.
         #[test]
-        fn the_parallel_search_gives_the_serial_list_filtered(
+        fn the_filtered_search_gives_the_serial_list_filtered(
             centres in prop::collection::vec((-30.0f64..30.0, -30.0f64..30.0, 0.05f64..0.8), 2..1500),
             outlier in prop::option::of((-1e12f64..1e12, -1e12f64..1e12)),
             margin in 0.0f64..0.2,
@@ -364,9 +370,11 @@ mod tests {
             let mut serial = Vec::new();
             grid.candidate_pairs(&boxes, margin, &mut serial);
             serial.retain(|&(i, j)| (i + j) % modulus == 0);
-            let mut parallel = Vec::new();
-            grid.candidate_pairs_parallel(&boxes, margin, |i, j| (i + j) % modulus == 0, &mut parallel);
-            prop_assert_eq!(parallel, serial);
+            for parallel in [false, true] {
+                let mut filtered = Vec::new();
+                grid.candidate_pairs_filtered(&boxes, margin, |i, j| (i + j) % modulus == 0, parallel, &mut filtered);
+                prop_assert_eq!(&filtered, &serial);
+            }
         }
     }
 

@@ -357,12 +357,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             let apart = (particles[b].pose.position - particles[a].pose.position).norm_squared();
             apart <= reach * reach * (1.0 + 1e-12)
         };
-        if parallel {
-            grid.candidate_pairs_parallel(&self.boxes, skin, circles_near, &mut self.pairs);
-        } else {
-            grid.candidate_pairs(&self.boxes, skin, &mut self.pairs);
-            self.pairs.retain(|&(a, b)| circles_near(a, b));
-        }
+        grid.candidate_pairs_filtered(&self.boxes, skin, circles_near, parallel, &mut self.pairs);
         self.wall_boxes.clear();
         self.wall_boxes
             .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
