@@ -46,6 +46,24 @@ fn for_each_point<'a, S: 'a>(
     }
 }
 
+/// Add a contact point's force on B and its moment about B's centre to
+/// B's sum `[f_x, f_y, m]`.
+#[inline]
+fn add_action(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] += force_on_b.x;
+    sum[1] += force_on_b.y;
+    sum[2] += moment;
+}
+
+/// Add the reaction of a contact point's force on B, `−f`, and its moment
+/// about A's centre to A's sum (`x − f` rounds as `x + (−f)`).
+#[inline]
+fn add_reaction(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] -= force_on_b.x;
+    sum[1] -= force_on_b.y;
+    sum[2] += moment;
+}
+
 /// What the per-particle update of a step found: the largest travel since
 /// the neighbour list was built, and the first particle whose force, or
 /// whose new position or velocity, went wrong.
@@ -619,13 +637,9 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         &pair,
                         || &slot.points,
                         |force_on_b, moment_a, moment_b| {
-                            force[a] -= force_on_b.x;
-                            force[a + 1] -= force_on_b.y;
-                            force[a + 2] += moment_a;
+                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                             if let Some(b) = b_local {
-                                force[b] += force_on_b.x;
-                                force[b + 1] += force_on_b.y;
-                                force[b + 2] += moment_b;
+                                add_action(&mut force[b..b + 3], force_on_b, moment_b);
                             }
                         },
                     );
@@ -639,9 +653,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         &pair,
                         || &slot.points,
                         |force_on_b, moment_a, _| {
-                            force[a] -= force_on_b.x;
-                            force[a + 1] -= force_on_b.y;
-                            force[a + 2] += moment_a;
+                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                         },
                     );
                 }
@@ -679,9 +691,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                     neighbours.cross_force(cross),
                     points,
                     |force_on_b, _, moment_b| {
-                        force[b] += force_on_b.x;
-                        force[b + 1] += force_on_b.y;
-                        force[b + 2] += moment_b;
+                        add_action(&mut force[b..b + 3], force_on_b, moment_b)
                     },
                 );
             }
