@@ -384,7 +384,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         // particle. (The two lists swap their buffers at every build: a
         // large list is not given back to the system and asked for
         // again.)
-        let old = std::mem::take(&mut self.slots);
+        let mut old = std::mem::take(&mut self.slots);
         let (first_pair, first_wall) = (&self.first_pair, &self.first_wall);
         let slot_of = |a: usize, target: ContactTarget| {
             let (first, end) = match target {
@@ -420,7 +420,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
                     .chain(self.wall_pairs.iter().map(wall_slot)),
             );
         }
-        let mut old = old;
         old.clear();
         self.spare = old;
         self.slots = slots;
