@@ -49,26 +49,15 @@ impl CellGrid {
         margin: f64,
         pairs: &mut Vec<(usize, usize)>,
     ) {
-        pairs.clear();
-        let visited: Result<(), std::convert::Infallible> =
-            self.try_for_each_pair(boxes, margin, |i, j| {
-                pairs.push((i, j));
-                Ok(())
-            });
-        if visited.is_ok() {
-            // Visited by ascending i: sorting each i's few partners sorts
-            // the whole list.
-            for partners in pairs.chunk_by_mut(|x, y| x.0 == y.0) {
-                partners.sort_unstable();
-            }
-            pairs.dedup();
-        }
+        self.candidate_pairs_filtered(boxes, margin, |_, _| true, false, pairs);
     }
 
-    /// [`Self::candidate_pairs`] keeping only the pairs `keep` accepts,
-    /// searched by ranges of `i` (on rayon's threads when `parallel`) and
-    /// concatenated in order: the same list as the serial search filtered
-    /// by `keep`, whatever the threads.
+    /// The candidate pairs `(i, j)`, `i < j`, whose boxes (grown by
+    /// `margin`) overlap and that `keep` accepts, written into `pairs`
+    /// (cleared first), sorted and each once. Searched by ranges of `i`
+    /// (on rayon's threads when `parallel`) and concatenated in order:
+    /// the same list whatever the threads. (The partners are visited by
+    /// ascending `i`, so sorting each `i`'s few partners sorts the list.)
     pub fn candidate_pairs_filtered(
         &mut self,
         boxes: &[Aabb2],
