@@ -66,10 +66,10 @@ pub(super) struct PairSlot<S> {
     pub points: PairPoints<S>,
 }
 
-/// A pair's force for the per-particle sums, apart from the points so
-/// that the sums read little memory: the first point's force and moments
-/// and how many points the pair has (a pair of several points is summed
-/// from its points).
+/// A pair's force for the per-particle sums, apart from its points: the
+/// first point's force and moments and how many points the pair has (a
+/// pair of several points is summed from its points). Kept for the pairs
+/// that cross blocks, so that adding them to B reads little memory.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct PairForce {
     /// Force exerted by A on B at the first point.
