@@ -3,7 +3,7 @@
 //! step, with a skin, and on one or two threads ends in the same state to
 //! the last bit.
 
-use dismech::dem::{ContactRecord, DemSettings, DemSimulation};
+use dismech::dem::{ContactRecord, ContactTarget, DemSettings, DemSimulation};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
@@ -27,14 +27,30 @@ fn law(k_n: f64, gamma_n: f64) -> SpringDashpotCoulomb {
 /// Circles, ellipses and polygons (a square, a triangle and an L) falling
 /// into an open box, a few thrown sideways so that they roll and collide.
 fn mixed_scene() -> Scene {
-    let mut scene = Scene::new(Frame::open_box(1.6, 3.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
-    for k in 0..48 {
-        let (col, row) = (k % 8, k / 8);
+    mixed_rows(48, 8, false)
+}
+
+/// `count` bodies as [`mixed_scene`]'s, in rows of `columns`, numbered
+/// along the rows or, `by_column`, up the columns (so that bodies of
+/// distant numbers meet side by side).
+fn mixed_rows(count: usize, columns: usize, by_column: bool) -> Scene {
+    let rows = count.div_ceil(columns);
+    let mut scene = Scene::new(
+        Frame::open_box(0.2 * columns as f64, 0.2 * rows as f64 + 1.8).unwrap(),
+        Vec2::new(0.0, -9.81),
+    )
+    .unwrap();
+    for k in 0..count {
+        let (col, row) = if by_column {
+            (k / rows, k % rows)
+        } else {
+            (k % columns, k / columns)
+        };
         let centre = Point::new(0.12 + 0.19 * col as f64, 0.12 + 0.2 * row as f64);
         let index = match k % 4 {
-            0 => scene.add_circle(centre, 0.07 + 0.002 * row as f64, DENSITY),
+            0 => scene.add_circle(centre, 0.07 + 0.002 * (row % 6) as f64, DENSITY),
             1 => scene.add_ellipse(centre, 0.08, 0.05, 0.3 * k as f64, DENSITY),
-            2 => scene.add_rectangle(centre, 0.12, 0.09, 0.2 * row as f64, DENSITY),
+            2 => scene.add_rectangle(centre, 0.12, 0.09, 0.2 * (row % 6) as f64, DENSITY),
             _ => {
                 let shape: &[(f64, f64)] = if row % 2 == 0 {
                     &[(-0.07, -0.05), (0.07, -0.05), (0.0, 0.07)]
@@ -162,4 +178,98 @@ fn one_and_two_threads_give_the_same_bits() {
     assert!(one_contacts.len() > 2000, "{} contacts", one_contacts.len());
     assert_eq!(one, two);
     assert_eq!(one_contacts, two_contacts);
+}
+
+/// The step's momentum gained, `Σ m Δv`, less the impulse of the weights
+/// and the walls' reactions, `Δt (Σ m g − Σ f_wall)`, over the impulse of
+/// the average particle's weight (a pair's force lost or added twice
+/// makes it of the order of that pair's force over a weight; the
+/// round-off of the velocity differences, `ε Σ m |v| / (Δt m g)`, is
+/// about 1e-10 here).
+fn momentum_imbalance(sim: &DemSimulation<SpringDashpotCoulomb>, before: &[Vec2]) -> f64 {
+    let dt = 1e-4;
+    let particles = &sim.scene().particles;
+    let gained: Vec2 = particles
+        .iter()
+        .zip(before)
+        .map(|(p, v)| p.mass * (p.velocity - v))
+        .sum();
+    let weight: Vec2 = particles.iter().map(|p| p.mass * sim.scene().gravity).sum();
+    let contacts = sim.contacts();
+    let on_walls: Vec2 = contacts
+        .iter()
+        .filter(|c| matches!(c.target, ContactTarget::Wall(_)))
+        .map(|c| c.force_on_target)
+        .sum();
+    let average_weight = weight.norm() / particles.len() as f64;
+    (gained - dt * (weight - on_walls)).norm() / (dt * average_weight)
+}
+
+/// A pile of 2100 circles, ellipses and polygons: above the threshold of
+/// the parallel loops (2000 particles) and three blocks of the force sums
+/// (1024 particles each), with polygon pairs of several points whose B is
+/// in a later block than their A. One thread with the automatic skin, two
+/// threads with it and two threads building the list at every step end in
+/// the same bits.
+#[test]
+fn a_mixed_pile_of_three_blocks_gives_the_same_bits_on_two_threads_and_any_skin() {
+    let steps = 1500;
+    // Each run's end, its contact records, its list's builds and how many
+    // polygon points joined bodies of different blocks over the steps.
+    let run_on = |threads: usize, skin: Option<f64>| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let settings = DemSettings {
+                dt: 1e-4,
+                neighbour_skin: skin,
+                ..DemSettings::default()
+            };
+            let scene = mixed_rows(2100, 60, true);
+            let mut sim =
+                DemSimulation::new(scene, law(4e6, 200.0), ExplicitEuler, settings).unwrap();
+            let mut crossing_polygon_points = 0;
+            let mut worst_imbalance = 0.0f64;
+            for _ in 0..steps {
+                let before: Vec<Vec2> = sim.scene().particles.iter().map(|p| p.velocity).collect();
+                sim.step().unwrap();
+                worst_imbalance = worst_imbalance.max(momentum_imbalance(&sim, &before));
+                crossing_polygon_points += sim
+                    .contacts()
+                    .iter()
+                    .filter(|c| match c.target {
+                        ContactTarget::Particle(b) => c.particle / 1024 != b / 1024,
+                        ContactTarget::Wall(_) => false,
+                    })
+                    .filter(|c| c.features.a != dismech::query::Feature::Whole)
+                    .count();
+            }
+            (
+                state_bits(&sim),
+                sim.contacts().to_vec(),
+                sim.neighbour_list_builds(),
+                crossing_polygon_points,
+                worst_imbalance,
+            )
+        })
+    };
+    let (one, one_contacts, one_builds, crossing, imbalance) = run_on(1, None);
+    assert!(
+        crossing > 1000,
+        "{crossing} polygon points across blocks over the run"
+    );
+    // Every pair's force reached both bodies once, across blocks too: the
+    // momentum gained is the impulse of the weights and the walls.
+    assert!(imbalance < 1e-6, "momentum imbalance {imbalance:e}");
+    let (two, two_contacts, two_builds, ..) = run_on(2, None);
+    assert_eq!(two_builds, one_builds);
+    assert_eq!(two, one);
+    assert_eq!(two_contacts, one_contacts);
+    let (every_step, every_step_contacts, builds, ..) = run_on(2, Some(0.0));
+    assert_eq!(builds, steps as u64);
+    assert!(one_builds < builds / 4, "{one_builds} builds");
+    assert_eq!(every_step, one);
+    assert_eq!(every_step_contacts, one_contacts);
 }

@@ -1,5 +1,7 @@
 //! The uniform cell grid.
 
+use rayon::prelude::*;
+
 use crate::math::Aabb2;
 
 /// A uniform grid of square cells, rebuilt every step from the bodies'
@@ -21,7 +23,16 @@ pub struct CellGrid {
     body_cell: Vec<usize>,
     /// Scratch of the counting sort.
     fill: Vec<usize>,
+    /// Whether the last layout is the sparse one.
+    sparse: bool,
+    /// The sparse grid's key of each body and its occupied cells, sorted.
+    keys: Vec<(i64, i64)>,
+    occupied: Vec<(i64, i64)>,
 }
+
+/// How many bodies one task of [`CellGrid::candidate_pairs_filtered`]
+/// searches.
+const PARALLEL_BODIES: usize = 512;
 
 impl CellGrid {
     /// An empty grid.
@@ -38,19 +49,54 @@ impl CellGrid {
         margin: f64,
         pairs: &mut Vec<(usize, usize)>,
     ) {
+        self.candidate_pairs_filtered(boxes, margin, |_, _| true, false, pairs);
+    }
+
+    /// The candidate pairs `(i, j)`, `i < j`, whose boxes (grown by
+    /// `margin`) overlap and that `keep` accepts, written into `pairs`
+    /// (cleared first), sorted and each once. Searched by ranges of `i`
+    /// (on rayon's threads when `parallel`) and concatenated in order:
+    /// the same list whatever the threads. (The partners are visited by
+    /// ascending `i`, so sorting each `i`'s few partners sorts the list.)
+    pub fn candidate_pairs_filtered(
+        &mut self,
+        boxes: &[Aabb2],
+        margin: f64,
+        keep: impl Fn(usize, usize) -> bool + Sync,
+        parallel: bool,
+        pairs: &mut Vec<(usize, usize)>,
+    ) {
         pairs.clear();
-        let visited: Result<(), std::convert::Infallible> =
-            self.try_for_each_pair(boxes, margin, |i, j| {
-                pairs.push((i, j));
-                Ok(())
-            });
-        if visited.is_ok() {
-            // Visited by ascending i: sorting each i's few partners sorts
-            // the whole list.
-            for partners in pairs.chunk_by_mut(|x, y| x.0 == y.0) {
-                partners.sort_unstable();
+        if !self.lay_out(boxes, margin) {
+            return;
+        }
+        let grid = &*self;
+        let search = |part: usize| {
+            let mut found = Vec::new();
+            let first = part * PARALLEL_BODIES;
+            for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
+                let start = found.len();
+                let _: Result<(), std::convert::Infallible> =
+                    grid.visit_partners(i, boxes, margin, &mut |i, j| {
+                        if keep(i, j) {
+                            found.push((i, j));
+                        }
+                        Ok(())
+                    });
+                found[start..].sort_unstable();
             }
-            pairs.dedup();
+            found.dedup();
+            found
+        };
+        let parts = boxes.len().div_ceil(PARALLEL_BODIES);
+        let found: Vec<Vec<(usize, usize)>> = if parallel {
+            (0..parts).into_par_iter().map(search).collect()
+        } else {
+            (0..parts).map(search).collect()
+        };
+        pairs.reserve(found.iter().map(Vec::len).sum());
+        for part in found {
+            pairs.extend_from_slice(&part);
         }
     }
 
@@ -70,9 +116,24 @@ impl CellGrid {
         margin: f64,
         mut visit: impl FnMut(usize, usize) -> Result<(), E>,
     ) -> Result<(), E> {
+        if !self.lay_out(boxes, margin) {
+            return Ok(());
+        }
+        for i in 0..boxes.len() {
+            self.visit_partners(i, boxes, margin, &mut visit)?;
+        }
+        Ok(())
+    }
+
+    /// Sort the bodies into cells: a dense grid of at most about 4 cells
+    /// per body, or, when the bodies spread wider than that (a far
+    /// outlier), a sparse grid whose cost does not depend on the spread.
+    /// `false` when there is nothing to pair (fewer than two bodies, or a
+    /// box that is not finite).
+    fn lay_out(&mut self, boxes: &[Aabb2], margin: f64) -> bool {
         let n = boxes.len();
         if n < 2 {
-            return Ok(());
+            return false;
         }
         let mut min = (f64::INFINITY, f64::INFINITY);
         let mut max = (f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -83,18 +144,17 @@ impl CellGrid {
             largest = largest.max(b.max.x - b.min.x).max(b.max.y - b.min.y);
         }
         if !(min.0.is_finite() && min.1.is_finite() && max.0.is_finite() && max.1.is_finite()) {
-            return Ok(());
+            return false;
         }
         self.cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
         self.origin = min;
-        // A dense grid of at most about 4 cells per body; bodies spread
-        // wider than that (a far outlier) go to the sparse grid instead,
-        // whose cost does not depend on the spread.
         let max_cells = (4 * n).max(16) as f64;
         let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
         let rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
-        if columns * rows > max_cells || columns.is_nan() || rows.is_nan() {
-            return self.sparse_pairs(boxes, margin, visit);
+        self.sparse = columns * rows > max_cells || columns.is_nan() || rows.is_nan();
+        if self.sparse {
+            self.lay_out_sparse(boxes);
+            return true;
         }
         self.columns = columns as usize;
         self.rows = rows as usize;
@@ -120,22 +180,51 @@ impl CellGrid {
             self.sorted[fill[cell]] = i;
             fill[cell] += 1;
         }
+        true
+    }
 
-        for i in 0..n {
-            let cell = self.body_cell[i];
-            let (col, row) = (cell % self.columns, cell / self.columns);
-            let grown = boxes[i].inflated(margin);
+    /// Visit body `i`'s partners `j > i` in its cell and the eight around
+    /// it whose boxes overlap its box grown by `margin`.
+    fn visit_partners<E>(
+        &self,
+        i: usize,
+        boxes: &[Aabb2],
+        margin: f64,
+        visit: &mut impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let grown = boxes[i].inflated(margin);
+        if self.sparse {
+            let (row, col) = self.keys[i];
             for dr in [-1i64, 0, 1] {
                 for dc in [-1i64, 0, 1] {
-                    let (r, c) = (row as i64 + dr, col as i64 + dc);
-                    if r < 0 || c < 0 || r >= self.rows as i64 || c >= self.columns as i64 {
-                        continue;
+                    let key = (row.saturating_add(dr), col.saturating_add(dc));
+                    if (dr != 0 || dc != 0) && key == self.keys[i] {
+                        continue; // saturated: the same cell again
                     }
-                    let other = r as usize * self.columns + c as usize;
-                    for &j in &self.sorted[self.cell_start[other]..self.cell_start[other + 1]] {
+                    let Ok(c) = self.occupied.binary_search(&key) else {
+                        continue;
+                    };
+                    for &j in &self.sorted[self.cell_start[c]..self.cell_start[c + 1]] {
                         if j > i && grown.intersects(&boxes[j]) {
                             visit(i, j)?;
                         }
+                    }
+                }
+            }
+            return Ok(());
+        }
+        let cell = self.body_cell[i];
+        let (col, row) = (cell % self.columns, cell / self.columns);
+        for dr in [-1i64, 0, 1] {
+            for dc in [-1i64, 0, 1] {
+                let (r, c) = (row as i64 + dr, col as i64 + dc);
+                if r < 0 || c < 0 || r >= self.rows as i64 || c >= self.columns as i64 {
+                    continue;
+                }
+                let other = r as usize * self.columns + c as usize;
+                for &j in &self.sorted[self.cell_start[other]..self.cell_start[other + 1]] {
+                    if j > i && grown.intersects(&boxes[j]) {
+                        visit(i, j)?;
                     }
                 }
             }
@@ -154,26 +243,23 @@ impl CellGrid {
         )
     }
 
-    /// The candidate pairs by a sparse grid: the bodies sorted by cell, and
-    /// each body's neighbouring cells found by binary search among the
-    /// occupied ones (`O(n log n)` however far apart the bodies are).
-    fn sparse_pairs<E>(
-        &mut self,
-        boxes: &[Aabb2],
-        margin: f64,
-        mut visit: impl FnMut(usize, usize) -> Result<(), E>,
-    ) -> Result<(), E> {
+    /// The sparse grid: the bodies sorted by cell, and each body's
+    /// neighbouring cells found by binary search among the occupied ones
+    /// (`O(n log n)` however far apart the bodies are).
+    fn lay_out_sparse(&mut self, boxes: &[Aabb2]) {
         let n = boxes.len();
         let keys: Vec<(i64, i64)> = boxes.iter().map(|b| self.cell_key(b)).collect();
+        self.keys = keys;
         self.sorted.clear();
         self.sorted.extend(0..n);
+        let keys = &self.keys;
         self.sorted.sort_by_key(|&i| (keys[i], i));
         // Occupied cells and where their bodies start in `sorted`.
-        let mut cells: Vec<(i64, i64)> = Vec::new();
+        self.occupied.clear();
         self.cell_start.clear();
         for (k, &i) in self.sorted.iter().enumerate() {
-            if cells.last() != Some(&keys[i]) {
-                cells.push(keys[i]);
+            if self.occupied.last() != Some(&keys[i]) {
+                self.occupied.push(keys[i]);
                 self.cell_start.push(k);
             }
         }
@@ -181,27 +267,6 @@ impl CellGrid {
         self.columns = 0;
         self.rows = 0;
         self.body_cell.clear();
-        for i in 0..n {
-            let (row, col) = keys[i];
-            let grown = boxes[i].inflated(margin);
-            for dr in [-1i64, 0, 1] {
-                for dc in [-1i64, 0, 1] {
-                    let key = (row.saturating_add(dr), col.saturating_add(dc));
-                    if (dr != 0 || dc != 0) && key == keys[i] {
-                        continue; // saturated: the same cell again
-                    }
-                    let Ok(c) = cells.binary_search(&key) else {
-                        continue;
-                    };
-                    for &j in &self.sorted[self.cell_start[c]..self.cell_start[c + 1]] {
-                        if j > i && grown.intersects(&boxes[j]) {
-                            visit(i, j)?;
-                        }
-                    }
-                }
-            }
-        }
-        Ok(())
     }
 
     /// The dense grid's cell of a box's centre (the key clamped to the
@@ -271,6 +336,34 @@ mod tests {
                 }
             }
             prop_assert_eq!(pairs, brute);
+        }
+    }
+
+    proptest! {
+        /// The filtered search, in tasks of 512 bodies on one thread or
+        /// rayon's, gives the serial list filtered by `keep`, in the same
+        /// order, dense or sparse.
+        #[test]
+        fn the_filtered_search_gives_the_serial_list_filtered(
+            centres in prop::collection::vec((-30.0f64..30.0, -30.0f64..30.0, 0.05f64..0.8), 2..1500),
+            outlier in prop::option::of((-1e12f64..1e12, -1e12f64..1e12)),
+            margin in 0.0f64..0.2,
+            modulus in 1usize..4,
+        ) {
+            let mut boxes: Vec<Aabb2> = centres.iter().map(|&(x, y, h)| square(x, y, h)).collect();
+            if let Some((x, y)) = outlier {
+                boxes.push(square(x, y, 0.3));
+                boxes.push(square(x + 0.5, y, 0.3));
+            }
+            let mut grid = CellGrid::new();
+            let mut serial = Vec::new();
+            grid.candidate_pairs(&boxes, margin, &mut serial);
+            serial.retain(|&(i, j)| (i + j) % modulus == 0);
+            for parallel in [false, true] {
+                let mut filtered = Vec::new();
+                grid.candidate_pairs_filtered(&boxes, margin, |i, j| (i + j) % modulus == 0, parallel, &mut filtered);
+                prop_assert_eq!(&filtered, &serial);
+            }
         }
     }
 

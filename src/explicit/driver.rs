@@ -5,7 +5,9 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::neighbours::{NeighbourList, PairForce, PairSlot};
+use super::neighbours::{
+    crosses_blocks, BlockSlots, NeighbourList, PairForce, PointContact, BLOCK,
+};
 use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
@@ -17,12 +19,50 @@ use crate::math::{Aabb2, Point, Vec2};
 use crate::query::{ContactFeatures, ContactGeometry};
 use crate::scene::{Particle, Scene};
 
-/// One particle's share of a step's update: its index, its force (three
-/// entries), the particle and its increment.
-type ParticleUpdate<'a> = (
+/// One block's share of a step's update: its index, its particles' forces
+/// (three entries each), the particles and their increments.
+type BlockUpdate<'a> = (
     usize,
-    (&'a mut [f64], (&'a mut Particle, &'a mut (Vec2, f64))),
+    (&'a mut [f64], (&'a mut [Particle], &'a mut [(Vec2, f64)])),
 );
+
+/// The force on B, the moment about A's centre and the moment about B's
+/// centre of each contact point of a pair, in the manifold's order, from
+/// its summary (a pair of one point) or its points.
+#[inline]
+fn for_each_point<'a, S: 'a>(
+    pair: &PairForce,
+    points: impl FnOnce() -> &'a [PointContact<S>],
+    mut add: impl FnMut(Vec2, f64, f64),
+) {
+    match pair.count {
+        0 => {}
+        1 => add(pair.force_on_b, pair.moment_a, pair.moment_b),
+        _ => {
+            for p in points() {
+                add(p.force_on_b, p.moment_a, p.moment_b);
+            }
+        }
+    }
+}
+
+/// Add a contact point's force on B and its moment about B's centre to
+/// B's sum `[f_x, f_y, m]`.
+#[inline]
+fn add_action(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] += force_on_b.x;
+    sum[1] += force_on_b.y;
+    sum[2] += moment;
+}
+
+/// Add the reaction of a contact point's force on B, `−f`, and its moment
+/// about A's centre to A's sum (`x − f` rounds as `x + (−f)`).
+#[inline]
+fn add_reaction(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] -= force_on_b.x;
+    sum[1] -= force_on_b.y;
+    sum[2] += moment;
+}
 
 /// What the per-particle update of a step found: the largest travel since
 /// the neighbour list was built, and the first particle whose force, or
@@ -61,9 +101,6 @@ impl StepCheck {
 /// rayon's threads (when it has more than one); below it the fork costs
 /// more than it saves. The results do not depend on it.
 const PARALLEL_MIN_PARTICLES: usize = 2000;
-
-/// The smallest share of a parallel loop one thread takes.
-const PARALLEL_MIN_CHUNK: usize = 256;
 
 /// Settings of a DEM run; validated by [`ExplicitDynamics::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -532,11 +569,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
     /// Advance one step.
     ///
-    /// After an error the scene is not specified (some particles may have
-    /// moved): the run has gone wrong and should not be continued.
+    /// After an error the scene and the forces are not specified (some
+    /// particles may have moved, some forces be of this step): the run has
+    /// gone wrong and should not be continued.
     ///
     /// The forces are summed per particle in a fixed order (its weight,
-    /// then its pairs in the list's order, each pair's points in the
+    /// then its pairs in the list's order but for those whose A lies in an
+    /// earlier block of particles, then those; each pair's points in the
     /// manifold's order), whatever the number of threads, so a run is the
     /// same to the last bit on one thread or many.
     pub fn step(&mut self) -> Result<()> {
@@ -548,118 +587,174 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             &self.scene.particles,
             self.scene.frame.walls(),
             &mut self.grid,
+            parallel,
         );
 
-        // The contact points of every listed pair.
+        // Per block: each pair's contact points, added at once to its
+        // particles in the block (the weight and external force first);
+        // a pair whose B is in a later block keeps its summary for B.
+        let (blocks, wall_boxes) = self.neighbours.blocks_mut();
         let context = PairContext {
             law: &self.law,
             dt,
             particles: &self.scene.particles,
             increments: &self.increments,
             walls: self.scene.frame.walls(),
-            wall_boxes: &self.neighbours.wall_boxes,
+            wall_boxes,
         };
-        let slots = &mut self.neighbours.slots;
-        let forces = &mut self.neighbours.forces;
+        let applied = &self.applied;
+        let block_forces = self.system.force.chunks_mut(3 * BLOCK);
         let evaluate =
             |manifold: &mut Vec<ContactGeometry>,
-             (slot, force): (&mut PairSlot<L::State>, &mut PairForce)| {
-                context.evaluate(slot, force, manifold)
+             (block, force): (BlockSlots<'_, L::State>, &mut [f64])| {
+                for (sum, weight) in force.chunks_exact_mut(3).zip(&applied[block.start..]) {
+                    sum.copy_from_slice(&[weight.x, weight.y, 0.0]);
+                }
+                let local = |i: usize| 3 * (i - block.start);
+                let mut cross_out = block.cross_out.iter_mut();
+                for slot in block.pairs.iter_mut() {
+                    let mut pair = PairForce::default();
+                    context.evaluate(slot, &mut pair, manifold)?;
+                    // (The block's particle pairs, never a wall.)
+                    let ContactTarget::Particle(b) = slot.target else {
+                        continue;
+                    };
+                    let a = local(slot.a);
+                    // B's entries when B is in the block; a pair across
+                    // blocks keeps its summary for B instead, in the
+                    // build's order of those pairs.
+                    let b_local = if crosses_blocks(slot.a, b) {
+                        let summary = cross_out.next();
+                        debug_assert!(summary.is_some(), "a crossing the build did not count");
+                        if let Some(summary) = summary {
+                            *summary = pair;
+                        }
+                        None
+                    } else {
+                        Some(local(b))
+                    };
+                    for_each_point(
+                        &pair,
+                        || &slot.points,
+                        |force_on_b, moment_a, moment_b| {
+                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
+                            if let Some(b) = b_local {
+                                add_action(&mut force[b..b + 3], force_on_b, moment_b);
+                            }
+                        },
+                    );
+                }
+                debug_assert!(cross_out.next().is_none(), "a crossing not evaluated");
+                for slot in block.walls.iter_mut() {
+                    let mut pair = PairForce::default();
+                    context.evaluate(slot, &mut pair, manifold)?;
+                    let a = local(slot.a);
+                    for_each_point(
+                        &pair,
+                        || &slot.points,
+                        |force_on_b, moment_a, _| {
+                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
+                        },
+                    );
+                }
+                Ok::<(), DismechError>(())
             };
         if parallel {
-            slots
-                .par_iter_mut()
-                .zip(forces.par_iter_mut())
-                .with_min_len(PARALLEL_MIN_CHUNK)
+            blocks
+                .into_par_iter()
+                .zip(block_forces.collect::<Vec<_>>())
                 .try_for_each_init(Vec::new, evaluate)?;
         } else {
             let manifold = &mut self.manifold;
-            slots
-                .iter_mut()
-                .zip(forces.iter_mut())
-                .try_for_each(|pair| evaluate(manifold, pair))?;
+            blocks
+                .into_iter()
+                .zip(block_forces)
+                .try_for_each(|block| evaluate(manifold, block))?;
         }
 
-        // Per particle: its force (its weight and external force, then its
-        // pairs' forces in the list's order), then, when finite, its
-        // velocities and position from `M a = f` (the diagonal mass:
-        // `a = f / m` per DOF, as `solve_lumped_into`, whose checks of the
-        // masses were made at the start); and how far its boundary has
-        // moved since the list was built.
+        // Per block: the pairs that cross into it from earlier blocks,
+        // added to their B in the list's order; then per particle, when
+        // its force is finite, its velocities and position from `M a = f`
+        // (the diagonal mass: `a = f / m` per DOF, as `solve_lumped_into`,
+        // whose checks of the masses were made at the start), and how far
+        // its boundary has moved since the list was built.
         let neighbours = &self.neighbours;
-        let applied = &self.applied;
         let integrator = &self.integrator;
         let mass = &self.system.mass;
         let reach = self.frame_reach;
-        let update = |(i, (force, (p, increment))): ParticleUpdate<'_>| {
-            // B's side adds the force on B, A's subtracts it (`+ (−f)` and
-            // `− f` round alike); a pair without points adds zeros, which
-            // leave a sum as it is (a sum that starts at −0 turns +0, which
-            // nothing downstream tells apart).
-            let mut sum = [applied[i].x, applied[i].y, 0.0];
-            let mut add = |is_b: bool, force_on_b: Vec2, moment_a: f64, moment_b: f64| {
-                let sign = if is_b { 1.0 } else { -1.0 };
-                sum[0] += sign * force_on_b.x;
-                sum[1] += sign * force_on_b.y;
-                sum[2] += if is_b { moment_b } else { moment_a };
-            };
-            for &incidence in neighbours.incidence_of(i) {
-                let pair = &neighbours.forces[incidence.slot()];
-                if pair.count <= 1 {
-                    add(
-                        incidence.is_b(),
-                        pair.force_on_b,
-                        pair.moment_a,
-                        pair.moment_b,
-                    );
-                } else {
-                    for p in &neighbours.slots[incidence.slot()].points {
-                        add(incidence.is_b(), p.force_on_b, p.moment_a, p.moment_b);
-                    }
+        let update = |(k, (force, (particles, increments))): BlockUpdate<'_>| {
+            let start = k * BLOCK;
+            for cross in neighbours.cross_in(k) {
+                let b = 3 * (cross.b - start);
+                let points = || neighbours.slots[cross.slot].points.as_slice();
+                for_each_point(
+                    neighbours.cross_force(cross),
+                    points,
+                    |force_on_b, _, moment_b| {
+                        add_action(&mut force[b..b + 3], force_on_b, moment_b)
+                    },
+                );
+            }
+            let mut check = StepCheck::default();
+            for (offset, ((force, p), increment)) in force
+                .chunks_exact_mut(3)
+                .zip(particles.iter_mut())
+                .zip(increments.iter_mut())
+                .enumerate()
+            {
+                let i = start + offset;
+                if !force.iter().all(|f| f.is_finite()) {
+                    check = check.combine(StepCheck {
+                        travel: 0.0,
+                        bad_force: Some(i),
+                        bad_motion: None,
+                    });
+                    continue;
                 }
+                let mut dx = [0.0; 3];
+                let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
+                for d in 0..3 {
+                    let acceleration = force[d] / mass[3 * i + d];
+                    dx[d] = integrator.step(dt, acceleration, &mut velocity[d]);
+                }
+                p.velocity = Vec2::new(velocity[0], velocity[1]);
+                p.angular_velocity = velocity[2];
+                p.pose.position += Vec2::new(dx[0], dx[1]);
+                p.pose.angle += dx[2];
+                *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
+                let finite =
+                    dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
+                let bad_motion = !(finite && reach.contains(&p.pose.position));
+                check = check.combine(StepCheck {
+                    travel: neighbours.travel(i, p),
+                    bad_force: None,
+                    bad_motion: bad_motion.then_some(i),
+                });
             }
-            force.copy_from_slice(&sum);
-            if !force.iter().all(|f| f.is_finite()) {
-                return StepCheck {
-                    travel: 0.0,
-                    bad_force: Some(i),
-                    bad_motion: None,
-                };
-            }
-            let mut dx = [0.0; 3];
-            let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
-            for d in 0..3 {
-                let acceleration = force[d] / mass[3 * i + d];
-                dx[d] = integrator.step(dt, acceleration, &mut velocity[d]);
-            }
-            p.velocity = Vec2::new(velocity[0], velocity[1]);
-            p.angular_velocity = velocity[2];
-            p.pose.position += Vec2::new(dx[0], dx[1]);
-            p.pose.angle += dx[2];
-            *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
-            let finite = dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
-            let bad_motion = !(finite && reach.contains(&p.pose.position));
-            StepCheck {
-                travel: neighbours.travel(i, p),
-                bad_force: None,
-                bad_motion: bad_motion.then_some(i),
-            }
+            check
         };
         let force = &mut self.system.force;
         let particles = &mut self.scene.particles;
         let increments = &mut self.increments;
         let check = if parallel {
             force
-                .par_chunks_mut(3)
-                .zip(particles.par_iter_mut().zip(increments.par_iter_mut()))
+                .par_chunks_mut(3 * BLOCK)
+                .zip(
+                    particles
+                        .par_chunks_mut(BLOCK)
+                        .zip(increments.par_chunks_mut(BLOCK)),
+                )
                 .enumerate()
-                .with_min_len(PARALLEL_MIN_CHUNK)
                 .map(update)
                 .reduce(StepCheck::default, StepCheck::combine)
         } else {
             force
-                .chunks_mut(3)
-                .zip(particles.iter_mut().zip(increments.iter_mut()))
+                .chunks_mut(3 * BLOCK)
+                .zip(
+                    particles
+                        .chunks_mut(BLOCK)
+                        .zip(increments.chunks_mut(BLOCK)),
+                )
                 .enumerate()
                 .map(update)
                 .fold(StepCheck::default(), StepCheck::combine)

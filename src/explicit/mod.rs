@@ -31,12 +31,18 @@
 //! particle's box meets the wall's (the wall queries are one-sided), so the
 //! forces are those of a broad phase run at every step, to the last bit:
 //! the skin sets the speed only. From 2000
-//! particles on, the pairs' contact points and the particles' updates are
-//! computed on rayon's threads (run the stepping loop inside a
-//! `ThreadPool::install` so that its thread is one of the pool's); each
-//! particle's force is summed in a fixed order (its weight, then its pairs
-//! in the list's order, then each pair's points in order), so a run gives
-//! the same bits on one thread or many. Contact records
+//! particles on, the list's build, the pairs' contact points and the
+//! particles' updates are computed on rayon's threads (run the stepping
+//! loop inside a `ThreadPool::install` so that its thread is one of the
+//! pool's). The particles are taken in blocks of 1024 consecutive indices:
+//! a block's pairs (A in the block) are evaluated in the list's order and
+//! added at once to their particles in the block, and a pair whose B lies
+//! in a later block is added to B once every block is done. Each
+//! particle's force is thus summed in a fixed order (its weight, its pairs
+//! in the list's order but for those whose A is in an earlier block, then
+//! those, each pair's points in order), so a run gives the same bits on
+//! one thread or many; a scene of at most 1024 particles sums in the
+//! list's order. Contact records
 //! ([`ExplicitDynamics::contacts`]) are made from the list only when asked
 //! for. `examples/dem_throughput.rs` measures particle-steps per second on
 //! the setup of the LAMMPS anchor (2D disks settling in a box).

@@ -16,6 +16,7 @@
 //! therefore exact, not an approximation: the forces are those of a broad
 //! phase rebuilt every step.
 
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
@@ -65,21 +66,10 @@ pub(super) struct PairSlot<S> {
     pub points: PairPoints<S>,
 }
 
-impl<S> PairSlot<S> {
-    /// The order of the list: particle pairs by (A, B), then walls by
-    /// (particle, wall).
-    fn order(&self) -> (bool, usize, usize) {
-        match self.target {
-            ContactTarget::Particle(b) => (false, self.a, b),
-            ContactTarget::Wall(w) => (true, self.a, w),
-        }
-    }
-}
-
-/// A pair's force for the per-particle sums, apart from the points so
-/// that the sums read little memory: the first point's force and moments
-/// and how many points the pair has (a pair of several points is summed
-/// from its points).
+/// A pair's force for the per-particle sums, apart from its points: the
+/// first point's force and moments and how many points the pair has (a
+/// pair of several points is summed from its points). Kept for the pairs
+/// that cross blocks, so that adding them to B reads little memory.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct PairForce {
     /// Force exerted by A on B at the first point.
@@ -113,48 +103,79 @@ impl PairForce {
     }
 }
 
-/// Which side of a listed pair a particle is: the pair's index in the
-/// list times two, plus one when the particle is B.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Incidence(usize);
+/// Particles are summed in blocks of this many consecutive indices. A
+/// block's pairs (those whose A is in it) are evaluated in the list's order
+/// and added at once to their particles in the block; a pair whose B lies
+/// in a later block is added to B after every block has been evaluated.
+/// Each particle's force is thus summed in an order fixed by the list and
+/// the blocks (its weight, its pairs in the list's order save those with A
+/// in an earlier block, then those in the list's order), whatever the
+/// number of threads; a scene of at most one block sums in the list's
+/// order.
+pub(super) const BLOCK: usize = 1024;
 
-impl Incidence {
-    fn new(slot: usize, is_b: bool) -> Self {
-        Self(2 * slot + usize::from(is_b))
-    }
-
-    /// The pair's index in the list.
-    pub fn slot(self) -> usize {
-        self.0 / 2
-    }
-
-    /// Whether the particle is the pair's B.
-    pub fn is_b(self) -> bool {
-        self.0 % 2 == 1
-    }
+/// Whether the pair of particles `a` and `b` lies across blocks.
+#[inline]
+pub(super) fn crosses_blocks(a: usize, b: usize) -> bool {
+    a / BLOCK != b / BLOCK
 }
 
-/// The listed pairs, what each particle takes part in, and the poses the
+/// A pair whose A and B are in different blocks, as B's block sees it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct CrossIn {
+    /// Its force summary's index among those of the crossing pairs.
+    pub summary: usize,
+    /// Its index in the list.
+    pub slot: usize,
+    /// Its B.
+    pub b: usize,
+}
+
+/// One block's share of the list, to evaluate and add up.
+pub(super) struct BlockSlots<'a, S> {
+    /// Its first particle.
+    pub start: usize,
+    /// Its particle pairs (A in the block), in the list's order.
+    pub pairs: &'a mut [PairSlot<S>],
+    /// The force summaries of its pairs whose B is in a later block, in
+    /// the list's order.
+    pub cross_out: &'a mut [PairForce],
+    /// Its walls' pairs (the particle in the block), in the list's order.
+    pub walls: &'a mut [PairSlot<S>],
+}
+
+/// The listed pairs, how their forces are gathered by blocks, and the poses the
 /// list was built at.
 #[derive(Debug, Clone)]
 pub(super) struct NeighbourList<S> {
     skin: f64,
-    /// Pairs, ordered as [`PairSlot::order`].
+    /// Pairs: particle pairs by (A, B), then walls by (particle, wall).
     pub slots: Vec<PairSlot<S>>,
     /// Scratch of the build's counting sort.
     fill: Vec<usize>,
     /// The buffer of the next build's `slots`.
     spare: Vec<PairSlot<S>>,
-    /// Each pair's force summary, beside `slots`.
-    pub forces: Vec<PairForce>,
+    /// The force summaries of the pairs whose A and B are in different
+    /// blocks, in the list's order (block `k`'s from
+    /// `cross_out_start[k]`).
+    cross_forces: Vec<PairForce>,
+    cross_out_start: Vec<usize>,
     /// The walls' boxes (a wall's geometry is asked only when the
     /// particle's box meets its box, as a per-step broad phase would: the
     /// wall queries are one-sided and report a particle behind the wall).
     pub wall_boxes: Vec<Aabb2>,
-    /// The pairs of particle `i` are `incidence[start[i]..start[i + 1]]`,
-    /// in the list's order.
-    incidence_start: Vec<usize>,
-    incidence: Vec<Incidence>,
+    /// How many of the pairs are particle pairs (the walls' follow).
+    particle_pairs: usize,
+    /// Where each block's particle pairs start in `slots`, and where its
+    /// walls' pairs start (one entry a block, `n.div_ceil(BLOCK)` of them,
+    /// and one more each).
+    block_pairs: Vec<usize>,
+    block_walls: Vec<usize>,
+    /// The pairs whose B is in block `k` and A in an earlier one are
+    /// `cross_in[cross_in_start[k]..cross_in_start[k + 1]]`, in the list's
+    /// order.
+    cross_in_start: Vec<usize>,
+    cross_in: Vec<CrossIn>,
     /// Centre and angle of each particle at the build.
     reference: Vec<(Point, f64)>,
     /// Bounding radius of each particle.
@@ -163,14 +184,23 @@ pub(super) struct NeighbourList<S> {
     /// circle at most: its bounding radius, or 0 for a circle about its
     /// centre (neither moves when it turns).
     turn_arm: Vec<f64>,
+    /// The wall pairs of the last build, `(particle, wall)`, in the list's
+    /// order.
+    wall_pairs: Vec<(usize, usize)>,
+    /// Where particle `a`'s pairs, and its walls' pairs, start in
+    /// `slots` (`n + 1` entries each, empty before the first build).
+    first_pair: Vec<usize>,
+    first_wall: Vec<usize>,
     /// Whether the list must be built before the next step.
     stale: bool,
     builds: u64,
+    /// The particles' boxes at the last build.
     boxes: Vec<Aabb2>,
+    /// The particle pairs of the last build, `(A, B)`, in the list's order.
     pairs: Vec<(usize, usize)>,
 }
 
-impl<S> NeighbourList<S> {
+impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// An empty list with skin `skin` (m), built at the first step.
     pub fn new(skin: f64, particles: &[Particle]) -> Self {
         Self {
@@ -178,10 +208,14 @@ impl<S> NeighbourList<S> {
             slots: Vec::new(),
             fill: Vec::new(),
             spare: Vec::new(),
-            forces: Vec::new(),
+            cross_forces: Vec::new(),
+            cross_out_start: Vec::new(),
             wall_boxes: Vec::new(),
-            incidence_start: Vec::new(),
-            incidence: Vec::new(),
+            particle_pairs: 0,
+            block_pairs: Vec::new(),
+            block_walls: Vec::new(),
+            cross_in_start: Vec::new(),
+            cross_in: Vec::new(),
             reference: Vec::new(),
             turn_arm: particles
                 .iter()
@@ -198,6 +232,9 @@ impl<S> NeighbourList<S> {
             builds: 0,
             boxes: Vec::new(),
             pairs: Vec::new(),
+            wall_pairs: Vec::new(),
+            first_pair: Vec::new(),
+            first_wall: Vec::new(),
         }
     }
 
@@ -206,17 +243,58 @@ impl<S> NeighbourList<S> {
         self.builds
     }
 
-    /// The pairs particle `i` takes part in.
+    /// The pairs whose B is in block `k` and whose A is in an earlier
+    /// block, in the list's order.
     #[inline]
-    pub fn incidence_of(&self, i: usize) -> &[Incidence] {
-        &self.incidence[self.incidence_start[i]..self.incidence_start[i + 1]]
+    pub fn cross_in(&self, k: usize) -> &[CrossIn] {
+        &self.cross_in[self.cross_in_start[k]..self.cross_in_start[k + 1]]
+    }
+
+    /// The force summary of a pair that crosses blocks.
+    #[inline]
+    pub fn cross_force(&self, cross: &CrossIn) -> &PairForce {
+        &self.cross_forces[cross.summary]
+    }
+
+    /// Each block's share of the list, mutable, in the blocks' order; and
+    /// the walls' boxes.
+    pub fn blocks_mut(&mut self) -> (Vec<BlockSlots<'_, S>>, &[Aabb2]) {
+        let blocks = self.block_pairs.len().saturating_sub(1);
+        let mut shares = Vec::with_capacity(blocks);
+        let (mut pairs, mut walls) = self.slots.split_at_mut(self.particle_pairs);
+        let mut cross_forces = self.cross_forces.as_mut_slice();
+        for k in 0..blocks {
+            let (block_pairs, rest) = std::mem::take(&mut pairs)
+                .split_at_mut(self.block_pairs[k + 1] - self.block_pairs[k]);
+            pairs = rest;
+            let (cross_out, rest) = std::mem::take(&mut cross_forces)
+                .split_at_mut(self.cross_out_start[k + 1] - self.cross_out_start[k]);
+            cross_forces = rest;
+            let (block_walls, rest) = std::mem::take(&mut walls)
+                .split_at_mut(self.block_walls[k + 1] - self.block_walls[k]);
+            walls = rest;
+            shares.push(BlockSlots {
+                start: k * BLOCK,
+                pairs: block_pairs,
+                cross_out,
+                walls: block_walls,
+            });
+        }
+        (shares, &self.wall_boxes)
     }
 
     /// Build the list again if a particle has moved half the skin since
     /// the last build (or it was never built).
-    pub fn update(&mut self, particles: &[Particle], walls: &[Segment], grid: &mut CellGrid) {
+    /// `parallel`: on rayon's threads.
+    pub fn update(
+        &mut self,
+        particles: &[Particle],
+        walls: &[Segment],
+        grid: &mut CellGrid,
+        parallel: bool,
+    ) {
         if self.stale {
-            self.build(particles, walls, grid);
+            self.build(particles, walls, grid, parallel);
         }
     }
 
@@ -252,98 +330,166 @@ impl<S> NeighbourList<S> {
         }
     }
 
-    fn build(&mut self, particles: &[Particle], walls: &[Segment], grid: &mut CellGrid) {
+    fn build(
+        &mut self,
+        particles: &[Particle],
+        walls: &[Segment],
+        grid: &mut CellGrid,
+        parallel: bool,
+    ) {
         let n = particles.len();
+        let aabb = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
         self.boxes.clear();
-        self.boxes
-            .extend(particles.iter().map(|p| p.shape.as_shape().aabb(&p.pose)));
-        grid.candidate_pairs(&self.boxes, self.skin, &mut self.pairs);
-        // Of those, the pairs whose bounding circles are also closer than
-        // the skin (a circle's box corner is far from the circle: a square
-        // packing's diagonal neighbours have touching boxes); a pair
-        // dropped here only when clearly beyond, against rounding.
+        if parallel {
+            self.boxes.par_extend(particles.par_iter().map(aabb));
+        } else {
+            self.boxes.extend(particles.iter().map(aabb));
+        }
+        // Of the pairs whose boxes are closer than the skin, those whose
+        // bounding circles are too (a circle's box corner is far from the
+        // circle: a square packing's diagonal neighbours have touching
+        // boxes); a pair dropped here only when clearly beyond, against
+        // rounding.
         let radius = &self.radius;
         let skin = self.skin;
-        self.pairs.retain(|&(a, b)| {
+        let circles_near = |a: usize, b: usize| {
             let reach = radius[a] + radius[b] + skin;
             let apart = (particles[b].pose.position - particles[a].pose.position).norm_squared();
             apart <= reach * reach * (1.0 + 1e-12)
-        });
+        };
+        grid.candidate_pairs_filtered(&self.boxes, skin, circles_near, parallel, &mut self.pairs);
         self.wall_boxes.clear();
         self.wall_boxes
             .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
         let wall_boxes = &self.wall_boxes;
-
-        // New slots in the list's order, each taking the points of the
-        // same pair in the old list (both are sorted: a merge).
-        // (The two lists swap their buffers at every build: a large list
-        // is not given back to the system and asked for again.)
-        let mut previous_slots = std::mem::take(&mut self.slots);
-        let mut old = previous_slots.drain(..).peekable();
-        let mut slots = std::mem::take(&mut self.spare);
-        slots.clear();
-        let particle_pairs = self
-            .pairs
-            .iter()
-            .map(|&(a, b)| (a, ContactTarget::Particle(b)));
         let boxes = &self.boxes;
-        let wall_pairs = (0..n).flat_map(|a| {
+        let walls_of = |a: usize| {
             let grown = boxes[a].inflated(skin);
             wall_boxes
                 .iter()
                 .enumerate()
                 .filter(move |(_, wall)| grown.intersects(wall))
-                .map(move |(w, _)| (a, ContactTarget::Wall(w)))
-        });
-        for (a, target) in particle_pairs.chain(wall_pairs) {
-            let mut slot = PairSlot {
-                a,
-                target,
-                points: PairPoints::new(),
-            };
-            let order = slot.order();
-            while old.peek().is_some_and(|s| s.order() < order) {
-                old.next();
-            }
-            if let Some(previous) = old.next_if(|s| s.order() == order) {
-                slot.points = previous.points;
-            }
-            slots.push(slot);
+                .map(move |(w, _)| (a, w))
+        };
+        self.wall_pairs.clear();
+        if parallel {
+            self.wall_pairs
+                .par_extend((0..n).into_par_iter().flat_map_iter(walls_of));
+        } else {
+            self.wall_pairs.extend((0..n).flat_map(walls_of));
         }
-        drop(old);
-        self.spare = previous_slots;
-        // The summaries are written by the step's evaluation, which
-        // follows every build.
-        self.forces.clear();
-        self.forces.resize(slots.len(), PairForce::default());
-        self.slots = slots;
 
-        // Each particle's pairs, in the list's order (a counting sort).
-        self.incidence_start.clear();
-        self.incidence_start.resize(n + 1, 0);
-        for slot in &self.slots {
-            self.incidence_start[slot.a + 1] += 1;
-            if let ContactTarget::Particle(b) = slot.target {
-                self.incidence_start[b + 1] += 1;
-            }
+        // New slots in the list's order, each taking the points of the
+        // same pair in the old list, found among the old pairs of its
+        // particle. (The two lists swap their buffers at every build: a
+        // large list is not given back to the system and asked for
+        // again.)
+        let mut old = std::mem::take(&mut self.slots);
+        let (first_pair, first_wall) = (&self.first_pair, &self.first_wall);
+        let slot_of = |a: usize, target: ContactTarget| {
+            let (first, end) = match target {
+                ContactTarget::Particle(_) => (first_pair.get(a), first_pair.get(a + 1)),
+                ContactTarget::Wall(_) => (first_wall.get(a), first_wall.get(a + 1)),
+            };
+            let points = match (first, end) {
+                (Some(&first), Some(&end)) => old[first..end]
+                    .iter()
+                    .find(|s| s.target == target)
+                    .map(|s| s.points.clone())
+                    .unwrap_or_default(),
+                _ => PairPoints::new(),
+            };
+            PairSlot { a, target, points }
+        };
+        let mut slots = std::mem::take(&mut self.spare);
+        slots.clear();
+        let particle_slot = |&(a, b): &(usize, usize)| slot_of(a, ContactTarget::Particle(b));
+        let wall_slot = |&(a, w): &(usize, usize)| slot_of(a, ContactTarget::Wall(w));
+        if parallel {
+            slots.par_extend(
+                self.pairs
+                    .par_iter()
+                    .map(particle_slot)
+                    .chain(self.wall_pairs.par_iter().map(wall_slot)),
+            );
+        } else {
+            slots.extend(
+                self.pairs
+                    .iter()
+                    .map(particle_slot)
+                    .chain(self.wall_pairs.iter().map(wall_slot)),
+            );
         }
-        for i in 0..n {
-            self.incidence_start[i + 1] += self.incidence_start[i];
+        old.clear();
+        self.spare = old;
+        self.slots = slots;
+        // Where each particle's pairs and walls start, for the next build.
+        let count_from = |first: &mut Vec<usize>, offset: usize, pairs: &[(usize, usize)]| {
+            first.clear();
+            first.resize(n + 1, 0);
+            for &(a, _) in pairs {
+                first[a + 1] += 1;
+            }
+            first[0] = offset;
+            for a in 0..n {
+                first[a + 1] += first[a];
+            }
+        };
+        count_from(&mut self.first_pair, 0, &self.pairs);
+        count_from(&mut self.first_wall, self.pairs.len(), &self.wall_pairs);
+        self.particle_pairs = self.pairs.len();
+        // Where each block's pairs start.
+        let blocks = n.div_ceil(BLOCK);
+        let (pairs, walls) = self.slots.split_at(self.particle_pairs);
+        self.block_pairs.clear();
+        self.block_walls.clear();
+        for k in 0..=blocks {
+            let first = (k * BLOCK).min(n);
+            self.block_pairs
+                .push(pairs.partition_point(|s| s.a < first));
+            self.block_walls
+                .push(self.particle_pairs + walls.partition_point(|s| s.a < first));
+        }
+        // The pairs that cross blocks: their summaries by A's block in the
+        // list's order, and where each goes by B's block (a counting sort
+        // that keeps the list's order in each).
+        let block_of = |i: usize| i / BLOCK;
+        let crosses = |&(a, b): &(usize, usize)| crosses_blocks(a, b);
+        self.cross_out_start.clear();
+        self.cross_out_start.resize(blocks + 1, 0);
+        self.cross_in_start.clear();
+        self.cross_in_start.resize(blocks + 1, 0);
+        for &(a, b) in self.pairs.iter().filter(|pair| crosses(pair)) {
+            self.cross_out_start[block_of(a) + 1] += 1;
+            self.cross_in_start[block_of(b) + 1] += 1;
+        }
+        for k in 0..blocks {
+            self.cross_out_start[k + 1] += self.cross_out_start[k];
+            self.cross_in_start[k + 1] += self.cross_in_start[k];
         }
         let fill = &mut self.fill;
         fill.clear();
-        fill.extend_from_slice(&self.incidence_start);
-        self.incidence.clear();
-        self.incidence
-            .resize(self.incidence_start[n], Incidence::new(0, false));
-        for (k, slot) in self.slots.iter().enumerate() {
-            self.incidence[fill[slot.a]] = Incidence::new(k, false);
-            fill[slot.a] += 1;
-            if let ContactTarget::Particle(b) = slot.target {
-                self.incidence[fill[b]] = Incidence::new(k, true);
-                fill[b] += 1;
+        fill.extend_from_slice(&self.cross_in_start);
+        self.cross_in.clear();
+        self.cross_in.resize(
+            self.cross_in_start[blocks],
+            CrossIn {
+                summary: 0,
+                slot: 0,
+                b: 0,
+            },
+        );
+        let mut summary = 0;
+        for (slot, &(a, b)) in self.pairs.iter().enumerate() {
+            if crosses(&(a, b)) {
+                self.cross_in[fill[block_of(b)]] = CrossIn { summary, slot, b };
+                fill[block_of(b)] += 1;
+                summary += 1;
             }
         }
+        // Written by the step's evaluation, which follows every build.
+        self.cross_forces.clear();
+        self.cross_forces.resize(summary, PairForce::default());
 
         self.reference.clear();
         self.reference

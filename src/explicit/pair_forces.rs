@@ -42,6 +42,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     ///
     /// # Errors
     /// The geometry's, for a pair it does not support.
+    #[inline(always)]
     pub fn evaluate(
         &self,
         slot: &mut PairSlot<L::State>,
@@ -106,6 +107,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
 
     /// [`Self::evaluate`] for a pair with a polygon: every point of its
     /// manifold.
+    #[inline(never)]
     fn evaluate_manifold(
         &self,
         slot: &mut PairSlot<L::State>,

@@ -1,5 +1,7 @@
 //! The simple polygon: the block of DDA (paper 003), convex or concave.
 
+use std::sync::Arc;
+
 use nalgebra::SMatrix;
 
 use super::{MassProperties, Shape, Shape2, ShapeKind};
@@ -15,6 +17,14 @@ use crate::math::{cross, Aabb2, Point, Pose2, Vec2};
 /// routines.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polygon {
+    /// Shared: a particle's shape stays small (a polygon's vertices and
+    /// normals live apart from the hot data of the particle).
+    data: Arc<PolygonData>,
+}
+
+/// What a polygon is made of.
+#[derive(Debug, PartialEq)]
+struct PolygonData {
     vertices: Vec<Point>,
     /// Outward unit normal of edge `k`, body frame.
     normals: Vec<Vec2>,
@@ -197,12 +207,14 @@ impl Polygon {
         let radius = local.iter().map(|v| v.coords.norm()).fold(0.0, f64::max);
         Ok((
             Self {
-                vertices: local,
-                normals,
-                reflex,
-                radius,
-                area,
-                second_moments: [c[3], c[4], c[5]],
+                data: Arc::new(PolygonData {
+                    vertices: local,
+                    normals,
+                    reflex,
+                    radius,
+                    area,
+                    second_moments: [c[3], c[4], c[5]],
+                }),
             },
             centroid,
         ))
@@ -225,32 +237,32 @@ impl Polygon {
 
     /// Vertices in the centroid frame, counter-clockwise.
     pub fn vertices(&self) -> &[Point] {
-        &self.vertices
+        &self.data.vertices
     }
 
     /// The vertices placed at `pose` (world frame).
     pub fn world_vertices<'a>(&'a self, pose: &'a Pose2) -> impl Iterator<Item = Point> + 'a {
-        self.vertices.iter().map(|v| pose.transform_point(v))
+        self.data.vertices.iter().map(|v| pose.transform_point(v))
     }
 
     /// Outward unit normal of edge `k` (from vertex `k` to `k + 1`), body
     /// frame.
     pub fn edge_normal(&self, k: usize) -> Vec2 {
-        self.normals[k]
+        self.data.normals[k]
     }
 
     /// Whether vertex `k` is reflex (interior angle above 180°).
     pub fn is_reflex(&self, k: usize) -> bool {
-        self.reflex[k]
+        self.data.reflex[k]
     }
 
     /// Whether the body-frame point `p` lies inside the polygon (crossing
     /// number; a point on the boundary may count either way).
     pub fn contains(&self, p: &Point) -> bool {
-        let n = self.vertices.len();
+        let n = self.data.vertices.len();
         let mut inside = false;
         for k in 0..n {
-            let (a, b) = (self.vertices[k], self.vertices[(k + 1) % n]);
+            let (a, b) = (self.data.vertices[k], self.data.vertices[(k + 1) % n]);
             if (a.y > p.y) != (b.y > p.y) {
                 let x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
                 if p.x < x {
@@ -263,7 +275,7 @@ impl Polygon {
 
     /// Second moments of area about the centroid: `[∫x², ∫y², ∫xy] dA`.
     pub fn second_moments(&self) -> [f64; 3] {
-        self.second_moments
+        self.data.second_moments
     }
 
     /// The DDA displacement matrix `[T(x, y)]` of paper 003 eq. (15) at a
@@ -295,13 +307,13 @@ impl Shape for Polygon {
         2
     }
     fn measure(&self) -> f64 {
-        self.area
+        self.data.area
     }
     /// `m = ρ A`, `I = ρ (∫x² + ∫y²) dA` about the centroid.
     fn mass_properties(&self, density: f64) -> MassProperties {
         MassProperties {
-            mass: density * self.area,
-            inertia: density * (self.second_moments[0] + self.second_moments[1]),
+            mass: density * self.data.area,
+            inertia: density * (self.data.second_moments[0] + self.data.second_moments[1]),
         }
     }
 }
@@ -312,7 +324,7 @@ impl Shape2 for Polygon {
             min: Point::new(f64::INFINITY, f64::INFINITY),
             max: Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         };
-        for v in &self.vertices {
+        for v in &self.data.vertices {
             let w = pose.transform_point(v);
             bb.min = Point::new(bb.min.x.min(w.x), bb.min.y.min(w.y));
             bb.max = Point::new(bb.max.x.max(w.x), bb.max.y.max(w.y));
@@ -320,7 +332,7 @@ impl Shape2 for Polygon {
         bb
     }
     fn bounding_radius(&self) -> f64 {
-        self.radius
+        self.data.radius
     }
 }
 
