@@ -6,10 +6,10 @@ use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::circle_circle::contact_circle_circle;
-use dismech::query::manifold::ellipse::contact_ellipse_ellipse;
+use dismech::query::manifold::ellipse::{contact_ellipse_ellipse, contact_ellipse_segment};
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
-use dismech::shape::{Circle, Ellipse, Shape2};
+use dismech::shape::{Circle, Ellipse, Segment, Shape2};
 use proptest::prelude::*;
 
 prop_compose! {
@@ -61,6 +61,59 @@ proptest! {
         }
     }
 
+    /// Left and right are alike: the mirror image (x → −x) of a pair has
+    /// the mirror image of its contact. A scene laid out mirror-symmetric
+    /// meets the same contacts on both sides, to round-off.
+    #[test]
+    fn ellipse_contact_of_the_mirror_image_is_the_mirror_image_of_the_contact(
+        (ei, pi, ej, pj) in overlapping_pair(), tx in -10.0f64..10.0
+    ) {
+        let a = contact_ellipse_ellipse(&ei, &pi, &ej, &pj);
+        let b = contact_ellipse_ellipse(&ei, &mirrored_pose(&pi, tx), &ej, &mirrored_pose(&pj, tx));
+        prop_assert!(a.is_some() && b.is_some());
+        if let (Some(a), Some(b)) = (a, b) {
+            prop_assert!((b.point - mirrored(&a.point, tx)).norm() < 1e-9, "{:?} vs {:?}", a.point, b.point);
+            prop_assert!((b.normal - Vec2::new(-a.normal.x, a.normal.y)).norm() < 1e-9);
+            prop_assert!((a.overlap - b.overlap).abs() < 1e-9 * (1.0 + a.overlap));
+            prop_assert!((a.width - b.width).abs() < 1e-9);
+            prop_assert!((a.curvature_radius_a - b.curvature_radius_a).abs() < 1e-7 * (1.0 + a.curvature_radius_a));
+            prop_assert!((a.curvature_radius_b - b.curvature_radius_b).abs() < 1e-7 * (1.0 + a.curvature_radius_b));
+        }
+    }
+
+    /// The same for a wall: the mirror image of a wall (its ends swapped, so
+    /// that its material stays on its left) takes the mirror image of the
+    /// contact.
+    #[test]
+    fn ellipse_wall_contact_of_the_mirror_image_is_the_mirror_image_of_the_contact(
+        b in 0.2f64..1.0, aspect in 1.0f64..4.0, phi in 0.0f64..6.3, wall_angle in 0.0f64..6.3,
+        depth in 0.001f64..0.2, along in -0.4f64..0.4, tx in -10.0f64..10.0
+    ) {
+        let e = Ellipse::new(aspect * b, b).unwrap();
+        let pose = Pose2::new(0.0, 0.0, phi);
+        // A wall of length 4a through the point at which the ellipse reaches
+        // furthest along the wall's inward normal, moved in by `depth`.
+        let direction = Vec2::new(wall_angle.cos(), wall_angle.sin());
+        // The wall's material is on its left, the ellipse on its right.
+        let inward = Vec2::new(-direction.y, direction.x);
+        let local = rotate(&inward, -phi);
+        let reach = (e.a() * e.a() * local.x * local.x + e.b() * e.b() * local.y * local.y).sqrt();
+        let centre = Point::from(inward * (reach - depth * b) + direction * (along * e.a()));
+        let half = direction * (2.0 * e.a());
+        let wall = Segment::new(centre - half, centre + half);
+        let mirror_wall = Segment::new(mirrored(&wall.end, tx), mirrored(&wall.start, tx));
+        let a = contact_ellipse_segment(&e, &pose, &wall);
+        let m = contact_ellipse_segment(&e, &mirrored_pose(&pose, tx), &mirror_wall);
+        prop_assert!(a.is_some() && m.is_some());
+        if let (Some(a), Some(m)) = (a, m) {
+            prop_assert!((m.point - mirrored(&a.point, tx)).norm() < 1e-9, "{:?} vs {:?}", a.point, m.point);
+            prop_assert!((m.normal - Vec2::new(-a.normal.x, a.normal.y)).norm() < 1e-9);
+            prop_assert!((a.overlap - m.overlap).abs() < 1e-9 * (1.0 + a.overlap));
+            prop_assert!((a.width - m.width).abs() < 1e-9);
+            prop_assert!((a.curvature_radius_a - m.curvature_radius_a).abs() < 1e-7 * (1.0 + a.curvature_radius_a));
+        }
+    }
+
     #[test]
     fn ellipse_contact_equals_the_circle_contact_when_a_equals_b(
         ri in 0.1f64..2.0, rj in 0.1f64..2.0, dir in 0.0f64..6.3, frac in 0.01f64..0.999, phi in 0.0f64..6.3
@@ -104,6 +157,21 @@ fn ellipse_contact_agrees_with_the_reference_on_random_pairs() {
     assert_eq!(s.missed, 0, "{s:?}");
     assert_eq!(s.false_contacts, 0, "{s:?}");
     assert!(s.max_point_error < 1e-8, "{s:?}");
+}
+
+/// The mirror image of a point in the vertical line x = tx / 2.
+fn mirrored(p: &Point, tx: f64) -> Point {
+    Point::new(tx - p.x, p.y)
+}
+
+/// The mirror image of a pose in the vertical line x = tx / 2: an ellipse's
+/// axis at angle φ goes to π − φ.
+fn mirrored_pose(p: &Pose2, tx: f64) -> Pose2 {
+    Pose2::new(
+        tx - p.position.x,
+        p.position.y,
+        std::f64::consts::PI - p.angle,
+    )
 }
 
 fn constant_law(k: f64) -> SpringDashpotCoulomb {

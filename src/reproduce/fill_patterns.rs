@@ -19,6 +19,7 @@ use dismech::math::{Point, Vec2};
 use dismech::scene::layout::ellipse_half_extent;
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{AnyShape2, Shape2};
+use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// One contact of a side wall with its eq. (23) earth-pressure coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,16 +124,22 @@ fn contact_angle(sim: &DemSimulation<SpringDashpotCoulomb, ExplicitEuler>, parti
     }
 }
 
+/// The per-contact K of a wall profile at depths between 20 % and 90 % of
+/// H: the band of [`representative_k`].
+fn band_k(profile: &[WallPressure], fill_height: f64) -> Vec<f64> {
+    profile
+        .iter()
+        .filter(|p| p.depth >= 0.2 * fill_height && p.depth <= 0.9 * fill_height)
+        .map(|p| p.k)
+        .collect()
+}
+
 /// The representative K of a wall profile: the median of the per-contact
 /// values at depths between 20 % and 90 % of H (the top fifth divides by a
 /// vanishing σ_v, and the paper notes the bottom is disturbed by the
 /// friction of the bottom plate). `None` when no contact lies in that band.
 pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f64> {
-    let mut ks: Vec<f64> = profile
-        .iter()
-        .filter(|p| p.depth >= 0.2 * fill_height && p.depth <= 0.9 * fill_height)
-        .map(|p| p.k)
-        .collect();
+    let mut ks = band_k(profile, fill_height);
     if ks.is_empty() {
         return None;
     }
@@ -143,6 +150,41 @@ pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f6
     } else {
         0.5 * (ks[n / 2 - 1] + ks[n / 2])
     })
+}
+
+/// Whether two walls carry the same earth pressure, as a test of
+/// significance: the two-sided p-value of Welch's t test of the hypothesis
+/// that the per-contact K of the two profiles, in the band of
+/// [`representative_k`], are samples of one mean (t with the
+/// Welch–Satterthwaite degrees of freedom). A small value says the walls
+/// differ by more than their contacts' scatter explains. `None` when a
+/// wall has fewer than two contacts in the band; 1 (or 0) when neither
+/// sample scatters and their means are equal (or not).
+pub fn same_mean_p_value(
+    left: &[WallPressure],
+    right: &[WallPressure],
+    fill_height: f64,
+) -> Option<f64> {
+    let (left, right) = (band_k(left, fill_height), band_k(right, fill_height));
+    if left.len() < 2 || right.len() < 2 {
+        return None;
+    }
+    // The mean and the variance of the mean of a sample.
+    let moments = |ks: &[f64]| {
+        let n = ks.len() as f64;
+        let mean = ks.iter().sum::<f64>() / n;
+        let variance = ks.iter().map(|k| (k - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        (mean, variance / n, n)
+    };
+    let ((mean_l, var_l, n_l), (mean_r, var_r, n_r)) = (moments(&left), moments(&right));
+    let variance = var_l + var_r;
+    if variance <= 0.0 {
+        return Some(if mean_l == mean_r { 1.0 } else { 0.0 });
+    }
+    let t = (mean_l - mean_r).abs() / variance.sqrt();
+    let freedom = variance * variance / (var_l * var_l / (n_l - 1.0) + var_r * var_r / (n_r - 1.0));
+    let student = StudentsT::new(0.0, 1.0, freedom).ok()?;
+    Some(2.0 * student.sf(t))
 }
 
 /// The smallest half-size of a particle: semi-minor axis or radius (m).
@@ -301,4 +343,52 @@ pub fn back_pressure_scene(
         scene.set_external_force(particle, Vec2::new(pressure * (above - below), 0.0))?;
     }
     Ok(scene)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Contacts with the given K, all in the band of a filling 1 m high.
+    fn profile(ks: &[f64]) -> Vec<WallPressure> {
+        ks.iter()
+            .map(|&k| WallPressure {
+                height: 0.5,
+                depth: 0.5,
+                pressure: 1.0,
+                k,
+                omega_deg: 45.0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn welch_p_value_matches_an_independent_computation() {
+        // scipy.stats.ttest_ind(a, b, equal_var=False).pvalue =
+        // 0.04357052647926788 (t = -2.63, 7.9 degrees of freedom).
+        let a = profile(&[1.0, 2.0, 3.0, 4.0]);
+        let b = profile(&[2.5, 3.5, 4.5, 5.5, 6.5, 9.0]);
+        let p = same_mean_p_value(&a, &b, 1.0).unwrap();
+        approx::assert_relative_eq!(p, 0.04357052647926788, max_relative = 1e-9);
+        // The walls' order does not matter.
+        assert_eq!(p, same_mean_p_value(&b, &a, 1.0).unwrap());
+    }
+
+    #[test]
+    fn welch_p_value_in_the_degenerate_cases() {
+        let one = profile(&[0.3]);
+        let two = profile(&[0.3, 0.4]);
+        assert_eq!(same_mean_p_value(&one, &two, 1.0), None);
+        assert_eq!(same_mean_p_value(&two, &two, 1.0), Some(1.0));
+        let flat = profile(&[0.3, 0.3]);
+        assert_eq!(same_mean_p_value(&flat, &flat, 1.0), Some(1.0));
+        assert_eq!(
+            same_mean_p_value(&flat, &profile(&[0.5, 0.5]), 1.0),
+            Some(0.0)
+        );
+        // Contacts outside the band (depth 0.2-0.9 H) do not count.
+        let mut shallow = profile(&[0.3, 0.4]);
+        shallow[0].depth = 0.1;
+        assert_eq!(same_mean_p_value(&shallow, &two, 1.0), None);
+    }
 }

@@ -14,13 +14,25 @@
 //! Read as the distance between neighbouring elements (the horizontal pitch
 //! of a row), K is larger by the ratio of the two spacings; that value is
 //! reported under `ex2.K_element_spacing.<pattern>`.
+//!
+//! **Left and right.** The layouts are mirror-symmetric and the contact is
+//! mirror-equivariant to round-off (tested in `tests/ellipse_contact.rs`),
+//! but the settling of upright ellipses (D) and of the mixed rows (B) is
+//! chaotic: which way an ellipse tips is decided by round-off. Moving each
+//! particle of D sideways by at most 1e-12 m before settling changes the
+//! relative difference of the two walls' median K between 0.01 and 0.20
+//! (ten such realisations). So the check asks the question a single
+//! realisation can answer: whether the two walls' per-contact K differ by
+//! more than their scatter explains (Welch's t test,
+//! [`same_mean_p_value`], at the 1 % level). The relative difference of
+//! the medians is reported beside it, without a rule.
 
 use std::path::Path;
 
 use super::patterns::Pattern;
 use super::{equilibrium, settle_scene, FillEquilibrium};
 use crate::reproduce::fill_patterns::{
-    particle_outlines, representative_k, wall_pressures, WallPressure,
+    particle_outlines, representative_k, same_mean_p_value, wall_pressures, WallPressure,
 };
 use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
 use dismech::error::Result;
@@ -168,20 +180,30 @@ pub(super) fn example2_outputs(
             vertical,
             &Rule::near(Reference::number(1.0), 0.005),
         ));
+        let h = run.equilibrium.fill_height;
         checks.push(Check::new(
-            format!("ex2.K_left_right.{name}"),
+            format!("ex2.K_left_right_p.{name}"),
             format!(
-                "pattern {name}: |K of the left wall − K of the right wall| / K, of this mirror-symmetric layout (left {}, right {})",
+                "pattern {name}: two-sided p-value of Welch's t test that the per-contact K of the left and right walls (depth 0.2-0.9 H) share one mean; this mirror-symmetric layout must not show a difference beyond the contacts' scatter (left median {}, right median {})",
                 fmt_option(k_left),
                 fmt_option(k_right),
             ),
             "-",
-            match (k_left, k_right) {
+            same_mean_p_value(&run.left, &run.right, h).unwrap_or(f64::NAN),
+            &Rule::AtLeast(Reference::number(0.01)),
+        ));
+        values.push(Reported {
+            id: format!("ex2.K_left_right.{name}"),
+            description: format!(
+                "pattern {name}: |K of the left wall - K of the right wall| / K (medians), of one realisation: where the settling is chaotic, round-off decides it (see the module docs)"
+            ),
+            paper: None,
+            computed: match (k_left, k_right) {
                 (Some(l), Some(r)) => (l - r).abs() / k.unwrap_or(f64::NAN).abs(),
                 _ => f64::NAN,
             },
-            &Rule::AtMost(Reference::number(0.05)),
-        ));
+            unit: "-".into(),
+        });
         let verdict = |value: Option<f64>| match (paper, value) {
             (Some((lo, hi)), Some(v)) if v >= lo && v <= hi => "within the paper's range",
             (Some(_), Some(_)) => "outside the paper's range",
@@ -245,7 +267,6 @@ pub(super) fn example2_outputs(
                 .collect(),
             markers: true,
         });
-        let h = run.equilibrium.fill_height;
         k_series.push(Series {
             name: format!("{name}: {}", run.pattern.description),
             points: run
