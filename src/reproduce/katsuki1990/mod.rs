@@ -526,6 +526,9 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
             paper
         ));
     }
+    md.push_str(
+        "\nEach K is one realisation. Where the settling is chaotic (the upright ellipses of D, the mixed rows of B), round-off decides which way the particles tip, so the two walls' medians and the K above differ from one realisation to the next by several per cent, although the layout is mirror-symmetric; the check `ex2.K_left_right_p` asks whether the walls differ beyond their contacts' scatter (Welch's t test at the 1 % level).\n",
+    );
     md.push_str(&format!(
         "\n## Example 3: front-wall pressure under a uniform back pressure of {} kPa\n\n\
          The back wall is replaced by the pressure on the back particles (those within the smallest semi-axis of the back, and the first seen from the back at each height), each over its share of the height; the frame is closed by a lid; self-weight stays on. Centroid: height of the resultant front-wall force / H (1/3 triangular, 1/2 uniform).\n\n\
