@@ -6,7 +6,9 @@ use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::circle_circle::contact_circle_circle;
-use dismech::query::manifold::ellipse::{contact_ellipse_ellipse, contact_ellipse_segment};
+use dismech::query::manifold::ellipse::{
+    contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_segment,
+};
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Segment, Shape2};
@@ -58,6 +60,29 @@ proptest! {
             prop_assert!((b.point - expected).norm() < 1e-8);
             prop_assert!((b.normal - rotate(&a.normal, turn)).norm() < 1e-8);
             prop_assert!((a.overlap - b.overlap).abs() < 1e-9 && (a.width - b.width).abs() < 1e-8);
+        }
+    }
+
+    /// Given where the pair touched (the last step's contact point, here
+    /// the contact point moved by up to `shift` of the smaller b, or any
+    /// point at all), the contact is the same as found from scratch: the
+    /// fast search about that point answers only where it shows the
+    /// overlap is one lens.
+    #[test]
+    fn ellipse_contact_near_a_previous_point_is_the_contact(
+        (ei, pi, ej, pj) in overlapping_pair(), shift in 0.0f64..0.5, dir in 0.0f64..6.3,
+        anywhere in prop::array::uniform2(-10.0f64..10.0)
+    ) {
+        let plain = contact_ellipse_ellipse(&ei, &pi, &ej, &pj).unwrap();
+        let moved = plain.point + Vec2::new(dir.cos(), dir.sin()) * (shift * ei.b().min(ej.b()));
+        for near in [plain.point, moved, Point::new(anywhere[0], anywhere[1])] {
+            let hinted = contact_ellipse_ellipse_near(&ei, &pi, &ej, &pj, Some(&near)).unwrap();
+            prop_assert!((hinted.point - plain.point).norm() < 1e-9, "{:?} vs {:?}", hinted.point, plain.point);
+            prop_assert!((hinted.normal - plain.normal).norm() < 1e-9);
+            prop_assert!((hinted.overlap - plain.overlap).abs() < 1e-9 * (1.0 + plain.overlap));
+            prop_assert!((hinted.width - plain.width).abs() < 1e-9);
+            prop_assert!((hinted.curvature_radius_a - plain.curvature_radius_a).abs() < 1e-7 * (1.0 + plain.curvature_radius_a));
+            prop_assert!((hinted.curvature_radius_b - plain.curvature_radius_b).abs() < 1e-7 * (1.0 + plain.curvature_radius_b));
         }
     }
 

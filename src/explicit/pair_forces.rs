@@ -9,7 +9,7 @@ use crate::law::{ContactInput, ContactLaw, PairProperties};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::query::manifold::circle_circle::contact_circle_circle;
 use crate::query::manifold::circle_segment::contact_circle_segment;
-use crate::query::manifold::dispatch::{contact_2d, contact_manifold_2d};
+use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
 use crate::query::{moment_about, relative_increment, ContactGeometry};
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
@@ -81,7 +81,13 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 *force = self.evaluate_manifold(slot, manifold, shape_b, pose_b, other)?;
                 return Ok(());
             }
-            _ => contact_2d(&pa.shape, &pa.pose, shape_b, pose_b)?,
+            _ => contact_2d_near(
+                &pa.shape,
+                &pa.pose,
+                shape_b,
+                pose_b,
+                slot.points.first().map(|p| &p.point),
+            )?,
         };
         let Some(geometry) = single else {
             slot.points.clear();

@@ -321,6 +321,40 @@ pub fn quartic_nonpositive(c: [f64; 5]) -> RealRoots {
     roots
 }
 
+/// The one interval on which the quartic `c[0] x⁴ + … + c[4]` (`c[0] > 0`)
+/// is not positive, when it contains 0 and there is no other: its ends,
+/// increasing. A fast path for a start known to lie inside the interval
+/// (`c[4] < 0`), such as the last step's answer: each end is refined by
+/// Halley's method from the quadratic model at 0, then the quartic is
+/// divided by the two roots' factor and the quotient, a quadratic, must
+/// stay positive by a margin, which shows that no other root exists.
+/// `None` whenever that is not shown; the caller then asks
+/// [`quartic_nonpositive`], whose answer this one equals whenever it is
+/// given (to round-off).
+pub fn quartic_nonpositive_about_zero(c: [f64; 5]) -> Option<(f64, f64)> {
+    if !(c[0] > 0.0 && c[4] < 0.0 && c[2] > 0.0) || c.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let p = |x: f64| with_slopes(&c, x);
+    // p(0) < 0 < c[2]: the model c[2] x² + c[3] x + c[4] has a root on
+    // each side of 0.
+    let (left, right) = quadratic_roots(c[2], c[3], c[4])?;
+    let r1 = bracketed_root(p, 0.0, f64::NEG_INFINITY, 0.0, left, None)?;
+    let r2 = bracketed_root(p, 0.0, f64::INFINITY, 0.0, right, None)?;
+    if !(r1 < r2) {
+        return None;
+    }
+    // p = (x² − σx + π)(c₀x² + q₁x + q₂) + remainder.
+    let (sum, product) = (r1 + r2, r1 * r2);
+    let q1 = c[1] + sum * c[0];
+    let q2 = c[2] + sum * q1 - product * c[0];
+    // The quotient's minimum, q₂ − q₁²/(4c₀), positive by a margin over
+    // the round-off of its coefficients.
+    let least = q2 - q1 * q1 / (4.0 * c[0]);
+    let scale = q2.abs() + q1 * q1 / (4.0 * c[0]);
+    (least > 1e-9 * scale).then_some((r1, r2))
+}
+
 /// A local minimum of a quartic with the distances to the roots beside it
 /// by the second-order Taylor model `v + s h + κ h²/2` there (`s`, the
 /// slope, is zero to round-off): `left < 0 < right`.
@@ -587,6 +621,31 @@ mod tests {
             }
         }
 
+        /// Two real roots about 0 and a complex pair anywhere: the fast
+        /// path finds both roots, unless the pair comes close to the real
+        /// axis (a near second interval), where it declines and the full
+        /// search answers.
+        #[test]
+        fn the_fast_path_finds_the_one_interval_about_zero(
+            k in 1e-3f64..1e3, left in -5.0f64..-1e-3, right in 1e-3f64..5.0,
+            re in -5.0f64..5.0, im in 1e-3f64..5.0
+        ) {
+            let c = times_quadratic(k, [left, right], -2.0 * re, re * re + im * im);
+            match quartic_nonpositive_about_zero(c) {
+                Some((r1, r2)) => {
+                    prop_assert!((r1 - left).abs() <= root_tolerance(&c, left), "{:?}", (r1, r2));
+                    prop_assert!((r2 - right).abs() <= root_tolerance(&c, right), "{:?}", (r1, r2));
+                }
+                None => {
+                    // Declined only where the complex pair is close to the
+                    // real axis relative to its distance from the roots,
+                    // or where the quadratic model at 0 is not convex.
+                    let near = im < 0.1 * ((re - left).abs().min((re - right).abs()) + im);
+                    prop_assert!(near || c[2] <= 0.0, "declined {:?}", c);
+                }
+            }
+        }
+
         /// Random coefficients, the leading one from 1e-12 (roots far
         /// out, the near-degenerate case) to 10: the roots are the
         /// eigenvalue solver's real roots where these are clearly simple,
@@ -617,6 +676,15 @@ mod tests {
                         found.iter().any(|x| (w[0]..=w[1]).contains(x)),
                         "{:?}: a sign change in [{}, {}] not in {:?}", c, w[0], w[1], found
                     );
+                }
+            }
+            // The fast path, where it answers, answers the same: the one
+            // interval, about 0.
+            if let Some((r1, r2)) = quartic_nonpositive_about_zero(c) {
+                prop_assert_eq!(found.len(), 2, "{:?}: {:?} vs {:?}", c, (r1, r2), found);
+                prop_assert!(r1 < 0.0 && 0.0 < r2);
+                for (x, e) in [r1, r2].into_iter().zip(found) {
+                    prop_assert!((x - e).abs() <= root_tolerance(&c, *e), "{:?}: {:?} vs {:?}", c, (r1, r2), found);
                 }
             }
             // Every eigenvalue root where p clearly changes sign is found.

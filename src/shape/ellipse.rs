@@ -16,6 +16,9 @@ pub const MAX_ASPECT_RATIO: f64 = 10.0;
 pub struct Ellipse {
     a: f64,
     b: f64,
+    /// `1 / a²` and `1 / b²`, the weights of the implicit function, kept
+    /// for the contact routines.
+    inverse_squares: [f64; 2],
 }
 
 impl Ellipse {
@@ -37,7 +40,11 @@ impl Ellipse {
                 requirement: "must be <= 10 (the verified range of the contact routine)",
             });
         }
-        Ok(Self { a, b })
+        Ok(Self {
+            a,
+            b,
+            inverse_squares: [1.0 / (a * a), 1.0 / (b * b)],
+        })
     }
 
     /// Semi-major axis a.
@@ -95,9 +102,35 @@ impl Ellipse {
         self.line_crossings_local(&o, &d)
     }
 
+    /// `1 / a²` and `1 / b²`: the weights of the implicit function
+    /// `x²/a² + y²/b² − 1`.
+    pub fn inverse_squares(&self) -> [f64; 2] {
+        self.inverse_squares
+    }
+
     /// [`Self::line_crossings`] for a line given in the body frame.
     pub fn line_crossings_local(&self, o: &Point, d: &Vec2) -> Option<(f64, f64)> {
-        let (ia2, ib2) = (1.0 / (self.a * self.a), 1.0 / (self.b * self.b));
+        let line = self.line_quadratic(o, d)?;
+        let (r1, r2) = line.roots();
+        Some((r1.min(r2), r1.max(r2)))
+    }
+
+    /// Where the body-frame line `o + s d` leaves the ellipse: the larger
+    /// of [`Self::line_crossings_local`], with one division.
+    pub fn line_exit_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
+        Some(self.line_quadratic(o, d)?.larger_root())
+    }
+
+    /// Where the body-frame line `o + s d` enters the ellipse: the smaller
+    /// of [`Self::line_crossings_local`], with one division.
+    pub fn line_entry_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
+        Some(self.line_quadratic(o, d)?.smaller_root())
+    }
+
+    /// The implicit function along the body-frame line `o + s d`, a
+    /// quadratic in `s`; `None` when the line misses the ellipse.
+    fn line_quadratic(&self, o: &Point, d: &Vec2) -> Option<LineQuadratic> {
+        let [ia2, ib2] = self.inverse_squares;
         let qa = d.x * d.x * ia2 + d.y * d.y * ib2;
         let qb = 2.0 * (o.x * d.x * ia2 + o.y * d.y * ib2);
         let qc = o.x * o.x * ia2 + o.y * o.y * ib2 - 1.0;
@@ -105,15 +138,9 @@ impl Ellipse {
         if disc < 0.0 || qa <= 0.0 {
             return None;
         }
-        let root = disc.sqrt();
-        // Numerically stable pair of roots.
-        let q = -0.5 * (qb + qb.signum() * root);
-        let (r1, r2) = if q != 0.0 {
-            (q / qa, qc / q)
-        } else {
-            (0.0, 0.0)
-        };
-        Some((r1.min(r2), r1.max(r2)))
+        // Numerically stable pair of roots: q / qa and qc / q.
+        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+        Some(LineQuadratic { qa, qc, q })
     }
 
     /// Radius of curvature at the boundary point seen from the centre
@@ -131,6 +158,49 @@ impl Ellipse {
             b2
         };
         q * q.sqrt() / (self.a * self.b)
+    }
+}
+
+/// `qa s² + qb s + qc` with real roots, and `q = −(qb + sign(qb) √disc)/2`
+/// for the cancellation-free pair `q / qa`, `qc / q`.
+struct LineQuadratic {
+    qa: f64,
+    qc: f64,
+    q: f64,
+}
+
+impl LineQuadratic {
+    /// Both roots, unordered.
+    fn roots(&self) -> (f64, f64) {
+        if self.q != 0.0 {
+            (self.q / self.qa, self.qc / self.q)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    /// The larger root. `q / qa` (`qa > 0`) has the sign of `q` and is the
+    /// root of larger magnitude, so it is the larger root when `q > 0` and
+    /// the smaller one otherwise.
+    fn larger_root(&self) -> f64 {
+        if self.q == 0.0 {
+            0.0
+        } else if self.q > 0.0 {
+            self.q / self.qa
+        } else {
+            self.qc / self.q
+        }
+    }
+
+    /// The smaller root (see [`Self::larger_root`]).
+    fn smaller_root(&self) -> f64 {
+        if self.q == 0.0 {
+            0.0
+        } else if self.q > 0.0 {
+            self.qc / self.q
+        } else {
+            self.q / self.qa
+        }
     }
 }
 
@@ -293,6 +363,39 @@ mod tests {
             let n = e.outward_normal(&x);
             assert!(crate::math::cross(&n, &(p - x)).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_line_enters_and_leaves_where_its_crossings_lie() {
+        let e = Ellipse::new(2.0, 0.5).unwrap();
+        for k in 0..2000 {
+            let angle = k as f64 * 0.0131;
+            let d = Vec2::new(angle.cos(), angle.sin());
+            // Through the centre, off it, through the boundary, and with
+            // a signed zero in the linear coefficient.
+            for o in [
+                Point::new(0.0, 0.0),
+                Point::new(-0.0, 0.0),
+                Point::new(0.7 * angle.sin(), -0.3),
+                Point::new(2.0, 0.0),
+                Point::new(1.9, 0.1 * angle.cos()),
+            ] {
+                let crossings = e.line_crossings_local(&o, &d);
+                assert_eq!(crossings.map(|c| c.0), e.line_entry_local(&o, &d));
+                assert_eq!(crossings.map(|c| c.1), e.line_exit_local(&o, &d));
+                if let Some((entry, exit)) = crossings {
+                    assert!(entry <= exit);
+                    for s in [entry, exit] {
+                        let p = o + d * s;
+                        assert!(e.implicit(&Pose2::default(), &p).abs() < 1e-12);
+                    }
+                }
+            }
+        }
+        // A line that misses.
+        let (o, d) = (Point::new(0.0, 1.0), Vec2::x());
+        assert_eq!(e.line_crossings_local(&o, &d), None);
+        assert_eq!(e.line_exit_local(&o, &d), None);
     }
 
     #[test]

@@ -34,13 +34,13 @@
 use super::circle_circle::contact_circle_circle;
 use super::circle_polygon::contact_circle_polygon;
 use super::circle_segment::contact_circle_segment;
-use super::ellipse::{contact_ellipse_ellipse, contact_ellipse_segment};
+use super::ellipse::{contact_ellipse_ellipse_near, contact_ellipse_segment};
 use super::ellipse_polygon::contact_ellipse_polygon;
 use super::polygon::contact_polygon_polygon;
 use super::polygon_segment::contact_polygon_segment;
 use super::ContactGeometry;
 use crate::error::{DismechError, Result};
-use crate::math::Pose2;
+use crate::math::{Point, Pose2};
 use crate::shape::{AnyShape2, Circle, Ellipse};
 
 /// A circle as the a = b ellipse, for circle–ellipse pairs.
@@ -67,6 +67,23 @@ pub fn contact_2d(
     b: &AnyShape2,
     pose_b: &Pose2,
 ) -> Result<Option<ContactGeometry>> {
+    contact_2d_near(a, pose_a, b, pose_b, None)
+}
+
+/// [`contact_2d`] given the pair's contact point at the last step (world),
+/// where it touched then: pairs of ellipses and circle–ellipse pairs seek
+/// their crossings about it first ([`contact_ellipse_ellipse_near`]); the
+/// others do not use it.
+///
+/// # Errors
+/// [`DismechError::UnsupportedPair`] for two segments.
+pub fn contact_2d_near(
+    a: &AnyShape2,
+    pose_a: &Pose2,
+    b: &AnyShape2,
+    pose_b: &Pose2,
+    near: Option<&Point>,
+) -> Result<Option<ContactGeometry>> {
     match (a, b) {
         (AnyShape2::Circle(ca), AnyShape2::Circle(cb)) => {
             Ok(contact_circle_circle(ca, pose_a, cb, pose_b))
@@ -76,14 +93,22 @@ pub fn contact_2d(
             Ok(contact_circle_segment(c, pose_b, s).map(|g| g.flipped()))
         }
         (AnyShape2::Ellipse(ea), AnyShape2::Ellipse(eb)) => {
-            Ok(contact_ellipse_ellipse(ea, pose_a, eb, pose_b))
+            Ok(contact_ellipse_ellipse_near(ea, pose_a, eb, pose_b, near))
         }
-        (AnyShape2::Ellipse(e), AnyShape2::Circle(c)) => {
-            Ok(contact_ellipse_ellipse(e, pose_a, &as_ellipse(c)?, pose_b))
-        }
-        (AnyShape2::Circle(c), AnyShape2::Ellipse(e)) => {
-            Ok(contact_ellipse_ellipse(&as_ellipse(c)?, pose_a, e, pose_b))
-        }
+        (AnyShape2::Ellipse(e), AnyShape2::Circle(c)) => Ok(contact_ellipse_ellipse_near(
+            e,
+            pose_a,
+            &as_ellipse(c)?,
+            pose_b,
+            near,
+        )),
+        (AnyShape2::Circle(c), AnyShape2::Ellipse(e)) => Ok(contact_ellipse_ellipse_near(
+            &as_ellipse(c)?,
+            pose_a,
+            e,
+            pose_b,
+            near,
+        )),
         (AnyShape2::Ellipse(e), AnyShape2::Segment(s)) => Ok(contact_ellipse_segment(e, pose_a, s)),
         (AnyShape2::Segment(s), AnyShape2::Ellipse(e)) => {
             Ok(contact_ellipse_segment(e, pose_b, s).map(|g| g.flipped()))

@@ -30,7 +30,7 @@
 //! deeper lens is taken.
 
 use super::{ContactFeatures, ContactGeometry};
-use crate::math::real_roots::{quartic_nonpositive, quartic_value};
+use crate::math::real_roots::{quartic_nonpositive, quartic_nonpositive_about_zero, quartic_value};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::shape::{Ellipse, Segment};
 
@@ -68,6 +68,7 @@ impl Turn {
 /// The boundary of ellipse `i` in its body frame, `(a cos t, b sin t)`,
 /// against the implicit function of ellipse `j`, as the quartic
 /// `(1 + u²)² g(t)` in `u = tan((t − t₀)/2)`.
+#[derive(Debug, Clone, Copy)]
 struct BoundaryQuartic {
     /// Coefficients, highest power first.
     p: [f64; 5],
@@ -85,7 +86,7 @@ impl BoundaryQuartic {
         let (c, s) = (relative.c, relative.s);
         // q(t) = d + M (cos t, sin t), M = R(φi − φj) diag(ai, bi).
         let m = [[c * i.a(), -s * i.b()], [s * i.a(), c * i.b()]];
-        let w = [1.0 / (j.a() * j.a()), 1.0 / (j.b() * j.b())];
+        let w = j.inverse_squares();
         let (mut c0, mut c1, mut s1, mut c2, mut s2) = (-1.0, 0.0, 0.0, 0.0, 0.0);
         for k in 0..2 {
             let (dk, a, b) = (d[k], m[k][0], m[k][1]);
@@ -160,6 +161,24 @@ pub fn contact_ellipse_ellipse(
     j: &Ellipse,
     pose_j: &Pose2,
 ) -> Option<ContactGeometry> {
+    contact_ellipse_ellipse_near(i, pose_i, j, pose_j, None)
+}
+
+/// [`contact_ellipse_ellipse`] given where the pair touched at the last
+/// step (`near`, the contact point, world): the crossings are then sought
+/// about the point of i's boundary in that direction, by
+/// [`quartic_nonpositive_about_zero`], which needs a few Halley steps
+/// where the search for every root needs its critical points first. The
+/// result is the same, to round-off, whenever the fast path shows that
+/// the overlap is a single lens; otherwise, or without `near`, the roots
+/// are isolated in full.
+pub fn contact_ellipse_ellipse_near(
+    i: &Ellipse,
+    pose_i: &Pose2,
+    j: &Ellipse,
+    pose_j: &Pose2,
+    near: Option<&Point>,
+) -> Option<ContactGeometry> {
     let between = pose_j.position - pose_i.position;
     let distance = between.norm();
     if distance >= i.a() + j.a() {
@@ -178,6 +197,42 @@ pub fn contact_ellipse_ellipse(
             return None;
         }
     }
+    let relative = turn_i.relative_to(&turn_j);
+    let d = turn_j.undo(&(-between));
+    let pair = |quartic: BoundaryQuartic| Pair {
+        i,
+        j,
+        d,
+        relative,
+        quartic,
+    };
+    let world = |lens: Lens| ContactGeometry {
+        point: pose_i.position + turn_i.apply(&lens.point.coords),
+        normal: turn_i.apply(&lens.normal),
+        overlap: lens.overlap,
+        width: lens.width,
+        curvature_radius_a: lens.curvature_radius_i,
+        curvature_radius_b: lens.curvature_radius_j,
+        features: ContactFeatures::WHOLE,
+    };
+    // t₀: the direction of the last contact point from i's centre, in i's
+    // parametric angle.
+    if let Some(start) = near.and_then(|near| {
+        let local = turn_i.undo(&(near - pose_i.position));
+        let (x, y) = (local.x / i.a(), local.y / i.b());
+        let length = (x * x + y * y).sqrt();
+        (length > 0.0).then(|| Turn {
+            c: x / length,
+            s: y / length,
+        })
+    }) {
+        let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
+        if let Some((r1, r2)) = quartic_nonpositive_about_zero(quartic.p) {
+            if let Some(lens) = pair(quartic).lens(r1, r2) {
+                return Some(world(lens));
+            }
+        }
+    }
     // t₀ + π: the point of i farthest from j's centre, where g > 0 unless i
     // lies inside j.
     let away = turn_i.undo(&(-between));
@@ -192,8 +247,6 @@ pub fn contact_ellipse_ellipse(
     } else {
         Turn { c: -1.0, s: 0.0 }
     };
-    let relative = turn_i.relative_to(&turn_j);
-    let d = turn_j.undo(&(-between));
     let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
     if quartic.at_infinity() <= 0.0 {
         return Some(containment(i, pose_i, j, pose_j));
@@ -216,13 +269,7 @@ pub fn contact_ellipse_ellipse(
     // increasing u (counter-clockwise); each bounds one lens of overlap.
     // With four crossings there are two; the deeper one (by overlap, which
     // does not depend on the order of the pair) is the contact.
-    let pair = Pair {
-        i,
-        j,
-        d,
-        relative,
-        quartic: &quartic,
-    };
+    let pair = pair(quartic);
     let mut best: Option<Lens> = None;
     for ends in roots.as_slice().chunks_exact(2) {
         let (start, end) = (ends[0], ends[1]);
@@ -236,15 +283,7 @@ pub fn contact_ellipse_ellipse(
             }
         }
     }
-    best.map(|lens| ContactGeometry {
-        point: pose_i.position + turn_i.apply(&lens.point.coords),
-        normal: turn_i.apply(&lens.normal),
-        overlap: lens.overlap,
-        width: lens.width,
-        curvature_radius_a: lens.curvature_radius_i,
-        curvature_radius_b: lens.curvature_radius_j,
-        features: ContactFeatures::WHOLE,
-    })
+    best.map(world)
 }
 
 /// A pair of ellipses seen from `i`'s body frame.
@@ -255,7 +294,7 @@ struct Pair<'a> {
     d: Vec2,
     /// `i`'s frame turned from `j`'s.
     relative: Turn,
-    quartic: &'a BoundaryQuartic,
+    quartic: BoundaryQuartic,
 }
 
 /// A lens's contact geometry in `i`'s body frame.
@@ -295,10 +334,10 @@ impl Pair<'_> {
             i.outward_normal(&midpoint)
         };
         // Crossings of the normal line through M with both boundaries.
-        let (_, s_i) = i.line_crossings_local(&midpoint, &normal)?;
+        let s_i = i.line_exit_local(&midpoint, &normal)?;
         let midpoint_j = Point::from(self.d + self.relative.apply(&midpoint.coords));
         let normal_j = self.relative.apply(&normal);
-        let (s_j, _) = j.line_crossings_local(&midpoint_j, &normal_j)?;
+        let s_j = j.line_entry_local(&midpoint_j, &normal_j)?;
         Some(Lens {
             point: midpoint,
             normal,
