@@ -341,7 +341,7 @@ pub fn quartic_nonpositive_about_zero(c: [f64; 5]) -> Option<(f64, f64)> {
     let (left, right) = quadratic_roots(c[2], c[3], c[4])?;
     let r1 = bracketed_root(p, 0.0, f64::NEG_INFINITY, 0.0, left, None)?;
     let r2 = bracketed_root(p, 0.0, f64::INFINITY, 0.0, right, None)?;
-    if !(r1 < r2) {
+    if r1 >= r2 {
         return None;
     }
     // p = (x² − σx + π)(c₀x² + q₁x + q₂) + remainder.
