@@ -7,11 +7,13 @@ use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::circle_circle::contact_circle_circle;
 use dismech::query::manifold::ellipse::{
-    contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_segment,
+    contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_ellipse_oriented,
+    contact_ellipse_segment,
 };
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Segment, Shape2};
+use nalgebra::UnitComplex;
 use proptest::prelude::*;
 
 prop_compose! {
@@ -83,6 +85,10 @@ proptest! {
             prop_assert!((hinted.width - plain.width).abs() < 1e-9);
             prop_assert!((hinted.curvature_radius_a - plain.curvature_radius_a).abs() < 1e-7 * (1.0 + plain.curvature_radius_a));
             prop_assert!((hinted.curvature_radius_b - plain.curvature_radius_b).abs() < 1e-7 * (1.0 + plain.curvature_radius_b));
+            // Given the rotations of the poses' angles, the very same.
+            let (ri, rj) = (UnitComplex::new(pi.angle), UnitComplex::new(pj.angle));
+            let oriented = contact_ellipse_ellipse_oriented(&ei, &pi, &ri, &ej, &pj, &rj, Some(&near));
+            prop_assert_eq!(oriented, Some(hinted));
         }
     }
 

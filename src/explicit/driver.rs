@@ -18,6 +18,8 @@ use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Vec2};
 use crate::query::{ContactFeatures, ContactGeometry};
 use crate::scene::{Particle, Scene};
+use crate::shape::AnyShape2;
+use nalgebra::UnitComplex;
 
 /// One block's share of a step's update: its index, its particles' forces
 /// (three entries each), the particles and their increments.
@@ -317,6 +319,11 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
     increments: Vec<(Vec2, f64)>,
+    /// Each ellipse's rotation, `UnitComplex::new(angle)`, kept with its
+    /// pose so that its contacts do not take the sine and cosine per pair
+    /// (other particles' entries are not used); empty when the scene has
+    /// no ellipse.
+    rotations: Vec<UnitComplex<f64>>,
     grid: CellGrid,
     system: LumpedSystem,
     /// Each particle's weight and external force, `m g + f_ext` (N/m).
@@ -414,6 +421,19 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             neighbours: NeighbourList::new(skin, &scene.particles),
             manifold: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
+            rotations: if scene
+                .particles
+                .iter()
+                .any(|p| matches!(p.shape, AnyShape2::Ellipse(_)))
+            {
+                scene
+                    .particles
+                    .iter()
+                    .map(|p| UnitComplex::new(p.pose.angle))
+                    .collect()
+            } else {
+                Vec::new()
+            },
             grid: CellGrid::new(),
             system: LumpedSystem {
                 force: vec![0.0; 3 * n],
@@ -599,6 +619,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             dt,
             particles: &self.scene.particles,
             increments: &self.increments,
+            rotations: &self.rotations,
             walls: self.scene.frame.walls(),
             wall_boxes,
         };
@@ -759,6 +780,21 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .map(update)
                 .fold(StepCheck::default(), StepCheck::combine)
         };
+        // The ellipses' rotations at their new angles.
+        let turn = |(rotation, p): (&mut UnitComplex<f64>, &Particle)| {
+            if matches!(p.shape, AnyShape2::Ellipse(_)) {
+                *rotation = UnitComplex::new(p.pose.angle);
+            }
+        };
+        if parallel {
+            (self.rotations.par_iter_mut())
+                .zip(&self.scene.particles)
+                .for_each(turn);
+        } else {
+            (self.rotations.iter_mut())
+                .zip(&self.scene.particles)
+                .for_each(turn);
+        }
         self.neighbours.note_travel(check.travel);
         if let Some(i) = check.bad_force {
             return Err(self.non_finite(i, "force"));

@@ -10,9 +10,11 @@ use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::query::manifold::circle_circle::contact_circle_circle;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
+use crate::query::manifold::ellipse::contact_ellipse_ellipse_oriented;
 use crate::query::{moment_about, relative_increment, ContactGeometry};
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
+use nalgebra::UnitComplex;
 
 /// What every pair of one step reads: the law, the step and the bodies.
 pub(super) struct PairContext<'a, L> {
@@ -22,6 +24,8 @@ pub(super) struct PairContext<'a, L> {
     /// Each particle's increment of the previous step (translation,
     /// rotation).
     pub increments: &'a [(Vec2, f64)],
+    /// Each ellipse's rotation (see the driver's field).
+    pub rotations: &'a [UnitComplex<f64>],
     pub walls: &'a [Segment],
     /// The walls' boxes.
     pub wall_boxes: &'a [Aabb2],
@@ -55,6 +59,19 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             ContactTarget::Particle(b) => {
                 let pb = &self.particles[b];
                 let other = Some((pb.pose.position, self.increments[b], pb.mass));
+                if let (AnyShape2::Ellipse(ea), AnyShape2::Ellipse(eb)) = (&pa.shape, &pb.shape) {
+                    let single = contact_ellipse_ellipse_oriented(
+                        ea,
+                        &pa.pose,
+                        &self.rotations[slot.a],
+                        eb,
+                        &pb.pose,
+                        &self.rotations[b],
+                        slot.points.first().map(|p| &p.point),
+                    );
+                    *force = self.update_single(slot, single, other);
+                    return Ok(());
+                }
                 (&pb.shape, &pb.pose, other)
             }
             ContactTarget::Wall(w) => {
@@ -89,26 +106,37 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 slot.points.first().map(|p| &p.point),
             )?,
         };
+        *force = self.update_single(slot, single, other);
+        Ok(())
+    }
+
+    /// The pair's point from its geometry of one point at most, updated in
+    /// place, and its force summary.
+    #[inline(always)]
+    fn update_single(
+        &self,
+        slot: &mut PairSlot<L::State>,
+        single: Option<ContactGeometry>,
+        other: Other,
+    ) -> PairForce {
         let Some(geometry) = single else {
             slot.points.clear();
-            *force = PairForce::default();
-            return Ok(());
+            return PairForce::default();
         };
-        // One point: updated in place.
         let previous = slot
             .points
             .first()
             .filter(|p| p.features == geometry.features)
             .map(|p| (p.state.clone(), p.overlap));
         let point = self.point_contact(slot.a, &geometry, other, previous);
-        *force = PairForce::of_point(&point, 1);
+        let force = PairForce::of_point(&point, 1);
         if slot.points.len() == 1 {
             slot.points[0] = point;
         } else {
             slot.points.clear();
             slot.points.push(point);
         }
-        Ok(())
+        force
     }
 
     /// [`Self::evaluate`] for a pair with a polygon: every point of its

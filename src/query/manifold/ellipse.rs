@@ -33,12 +33,22 @@ use super::{ContactFeatures, ContactGeometry};
 use crate::math::real_roots::{quartic_nonpositive, quartic_nonpositive_about_zero, quartic_value};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::shape::{Ellipse, Segment};
+use nalgebra::UnitComplex;
 
 /// A rotation by an angle, as its cosine and sine.
 #[derive(Debug, Clone, Copy)]
 struct Turn {
     c: f64,
     s: f64,
+}
+
+impl From<&UnitComplex<f64>> for Turn {
+    fn from(rotation: &UnitComplex<f64>) -> Self {
+        Self {
+            c: rotation.cos_angle(),
+            s: rotation.sin_angle(),
+        }
+    }
 }
 
 impl Turn {
@@ -179,12 +189,45 @@ pub fn contact_ellipse_ellipse_near(
     pose_j: &Pose2,
     near: Option<&Point>,
 ) -> Option<ContactGeometry> {
+    contact_with_turns(i, pose_i, j, pose_j, near, || {
+        (Turn::of(pose_i.angle), Turn::of(pose_j.angle))
+    })
+}
+
+/// [`contact_ellipse_ellipse_near`] given the rotations of the two poses'
+/// angles (`UnitComplex::new(pose.angle)`), for a caller that keeps them
+/// per body rather than per pair.
+pub fn contact_ellipse_ellipse_oriented(
+    i: &Ellipse,
+    pose_i: &Pose2,
+    rotation_i: &UnitComplex<f64>,
+    j: &Ellipse,
+    pose_j: &Pose2,
+    rotation_j: &UnitComplex<f64>,
+    near: Option<&Point>,
+) -> Option<ContactGeometry> {
+    contact_with_turns(i, pose_i, j, pose_j, near, || {
+        (Turn::from(rotation_i), Turn::from(rotation_j))
+    })
+}
+
+/// The contact, with the bodies' rotations taken from `turns` once the
+/// pair is close enough to need them.
+#[inline]
+fn contact_with_turns(
+    i: &Ellipse,
+    pose_i: &Pose2,
+    j: &Ellipse,
+    pose_j: &Pose2,
+    near: Option<&Point>,
+    turns: impl FnOnce() -> (Turn, Turn),
+) -> Option<ContactGeometry> {
     let between = pose_j.position - pose_i.position;
     let distance = between.norm();
     if distance >= i.a() + j.a() {
         return None;
     }
-    let (turn_i, turn_j) = (Turn::of(pose_i.angle), Turn::of(pose_j.angle));
+    let (turn_i, turn_j) = turns();
     // Apart along the line of centres: the two supports along it fall
     // short of the distance, by a margin (1e-6 of it) that keeps the
     // decision clear of the root finder's tolerances below, so no pair it
