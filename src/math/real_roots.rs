@@ -113,45 +113,67 @@ fn negligible(dx: f64, x: f64) -> bool {
     dx.abs() <= f64::EPSILON * x.abs().max(1e-8)
 }
 
-/// The root of `f` between `neg` (where `f < 0`) and `pos` (where
-/// `f > 0`), in either order, from `start` (`at` its evaluation, if known)
-/// by Halley's method. One end may be infinite: the root lies beyond the
-/// other, found by doubling the distance from `anchor` whenever a step
-/// would leave the bracket; in a finite bracket such a step is replaced by
-/// a bisection. It stops when a step is below the resolution of doubles,
-/// or when the steps shrink fast enough (at least tenfold, as Halley's and
-/// Newton's do near a simple root) that the error left after the last one,
-/// `|dx| (|dx| / |previous dx|)²` at Newton's quadratic rate, is. `None`
-/// when the iterate or a value stops being a number.
-fn bracketed_root(
-    f: impl Fn(f64) -> Eval,
-    mut neg: f64,
-    mut pos: f64,
-    anchor: f64,
-    start: f64,
-    mut at: Option<Eval>,
-) -> Option<f64> {
-    let mut x = start;
-    let mut previous = f64::INFINITY;
-    for _ in 0..MAX_REFINEMENTS {
-        if !x.is_finite() {
-            return None;
+/// Halley's iteration for a root in a bracket: the iterate, the bracket's
+/// ends where the function is negative and positive (one may be
+/// infinite), and the last step's length.
+#[derive(Debug, Clone, Copy)]
+struct Halley {
+    x: f64,
+    neg: f64,
+    pos: f64,
+    previous: f64,
+}
+
+/// What one iteration of [`Halley`] came to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Iterate {
+    /// Converged to this root.
+    Root(f64),
+    /// Moved to the next iterate.
+    Moved,
+    /// The step would leave the bracket (which now holds the iterate as
+    /// one of its ends); the iterate is unchanged.
+    Outside,
+    /// The value is not a number.
+    Failed,
+}
+
+impl Halley {
+    fn new(neg: f64, pos: f64, start: f64) -> Self {
+        Self {
+            x: start,
+            neg,
+            pos,
+            previous: f64::INFINITY,
         }
-        let e = at.take().unwrap_or_else(|| f(x));
-        let v = e.value;
+    }
+
+    /// The bracket's ends, increasing.
+    fn bracket(&self) -> (f64, f64) {
+        (self.neg.min(self.pos), self.neg.max(self.pos))
+    }
+
+    /// One iteration given `e`, the function at the iterate. The step is
+    /// Halley's, `f f' / (f'² − f f''/2)`, or Newton's `f / f'` where the
+    /// correction is large (far from the root). It has converged when the
+    /// step is below the resolution of doubles, or when the steps shrink
+    /// fast enough (at least tenfold, as Halley's and Newton's do near a
+    /// simple root) that the error left after the last one,
+    /// `|dx| (|dx| / |previous dx|)²` at Newton's quadratic rate, is.
+    #[inline]
+    fn iterate(&mut self, e: Eval) -> Iterate {
+        let (x, v) = (self.x, e.value);
         if v == 0.0 {
-            return Some(x);
+            return Iterate::Root(x);
         }
         if v < 0.0 {
-            neg = x;
+            self.neg = x;
         } else if v > 0.0 {
-            pos = x;
+            self.pos = x;
         } else {
-            return None;
+            return Iterate::Failed;
         }
-        let (lo, hi) = (neg.min(pos), neg.max(pos));
-        // Halley: dx = f f' / (f'² − f f''/2), or Newton's f / f' where
-        // the correction is large (far from the root).
+        let (lo, hi) = self.bracket();
         let (slope2, half_bend) = (e.slope * e.slope, 0.5 * v * e.curvature);
         let dx = if half_bend.abs() < 0.5 * slope2 {
             v * e.slope / (slope2 - half_bend)
@@ -159,37 +181,102 @@ fn bracketed_root(
             v / e.slope
         };
         let next = x - dx;
-        if next > lo && next < hi {
-            let step = dx.abs();
-            // (No rate before the second step: `previous` is infinite.)
-            let rate = step / previous;
-            let fast = previous.is_finite() && rate <= 0.1;
-            if negligible(step, x) || (fast && negligible(step * rate * rate, x)) {
-                return Some(next);
-            }
-            previous = step;
-            x = next;
-        } else {
-            previous = f64::INFINITY;
-            if lo.is_finite() && hi.is_finite() {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    // The bracket is two neighbouring doubles.
-                    return Some(x);
-                }
-                x = mid;
-            } else {
-                let (end, dir) = if hi.is_finite() {
-                    (hi, -1.0)
+        if !(next > lo && next < hi) {
+            return Iterate::Outside;
+        }
+        let step = dx.abs();
+        // (No rate before the second step: `previous` is infinite.)
+        let rate = step / self.previous;
+        let fast = self.previous.is_finite() && rate <= 0.1;
+        if negligible(step, x) || (fast && negligible(step * rate * rate, x)) {
+            return Iterate::Root(next);
+        }
+        self.previous = step;
+        self.x = next;
+        Iterate::Moved
+    }
+}
+
+/// The root of `f` between `neg` (where `f < 0`) and `pos` (where
+/// `f > 0`), in either order, from `start` (`at` its evaluation, if known)
+/// by [`Halley`]'s iteration. One end may be infinite: the root lies
+/// beyond the other, found by doubling the distance from `anchor`
+/// whenever a step would leave the bracket; in a finite bracket such a
+/// step is replaced by a bisection. `None` when the iterate or a value
+/// stops being a number.
+fn bracketed_root(
+    f: impl Fn(f64) -> Eval,
+    neg: f64,
+    pos: f64,
+    anchor: f64,
+    start: f64,
+    mut at: Option<Eval>,
+) -> Option<f64> {
+    let mut h = Halley::new(neg, pos, start);
+    for _ in 0..MAX_REFINEMENTS {
+        if !h.x.is_finite() {
+            return None;
+        }
+        let e = at.take().unwrap_or_else(|| f(h.x));
+        match h.iterate(e) {
+            Iterate::Root(x) => return Some(x),
+            Iterate::Moved => {}
+            Iterate::Failed => return None,
+            Iterate::Outside => {
+                h.previous = f64::INFINITY;
+                let (lo, hi) = h.bracket();
+                if lo.is_finite() && hi.is_finite() {
+                    let mid = 0.5 * (lo + hi);
+                    if mid <= lo || mid >= hi {
+                        // The bracket is two neighbouring doubles.
+                        return Some(h.x);
+                    }
+                    h.x = mid;
                 } else {
-                    (lo, 1.0)
-                };
-                let gap = (end - anchor).abs();
-                x = end + dir * gap.max(f64::EPSILON * anchor.abs().max(1e-8));
+                    let (end, dir) = if hi.is_finite() {
+                        (hi, -1.0)
+                    } else {
+                        (lo, 1.0)
+                    };
+                    let gap = (end - anchor).abs();
+                    h.x = end + dir * gap.max(f64::EPSILON * anchor.abs().max(1e-8));
+                }
             }
         }
     }
-    Some(x)
+    Some(h.x)
+}
+
+/// Two roots of the polynomial `c` by [`Halley`]'s iteration side by
+/// side, each in its bracket (`(neg, pos)` ends, one may be infinite) from
+/// its start: the two evaluations of an iteration are independent, so the
+/// processor overlaps them. The same iterates, and so the same roots, as
+/// [`bracketed_root`] on each; where either would need its safeguard (a
+/// step leaving the bracket), the pair is left to [`bracketed_root`].
+fn halley_pair<const N: usize>(
+    c: &[f64; N],
+    brackets: [(f64, f64); 2],
+    starts: [f64; 2],
+) -> Option<[f64; 2]> {
+    let mut h = [0, 1].map(|k| Halley::new(brackets[k].0, brackets[k].1, starts[k]));
+    let mut roots: [Option<f64>; 2] = [None, None];
+    // Halley's iteration from a fair start converges in a handful.
+    for _ in 0..16 {
+        let e = [with_slopes(c, h[0].x), with_slopes(c, h[1].x)];
+        for k in 0..2 {
+            if roots[k].is_none() {
+                match h[k].iterate(e[k]) {
+                    Iterate::Root(x) => roots[k] = Some(x),
+                    Iterate::Moved => {}
+                    Iterate::Outside | Iterate::Failed => return None,
+                }
+            }
+        }
+        if let [Some(r1), Some(r2)] = roots {
+            return Some([r1, r2]);
+        }
+    }
+    None
 }
 
 /// The root of `f` beyond `from` (value `v_from`) in direction `dir`, `f`
@@ -339,8 +426,14 @@ pub fn quartic_nonpositive_about_zero(c: [f64; 5]) -> Option<(f64, f64)> {
     // p(0) < 0 < c[2]: the model c[2] x² + c[3] x + c[4] has a root on
     // each side of 0.
     let (left, right) = quadratic_roots(c[2], c[3], c[4])?;
-    let r1 = bracketed_root(p, 0.0, f64::NEG_INFINITY, 0.0, left, None)?;
-    let r2 = bracketed_root(p, 0.0, f64::INFINITY, 0.0, right, None)?;
+    let brackets = [(0.0, f64::NEG_INFINITY), (0.0, f64::INFINITY)];
+    let [r1, r2] = match halley_pair(&c, brackets, [left, right]) {
+        Some(roots) => roots,
+        None => [
+            bracketed_root(p, 0.0, f64::NEG_INFINITY, 0.0, left, None)?,
+            bracketed_root(p, 0.0, f64::INFINITY, 0.0, right, None)?,
+        ],
+    };
     if r1 >= r2 {
         return None;
     }

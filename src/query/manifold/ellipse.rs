@@ -228,18 +228,6 @@ fn contact_with_turns(
         return None;
     }
     let (turn_i, turn_j) = turns();
-    // Apart along the line of centres: the two supports along it fall
-    // short of the distance, by a margin (1e-6 of it) that keeps the
-    // decision clear of the root finder's tolerances below, so no pair it
-    // would find touching is refused here. This spares the root finding
-    // for most neighbours of a packing that do not touch.
-    if distance > 0.0 {
-        let direction = between * (1.0 / distance);
-        let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
-        if reach < distance * (1.0 - 1e-6) {
-            return None;
-        }
-    }
     let relative = turn_i.relative_to(&turn_j);
     let d = turn_j.undo(&(-between));
     let pair = |quartic: BoundaryQuartic| Pair {
@@ -264,9 +252,12 @@ fn contact_with_turns(
         let local = turn_i.undo(&(near - pose_i.position));
         let (x, y) = (local.x / i.a(), local.y / i.b());
         let length = (x * x + y * y).sqrt();
-        (length > 0.0).then(|| Turn {
-            c: x / length,
-            s: y / length,
+        (length > 0.0).then(|| {
+            let inverse = 1.0 / length;
+            Turn {
+                c: x * inverse,
+                s: y * inverse,
+            }
         })
     }) {
         let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
@@ -274,6 +265,19 @@ fn contact_with_turns(
             if let Some(lens) = pair(quartic).lens(r1, r2) {
                 return Some(world(lens));
             }
+        }
+    }
+    // Apart along the line of centres: the two supports along it fall
+    // short of the distance, by a margin (1e-6 of it) that keeps the
+    // decision clear of the root finder's tolerances below, so no pair it
+    // would find touching is refused here. This spares the root finding
+    // for most neighbours of a packing that do not touch. (A pair that
+    // touched at the last step and still does was found above.)
+    if distance > 0.0 {
+        let direction = between * (1.0 / distance);
+        let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
+        if reach < distance * (1.0 - 1e-6) {
+            return None;
         }
     }
     // t₀ + π: the point of i farthest from j's centre, where g > 0 unless i
