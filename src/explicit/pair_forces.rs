@@ -42,7 +42,9 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// which may touch at several points (the others touch at one at most
     /// and skip it; circles against circles and walls, the commonest
     /// pairs, call their geometry directly rather than through the
-    /// dispatch).
+    /// dispatch, and so do two ellipses, with their rotations kept by the
+    /// driver). A pair of ellipses, or of a circle and an ellipse, seeks
+    /// its contact about its last contact point first.
     ///
     /// # Errors
     /// The geometry's, for a pair it does not support.

@@ -18,8 +18,18 @@
 //! points follow from the rational parametrisation
 //! `cos(t − t₀) = (1 − u²)/(1 + u²)`, `sin(t − t₀) = 2u/(1 + u²)`, and the
 //! whole geometry is computed in i's body frame from the cosines and sines
-//! of the two bodies' angles: two `sin_cos` per pair, no other
-//! trigonometry.
+//! of the two bodies' angles (two `sin_cos` per pair, or none when the
+//! caller keeps each body's rotation:
+//! [`contact_ellipse_ellipse_oriented`]), with no other trigonometry.
+//!
+//! **A pair that touched at the last step** ([`contact_ellipse_ellipse_near`])
+//! takes t₀ at its last contact point instead, so that the lens lies about
+//! `u = 0`: its two crossings are refined from the quadratic model there
+//! and shown to be the only ones by dividing the quartic by their factor
+//! ([`quartic_nonpositive_about_zero`]). That spares the search for the
+//! quartic's critical points; where it cannot show a single lens, the full
+//! isolation answers, so the contact is the same either way (to
+//! round-off).
 //!
 //! As in the paper, the contact point is the midpoint M of the chord P1P2,
 //! the normal is perpendicular to the chord (from i towards j), the contact
