@@ -109,6 +109,15 @@ proptest! {
             prop_assert!((a.width - b.width).abs() < 1e-9);
             prop_assert!((a.curvature_radius_a - b.curvature_radius_a).abs() < 1e-7 * (1.0 + a.curvature_radius_a));
             prop_assert!((a.curvature_radius_b - b.curvature_radius_b).abs() < 1e-7 * (1.0 + a.curvature_radius_b));
+            // And so for the search about the last contact point, the
+            // path a DEM pair takes, given the mirror image of that point.
+            let ah = contact_ellipse_ellipse_near(&ei, &pi, &ej, &pj, Some(&a.point)).unwrap();
+            let mirror_hint = mirrored(&a.point, tx);
+            let bh = contact_ellipse_ellipse_near(&ei, &mirrored_pose(&pi, tx), &ej, &mirrored_pose(&pj, tx), Some(&mirror_hint)).unwrap();
+            prop_assert!((bh.point - mirrored(&ah.point, tx)).norm() < 1e-9);
+            prop_assert!((bh.normal - Vec2::new(-ah.normal.x, ah.normal.y)).norm() < 1e-9);
+            prop_assert!((ah.overlap - bh.overlap).abs() < 1e-9 * (1.0 + ah.overlap));
+            prop_assert!((ah.width - bh.width).abs() < 1e-9);
         }
     }
 
@@ -203,6 +212,92 @@ fn mirrored_pose(p: &Pose2, tx: f64) -> Pose2 {
         p.position.y,
         std::f64::consts::PI - p.angle,
     )
+}
+
+/// The points where i's boundary crosses j's, by sampling and bisection
+/// (independent of the routine's quartic), in increasing parametric angle.
+fn sampled_crossings(ei: &Ellipse, pi: &Pose2, ej: &Ellipse, pj: &Pose2) -> Vec<Point> {
+    let g = |t: f64| ej.implicit(pj, &ei.world_point(pi, t));
+    let h = std::f64::consts::TAU / 8192.0;
+    let mut found = Vec::new();
+    for k in 0..8192 {
+        let (mut a, mut b) = (k as f64 * h, (k + 1) as f64 * h);
+        if (g(a) < 0.0) != (g(b) < 0.0) {
+            for _ in 0..80 {
+                let m = 0.5 * (a + b);
+                if (g(m) < 0.0) == (g(a) < 0.0) {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            found.push(ei.world_point(pi, 0.5 * (a + b)));
+        }
+    }
+    found
+}
+
+/// An elongated ellipse deep in a long one, its centre outside it, whose
+/// point farthest from the long one's centre lies inside the long one:
+/// its boundary still crosses the other's twice, and the contact is that
+/// lens (its chord's midpoint and length), not the containment of one
+/// ellipse in the other.
+#[test]
+fn an_elongated_ellipse_deep_in_a_long_one_touches_it_by_its_lens() {
+    let ei = Ellipse::new(2.331, 0.366).unwrap();
+    let pi = Pose2::new(-3.676, -1.311, 2.834);
+    let ej = Ellipse::new(9.84, 1.0).unwrap();
+    let pj = Pose2::new(0.0, 0.0, 0.0);
+    assert!(
+        ej.implicit(&pj, &pi.position) > 0.0,
+        "i's centre is outside j"
+    );
+    let crossings = sampled_crossings(&ei, &pi, &ej, &pj);
+    assert_eq!(crossings.len(), 2, "{crossings:?}");
+    let midpoint = Point::from(0.5 * (crossings[0].coords + crossings[1].coords));
+    for contact in [
+        contact_ellipse_ellipse(&ei, &pi, &ej, &pj).unwrap(),
+        contact_ellipse_ellipse(&ej, &pj, &ei, &pi).unwrap(),
+    ] {
+        assert!(
+            (contact.point - midpoint).norm() < 1e-9,
+            "{:?} vs {midpoint:?}",
+            contact.point
+        );
+        approx::assert_relative_eq!(
+            contact.width,
+            (crossings[1] - crossings[0]).norm(),
+            max_relative = 1e-9
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Deep overlaps beyond a DEM's range: an elongated ellipse whose
+    /// centre lies just outside another, at any angle. Wherever the
+    /// boundaries cross twice, the contact is that lens, from either side.
+    #[test]
+    fn a_deep_elongated_overlap_is_its_lens(
+        ai in 3.0f64..10.0, aj in 1.0f64..10.0, bj in 0.3f64..3.0, s in 0.0f64..6.3,
+        out in 0.01f64..0.3, phi_i in 0.0f64..6.3, phi_j in 0.0f64..6.3
+    ) {
+        let (ei, ej) = (Ellipse::new(ai * 0.4, 0.4).unwrap(), Ellipse::new(aj * bj, bj).unwrap());
+        let pj = Pose2::new(0.0, 0.0, phi_j);
+        let on_j = ej.world_point(&pj, s);
+        let pi = Pose2::new((1.0 + out) * on_j.x, (1.0 + out) * on_j.y, phi_i);
+        let crossings = sampled_crossings(&ei, &pi, &ej, &pj);
+        prop_assume!(crossings.len() == 2);
+        let midpoint = Point::from(0.5 * (crossings[0].coords + crossings[1].coords));
+        for contact in [
+            contact_ellipse_ellipse(&ei, &pi, &ej, &pj).unwrap(),
+            contact_ellipse_ellipse(&ej, &pj, &ei, &pi).unwrap(),
+        ] {
+            prop_assert!((contact.point - midpoint).norm() < 1e-8, "{:?} vs {:?}", contact.point, midpoint);
+            prop_assert!((contact.width - (crossings[1] - crossings[0]).norm()).abs() < 1e-8);
+        }
+    }
 }
 
 fn constant_law(k: f64) -> SpringDashpotCoulomb {

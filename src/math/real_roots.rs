@@ -53,10 +53,10 @@ impl RealRoots {
     }
 }
 
-/// Most Newton or bisection steps per root: a bisection from a bracket
+/// Most Halley or bisection steps per root: a bisection from a bracket
 /// spanning the whole range of doubles to one ulp takes about 2100; the
 /// brackets here come from doubling steps out of a second-order estimate,
-/// so Newton ends in a handful.
+/// so Halley's iteration ends in a handful.
 const MAX_REFINEMENTS: usize = 2200;
 
 /// Value, first and second derivative of the polynomial with
@@ -538,6 +538,22 @@ mod tests {
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * (1.0 + b.abs())
+    }
+
+    #[test]
+    fn the_fast_path_declines_a_second_interval() {
+        // p ≤ 0 on [−3, −1] and on [−0.5, 2], which holds 0.
+        let c = from_roots(1.5, &[-3.0, -1.0, -0.5, 2.0]);
+        assert!(quartic_value(&c, 0.0) < 0.0);
+        assert_eq!(quartic_nonpositive_about_zero(c), None);
+        assert_eq!(quartic_nonpositive(c).len(), 4);
+        // Alone, the interval about 0 is found.
+        let c = times_quadratic(1.5, [-0.5, 2.0], 0.5, 9.0);
+        let (r1, r2) = quartic_nonpositive_about_zero(c).unwrap();
+        assert!(
+            (r1 + 0.5).abs() < 1e-15 && (r2 - 2.0).abs() < 1e-15,
+            "{r1} {r2}"
+        );
     }
 
     #[test]

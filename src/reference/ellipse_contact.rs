@@ -7,8 +7,8 @@
 //! evaluates the implicit function of ellipse j there, refines every sign
 //! change by bisection and the lowest sample by golden-section search, so
 //! that a shallow contact whose two crossings fall between two samples is
-//! still found. It shares nothing with the routine under test (which solves
-//! a quartic by eigenvalues).
+//! still found. It shares nothing with the routine under test (which
+//! isolates the real roots of a quartic).
 //!
 //! Pairs: aspect ratios 1–5, size ratio (of the minor axes) 1–10, random
 //! orientations and direction; the touching distance along the direction

@@ -116,13 +116,15 @@ impl Ellipse {
     }
 
     /// Where the body-frame line `o + s d` leaves the ellipse: the larger
-    /// of [`Self::line_crossings_local`], with one division.
+    /// of [`Self::line_crossings_local`] (for a line all but tangent, the
+    /// two may differ by round-off), with one division.
     pub fn line_exit_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
         Some(self.line_quadratic(o, d)?.larger_root())
     }
 
     /// Where the body-frame line `o + s d` enters the ellipse: the smaller
-    /// of [`Self::line_crossings_local`], with one division.
+    /// of [`Self::line_crossings_local`] (to round-off, as for
+    /// [`Self::line_exit_local`]), with one division.
     pub fn line_entry_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
         Some(self.line_quadratic(o, d)?.smaller_root())
     }

@@ -62,6 +62,26 @@ impl From<&UnitComplex<f64>> for Turn {
 }
 
 impl Turn {
+    /// The direction of `(x, y)`; `None` for the zero vector.
+    fn towards(x: f64, y: f64) -> Option<Self> {
+        let length = (x * x + y * y).sqrt();
+        (length > 0.0).then(|| {
+            let inverse = 1.0 / length;
+            Self {
+                c: x * inverse,
+                s: y * inverse,
+            }
+        })
+    }
+
+    /// The opposite direction.
+    fn opposite(self) -> Self {
+        Self {
+            c: -self.c,
+            s: -self.s,
+        }
+    }
+
     fn of(angle: f64) -> Self {
         let (s, c) = angle.sin_cos();
         Self { c, s }
@@ -139,7 +159,7 @@ impl BoundaryQuartic {
         self.p[0]
     }
 
-    /// The sign of `g` at `u`.
+    /// `(1 + u²)² g` at `u`: the sign of `g` there.
     fn value(&self, u: f64) -> f64 {
         quartic_value(&self.p, u)
     }
@@ -216,6 +236,14 @@ pub fn contact_ellipse_ellipse_oriented(
     rotation_j: &UnitComplex<f64>,
     near: Option<&Point>,
 ) -> Option<ContactGeometry> {
+    debug_assert!(
+        [(pose_i, rotation_i), (pose_j, rotation_j)]
+            .iter()
+            .all(
+                |(pose, rotation)| (rotation.angle_to(&UnitComplex::new(pose.angle))).abs() < 1e-9
+            ),
+        "a rotation is not that of its pose's angle"
+    );
     contact_with_turns(i, pose_i, j, pose_j, near, || {
         (Turn::from(rotation_i), Turn::from(rotation_j))
     })
@@ -260,15 +288,7 @@ fn contact_with_turns(
     // parametric angle.
     if let Some(start) = near.and_then(|near| {
         let local = turn_i.undo(&(near - pose_i.position));
-        let (x, y) = (local.x / i.a(), local.y / i.b());
-        let length = (x * x + y * y).sqrt();
-        (length > 0.0).then(|| {
-            let inverse = 1.0 / length;
-            Turn {
-                c: x * inverse,
-                s: y * inverse,
-            }
-        })
+        Turn::towards(local.x / i.a(), local.y / i.b())
     }) {
         let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
         if let Some((r1, r2)) = quartic_nonpositive_about_zero(quartic.p) {
@@ -282,7 +302,7 @@ fn contact_with_turns(
     // decision clear of the root finder's tolerances below, so no pair it
     // would find touching is refused here. This spares the root finding
     // for most neighbours of a packing that do not touch. (A pair that
-    // touched at the last step and still does was found above.)
+    // touched at the last step and still does was usually found above.)
     if distance > 0.0 {
         let direction = between * (1.0 / distance);
         let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
@@ -291,22 +311,15 @@ fn contact_with_turns(
         }
     }
     // t₀ + π: the point of i farthest from j's centre, where g > 0 unless i
-    // lies inside j.
+    // lies inside j or, elongated, deep in j.
     let away = turn_i.undo(&(-between));
-    let (x, y) = (i.a() * away.x, i.b() * away.y);
-    let length = (x * x + y * y).sqrt();
-    let start = if length > 0.0 {
-        let inverse = -1.0 / length;
-        Turn {
-            c: x * inverse,
-            s: y * inverse,
-        }
-    } else {
-        Turn { c: -1.0, s: 0.0 }
-    };
+    let start = Turn::towards(i.a() * away.x, i.b() * away.y)
+        .map_or(Turn { c: -1.0, s: 0.0 }, Turn::opposite);
     let quartic = BoundaryQuartic::new(i, j, &d, &relative, start);
     if quartic.at_infinity() <= 0.0 {
-        return Some(containment(i, pose_i, j, pose_j));
+        return deep_in_j(quartic, pair(quartic))
+            .map(world)
+            .or_else(|| Some(containment(i, pose_i, j, pose_j)));
     }
     let scale = quartic.p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let roots = if quartic.p[0] > 1e-14 * scale {
@@ -341,6 +354,24 @@ fn contact_with_turns(
         }
     }
     best.map(world)
+}
+
+/// The contact when the point of i farthest from j's centre (`u = ∞`)
+/// lies inside j: either i lies inside j (`None`), or i, elongated and
+/// deep in j, leaves j elsewhere. The arcs of i outside j are where the
+/// negated quartic is not positive; the arcs inside run between them, the
+/// last one through `u = ∞`. The deepest lens is the contact, as in the
+/// ordinary case.
+fn deep_in_j(quartic: BoundaryQuartic, pair: Pair<'_>) -> Option<Lens> {
+    let negated = quartic.p.map(|v| -v);
+    if negated[0] <= 0.0 {
+        return None;
+    }
+    let outside = quartic_nonpositive(negated);
+    let ends = outside.as_slice();
+    (0..ends.len() / 2)
+        .filter_map(|k| pair.lens(ends[2 * k + 1], ends[(2 * k + 2) % ends.len()]))
+        .max_by(|a, b| a.overlap.total_cmp(&b.overlap))
 }
 
 /// A pair of ellipses seen from `i`'s body frame.
@@ -518,4 +549,46 @@ pub fn contact_ellipse_segment(
         return None;
     }
     Some(line.geometry(e, &wall.start, &direction, midpoint_s, s2 - s1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::ellipse_contact::touching_distance;
+
+    /// A pair that touched at the last step, where it touches now, takes
+    /// the fast path: the search about its contact point answers, for
+    /// aspect ratios 1–4 and overlaps of 0.1–20 % of the smaller b in
+    /// every direction and orientation.
+    #[test]
+    fn the_fast_path_answers_about_the_contact_point() {
+        let mut cases = 0;
+        for (k, aspect) in [1.0, 1.5, 2.0, 4.0].into_iter().enumerate() {
+            let i = Ellipse::new(aspect * 0.5, 0.5).unwrap();
+            let j = Ellipse::new(0.4 * (1.0 + k as f64), 0.4).unwrap();
+            for m in 0..24 {
+                let (phi_i, phi_j, dir) = (0.37 * m as f64, 1.1 - 0.29 * m as f64, 0.26 * m as f64);
+                let pose_i = Pose2::new(0.0, 0.0, phi_i);
+                let direction = Vec2::new(dir.cos(), dir.sin());
+                for overlap in [0.001, 0.02, 0.1, 0.2] {
+                    let d = touching_distance(&i, &pose_i, &j, phi_j, &direction) - overlap * 0.4;
+                    let pose_j = Pose2::new(d * direction.x, d * direction.y, phi_j);
+                    let contact = contact_ellipse_ellipse(&i, &pose_i, &j, &pose_j).unwrap();
+                    let (turn_i, turn_j) = (Turn::of(phi_i), Turn::of(phi_j));
+                    let local = turn_i.undo(&(contact.point - pose_i.position));
+                    let start = Turn::towards(local.x / i.a(), local.y / i.b()).unwrap();
+                    let d = turn_j.undo(&(pose_i.position - pose_j.position));
+                    let quartic =
+                        BoundaryQuartic::new(&i, &j, &d, &turn_i.relative_to(&turn_j), start);
+                    assert!(
+                        quartic_nonpositive_about_zero(quartic.p).is_some(),
+                        "aspect {aspect}, case {m}, overlap {overlap}: {:?}",
+                        quartic.p
+                    );
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 384);
+    }
 }

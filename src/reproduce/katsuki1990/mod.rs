@@ -527,7 +527,7 @@ fn report(example2: &[PatternRun], example3_rows: &[String]) -> String {
         ));
     }
     md.push_str(
-        "\nEach K is one realisation. Where the settling is chaotic (the upright ellipses of D, the mixed rows of B), round-off decides which way the particles tip, so the two walls' medians and the K above differ from one realisation to the next by several per cent, although the layout is mirror-symmetric; the check `ex2.K_left_right_p` asks whether the walls differ beyond their contacts' scatter (Welch's t test at the 1 % level).\n",
+        "\nEach K is one realisation. Where the settling is chaotic (the upright ellipses of D, the mixed rows of B), round-off decides which way the particles tip, so the two walls' medians and the K above differ from one realisation to the next (the walls' medians by up to a fifth of K when each particle of D is moved by at most 1e-12 m before settling), although the layout is mirror-symmetric; the check `ex2.K_left_right_p` asks whether the walls differ beyond their contacts' scatter (Welch's t test at the 1 % level).\n",
     );
     md.push_str(&format!(
         "\n## Example 3: front-wall pressure under a uniform back pressure of {} kPa\n\n\
