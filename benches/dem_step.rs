@@ -1,5 +1,7 @@
 //! Speed of one explicit DEM step on a settled filling (paper 000's
-//! Example 1: 179 circles in a 2.0 m frame), and of the broad phase alone.
+//! Example 1: 179 circles in a 2.0 m frame), of the broad phase alone, and
+//! of the ellipse–ellipse contact from scratch and about the last step's
+//! contact point.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dismech::broad_phase::CellGrid;
@@ -7,8 +9,11 @@ use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
-use dismech::math::Aabb2;
+use dismech::math::{Aabb2, Point, Pose2, Vec2};
+use dismech::query::manifold::ellipse::{contact_ellipse_ellipse, contact_ellipse_ellipse_near};
+use dismech::reference::ellipse_contact::touching_distance;
 use dismech::scene::CircleRows;
+use dismech::shape::Ellipse;
 
 /// Example 1 settled: ρ = 2.69 gf/cm³, E = 750 kgf/cm², ν = 0.3,
 /// k_s/k_n = 0.25, μ = 0.577, Δt = 1e-4 s, g = 9.80665 m/s², and the
@@ -64,5 +69,55 @@ fn bench_dem(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench_dem);
+/// 1000 pairs of ellipses (a/b = 1.5 and 2, all orientations and
+/// directions) overlapping by 0.1–20 % of the smaller b, the range of a
+/// DEM, each with its contact point.
+fn overlapping_ellipses() -> Vec<(Ellipse, Pose2, Ellipse, Pose2, Point)> {
+    let (ei, ej) = match (Ellipse::new(0.75, 0.5), Ellipse::new(0.8, 0.4)) {
+        (Ok(i), Ok(j)) => (i, j),
+        _ => panic!("the benchmark's ellipses are valid"),
+    };
+    (0..1000)
+        .filter_map(|k| {
+            let k = k as f64;
+            let (phi_i, phi_j, dir) = (0.37 * k, 1.1 - 0.29 * k, 0.26 * k);
+            let overlap = 0.001 + 0.199 * (0.5 + 0.5 * (1.3 * k).sin());
+            let pose_i = Pose2::new(0.0, 0.0, phi_i);
+            let direction = Vec2::new(dir.cos(), dir.sin());
+            let d = touching_distance(&ei, &pose_i, &ej, phi_j, &direction) - overlap * 0.4;
+            let pose_j = Pose2::new(d * direction.x, d * direction.y, phi_j);
+            let contact = contact_ellipse_ellipse(&ei, &pose_i, &ej, &pose_j)?;
+            Some((ei, pose_i, ej, pose_j, contact.point))
+        })
+        .collect()
+}
+
+fn bench_ellipse_contact(c: &mut Criterion) {
+    let pairs = overlapping_ellipses();
+    c.bench_function("ellipse contact from scratch, 1000 pairs", |b| {
+        b.iter(|| {
+            pairs
+                .iter()
+                .filter_map(|(i, pi, j, pj, _)| contact_ellipse_ellipse(i, pi, j, pj))
+                .map(|g| g.overlap)
+                .sum::<f64>()
+        })
+    });
+    c.bench_function(
+        "ellipse contact about the last contact point, 1000 pairs",
+        |b| {
+            b.iter(|| {
+                pairs
+                    .iter()
+                    .filter_map(|(i, pi, j, pj, near)| {
+                        contact_ellipse_ellipse_near(i, pi, j, pj, Some(near))
+                    })
+                    .map(|g| g.overlap)
+                    .sum::<f64>()
+            })
+        },
+    );
+}
+
+criterion_group!(benches, bench_dem, bench_ellipse_contact);
 criterion_main!(benches);
