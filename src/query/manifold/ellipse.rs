@@ -261,8 +261,8 @@ fn contact_with_turns(
     turns: impl FnOnce() -> (Turn, Turn),
 ) -> Option<ContactGeometry> {
     let between = pose_j.position - pose_i.position;
-    let distance = between.norm();
-    if distance >= i.a() + j.a() {
+    let bound = i.a() + j.a();
+    if between.norm_squared() >= bound * bound {
         return None;
     }
     let (turn_i, turn_j) = turns();
@@ -303,6 +303,7 @@ fn contact_with_turns(
     // would find touching is refused here. This spares the root finding
     // for most neighbours of a packing that do not touch. (A pair that
     // touched at the last step and still does was usually found above.)
+    let distance = between.norm();
     if distance > 0.0 {
         let direction = between * (1.0 / distance);
         let reach = support(i, &turn_i, &direction) + support(j, &turn_j, &direction);
