@@ -188,11 +188,6 @@ fn support(e: &Ellipse, turn: &Turn, u: &Vec2) -> f64 {
     (x * x + y * y).sqrt()
 }
 
-/// The parametric angle of a body-frame point of `e`.
-pub(crate) fn parametric_angle_of(e: &Ellipse, local: &Point) -> f64 {
-    (local.y / e.b()).atan2(local.x / e.a())
-}
-
 /// Contact of ellipse `i` at `pose_i` with ellipse `j` at `pose_j` (a circle
 /// is passed as an ellipse with a = b); `None` when they do not overlap.
 pub fn contact_ellipse_ellipse(
@@ -484,15 +479,18 @@ pub(crate) fn ellipse_line(
     direction: &Vec2,
 ) -> Option<EllipseLine> {
     let inner = perp(direction);
-    let outward = pose.inverse_transform_vector(&(-inner));
+    let turn = Turn::of(pose.angle);
+    let outward = turn.undo(&(-inner));
     // Support point of the ellipse in the direction out of the wall.
-    let reach = ((e.a() * outward.x).powi(2) + (e.b() * outward.y).powi(2)).sqrt();
+    let reach = support(e, &turn, &(-inner));
     let distance = (pose.position - origin).dot(&inner);
     let overlap = reach - distance;
     if overlap <= 0.0 {
         return None;
     }
-    let crossings = e.line_crossings(pose, origin, direction)?;
+    // The line in the body frame.
+    let start = Point::from(turn.undo(&(origin - pose.position)));
+    let crossings = e.line_crossings_local(&start, &turn.undo(direction))?;
     Some(EllipseLine {
         inner,
         distance,
@@ -521,7 +519,7 @@ impl EllipseLine {
             normal: -self.inner,
             overlap: self.overlap,
             width,
-            curvature_radius_a: e.curvature_radius(parametric_angle_of(e, &self.deepest_local)),
+            curvature_radius_a: e.curvature_radius_at(&self.deepest_local),
             curvature_radius_b: f64::INFINITY,
             features: ContactFeatures::WHOLE,
         }

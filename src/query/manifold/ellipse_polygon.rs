@@ -19,7 +19,7 @@
 //! * A centre inside the polygon (beyond the small-overlap range) is pushed
 //!   out through the nearest edge.
 
-use super::ellipse::{ellipse_line, parametric_angle_of};
+use super::ellipse::ellipse_line;
 use super::{ContactFeatures, ContactGeometry, Feature};
 use crate::math::{cross, Point, Pose2};
 use crate::shape::{Ellipse, Polygon, Shape2};
@@ -110,7 +110,7 @@ pub fn contact_ellipse_polygon(
             normal,
             overlap: (on_ellipse - corner).norm(),
             width: 0.0,
-            curvature_radius_a: a.curvature_radius(parametric_angle_of(a, &nearest)),
+            curvature_radius_a: a.curvature_radius_at(&nearest),
             curvature_radius_b: 0.0,
             features: ContactFeatures {
                 a: Feature::Whole,
