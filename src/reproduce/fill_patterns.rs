@@ -162,8 +162,8 @@ pub fn representative_k(profile: &[WallPressure], fill_height: f64) -> Option<f6
 /// sample scatters and their means are equal (or not).
 ///
 /// The test takes the contacts of a wall as independent, which neighbours
-/// in one force chain are not, and with a handful of contacts a wall it
-/// finds only a large difference: it guards the study's outcome, while a
+/// in one force chain are not, and with a handful of contacts on each
+/// wall it finds only a large difference: it guards the study's outcome, while a
 /// handedness of the contact itself is ruled out exactly by the mirror
 /// tests of `tests/ellipse_contact.rs`.
 pub fn same_mean_p_value(
