@@ -119,14 +119,14 @@ impl Ellipse {
     /// of [`Self::line_crossings_local`] (for a line all but tangent, the
     /// two may differ by round-off), with one division.
     pub fn line_exit_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
-        Some(self.line_quadratic(o, d)?.larger_root())
+        Some(self.line_quadratic(o, d)?.root(true))
     }
 
     /// Where the body-frame line `o + s d` enters the ellipse: the smaller
     /// of [`Self::line_crossings_local`] (to round-off, as for
     /// [`Self::line_exit_local`]), with one division.
     pub fn line_entry_local(&self, o: &Point, d: &Vec2) -> Option<f64> {
-        Some(self.line_quadratic(o, d)?.smaller_root())
+        Some(self.line_quadratic(o, d)?.root(false))
     }
 
     /// The implicit function along the body-frame line `o + s d`, a
@@ -181,27 +181,16 @@ impl LineQuadratic {
         }
     }
 
-    /// The larger root. `q / qa` (`qa > 0`) has the sign of `q` and is the
-    /// root of larger magnitude, so it is the larger root when `q > 0` and
-    /// the smaller one otherwise.
-    fn larger_root(&self) -> f64 {
+    /// The larger root (`larger`) or the smaller one. `q / qa` (`qa > 0`)
+    /// has the sign of `q` and is the root of larger magnitude, so it is
+    /// the larger root when `q > 0` and the smaller one otherwise.
+    fn root(&self, larger: bool) -> f64 {
         if self.q == 0.0 {
             0.0
-        } else if self.q > 0.0 {
+        } else if (self.q > 0.0) == larger {
             self.q / self.qa
         } else {
             self.qc / self.q
-        }
-    }
-
-    /// The smaller root (see [`Self::larger_root`]).
-    fn smaller_root(&self) -> f64 {
-        if self.q == 0.0 {
-            0.0
-        } else if self.q > 0.0 {
-            self.qc / self.q
-        } else {
-            self.q / self.qa
         }
     }
 }
@@ -394,6 +383,17 @@ mod tests {
                 }
             }
         }
+        // A line given in the world, with the ellipse at a pose: its
+        // crossings are those of the same line in the body frame.
+        let pose = Pose2::new(1.5, -0.7, 0.9);
+        let (origin, direction) = (Point::new(0.2, -1.1), Vec2::new(0.8, 0.6));
+        let local = (
+            pose.inverse_transform_point(&origin),
+            crate::math::rotate(&direction, -pose.angle),
+        );
+        let crossings = e.line_crossings(&pose, &origin, &direction);
+        assert!(crossings.is_some());
+        assert_eq!(crossings, e.line_crossings_local(&local.0, &local.1));
         // A line that misses.
         let (o, d) = (Point::new(0.0, 1.0), Vec2::x());
         assert_eq!(e.line_crossings_local(&o, &d), None);
