@@ -68,6 +68,9 @@ struct Args {
     /// Threads of the force loop (rayon's pool).
     #[arg(long, default_value_t = 1)]
     threads: usize,
+    /// Skin of the neighbour list (m); the driver's default when omitted.
+    #[arg(long)]
+    skin: Option<f64>,
     /// Seed of the diameters and velocities.
     #[arg(long, default_value_t = 4321)]
     seed: u64,
@@ -146,6 +149,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     )?;
     let settings = DemSettings {
         dt: 1e-4,
+        neighbour_skin: args.skin,
         ..DemSettings::default()
     };
     let scene = scene(args)?;

@@ -19,6 +19,9 @@ pub struct CellGrid {
     cell_start: Vec<usize>,
     /// Body indices sorted by cell.
     sorted: Vec<usize>,
+    /// Their boxes, in the same order: a cell's run, and a row's run of
+    /// neighbouring cells, is read from consecutive memory.
+    sorted_boxes: Vec<Aabb2>,
     /// The cell of each body.
     body_cell: Vec<usize>,
     /// Scratch of the counting sort.
@@ -71,8 +74,8 @@ impl CellGrid {
             return;
         }
         let grid = &*self;
-        let search = |part: usize| {
-            let mut found = Vec::new();
+        // The pairs of the bodies of one part, appended to `found`.
+        let search = |part: usize, found: &mut Vec<(usize, usize)>| {
             let first = part * PARALLEL_BODIES;
             for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
                 let start = found.len();
@@ -85,19 +88,28 @@ impl CellGrid {
                     });
                 found[start..].sort_unstable();
             }
-            found.dedup();
-            found
         };
         let parts = boxes.len().div_ceil(PARALLEL_BODIES);
-        let found: Vec<Vec<(usize, usize)>> = if parallel {
-            (0..parts).into_par_iter().map(search).collect()
+        if parallel {
+            let found: Vec<Vec<(usize, usize)>> = (0..parts)
+                .into_par_iter()
+                .map(|part| {
+                    let mut found = Vec::new();
+                    search(part, &mut found);
+                    found
+                })
+                .collect();
+            pairs.reserve(found.iter().map(Vec::len).sum());
+            for part in found {
+                pairs.extend_from_slice(&part);
+            }
         } else {
-            (0..parts).map(search).collect()
-        };
-        pairs.reserve(found.iter().map(Vec::len).sum());
-        for part in found {
-            pairs.extend_from_slice(&part);
+            for part in 0..parts {
+                search(part, pairs);
+            }
         }
+        // A pair visited twice (far cells merged) is listed once.
+        pairs.dedup();
     }
 
     /// Visit the candidate pairs `(i, j)`, `i < j`, whose boxes (grown by
@@ -180,7 +192,15 @@ impl CellGrid {
             self.sorted[fill[cell]] = i;
             fill[cell] += 1;
         }
+        self.sort_boxes(boxes);
         true
+    }
+
+    /// The boxes in the order of `sorted`.
+    fn sort_boxes(&mut self, boxes: &[Aabb2]) {
+        self.sorted_boxes.clear();
+        self.sorted_boxes
+            .extend(self.sorted.iter().map(|&i| boxes[i]));
     }
 
     /// Visit body `i`'s partners `j > i` in its cell and the eight around
@@ -204,8 +224,10 @@ impl CellGrid {
                     let Ok(c) = self.occupied.binary_search(&key) else {
                         continue;
                     };
-                    for &j in &self.sorted[self.cell_start[c]..self.cell_start[c + 1]] {
-                        if j > i && grown.intersects(&boxes[j]) {
+                    let run = self.cell_start[c]..self.cell_start[c + 1];
+                    for (&j, other) in self.sorted[run.clone()].iter().zip(&self.sorted_boxes[run])
+                    {
+                        if j > i && grown.intersects(other) {
                             visit(i, j)?;
                         }
                     }
@@ -213,19 +235,17 @@ impl CellGrid {
             }
             return Ok(());
         }
+        // The three rows of the cell and the eight around it; in each row
+        // the three cells are consecutive in `sorted`, one run.
         let cell = self.body_cell[i];
         let (col, row) = (cell % self.columns, cell / self.columns);
-        for dr in [-1i64, 0, 1] {
-            for dc in [-1i64, 0, 1] {
-                let (r, c) = (row as i64 + dr, col as i64 + dc);
-                if r < 0 || c < 0 || r >= self.rows as i64 || c >= self.columns as i64 {
-                    continue;
-                }
-                let other = r as usize * self.columns + c as usize;
-                for &j in &self.sorted[self.cell_start[other]..self.cell_start[other + 1]] {
-                    if j > i && grown.intersects(&boxes[j]) {
-                        visit(i, j)?;
-                    }
+        let (first_col, last_col) = (col.saturating_sub(1), (col + 1).min(self.columns - 1));
+        for r in row.saturating_sub(1)..=(row + 1).min(self.rows - 1) {
+            let run = self.cell_start[r * self.columns + first_col]
+                ..self.cell_start[r * self.columns + last_col + 1];
+            for (&j, other) in self.sorted[run.clone()].iter().zip(&self.sorted_boxes[run]) {
+                if j > i && grown.intersects(other) {
+                    visit(i, j)?;
                 }
             }
         }
@@ -264,17 +284,22 @@ impl CellGrid {
             }
         }
         self.cell_start.push(n);
+        self.sort_boxes(boxes);
         self.columns = 0;
         self.rows = 0;
         self.body_cell.clear();
     }
 
-    /// The dense grid's cell of a box's centre (the key clamped to the
-    /// grid).
+    /// The dense grid's cell of a box's centre (clamped to the grid). The
+    /// centre is not left of or below the grid's origin, the least corner
+    /// of all boxes, so the cast truncates as `floor` would (and without
+    /// its call); it saturates far out, and so does the clamp.
     fn cell_of(&self, b: &Aabb2) -> usize {
-        let (row, col) = self.cell_key(b);
-        let clamp = |k: i64, count: usize| k.clamp(0, count as i64 - 1) as usize;
-        clamp(row, self.rows) * self.columns + clamp(col, self.columns)
+        let cx = 0.5 * (b.min.x + b.max.x);
+        let cy = 0.5 * (b.min.y + b.max.y);
+        let row = (((cy - self.origin.1) / self.cell_size) as usize).min(self.rows - 1);
+        let col = (((cx - self.origin.0) / self.cell_size) as usize).min(self.columns - 1);
+        row * self.columns + col
     }
 }
 

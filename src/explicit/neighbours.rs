@@ -54,6 +54,17 @@ pub(super) struct PointContact<S> {
 /// The contact points of one pair; most pairs have at most one.
 pub(super) type PairPoints<S> = SmallVec<[PointContact<S>; 1]>;
 
+/// A copy of a pair's points; one point (the common case) is copied
+/// straight into the inline buffer.
+#[inline]
+fn copy_points<S: Clone>(points: &PairPoints<S>) -> PairPoints<S> {
+    match points.as_slice() {
+        [] => PairPoints::new(),
+        [only] => PairPoints::from_buf([only.clone()]),
+        many => many.iter().cloned().collect(),
+    }
+}
+
 /// A listed pair: a particle and what it may touch, and the contact points
 /// of the last step.
 #[derive(Debug, Clone)]
@@ -350,11 +361,15 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         // circle: a square packing's diagonal neighbours have touching
         // boxes); a pair dropped here only when clearly beyond, against
         // rounding.
-        let radius = &self.radius;
+        // The poses of this build, which the travels are measured from.
+        self.reference.clear();
+        self.reference
+            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
+        let (radius, reference) = (&self.radius, &self.reference);
         let skin = self.skin;
         let circles_near = |a: usize, b: usize| {
             let reach = radius[a] + radius[b] + skin;
-            let apart = (particles[b].pose.position - particles[a].pose.position).norm_squared();
+            let apart = (reference[b].0 - reference[a].0).norm_squared();
             apart <= reach * reach * (1.0 + 1e-12)
         };
         grid.candidate_pairs_filtered(&self.boxes, skin, circles_near, parallel, &mut self.pairs);
@@ -395,7 +410,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
                 (Some(&first), Some(&end)) => old[first..end]
                     .iter()
                     .find(|s| s.target == target)
-                    .map(|s| s.points.clone())
+                    .map(|s| copy_points(&s.points))
                     .unwrap_or_default(),
                 _ => PairPoints::new(),
             };
@@ -491,9 +506,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         self.cross_forces.clear();
         self.cross_forces.resize(summary, PairForce::default());
 
-        self.reference.clear();
-        self.reference
-            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
         self.stale = false;
         self.builds += 1;
     }
