@@ -8,8 +8,9 @@ use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::circle_circle::contact_circle_circle;
 use dismech::query::manifold::ellipse::{
     contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_ellipse_oriented,
-    contact_ellipse_segment,
+    contact_ellipse_segment, CurvatureRadii, OrientedEllipse,
 };
+use dismech::query::ContactGeometry;
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Segment, Shape2};
@@ -87,8 +88,20 @@ proptest! {
             prop_assert!((hinted.curvature_radius_b - plain.curvature_radius_b).abs() < 1e-7 * (1.0 + plain.curvature_radius_b));
             // Given the rotations of the poses' angles, the very same.
             let (ri, rj) = (UnitComplex::new(pi.angle), UnitComplex::new(pj.angle));
-            let oriented = contact_ellipse_ellipse_oriented(&ei, &pi, &ri, &ej, &pj, &rj, Some(&near));
-            prop_assert_eq!(oriented, Some(hinted));
+            let oriented = |radii| contact_ellipse_ellipse_oriented(
+                OrientedEllipse { shape: &ei, pose: &pi, rotation: &ri },
+                OrientedEllipse { shape: &ej, pose: &pj, rotation: &rj },
+                Some(&near),
+                radii,
+            );
+            prop_assert_eq!(oriented(CurvatureRadii::Computed), Some(hinted));
+            // Without the radii of curvature, the rest the very same.
+            let without = oriented(CurvatureRadii::Skipped).unwrap();
+            prop_assert!(without.curvature_radius_a.is_nan() && without.curvature_radius_b.is_nan());
+            prop_assert_eq!(
+                ContactGeometry { curvature_radius_a: hinted.curvature_radius_a, curvature_radius_b: hinted.curvature_radius_b, ..without },
+                hinted
+            );
         }
     }
 

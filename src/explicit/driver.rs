@@ -16,6 +16,7 @@ use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactLaw, Regime};
 use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Vec2};
+use crate::query::manifold::ellipse::CurvatureRadii;
 use crate::query::{ContactFeatures, ContactGeometry};
 use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
@@ -622,6 +623,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             rotations: &self.rotations,
             walls: self.scene.frame.walls(),
             wall_boxes,
+            radii: if self.law.uses_curvature() {
+                CurvatureRadii::Computed
+            } else {
+                CurvatureRadii::Skipped
+            },
         };
         let applied = &self.applied;
         let block_forces = self.system.force.chunks_mut(3 * BLOCK);

@@ -10,7 +10,9 @@ use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::query::manifold::circle_circle::contact_circle_circle;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
-use crate::query::manifold::ellipse::contact_ellipse_ellipse_oriented;
+use crate::query::manifold::ellipse::{
+    contact_ellipse_ellipse_oriented, CurvatureRadii, OrientedEllipse,
+};
 use crate::query::{moment_about, relative_increment, ContactGeometry};
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
@@ -29,6 +31,9 @@ pub(super) struct PairContext<'a, L> {
     pub walls: &'a [Segment],
     /// The walls' boxes.
     pub wall_boxes: &'a [Aabb2],
+    /// Whether the law reads the radii of curvature (two ellipses compute
+    /// them only then).
+    pub radii: CurvatureRadii,
 }
 
 /// B's centre, its increment of the last step and its mass; `None` for a
@@ -63,13 +68,18 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 let other = Some((pb.pose.position, self.increments[b], pb.mass));
                 if let (AnyShape2::Ellipse(ea), AnyShape2::Ellipse(eb)) = (&pa.shape, &pb.shape) {
                     let single = contact_ellipse_ellipse_oriented(
-                        ea,
-                        &pa.pose,
-                        &self.rotations[slot.a],
-                        eb,
-                        &pb.pose,
-                        &self.rotations[b],
+                        OrientedEllipse {
+                            shape: ea,
+                            pose: &pa.pose,
+                            rotation: &self.rotations[slot.a],
+                        },
+                        OrientedEllipse {
+                            shape: eb,
+                            pose: &pb.pose,
+                            rotation: &self.rotations[b],
+                        },
                         slot.points.first().map(|p| &p.point),
+                        self.radii,
                     );
                     *force = self.update_single(slot, single, other);
                     return Ok(());

@@ -24,6 +24,7 @@
 //! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip |
 //! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force |
 //! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s |
+//! | [`curvature_unused`] | a law that says it does not read the radii of curvature gives the same response without them |
 
 use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
 
@@ -198,10 +199,38 @@ where
     Ok(())
 }
 
+/// A law that does not [`ContactLaw::uses_curvature`] gives the same
+/// response with NaN radii of curvature as with the input's.
+pub fn curvature_unused<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation>
+where
+    L: ContactLaw<D>,
+    L::State: PartialEq,
+{
+    if law.uses_curvature() {
+        return Ok(());
+    }
+    let mut without = *input;
+    without.pair.curvature_radius_a = f64::NAN;
+    without.pair.curvature_radius_b = f64::NAN;
+    let (with, nan) = (law.evaluate(input, state), law.evaluate(&without, state));
+    if with != nan {
+        return fail(
+            "curvature_unused",
+            format!("the law says it does not read the radii, yet {with:?} becomes {nan:?} without them"),
+        );
+    }
+    Ok(())
+}
+
 /// The checks every law must pass on one input: [`no_tension`] (when the
 /// law [`StrengthLaw::may_open`]), [`within_strength`],
 /// [`tangent_matches_finite_differences`] (`h = 1e-7 · (|increment| +
-/// |overlap|)`, relative tolerance `1e-6`) and [`pure`]. Returns the
+/// |overlap|)`, relative tolerance `1e-6`), [`pure`] and
+/// [`curvature_unused`]. Returns the
 /// violations (empty when the law passes). [`open_without_overlap`] is
 /// separate: it holds for laws that detect contact by the overlap, not for
 /// springs that follow their own displacement history.
@@ -230,5 +259,6 @@ where
         law, input, state, h, 1e-6,
     ));
     record(pure(law, input, state));
+    record(curvature_unused(law, input, state));
     out
 }

@@ -349,6 +349,11 @@ impl ContactLaw<2> for PenaltyCoulomb {
     ) -> ContactResponse<2, PenaltyState> {
         self.respond(input, state).0
     }
+
+    /// The penalty springs do not depend on the shapes.
+    fn uses_curvature(&self) -> bool {
+        false
+    }
 }
 
 impl TangentLaw<2> for PenaltyCoulomb {

@@ -323,6 +323,11 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
     ) -> ContactResponse<D, SpringState<D>> {
         self.respond(input, state).0
     }
+
+    /// Only the stiffness of eq. (19) reads the radii.
+    fn uses_curvature(&self) -> bool {
+        matches!(self.normal, NormalStiffness::ContactWidth { .. })
+    }
 }
 
 impl<const D: usize> TangentLaw<D> for SpringDashpotCoulomb {

@@ -20,7 +20,9 @@
 //! whole geometry is computed in i's body frame from the cosines and sines
 //! of the two bodies' angles (two `sin_cos` per pair, or none when the
 //! caller keeps each body's rotation:
-//! [`contact_ellipse_ellipse_oriented`]), with no other trigonometry.
+//! [`contact_ellipse_ellipse_oriented`], which also leaves out the radii
+//! of curvature where the caller's law does not read them), with no other
+//! trigonometry.
 //!
 //! **A pair that touched at the last step** ([`contact_ellipse_ellipse_near`])
 //! takes t₀ at its last contact point instead, so that the lens lies about
@@ -214,33 +216,50 @@ pub fn contact_ellipse_ellipse_near(
     pose_j: &Pose2,
     near: Option<&Point>,
 ) -> Option<ContactGeometry> {
-    contact_with_turns(i, pose_i, j, pose_j, near, || {
+    contact_with_turns(i, pose_i, j, pose_j, near, CurvatureRadii::Computed, || {
         (Turn::of(pose_i.angle), Turn::of(pose_j.angle))
     })
 }
 
+/// An ellipse at a pose, with the rotation of the pose's angle
+/// (`UnitComplex::new(pose.angle)`) kept beside it.
+#[derive(Debug, Clone, Copy)]
+pub struct OrientedEllipse<'a> {
+    /// The shape.
+    pub shape: &'a Ellipse,
+    /// Where it is.
+    pub pose: &'a Pose2,
+    /// The rotation of `pose.angle`.
+    pub rotation: &'a UnitComplex<f64>,
+}
+
+/// Whether a contact's radii of curvature are wanted. Where they are not
+/// (a contact law that does not read them), they are left NaN.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CurvatureRadii {
+    /// Computed, as [`contact_ellipse_ellipse`] does.
+    Computed,
+    /// Left NaN.
+    Skipped,
+}
+
 /// [`contact_ellipse_ellipse_near`] given the rotations of the two poses'
-/// angles (`UnitComplex::new(pose.angle)`), for a caller that keeps them
-/// per body rather than per pair.
+/// angles, for a caller that keeps them per body rather than per pair,
+/// and with the radii of curvature only if `radii` asks for them.
 pub fn contact_ellipse_ellipse_oriented(
-    i: &Ellipse,
-    pose_i: &Pose2,
-    rotation_i: &UnitComplex<f64>,
-    j: &Ellipse,
-    pose_j: &Pose2,
-    rotation_j: &UnitComplex<f64>,
+    i: OrientedEllipse<'_>,
+    j: OrientedEllipse<'_>,
     near: Option<&Point>,
+    radii: CurvatureRadii,
 ) -> Option<ContactGeometry> {
     debug_assert!(
-        [(pose_i, rotation_i), (pose_j, rotation_j)]
+        [&i, &j]
             .iter()
-            .all(
-                |(pose, rotation)| (rotation.angle_to(&UnitComplex::new(pose.angle))).abs() < 1e-9
-            ),
+            .all(|e| (e.rotation.angle_to(&UnitComplex::new(e.pose.angle))).abs() < 1e-9),
         "a rotation is not that of its pose's angle"
     );
-    contact_with_turns(i, pose_i, j, pose_j, near, || {
-        (Turn::from(rotation_i), Turn::from(rotation_j))
+    contact_with_turns(i.shape, i.pose, j.shape, j.pose, near, radii, || {
+        (Turn::from(i.rotation), Turn::from(j.rotation))
     })
 }
 
@@ -253,6 +272,7 @@ fn contact_with_turns(
     j: &Ellipse,
     pose_j: &Pose2,
     near: Option<&Point>,
+    radii: CurvatureRadii,
     turns: impl FnOnce() -> (Turn, Turn),
 ) -> Option<ContactGeometry> {
     let between = pose_j.position - pose_i.position;
@@ -269,6 +289,7 @@ fn contact_with_turns(
         d,
         relative,
         quartic,
+        radii,
     };
     let world = |lens: Lens| ContactGeometry {
         point: pose_i.position + turn_i.apply(&lens.point.coords),
@@ -379,6 +400,7 @@ struct Pair<'a> {
     /// `i`'s frame turned from `j`'s.
     relative: Turn,
     quartic: BoundaryQuartic,
+    radii: CurvatureRadii,
 }
 
 /// A lens's contact geometry in `i`'s body frame.
@@ -422,13 +444,20 @@ impl Pair<'_> {
         let midpoint_j = Point::from(self.d + self.relative.apply(&midpoint.coords));
         let normal_j = self.relative.apply(&normal);
         let s_j = j.line_entry_local(&midpoint_j, &normal_j)?;
+        let (curvature_radius_i, curvature_radius_j) = match self.radii {
+            CurvatureRadii::Computed => (
+                i.curvature_radius_at(&(midpoint + normal * s_i)),
+                j.curvature_radius_at(&(midpoint_j + normal_j * s_j)),
+            ),
+            CurvatureRadii::Skipped => (f64::NAN, f64::NAN),
+        };
         Some(Lens {
             point: midpoint,
             normal,
             overlap: (s_i - s_j).max(0.0),
             width,
-            curvature_radius_i: i.curvature_radius_at(&(midpoint + normal * s_i)),
-            curvature_radius_j: j.curvature_radius_at(&(midpoint_j + normal_j * s_j)),
+            curvature_radius_i,
+            curvature_radius_j,
         })
     }
 }
