@@ -425,11 +425,12 @@ fn conformance_catches_the_conventional_overshoot() {
     assert_eq!(violation.check, "within_strength");
 }
 
-/// The check that a law does without the radii of curvature fails a law
-/// that says so while its stiffness (eq. 19 of paper 000) reads them, and
-/// passes the same law when it says that it reads them.
+/// The check that a law does without the contact's width and radii of
+/// curvature fails a law that says so while its stiffness (eq. 19 of
+/// paper 000) reads them, and passes the same law when it says that it
+/// reads them.
 #[test]
-fn the_curvature_check_catches_a_law_that_reads_the_radii_unannounced() {
+fn the_contact_shape_check_catches_a_law_that_reads_it_unannounced() {
     struct Unannounced(SpringDashpotCoulomb);
     impl ContactLaw<2> for Unannounced {
         type State = SpringState<2>;
@@ -440,12 +441,12 @@ fn the_curvature_check_catches_a_law_that_reads_the_radii_unannounced() {
         ) -> dismech::law::ContactResponse<2, SpringState<2>> {
             self.0.evaluate(input, state)
         }
-        fn uses_curvature(&self) -> bool {
+        fn uses_contact_shape(&self) -> bool {
             false
         }
     }
     let width_law = law(false, true, 0.5);
-    assert!(ContactLaw::<2>::uses_curvature(&width_law));
+    assert!(ContactLaw::<2>::uses_contact_shape(&width_law));
     let input = ContactInput {
         overlap: 1e-4,
         increment: Vector2::new(1e-5, 2e-5),
@@ -454,12 +455,12 @@ fn the_curvature_check_catches_a_law_that_reads_the_radii_unannounced() {
         pair: pair(0.01),
     };
     let history = state(1e3, 2e2);
-    assert!(conformance::curvature_unused(&width_law, &input, &history).is_ok());
+    assert!(conformance::contact_shape_unused(&width_law, &input, &history).is_ok());
     let violation =
-        conformance::curvature_unused(&Unannounced(width_law), &input, &history).unwrap_err();
-    assert_eq!(violation.check, "curvature_unused");
+        conformance::contact_shape_unused(&Unannounced(width_law), &input, &history).unwrap_err();
+    assert_eq!(violation.check, "contact_shape_unused");
     // A constant stiffness does without them, and says so.
     let constant = law(true, true, 0.5);
-    assert!(!ContactLaw::<2>::uses_curvature(&constant));
-    assert!(conformance::curvature_unused(&constant, &input, &history).is_ok());
+    assert!(!ContactLaw::<2>::uses_contact_shape(&constant));
+    assert!(conformance::contact_shape_unused(&constant, &input, &history).is_ok());
 }

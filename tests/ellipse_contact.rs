@@ -8,9 +8,9 @@ use dismech::math::{rotate, Point, Pose2, Vec2};
 use dismech::query::manifold::circle_circle::contact_circle_circle;
 use dismech::query::manifold::ellipse::{
     contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_ellipse_oriented,
-    contact_ellipse_segment, CurvatureRadii, OrientedEllipse,
+    contact_ellipse_segment, OrientedEllipse,
 };
-use dismech::query::ContactGeometry;
+use dismech::query::{ContactGeometry, ContactShape};
 use dismech::reference::ellipse_contact::{random_pair_statistics, touching_distance};
 use dismech::scene::{Frame, Scene};
 use dismech::shape::{Circle, Ellipse, Segment, Shape2};
@@ -94,9 +94,9 @@ proptest! {
                 Some(&near),
                 radii,
             );
-            prop_assert_eq!(oriented(CurvatureRadii::Computed), Some(hinted));
+            prop_assert_eq!(oriented(ContactShape::Computed), Some(hinted));
             // Without the radii of curvature, the rest the very same.
-            let without = oriented(CurvatureRadii::Skipped).unwrap();
+            let without = oriented(ContactShape::Skipped).unwrap();
             prop_assert!(without.curvature_radius_a.is_nan() && without.curvature_radius_b.is_nan());
             prop_assert_eq!(
                 ContactGeometry { curvature_radius_a: hinted.curvature_radius_a, curvature_radius_b: hinted.curvature_radius_b, ..without },

@@ -16,8 +16,7 @@ use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactLaw, Regime};
 use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Vec2};
-use crate::query::manifold::ellipse::CurvatureRadii;
-use crate::query::{ContactFeatures, ContactGeometry};
+use crate::query::{ContactFeatures, ContactGeometry, ContactShape};
 use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
 use nalgebra::UnitComplex;
@@ -623,10 +622,10 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             rotations: &self.rotations,
             walls: self.scene.frame.walls(),
             wall_boxes,
-            radii: if self.law.uses_curvature() {
-                CurvatureRadii::Computed
+            contact_shape: if self.law.uses_contact_shape() {
+                ContactShape::Computed
             } else {
-                CurvatureRadii::Skipped
+                ContactShape::Skipped
             },
         };
         let applied = &self.applied;

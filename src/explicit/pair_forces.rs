@@ -7,13 +7,11 @@ use super::neighbours::{PairForce, PairPoints, PairSlot, PointContact};
 use crate::error::Result;
 use crate::law::{ContactInput, ContactLaw, PairProperties};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
-use crate::query::manifold::circle_circle::contact_circle_circle;
+use crate::query::manifold::circle_circle::contact_circle_circle_shaped;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
-use crate::query::manifold::ellipse::{
-    contact_ellipse_ellipse_oriented, CurvatureRadii, OrientedEllipse,
-};
-use crate::query::{moment_about, relative_increment, ContactGeometry};
+use crate::query::manifold::ellipse::{contact_ellipse_ellipse_oriented, OrientedEllipse};
+use crate::query::{moment_about, relative_increment, ContactGeometry, ContactShape};
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
 use nalgebra::UnitComplex;
@@ -31,9 +29,9 @@ pub(super) struct PairContext<'a, L> {
     pub walls: &'a [Segment],
     /// The walls' boxes.
     pub wall_boxes: &'a [Aabb2],
-    /// Whether the law reads the radii of curvature (two ellipses compute
-    /// them only then).
-    pub radii: CurvatureRadii,
+    /// Whether the law reads the width and radii of curvature (a circle
+    /// pair computes its width, two ellipses their radii, only then).
+    pub contact_shape: ContactShape,
 }
 
 /// B's centre, its increment of the last step and its mass; `None` for a
@@ -79,7 +77,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                             rotation: &self.rotations[b],
                         },
                         slot.points.first().map(|p| &p.point),
-                        self.radii,
+                        self.contact_shape,
                     );
                     *force = self.update_single(slot, single, other);
                     return Ok(());
@@ -103,7 +101,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         };
         let single = match (&pa.shape, shape_b) {
             (AnyShape2::Circle(ca), AnyShape2::Circle(cb)) => {
-                contact_circle_circle(ca, &pa.pose, cb, pose_b)
+                contact_circle_circle_shaped(ca, &pa.pose, cb, pose_b, self.contact_shape)
             }
             (AnyShape2::Circle(c), AnyShape2::Segment(s)) => contact_circle_segment(c, &pa.pose, s),
             (AnyShape2::Polygon(_), _) | (_, AnyShape2::Polygon(_)) => {

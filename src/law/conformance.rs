@@ -24,7 +24,7 @@
 //! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip |
 //! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force |
 //! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s |
-//! | [`curvature_unused`] | a law that says it does not read the radii of curvature gives the same response without them |
+//! | [`contact_shape_unused`] | a law that says it reads neither the contact's width nor its radii of curvature gives the same response without them |
 
 use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
 
@@ -199,9 +199,9 @@ where
     Ok(())
 }
 
-/// A law that does not [`ContactLaw::uses_curvature`] gives the same
-/// response with NaN radii of curvature as with the input's.
-pub fn curvature_unused<L, const D: usize>(
+/// A law that does not [`ContactLaw::uses_contact_shape`] gives the same
+/// response with NaN width and radii of curvature as with the input's.
+pub fn contact_shape_unused<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
     state: &L::State,
@@ -210,17 +210,20 @@ where
     L: ContactLaw<D>,
     L::State: PartialEq,
 {
-    if law.uses_curvature() {
+    if law.uses_contact_shape() {
         return Ok(());
     }
     let mut without = *input;
+    without.pair.width = f64::NAN;
     without.pair.curvature_radius_a = f64::NAN;
     without.pair.curvature_radius_b = f64::NAN;
     let (with, nan) = (law.evaluate(input, state), law.evaluate(&without, state));
     if with != nan {
         return fail(
-            "curvature_unused",
-            format!("the law says it does not read the radii, yet {with:?} becomes {nan:?} without them"),
+            "contact_shape_unused",
+            format!(
+                "the law says it reads neither width nor radii, yet {with:?} becomes {nan:?} without them"
+            ),
         );
     }
     Ok(())
@@ -230,7 +233,7 @@ where
 /// law [`StrengthLaw::may_open`]), [`within_strength`],
 /// [`tangent_matches_finite_differences`] (`h = 1e-7 · (|increment| +
 /// |overlap|)`, relative tolerance `1e-6`), [`pure`] and
-/// [`curvature_unused`]. Returns the
+/// [`contact_shape_unused`]. Returns the
 /// violations (empty when the law passes). [`open_without_overlap`] is
 /// separate: it holds for laws that detect contact by the overlap, not for
 /// springs that follow their own displacement history.
@@ -259,6 +262,6 @@ where
         law, input, state, h, 1e-6,
     ));
     record(pure(law, input, state));
-    record(curvature_unused(law, input, state));
+    record(contact_shape_unused(law, input, state));
     out
 }

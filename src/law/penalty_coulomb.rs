@@ -351,7 +351,7 @@ impl ContactLaw<2> for PenaltyCoulomb {
     }
 
     /// The penalty springs do not depend on the shapes.
-    fn uses_curvature(&self) -> bool {
+    fn uses_contact_shape(&self) -> bool {
         false
     }
 }

@@ -324,8 +324,8 @@ impl<const D: usize> ContactLaw<D> for SpringDashpotCoulomb {
         self.respond(input, state).0
     }
 
-    /// Only the stiffness of eq. (19) reads the radii.
-    fn uses_curvature(&self) -> bool {
+    /// Only the stiffness of eq. (19) reads the width and the radii.
+    fn uses_contact_shape(&self) -> bool {
         matches!(self.normal, NormalStiffness::ContactWidth { .. })
     }
 }

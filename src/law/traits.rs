@@ -155,11 +155,12 @@ pub trait ContactLaw<const D: usize>: Sync {
         state: &Self::State,
     ) -> ContactResponse<D, Self::State>;
 
-    /// Whether the force depends on the radii of curvature of
-    /// [`PairProperties`]. A law that answers `false` may be given NaN
-    /// there: a driver then spares the geometry that costs them (two
-    /// radii of an ellipse pair cost about a tenth of its contact).
-    fn uses_curvature(&self) -> bool {
+    /// Whether the force depends on the width or the radii of curvature
+    /// of [`PairProperties`]. A law that answers `false` may be given NaN
+    /// there: a driver then spares the geometry that costs them (a circle
+    /// pair's width, an ellipse pair's two radii, about a tenth of its
+    /// contact).
+    fn uses_contact_shape(&self) -> bool {
         true
     }
 }

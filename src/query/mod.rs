@@ -14,5 +14,5 @@ pub mod variation;
 
 pub use manifold::{
     contact_2d, contact_manifold_2d, moment_about, relative_increment, ContactFeatures,
-    ContactGeometry, Feature,
+    ContactGeometry, ContactShape, Feature,
 };

@@ -41,7 +41,7 @@
 //! times (two lens-shaped overlaps, possible for elongated ellipses), the
 //! deeper lens is taken.
 
-use super::{ContactFeatures, ContactGeometry};
+use super::{ContactFeatures, ContactGeometry, ContactShape};
 use crate::math::real_roots::{quartic_nonpositive, quartic_nonpositive_about_zero, quartic_value};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::shape::{Ellipse, Segment};
@@ -216,7 +216,7 @@ pub fn contact_ellipse_ellipse_near(
     pose_j: &Pose2,
     near: Option<&Point>,
 ) -> Option<ContactGeometry> {
-    contact_with_turns(i, pose_i, j, pose_j, near, CurvatureRadii::Computed, || {
+    contact_with_turns(i, pose_i, j, pose_j, near, ContactShape::Computed, || {
         (Turn::of(pose_i.angle), Turn::of(pose_j.angle))
     })
 }
@@ -233,24 +233,15 @@ pub struct OrientedEllipse<'a> {
     pub rotation: &'a UnitComplex<f64>,
 }
 
-/// Whether a contact's radii of curvature are wanted. Where they are not
-/// (a contact law that does not read them), they are left NaN.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CurvatureRadii {
-    /// Computed, as [`contact_ellipse_ellipse`] does.
-    Computed,
-    /// Left NaN.
-    Skipped,
-}
-
 /// [`contact_ellipse_ellipse_near`] given the rotations of the two poses'
 /// angles, for a caller that keeps them per body rather than per pair,
-/// and with the radii of curvature only if `radii` asks for them.
+/// and with the radii of curvature only if `shape` asks for them (the
+/// width comes with the normal, so it is always computed).
 pub fn contact_ellipse_ellipse_oriented(
     i: OrientedEllipse<'_>,
     j: OrientedEllipse<'_>,
     near: Option<&Point>,
-    radii: CurvatureRadii,
+    shape: ContactShape,
 ) -> Option<ContactGeometry> {
     debug_assert!(
         [&i, &j]
@@ -258,7 +249,7 @@ pub fn contact_ellipse_ellipse_oriented(
             .all(|e| (e.rotation.angle_to(&UnitComplex::new(e.pose.angle))).abs() < 1e-9),
         "a rotation is not that of its pose's angle"
     );
-    contact_with_turns(i.shape, i.pose, j.shape, j.pose, near, radii, || {
+    contact_with_turns(i.shape, i.pose, j.shape, j.pose, near, shape, || {
         (Turn::from(i.rotation), Turn::from(j.rotation))
     })
 }
@@ -272,7 +263,7 @@ fn contact_with_turns(
     j: &Ellipse,
     pose_j: &Pose2,
     near: Option<&Point>,
-    radii: CurvatureRadii,
+    shape: ContactShape,
     turns: impl FnOnce() -> (Turn, Turn),
 ) -> Option<ContactGeometry> {
     let between = pose_j.position - pose_i.position;
@@ -289,7 +280,7 @@ fn contact_with_turns(
         d,
         relative,
         quartic,
-        radii,
+        shape,
     };
     let world = |lens: Lens| ContactGeometry {
         point: pose_i.position + turn_i.apply(&lens.point.coords),
@@ -400,7 +391,8 @@ struct Pair<'a> {
     /// `i`'s frame turned from `j`'s.
     relative: Turn,
     quartic: BoundaryQuartic,
-    radii: CurvatureRadii,
+    /// Whether the radii of curvature are wanted.
+    shape: ContactShape,
 }
 
 /// A lens's contact geometry in `i`'s body frame.
@@ -444,12 +436,12 @@ impl Pair<'_> {
         let midpoint_j = Point::from(self.d + self.relative.apply(&midpoint.coords));
         let normal_j = self.relative.apply(&normal);
         let s_j = j.line_entry_local(&midpoint_j, &normal_j)?;
-        let (curvature_radius_i, curvature_radius_j) = match self.radii {
-            CurvatureRadii::Computed => (
+        let (curvature_radius_i, curvature_radius_j) = match self.shape {
+            ContactShape::Computed => (
                 i.curvature_radius_at(&(midpoint + normal * s_i)),
                 j.curvature_radius_at(&(midpoint_j + normal_j * s_j)),
             ),
-            CurvatureRadii::Skipped => (f64::NAN, f64::NAN),
+            ContactShape::Skipped => (f64::NAN, f64::NAN),
         };
         Some(Lens {
             point: midpoint,

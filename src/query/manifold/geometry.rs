@@ -47,6 +47,17 @@ impl ContactFeatures {
     }
 }
 
+/// Whether a contact's width and radii of curvature are wanted: only some
+/// contact laws read them ([`crate::law::ContactLaw::uses_contact_shape`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactShape {
+    /// Computed.
+    Computed,
+    /// Left NaN where they would cost work of their own (a circle pair's
+    /// width, an ellipse pair's radii of curvature).
+    Skipped,
+}
+
 /// The geometry of a contact between body A and body B.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactGeometry {

@@ -29,4 +29,6 @@ pub mod polygon;
 pub mod polygon_segment;
 
 pub use dispatch::{contact_2d, contact_manifold_2d};
-pub use geometry::{moment_about, relative_increment, ContactFeatures, ContactGeometry, Feature};
+pub use geometry::{
+    moment_about, relative_increment, ContactFeatures, ContactGeometry, ContactShape, Feature,
+};
