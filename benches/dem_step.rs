@@ -10,10 +10,15 @@ use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Aabb2, Point, Pose2, Vec2};
-use dismech::query::manifold::ellipse::{contact_ellipse_ellipse, contact_ellipse_ellipse_near};
+use dismech::query::manifold::ellipse::{
+    contact_ellipse_ellipse, contact_ellipse_ellipse_near, contact_ellipse_ellipse_oriented,
+    OrientedEllipse,
+};
+use dismech::query::ContactShape;
 use dismech::reference::ellipse_contact::touching_distance;
 use dismech::scene::CircleRows;
 use dismech::shape::Ellipse;
+use nalgebra::UnitComplex;
 
 /// Example 1 settled: ρ = 2.69 gf/cm³, E = 750 kgf/cm², ν = 0.3,
 /// k_s/k_n = 0.25, μ = 0.577, Δt = 1e-4 s, g = 9.80665 m/s², and the
@@ -117,6 +122,63 @@ fn bench_ellipse_contact(c: &mut Criterion) {
             })
         },
     );
+    let oriented: Vec<_> = pairs
+        .iter()
+        .map(|(i, pi, j, pj, near)| {
+            (
+                *i,
+                *pi,
+                UnitComplex::new(pi.angle),
+                *j,
+                *pj,
+                UnitComplex::new(pj.angle),
+                *near,
+            )
+        })
+        .collect();
+    c.bench_function(
+        "ellipse contact about the last contact point, kept rotations, 1000 pairs",
+        |b| {
+            b.iter(|| {
+                oriented
+                    .iter()
+                    .filter_map(|pair| {
+                        let (i, j) = one(pair);
+                        contact_ellipse_ellipse_oriented(i, j, Some(&pair.6), ContactShape::Skipped)
+                    })
+                    .map(|g| g.overlap)
+                    .sum::<f64>()
+            })
+        },
+    );
+}
+
+/// An ellipse pair with the rotations of its poses and its last contact
+/// point.
+type Oriented = (
+    Ellipse,
+    Pose2,
+    UnitComplex<f64>,
+    Ellipse,
+    Pose2,
+    UnitComplex<f64>,
+    Point,
+);
+
+/// The pair's two ellipses, oriented.
+fn one((i, pi, ri, j, pj, rj, _): &Oriented) -> (OrientedEllipse<'_>, OrientedEllipse<'_>) {
+    (
+        OrientedEllipse {
+            shape: i,
+            pose: pi,
+            rotation: ri,
+        },
+        OrientedEllipse {
+            shape: j,
+            pose: pj,
+            rotation: rj,
+        },
+    )
 }
 
 criterion_group!(benches, bench_dem, bench_ellipse_contact);
