@@ -137,7 +137,7 @@ fn bench_ellipse_contact(c: &mut Criterion) {
         })
         .collect();
     c.bench_function(
-        "ellipse contact about the last contact point, kept rotations, 1000 pairs",
+        "ellipse contact about the last contact point, kept rotations, without radii, 1000 pairs",
         |b| {
             b.iter(|| {
                 oriented

@@ -163,7 +163,10 @@ impl CellGrid {
         let max_cells = (4 * n).max(16) as f64;
         let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
         let rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
-        self.sparse = columns * rows > max_cells || columns.is_nan() || rows.is_nan();
+        // (Fewer than one column or row, or none at all, comes only of
+        // boxes whose corners are swapped: the sparse grid takes them
+        // without indexing an empty grid.)
+        self.sparse = !(columns >= 1.0 && rows >= 1.0) || columns * rows > max_cells;
         if self.sparse {
             self.lay_out_sparse(boxes);
             return true;
@@ -290,10 +293,11 @@ impl CellGrid {
         self.body_cell.clear();
     }
 
-    /// The dense grid's cell of a box's centre (clamped to the grid). The
-    /// centre is not left of or below the grid's origin, the least corner
-    /// of all boxes, so the cast truncates as `floor` would (and without
-    /// its call); it saturates far out, and so does the clamp.
+    /// The dense grid's cell of a box's centre (clamped to the grid): the
+    /// quotient's `floor`, clamped, without the call. A non-negative
+    /// quotient truncates as `floor` would; a negative one (a box whose
+    /// corners are swapped) or NaN casts to 0, as `floor` and the clamp
+    /// to the first cell gave; a far one saturates and is clamped.
     fn cell_of(&self, b: &Aabb2) -> usize {
         let cx = 0.5 * (b.min.x + b.max.x);
         let cy = 0.5 * (b.min.y + b.max.y);
@@ -389,6 +393,49 @@ mod tests {
                 grid.candidate_pairs_filtered(&boxes, margin, |i, j| (i + j) % modulus == 0, parallel, &mut filtered);
                 prop_assert_eq!(&filtered, &serial);
             }
+        }
+    }
+
+    /// Boxes whose corners are swapped (min beyond max) in x, in y or in
+    /// both, so that the span has less than one column or row, are taken
+    /// without a panic; grids one column wide and one row high find the
+    /// brute force's pairs.
+    #[test]
+    fn swapped_boxes_and_one_column_or_row_grids_are_taken() {
+        let swapped = |x: f64, y: f64, flip_x: bool, flip_y: bool| {
+            let b = square(x, y, 0.4);
+            Aabb2 {
+                min: Point::new(
+                    if flip_x { b.max.x } else { b.min.x },
+                    if flip_y { b.max.y } else { b.min.y },
+                ),
+                max: Point::new(
+                    if flip_x { b.min.x } else { b.max.x },
+                    if flip_y { b.min.y } else { b.max.y },
+                ),
+            }
+        };
+        let mut grid = CellGrid::new();
+        let mut pairs = Vec::new();
+        for (flip_x, flip_y) in [(true, false), (false, true), (true, true)] {
+            let boxes: Vec<Aabb2> = (0..5)
+                .map(|k| swapped(k as f64, 0.5 * k as f64, flip_x, flip_y))
+                .collect();
+            grid.candidate_pairs(&boxes, 0.0, &mut pairs);
+        }
+        for line in [
+            (0..30)
+                .map(|k| square(0.0, 0.7 * k as f64, 0.4))
+                .collect::<Vec<_>>(),
+            (0..30).map(|k| square(0.7 * k as f64, 0.0, 0.4)).collect(),
+        ] {
+            grid.candidate_pairs(&line, 0.0, &mut pairs);
+            let brute: Vec<(usize, usize)> = (0..line.len())
+                .flat_map(|i| (i + 1..line.len()).map(move |j| (i, j)))
+                .filter(|&(i, j)| line[i].intersects(&line[j]))
+                .collect();
+            assert_eq!(pairs, brute);
+            assert_eq!(pairs.len(), 29);
         }
     }
 

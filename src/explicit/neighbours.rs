@@ -356,15 +356,15 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         } else {
             self.boxes.extend(particles.iter().map(aabb));
         }
+        // The poses of this build, which the travels are measured from.
+        self.reference.clear();
+        self.reference
+            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
         // Of the pairs whose boxes are closer than the skin, those whose
         // bounding circles are too (a circle's box corner is far from the
         // circle: a square packing's diagonal neighbours have touching
         // boxes); a pair dropped here only when clearly beyond, against
         // rounding.
-        // The poses of this build, which the travels are measured from.
-        self.reference.clear();
-        self.reference
-            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
         let (radius, reference) = (&self.radius, &self.reference);
         let skin = self.skin;
         let circles_near = |a: usize, b: usize| {

@@ -201,6 +201,9 @@ where
 
 /// A law that does not [`ContactLaw::uses_contact_shape`] gives the same
 /// response with NaN width and radii of curvature as with the input's.
+/// It compares [`ContactLaw::evaluate`] only (the explicit driver, which
+/// acts on the answer, calls nothing else), exactly: a law whose response
+/// is NaN of itself fails it.
 pub fn contact_shape_unused<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,

@@ -204,6 +204,14 @@ impl SpringDashpotCoulomb {
                 poisson_ratio,
                 min_width_ratio,
             } => {
+                // (Given, as this law says it reads them: NaN here would
+                // pass silently, `max` dropping it.)
+                debug_assert!(
+                    ![pair.width, pair.curvature_radius_a, pair.curvature_radius_b]
+                        .iter()
+                        .any(|v| v.is_nan()),
+                    "the contact-width stiffness needs the width and the radii of curvature"
+                );
                 let (r1, r2) = effective_radii(pair);
                 let r_min = r1.min(r2);
                 let width = pair.width.max(min_width_ratio * r_min).min(2.0 * r_min);

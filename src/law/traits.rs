@@ -17,11 +17,15 @@ use nalgebra::{SMatrix, SVector};
 /// What a law needs to know about the pair, besides the motion.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairProperties {
-    /// Radius of curvature of A at the contact (m; infinite for a flat wall).
+    /// Radius of curvature of A at the contact (m; infinite for a flat
+    /// wall). May be NaN for a law that does not
+    /// [`ContactLaw::uses_contact_shape`].
     pub curvature_radius_a: f64,
-    /// Radius of curvature of B at the contact.
+    /// Radius of curvature of B at the contact (NaN as
+    /// `curvature_radius_a`).
     pub curvature_radius_b: f64,
-    /// Contact width B (m), e.g. the chord P1P2 of paper 000.
+    /// Contact width B (m), e.g. the chord P1P2 of paper 000 (NaN as
+    /// `curvature_radius_a`).
     pub width: f64,
     /// Mass of A (kg/m in 2D; infinite for a fixed wall).
     pub mass_a: f64,

@@ -69,12 +69,15 @@ pub struct ContactGeometry {
     /// Penetration depth along the normal (m); positive when overlapping.
     pub overlap: f64,
     /// Contact width B = |P1P2| (m), used by the stiffness of eq. (19).
+    /// NaN where a circle pair was asked for [`ContactShape::Skipped`].
     pub width: f64,
     /// Radius of curvature of A's boundary at the contact (m;
     /// `f64::INFINITY` for a flat wall or a polygon's edge, 0 at a polygon's
-    /// vertex).
+    /// vertex). NaN where an ellipse pair was asked for
+    /// [`ContactShape::Skipped`].
     pub curvature_radius_a: f64,
-    /// Radius of curvature of B's boundary at the contact.
+    /// Radius of curvature of B's boundary at the contact (NaN as
+    /// `curvature_radius_a`).
     pub curvature_radius_b: f64,
     /// Which features of A and B make this point.
     pub features: ContactFeatures,
