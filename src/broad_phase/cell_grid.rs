@@ -93,6 +93,9 @@ impl CellGrid {
         if parallel {
             let found: Vec<Vec<(usize, usize)>> = (0..parts)
                 .into_par_iter()
+                // One part a task, so that the threads share out parts of
+                // unequal work to the end.
+                .with_max_len(1)
                 .map(|part| {
                     let mut found = Vec::new();
                     search(part, &mut found);

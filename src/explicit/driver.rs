@@ -689,6 +689,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             blocks
                 .into_par_iter()
                 .zip(block_forces.collect::<Vec<_>>())
+                // One block a task: blocks differ in work (a packing's
+                // floor against its surface), and a thread that runs out
+                // steals single blocks rather than waiting for a run of
+                // them.
+                .with_max_len(1)
                 .try_for_each_init(Vec::new, evaluate)?;
         } else {
             let manifold = &mut self.manifold;
@@ -771,6 +776,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         .zip(increments.par_chunks_mut(BLOCK)),
                 )
                 .enumerate()
+                .with_max_len(1) // (as above)
                 .map(update)
                 .reduce(StepCheck::default, StepCheck::combine)
         } else {
