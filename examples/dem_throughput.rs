@@ -178,13 +178,14 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     println!(
         "{:?} n={n} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
          {rate:.4e} particle-steps/s; neighbour list built {} times; peak memory of the run {rss}; \
-         kinetic energy {:.4e} J",
+         kinetic energy {:.4e} J; {:.2} contacts per particle at the end",
         args.shape,
         args.threads,
         args.settle,
         args.steps,
         sim.neighbour_list_builds() - builds,
-        sim.kinetic_energy()
+        sim.kinetic_energy(),
+        sim.contacts().len() as f64 / n as f64
     );
     Ok(())
 }
