@@ -5,9 +5,8 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::neighbours::{
-    crosses_blocks, BlockSlots, NeighbourList, PairForce, PointContact, BLOCK,
-};
+use super::motion::{BlockMotion, StepCheck};
+use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::PairContext;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
@@ -21,83 +20,16 @@ use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
 use nalgebra::UnitComplex;
 
-/// One block's share of a step's update: its index, its particles' forces
-/// (three entries each), the particles and their increments.
-type BlockUpdate<'a> = (
+/// One block's share of a step's motion: its index, its particles'
+/// forces (three entries each), the particles, their increments and their
+/// rotations (none in a scene without ellipses).
+type BlockMove<'a> = (
     usize,
-    (&'a mut [f64], (&'a mut [Particle], &'a mut [(Vec2, f64)])),
+    (
+        ((&'a mut [f64], &'a mut [Particle]), &'a mut [(Vec2, f64)]),
+        &'a mut [UnitComplex<f64>],
+    ),
 );
-
-/// The force on B, the moment about A's centre and the moment about B's
-/// centre of each contact point of a pair, in the manifold's order, from
-/// its summary (a pair of one point) or its points.
-#[inline]
-fn for_each_point<'a, S: 'a>(
-    pair: &PairForce,
-    points: impl FnOnce() -> &'a [PointContact<S>],
-    mut add: impl FnMut(Vec2, f64, f64),
-) {
-    match pair.count {
-        0 => {}
-        1 => add(pair.force_on_b, pair.moment_a, pair.moment_b),
-        _ => {
-            for p in points() {
-                add(p.force_on_b, p.moment_a, p.moment_b);
-            }
-        }
-    }
-}
-
-/// Add a contact point's force on B and its moment about B's centre to
-/// B's sum `[f_x, f_y, m]`.
-#[inline]
-fn add_action(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
-    sum[0] += force_on_b.x;
-    sum[1] += force_on_b.y;
-    sum[2] += moment;
-}
-
-/// Add the reaction of a contact point's force on B, `−f`, and its moment
-/// about A's centre to A's sum (`x − f` rounds as `x + (−f)`).
-#[inline]
-fn add_reaction(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
-    sum[0] -= force_on_b.x;
-    sum[1] -= force_on_b.y;
-    sum[2] += moment;
-}
-
-/// What the per-particle update of a step found: the largest travel since
-/// the neighbour list was built, and the first particle whose force, or
-/// whose new position or velocity, went wrong.
-#[derive(Debug, Clone, Copy, Default)]
-struct StepCheck {
-    travel: f64,
-    bad_force: Option<usize>,
-    bad_motion: Option<usize>,
-}
-
-impl StepCheck {
-    /// Both parts' findings (the order does not matter: the largest
-    /// travel, the first particles).
-    #[inline]
-    fn combine(self, other: Self) -> Self {
-        let first = |x: Option<usize>, y: Option<usize>| match (x, y) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        };
-        // A travel that is not a number stays so (`max` would drop it).
-        let travel = if self.travel.is_nan() || other.travel.is_nan() {
-            f64::NAN
-        } else {
-            self.travel.max(other.travel)
-        };
-        Self {
-            travel,
-            bad_force: first(self.bad_force, other.bad_force),
-            bad_motion: first(self.bad_motion, other.bad_motion),
-        }
-    }
-}
 
 /// From this many particles on, the contact and update loops run on
 /// rayon's threads (when it has more than one); below it the fork costs
@@ -611,8 +543,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         );
 
         // Per block: each pair's contact points, added at once to its
-        // particles in the block (the weight and external force first);
-        // a pair whose B is in a later block keeps its summary for B.
+        // particles in the block (the weight and external force first); a
+        // pair whose B is in a later block keeps its summary for B.
         let (blocks, wall_boxes) = self.neighbours.blocks_mut();
         let context = PairContext {
             law: &self.law,
@@ -630,61 +562,6 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         };
         let applied = &self.applied;
         let block_forces = self.system.force.chunks_mut(3 * BLOCK);
-        let evaluate =
-            |manifold: &mut Vec<ContactGeometry>,
-             (block, force): (BlockSlots<'_, L::State>, &mut [f64])| {
-                for (sum, weight) in force.chunks_exact_mut(3).zip(&applied[block.start..]) {
-                    sum.copy_from_slice(&[weight.x, weight.y, 0.0]);
-                }
-                let local = |i: usize| 3 * (i - block.start);
-                let mut cross_out = block.cross_out.iter_mut();
-                for slot in block.pairs.iter_mut() {
-                    let mut pair = PairForce::default();
-                    context.evaluate(slot, &mut pair, manifold)?;
-                    // (The block's particle pairs, never a wall.)
-                    let ContactTarget::Particle(b) = slot.target else {
-                        continue;
-                    };
-                    let a = local(slot.a);
-                    // B's entries when B is in the block; a pair across
-                    // blocks keeps its summary for B instead, in the
-                    // build's order of those pairs.
-                    let b_local = if crosses_blocks(slot.a, b) {
-                        let summary = cross_out.next();
-                        debug_assert!(summary.is_some(), "a crossing the build did not count");
-                        if let Some(summary) = summary {
-                            *summary = pair;
-                        }
-                        None
-                    } else {
-                        Some(local(b))
-                    };
-                    for_each_point(
-                        &pair,
-                        || &slot.points,
-                        |force_on_b, moment_a, moment_b| {
-                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
-                            if let Some(b) = b_local {
-                                add_action(&mut force[b..b + 3], force_on_b, moment_b);
-                            }
-                        },
-                    );
-                }
-                debug_assert!(cross_out.next().is_none(), "a crossing not evaluated");
-                for slot in block.walls.iter_mut() {
-                    let mut pair = PairForce::default();
-                    context.evaluate(slot, &mut pair, manifold)?;
-                    let a = local(slot.a);
-                    for_each_point(
-                        &pair,
-                        || &slot.points,
-                        |force_on_b, moment_a, _| {
-                            add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
-                        },
-                    );
-                }
-                Ok::<(), DismechError>(())
-            };
         if parallel {
             blocks
                 .into_par_iter()
@@ -694,118 +571,57 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 // steals single blocks rather than waiting for a run of
                 // them.
                 .with_max_len(1)
-                .try_for_each_init(Vec::new, evaluate)?;
+                .try_for_each_init(Vec::new, |manifold, (block, force)| {
+                    context.evaluate_block(applied, manifold, block, force)
+                })?;
         } else {
-            let manifold = &mut self.manifold;
-            blocks
-                .into_iter()
-                .zip(block_forces)
-                .try_for_each(|block| evaluate(manifold, block))?;
+            for (block, force) in blocks.into_iter().zip(block_forces) {
+                context.evaluate_block(applied, &mut self.manifold, block, force)?;
+            }
         }
 
         // Per block: the pairs that cross into it from earlier blocks,
-        // added to their B in the list's order; then per particle, when
-        // its force is finite, its velocities and position from `M a = f`
-        // (the diagonal mass: `a = f / m` per DOF, as `solve_lumped_into`,
-        // whose checks of the masses were made at the start), and how far
-        // its boundary has moved since the list was built.
-        let neighbours = &self.neighbours;
-        let integrator = &self.integrator;
-        let mass = &self.system.mass;
-        let reach = self.frame_reach;
-        let update = |(k, (force, (particles, increments))): BlockUpdate<'_>| {
-            let start = k * BLOCK;
-            for cross in neighbours.cross_in(k) {
-                let b = 3 * (cross.b - start);
-                let points = || neighbours.slots[cross.slot].points.as_slice();
-                for_each_point(
-                    neighbours.cross_force(cross),
-                    points,
-                    |force_on_b, _, moment_b| {
-                        add_action(&mut force[b..b + 3], force_on_b, moment_b)
-                    },
-                );
-            }
-            let mut check = StepCheck::default();
-            for (offset, ((force, p), increment)) in force
-                .chunks_exact_mut(3)
-                .zip(particles.iter_mut())
-                .zip(increments.iter_mut())
-                .enumerate()
-            {
-                let i = start + offset;
-                if !force.iter().all(|f| f.is_finite()) {
-                    check = check.combine(StepCheck {
-                        travel: 0.0,
-                        bad_force: Some(i),
-                        bad_motion: None,
-                    });
-                    continue;
-                }
-                let mut dx = [0.0; 3];
-                let mut velocity = [p.velocity.x, p.velocity.y, p.angular_velocity];
-                for d in 0..3 {
-                    let acceleration = force[d] / mass[3 * i + d];
-                    dx[d] = integrator.step(dt, acceleration, &mut velocity[d]);
-                }
-                p.velocity = Vec2::new(velocity[0], velocity[1]);
-                p.angular_velocity = velocity[2];
-                p.pose.position += Vec2::new(dx[0], dx[1]);
-                p.pose.angle += dx[2];
-                *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
-                let finite =
-                    dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
-                let bad_motion = !(finite && reach.contains(&p.pose.position));
-                check = check.combine(StepCheck {
-                    travel: neighbours.travel(i, p),
-                    bad_force: None,
-                    bad_motion: bad_motion.then_some(i),
-                });
-            }
-            check
+        // then its particles moved (see `BlockMotion::block`).
+        let motion = BlockMotion {
+            integrator: &self.integrator,
+            mass: &self.system.mass,
+            reach: self.frame_reach,
+            dt,
         };
-        let force = &mut self.system.force;
-        let particles = &mut self.scene.particles;
-        let increments = &mut self.increments;
+        let neighbours = &self.neighbours;
+        let rotations: Vec<&mut [UnitComplex<f64>]> = if self.rotations.is_empty() {
+            (0..n.div_ceil(BLOCK))
+                .map(|_| <&mut [_]>::default())
+                .collect()
+        } else {
+            self.rotations.chunks_mut(BLOCK).collect()
+        };
+        let move_block = |(k, (((force, particles), increments), rotations)): BlockMove<'_>| {
+            motion.block(neighbours, k, force, particles, increments, rotations)
+        };
+        let (force, particles, increments) = (
+            &mut self.system.force,
+            &mut self.scene.particles,
+            &mut self.increments,
+        );
         let check = if parallel {
-            force
-                .par_chunks_mut(3 * BLOCK)
-                .zip(
-                    particles
-                        .par_chunks_mut(BLOCK)
-                        .zip(increments.par_chunks_mut(BLOCK)),
-                )
+            (force.par_chunks_mut(3 * BLOCK))
+                .zip(particles.par_chunks_mut(BLOCK))
+                .zip(increments.par_chunks_mut(BLOCK))
+                .zip(rotations)
                 .enumerate()
                 .with_max_len(1) // (as above)
-                .map(update)
+                .map(move_block)
                 .reduce(StepCheck::default, StepCheck::combine)
         } else {
-            force
-                .chunks_mut(3 * BLOCK)
-                .zip(
-                    particles
-                        .chunks_mut(BLOCK)
-                        .zip(increments.chunks_mut(BLOCK)),
-                )
+            (force.chunks_mut(3 * BLOCK))
+                .zip(particles.chunks_mut(BLOCK))
+                .zip(increments.chunks_mut(BLOCK))
+                .zip(rotations)
                 .enumerate()
-                .map(update)
+                .map(move_block)
                 .fold(StepCheck::default(), StepCheck::combine)
         };
-        // The ellipses' rotations at their new angles.
-        let turn = |(rotation, p): (&mut UnitComplex<f64>, &Particle)| {
-            if matches!(p.shape, AnyShape2::Ellipse(_)) {
-                *rotation = UnitComplex::new(p.pose.angle);
-            }
-        };
-        if parallel {
-            (self.rotations.par_iter_mut())
-                .zip(&self.scene.particles)
-                .for_each(turn);
-        } else {
-            (self.rotations.iter_mut())
-                .zip(&self.scene.particles)
-                .for_each(turn);
-        }
         self.neighbours.note_travel(check.travel);
         if let Some(i) = check.bad_force {
             return Err(self.non_finite(i, "force"));

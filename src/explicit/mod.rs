@@ -55,6 +55,7 @@
 
 mod checks;
 mod driver;
+mod motion;
 mod neighbours;
 mod pair_forces;
 mod stability;

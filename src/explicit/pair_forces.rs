@@ -3,7 +3,9 @@
 //! the pair itself.
 
 use super::driver::ContactTarget;
-use super::neighbours::{PairForce, PairPoints, PairSlot, PointContact};
+use super::neighbours::{
+    crosses_blocks, BlockSlots, PairForce, PairPoints, PairSlot, PointContact,
+};
 use crate::error::Result;
 use crate::law::{ContactInput, ContactLaw, PairProperties};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
@@ -15,6 +17,44 @@ use crate::query::{moment_about, relative_increment, ContactGeometry, ContactSha
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
 use nalgebra::UnitComplex;
+
+/// The force on B, the moment about A's centre and the moment about B's
+/// centre of each contact point of a pair, in the manifold's order, from
+/// its summary (a pair of one point) or its points.
+#[inline]
+pub(super) fn for_each_point<'a, S: 'a>(
+    pair: &PairForce,
+    points: impl FnOnce() -> &'a [PointContact<S>],
+    mut add: impl FnMut(Vec2, f64, f64),
+) {
+    match pair.count {
+        0 => {}
+        1 => add(pair.force_on_b, pair.moment_a, pair.moment_b),
+        _ => {
+            for p in points() {
+                add(p.force_on_b, p.moment_a, p.moment_b);
+            }
+        }
+    }
+}
+
+/// Add a contact point's force on B and its moment about B's centre to
+/// B's sum `[f_x, f_y, m]`.
+#[inline]
+pub(super) fn add_action(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] += force_on_b.x;
+    sum[1] += force_on_b.y;
+    sum[2] += moment;
+}
+
+/// Add the reaction of a contact point's force on B, `−f`, and its moment
+/// about A's centre to A's sum (`x − f` rounds as `x + (−f)`).
+#[inline]
+fn add_reaction(sum: &mut [f64], force_on_b: Vec2, moment: f64) {
+    sum[0] -= force_on_b.x;
+    sum[1] -= force_on_b.y;
+    sum[2] += moment;
+}
 
 /// What every pair of one step reads: the law, the step and the bodies.
 pub(super) struct PairContext<'a, L> {
@@ -39,6 +79,73 @@ pub(super) struct PairContext<'a, L> {
 type Other = Option<(Point, (Vec2, f64), f64)>;
 
 impl<L: ContactLaw<2>> PairContext<'_, L> {
+    /// Block `block`'s pairs evaluated in the list's order and summed
+    /// into `force` (its particles' `[f_x, f_y, m]`, which start from
+    /// their weight and external force `applied`); a pair whose B is in a
+    /// later block keeps its summary for B instead.
+    ///
+    /// # Errors
+    /// The geometry's, for a pair it does not support.
+    pub fn evaluate_block(
+        &self,
+        applied: &[Vec2],
+        manifold: &mut Vec<ContactGeometry>,
+        block: BlockSlots<'_, L::State>,
+        force: &mut [f64],
+    ) -> Result<()> {
+        for (sum, weight) in force.chunks_exact_mut(3).zip(&applied[block.start..]) {
+            sum.copy_from_slice(&[weight.x, weight.y, 0.0]);
+        }
+        let local = |i: usize| 3 * (i - block.start);
+        let mut cross_out = block.cross_out.iter_mut();
+        for slot in block.pairs.iter_mut() {
+            let mut pair = PairForce::default();
+            self.evaluate(slot, &mut pair, manifold)?;
+            // (The block's particle pairs, never a wall.)
+            let ContactTarget::Particle(b) = slot.target else {
+                continue;
+            };
+            let a = local(slot.a);
+            // B's entries when B is in the block; a pair across blocks
+            // keeps its summary for B instead, in the build's order of
+            // those pairs.
+            let b_local = if crosses_blocks(slot.a, b) {
+                let summary = cross_out.next();
+                debug_assert!(summary.is_some(), "a crossing the build did not count");
+                if let Some(summary) = summary {
+                    *summary = pair;
+                }
+                None
+            } else {
+                Some(local(b))
+            };
+            for_each_point(
+                &pair,
+                || &slot.points,
+                |force_on_b, moment_a, moment_b| {
+                    add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
+                    if let Some(b) = b_local {
+                        add_action(&mut force[b..b + 3], force_on_b, moment_b);
+                    }
+                },
+            );
+        }
+        debug_assert!(cross_out.next().is_none(), "a crossing not evaluated");
+        for slot in block.walls.iter_mut() {
+            let mut pair = PairForce::default();
+            self.evaluate(slot, &mut pair, manifold)?;
+            let a = local(slot.a);
+            for_each_point(
+                &pair,
+                || &slot.points,
+                |force_on_b, moment_a, _| {
+                    add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
+                },
+            );
+        }
+        Ok(())
+    }
+
     /// The pair's contact points now, each continuing the history of the
     /// point with the same features at the last step, and the pair's force
     /// summary; `manifold` is scratch space for pairs with a polygon,
