@@ -178,7 +178,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     println!(
         "{:?} n={n} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
          {rate:.4e} particle-steps/s; neighbour list built {} times; peak memory of the run {rss}; \
-         kinetic energy {:.4e} J; {:.2} contacts per particle at the end",
+         kinetic energy {:.4e} J; {:.2} contact points per particle at the end (each pair once, walls included)",
         args.shape,
         args.threads,
         args.settle,

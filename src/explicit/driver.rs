@@ -521,9 +521,10 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
     /// Advance one step.
     ///
-    /// After an error the scene and the forces are not specified (some
-    /// particles may have moved, some forces be of this step): the run has
-    /// gone wrong and should not be continued.
+    /// After an error the scene, the forces and the contacts are not
+    /// specified (some particles may have moved, some forces and contact
+    /// histories be of this step): the run has gone wrong and should not
+    /// be continued.
     ///
     /// The forces are summed per particle in a fixed order (its weight,
     /// then its pairs in the list's order but for those whose A lies in an

@@ -76,6 +76,12 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
     where
         S: Clone + Send + Sync,
     {
+        debug_assert!(
+            force.len() == 3 * particles.len()
+                && increments.len() == particles.len()
+                && (rotations.is_empty() || rotations.len() == particles.len()),
+            "a block's forces, increments or rotations do not match its particles"
+        );
         let start = k * BLOCK;
         for cross in neighbours.cross_in(k) {
             let b = 3 * (cross.b - start);

@@ -1,6 +1,8 @@
-//! The contact points of one listed pair: the geometry, the relative
-//! motion at each point and the law, with the point's history taken from
-//! the pair itself.
+//! The first half of a step: the contact points of each listed pair (the
+//! geometry, the relative motion at each point and the law, with the
+//! point's history taken from the pair itself), summed per block of
+//! particles into their forces. The second half, moving the particles, is
+//! in `motion.rs`.
 
 use super::driver::ContactTarget;
 use super::neighbours::{
