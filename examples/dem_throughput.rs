@@ -29,6 +29,13 @@
 //!
 //! The random numbers are not LAMMPS' (a different generator), so the
 //! packing is of the same kind, not the same disks.
+//!
+//! `--numbering columns` numbers the same particles column by column
+//! instead of row by row, and `--numbering local` renumbers the rows'
+//! numbering with `Scene::renumber_for_locality` (column by column in
+//! bands 32 disks high). The physics is the same; the order of the force
+//! sums, and so the last bits, differ, and so does the speed of large
+//! scenes (the README's throughput section).
 
 use std::time::Instant;
 
@@ -45,6 +52,18 @@ use rand::{RngExt, SeedableRng};
 enum ShapeChoice {
     Disk,
     Ellipse,
+}
+
+/// The order in which the lattice's particles are numbered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Numbering {
+    /// Row by row from the floor up (LAMMPS' `create_atoms` order).
+    Rows,
+    /// Column by column from the left wall.
+    Columns,
+    /// Rows, then `Scene::renumber_for_locality` (bands 32 disks high,
+    /// each column by column).
+    Local,
 }
 
 /// DEM particle-steps per second on the LAMMPS anchor's setup.
@@ -65,6 +84,11 @@ struct Args {
     /// Particle shape.
     #[arg(long, value_enum, default_value_t = ShapeChoice::Disk)]
     shape: ShapeChoice,
+    /// Order of the particles' indices: the same disks at the same places
+    /// either way (the random diameters and velocities are drawn row by
+    /// row), numbered by rows or by columns.
+    #[arg(long, value_enum, default_value_t = Numbering::Rows)]
+    numbering: Numbering,
     /// Threads of the force loop (rayon's pool).
     #[arg(long, default_value_t = 1)]
     threads: usize,
@@ -90,6 +114,8 @@ fn scene(args: &Args) -> Result<Scene, DismechError> {
     let height = args.ny as f64 * PITCH * 1.5;
     let mut scene = Scene::new(Frame::open_box(width, height)?, Vec2::new(0.0, -9.81))?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(args.seed);
+    // Each site's particle, drawn row by row whatever the numbering.
+    let mut sites = Vec::with_capacity(args.nx * args.ny);
     for j in 0..args.ny {
         for i in 0..args.nx {
             let r = 0.5 * (0.12 + 0.018 * rng.random::<f64>());
@@ -112,7 +138,21 @@ fn scene(args: &Args) -> Result<Scene, DismechError> {
                 p.pose = Pose2::new(centre.x, centre.y, std::f64::consts::FRAC_PI_4);
             }
             p.velocity = Vec2::new(vx, 0.0);
-            scene.particles.push(p);
+            sites.push(p);
+        }
+    }
+    match args.numbering {
+        Numbering::Rows => scene.particles = sites,
+        Numbering::Local => {
+            scene.particles = sites;
+            scene.renumber_for_locality();
+        }
+        Numbering::Columns => {
+            for i in 0..args.nx {
+                scene
+                    .particles
+                    .extend((0..args.ny).map(|j| sites[j * args.nx + i].clone()));
+            }
         }
     }
     Ok(scene)
@@ -176,10 +216,11 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         _ => "unknown".into(),
     };
     println!(
-        "{:?} n={n} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
+        "{:?} n={n} numbering={:?} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
          {rate:.4e} particle-steps/s; neighbour list built {} times; peak memory of the run {rss}; \
          kinetic energy {:.4e} J; {:.2} contact points per particle at the end (each pair once, walls included)",
         args.shape,
+        args.numbering,
         args.threads,
         args.settle,
         args.steps,

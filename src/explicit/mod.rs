@@ -42,7 +42,12 @@
 //! in the list's order but for those whose A is in an earlier block, then
 //! those, each pair's points in order), so a run gives the same bits on
 //! one thread or many; a scene of at most 1024 particles sums in the
-//! list's order. Contact records
+//! list's order. Neighbours with near indices keep the step fast (few
+//! pairs across blocks, and each pair's B read from nearby memory):
+//! [`crate::scene::Scene::renumber_for_locality`] numbers a scene so,
+//! column by column in bands 32 particles high (10⁵ disks run about
+//! 1.1–1.15 times as fast so numbered as numbered row by row). Contact
+//! records
 //! ([`ExplicitDynamics::contacts`]) are made from the list only when asked
 //! for. `examples/dem_throughput.rs` measures particle-steps per second on
 //! the setup of the LAMMPS anchor (2D disks settling in a box).

@@ -3,6 +3,7 @@
 
 mod frame;
 pub mod layout;
+mod numbering;
 mod particle;
 
 pub use frame::{Frame, JOINT_TOLERANCE};
