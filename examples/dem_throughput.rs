@@ -33,7 +33,7 @@
 //! `--numbering columns` numbers the same particles column by column
 //! instead of row by row, and `--numbering local` renumbers the rows'
 //! numbering with `Scene::renumber_for_locality` (column by column in
-//! bands 32 disks high). The physics is the same; the order of the force
+//! bands 32 mean widths high, about 30 of the lattice's rows). The physics is the same; the order of the force
 //! sums, and so the last bits, differ, and so does the speed of large
 //! scenes (the README's throughput section).
 
@@ -61,8 +61,8 @@ enum Numbering {
     Rows,
     /// Column by column from the left wall.
     Columns,
-    /// Rows, then `Scene::renumber_for_locality` (bands 32 disks high,
-    /// each column by column).
+    /// Rows, then `Scene::renumber_for_locality` (bands 32 mean widths
+    /// high, about 30 rows, each column by column).
     Local,
 }
 
@@ -86,7 +86,7 @@ struct Args {
     shape: ShapeChoice,
     /// Order of the particles' indices: the same disks at the same places
     /// either way (the random diameters and velocities are drawn row by
-    /// row), numbered by rows or by columns.
+    /// row), numbered by rows, by columns, or renumbered for locality.
     #[arg(long, value_enum, default_value_t = Numbering::Rows)]
     numbering: Numbering,
     /// Threads of the force loop (rayon's pool).

@@ -45,8 +45,9 @@
 //! list's order. Neighbours with near indices keep the step fast (few
 //! pairs across blocks, and each pair's B read from nearby memory):
 //! [`crate::scene::Scene::renumber_for_locality`] numbers a scene so,
-//! column by column in bands 32 particles high (10⁵ disks run about
-//! 1.1–1.15 times as fast so numbered as numbered row by row). Contact
+//! column by column in bands 32 mean particle widths high (10⁵ disks in
+//! 32 rows ran about 1.13 times as fast so numbered as numbered row by
+//! row: medians of a few runs on one machine). Contact
 //! records
 //! ([`ExplicitDynamics::contacts`]) are made from the list only when asked
 //! for. `examples/dem_throughput.rs` measures particle-steps per second on
