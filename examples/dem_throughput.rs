@@ -33,9 +33,10 @@
 //! `--numbering columns` numbers the same particles column by column
 //! instead of row by row, and `--numbering local` renumbers the rows'
 //! numbering with `Scene::renumber_for_locality` (column by column in
-//! bands 32 mean widths high, about 30 of the lattice's rows). The physics is the same; the order of the force
-//! sums, and so the last bits, differ, and so does the speed of large
-//! scenes (the README's throughput section).
+//! bands 32 mean widths high, about 30 of the lattice's rows). The
+//! physics is the same; the order of the force sums, and so the last
+//! bits, differ, and so does the speed of large scenes (the README's
+//! throughput section).
 
 use std::time::Instant;
 

@@ -47,8 +47,7 @@
 //! [`crate::scene::Scene::renumber_for_locality`] numbers a scene so,
 //! column by column in bands 32 mean particle widths high (10⁵ disks in
 //! 32 rows ran about 1.13 times as fast so numbered as numbered row by
-//! row: medians of a few runs on one machine). Contact
-//! records
+//! row: medians of a few runs on one machine). Contact records
 //! ([`ExplicitDynamics::contacts`]) are made from the list only when asked
 //! for. `examples/dem_throughput.rs` measures particle-steps per second on
 //! the setup of the LAMMPS anchor (2D disks settling in a box).
