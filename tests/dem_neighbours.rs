@@ -278,9 +278,9 @@ fn a_mixed_pile_of_three_blocks_gives_the_same_bits_on_two_threads_and_any_skin(
 /// Renumbering a scene for locality changes the order of the force sums,
 /// not the physics: 2 100 disks (three blocks, numbered by rows of 100,
 /// so that about one vertical pair in ten crosses blocks) and the same
-/// disks renumbered in bands reach the same state after 3 000 steps (0.3 s, the rows fallen
-/// onto each other), particle by particle, and the same contacts with the
-/// same forces, to round-off grown over the run (measured: 4e-9 m,
+/// disks renumbered in bands reach the same state after 3 000 steps
+/// (0.3 s, the rows fallen onto each other), particle by particle, and the
+/// same contacts with the same forces, to round-off grown over the run (measured: 4e-9 m,
 /// 6e-7 m/s and 1.8e-8 of the largest force; the bounds, 1e-7 m, 1e-5 m/s
 /// and 5e-7, are 17 to 28 times that, far below anything physical: 1e-6
 /// of a diameter).
