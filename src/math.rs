@@ -108,6 +108,16 @@ impl Aabb2 {
         (self.min.x..=self.max.x).contains(&p.x) && (self.min.y..=self.max.y).contains(&p.y)
     }
 
+    /// How far apart two boxes are: the larger of their gaps along x and
+    /// along y (not positive when they overlap). A shift of one box by a
+    /// vector shorter than this leaves them apart.
+    #[inline]
+    pub fn separation(&self, other: &Aabb2) -> f64 {
+        let x = (other.min.x - self.max.x).max(self.min.x - other.max.x);
+        let y = (other.min.y - self.max.y).max(self.min.y - other.max.y);
+        x.max(y)
+    }
+
     /// The box grown by `margin` on every side.
     #[inline]
     pub fn inflated(&self, margin: f64) -> Self {

@@ -363,3 +363,143 @@ fn renumbering_for_locality_changes_the_sums_order_not_the_run() {
         );
     }
 }
+
+/// `nx × ny` disks of radius 0.05 m on a square lattice 0.12 m apart
+/// (none touching), the lowest row's centres at `bottom`, the first
+/// column's at `left`, all at `velocity`, in the scene.
+fn add_lattice(
+    scene: &mut Scene,
+    (nx, ny): (usize, usize),
+    left: f64,
+    bottom: f64,
+    velocity: Vec2,
+) {
+    for j in 0..ny {
+        for i in 0..nx {
+            let centre = Point::new(left + 0.12 * i as f64, bottom + 0.12 * j as f64);
+            let index = scene.add_circle(centre, 0.05, DENSITY).unwrap();
+            scene.particles[index].velocity = velocity;
+        }
+    }
+}
+
+/// The list is kept while the particles move together: what decides a
+/// build is how far they may have come closer to each other (or to a wall
+/// they are not listed with), not how far they moved. A lattice of 1 200
+/// disks (two blocks) falls 0.44 m in 3 000 steps, untouched, in a box
+/// wide enough that no disk comes near the side walls, then lands on the
+/// floor and bounces there for 2 000 steps. With a skin of 0.01 m, a test
+/// of each disk's own travel (half the skin) would build the list at least
+/// 0.44 / 0.005 = 88 times in the fall; it is built once, at the start,
+/// and the run ends in the same bits as one that builds the list at every
+/// step.
+#[test]
+fn a_packing_falling_as_a_whole_keeps_its_list_until_it_meets_the_floor() {
+    let lattice = (40, 30);
+    let scene = || {
+        let mut scene =
+            Scene::new(Frame::open_box(6.0, 5.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
+        add_lattice(&mut scene, lattice, 0.6, 0.6, Vec2::zeros());
+        scene
+    };
+    let skin = 0.01;
+    let (fall, landing) = (3000, 2000);
+    let settings = |skin| DemSettings {
+        dt: 1e-4,
+        neighbour_skin: Some(skin),
+        ..DemSettings::default()
+    };
+    let mut kept =
+        DemSimulation::new(scene(), law(1.6e7, 2000.0), ExplicitEuler, settings(skin)).unwrap();
+    let lowest = |sim: &DemSimulation<SpringDashpotCoulomb>| {
+        sim.scene()
+            .particles
+            .iter()
+            .map(|p| p.pose.position.y)
+            .fold(f64::INFINITY, f64::min)
+    };
+    for _ in 0..fall {
+        kept.step().unwrap();
+    }
+    let fallen = 0.6 - lowest(&kept);
+    assert!(fallen > 0.4 && lowest(&kept) > 0.05, "fell {fallen} m");
+    assert!(kept.contacts().is_empty());
+    assert!(fallen / (0.5 * skin) > 80.0);
+    assert_eq!(kept.neighbour_list_builds(), 1);
+    for _ in 0..landing {
+        kept.step().unwrap();
+    }
+    let every_step = run(scene(), (1.6e7, 2000.0), Some(0.0), fall + landing);
+    assert_eq!(every_step.neighbour_list_builds(), (fall + landing) as u64);
+    // It landed: the lowest row rests on the floor, and the rows on it.
+    let on_floor = every_step
+        .contacts()
+        .iter()
+        .filter(|c| matches!(c.target, ContactTarget::Wall(_)))
+        .count();
+    assert!(on_floor >= lattice.0, "{on_floor} disks on the floor");
+    println!("{} contacts at the end", every_step.contacts().len());
+    assert!(every_step.contacts().len() > lattice.0 * 20);
+    assert!(
+        kept.neighbour_list_builds() < (fall + landing) as u64 / 10,
+        "{} builds",
+        kept.neighbour_list_builds()
+    );
+    assert_eq!(state_bits(&kept), state_bits(&every_step));
+    assert_eq!(kept.contacts(), every_step.contacts());
+}
+
+/// Two blocks of particles moving towards each other keep the list until
+/// they may have met: two lattices of 1 024 disks (one block each),
+/// 0.3 m apart and closing at 2 m/s without gravity, need no build in
+/// the 1 400 steps before they meet (a test of each disk's own travel,
+/// with a skin of 0.01 m, would build 28 times); then they collide, and
+/// the run ends in the same bits as one that builds the list at every
+/// step.
+#[test]
+fn two_blocks_closing_on_each_other_keep_the_list_until_they_meet() {
+    let scene = || {
+        let mut scene = Scene::new(Frame::open_box(12.0, 6.0).unwrap(), Vec2::zeros()).unwrap();
+        // 32 × 32 disks each: 3.82 m wide, the second 0.3 m (between
+        // boxes) to the right of the first.
+        add_lattice(&mut scene, (32, 32), 1.0, 1.0, Vec2::new(1.0, 0.0));
+        add_lattice(
+            &mut scene,
+            (32, 32),
+            1.0 + 31.0 * 0.12 + 0.05 + 0.3 + 0.05,
+            1.0,
+            Vec2::new(-1.0, 0.0),
+        );
+        scene
+    };
+    let settings = DemSettings {
+        dt: 1e-4,
+        neighbour_skin: Some(0.01),
+        ..DemSettings::default()
+    };
+    let mut kept =
+        DemSimulation::new(scene(), law(1.6e7, 2000.0), ExplicitEuler, settings).unwrap();
+    for _ in 0..1400 {
+        kept.step().unwrap();
+    }
+    assert!(kept.contacts().is_empty());
+    assert_eq!(kept.neighbour_list_builds(), 1);
+    let steps = 2500;
+    // The most contacts between the lattices at one step.
+    let mut across = 0;
+    for _ in 1400..steps {
+        kept.step().unwrap();
+        let now = kept
+            .contacts()
+            .iter()
+            .filter(|c| {
+                matches!(c.target, ContactTarget::Particle(b) if c.particle < 1024 && b >= 1024)
+            })
+            .count();
+        across = across.max(now);
+    }
+    assert!(across >= 32, "{across} contacts between the lattices");
+    let every_step = run(scene(), (1.6e7, 2000.0), Some(0.0), steps);
+    assert_eq!(state_bits(&kept), state_bits(&every_step));
+    assert_eq!(kept.contacts(), every_step.contacts());
+}

@@ -5,6 +5,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
+use super::list_travel::BlockTravel;
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::PairContext;
@@ -47,10 +48,15 @@ pub struct DemSettings {
     /// Refuse a time step above the estimated stable limit (on by default).
     pub check_stability: bool,
     /// Skin of the neighbour list (m): pairs whose bounding boxes and
-    /// bounding circles are both closer than this are listed, and the list
-    /// is built again once a particle's box may have moved half of it
-    /// (`|Δx| + |Δy| + R |Δφ|` since the build, `R` the bounding radius,
-    /// 0 for a circle, whose box a turn does not move).
+    /// bounding circles are both closer than this are listed (and the
+    /// walls whose boxes are closer than this to a particle's), and the
+    /// list is built again once two particles may have come closer by it,
+    /// or a particle may have reached a wall not listed with it. What
+    /// counts is how the particles moved relative to each other: a packing
+    /// that moves as a whole keeps its list (the bound is taken per block
+    /// of 1024 particles of consecutive indices, from each particle's
+    /// `|Δx| + R |Δφ|` since the build, `R` the bounding radius, 0 for a
+    /// circle, whose box a turn does not move).
     /// It changes the speed, not the forces (the list holds every pair
     /// that can touch). `None` (the default) takes 0.15 of the smallest
     /// particle's bounding radius; 0 builds the list at every step that
@@ -250,6 +256,10 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     neighbours: NeighbourList<L::State>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
+    /// What each block's move of the last step found, and its travel
+    /// alone (buffers kept over the steps).
+    block_checks: Vec<StepCheck>,
+    travels: Vec<BlockTravel>,
     increments: Vec<(Vec2, f64)>,
     /// Each ellipse's rotation, `UnitComplex::new(angle)`, kept with its
     /// pose so that its contacts do not take the sine and cosine per pair
@@ -352,6 +362,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             stable_estimate: None,
             neighbours: NeighbourList::new(skin, &scene.particles),
             manifold: Vec::new(),
+            block_checks: Vec::new(),
+            travels: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             rotations: if scene
                 .particles
@@ -605,7 +617,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             &mut self.scene.particles,
             &mut self.increments,
         );
-        let check = if parallel {
+        let checks = &mut self.block_checks;
+        if parallel {
             (force.par_chunks_mut(3 * BLOCK))
                 .zip(particles.par_chunks_mut(BLOCK))
                 .zip(increments.par_chunks_mut(BLOCK))
@@ -613,21 +626,28 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .enumerate()
                 .with_max_len(1) // (as above)
                 .map(move_block)
-                .reduce(StepCheck::default, StepCheck::combine)
+                .collect_into_vec(checks);
         } else {
-            (force.chunks_mut(3 * BLOCK))
-                .zip(particles.chunks_mut(BLOCK))
-                .zip(increments.chunks_mut(BLOCK))
-                .zip(rotations)
-                .enumerate()
-                .map(move_block)
-                .fold(StepCheck::default(), StepCheck::combine)
-        };
-        self.neighbours.note_travel(check.travel);
-        if let Some(i) = check.bad_force {
+            checks.clear();
+            checks.extend(
+                (force.chunks_mut(3 * BLOCK))
+                    .zip(particles.chunks_mut(BLOCK))
+                    .zip(increments.chunks_mut(BLOCK))
+                    .zip(rotations)
+                    .enumerate()
+                    .map(move_block),
+            );
+        }
+        // The first particle of each kind that went wrong.
+        let first = |of: fn(&StepCheck) -> Option<usize>| checks.iter().find_map(of);
+        let (bad_force, bad_motion) = (first(|c| c.bad_force), first(|c| c.bad_motion));
+        self.travels.clear();
+        self.travels.extend(checks.iter().map(|c| c.travel));
+        self.neighbours.note_travels(&self.travels);
+        if let Some(i) = bad_force {
             return Err(self.non_finite(i, "force"));
         }
-        if let Some(i) = check.bad_motion {
+        if let Some(i) = bad_motion {
             let (dx, turn) = self.increments[i];
             let p = &self.scene.particles[i];
             let finite = dx.iter().all(|v| v.is_finite())

@@ -1,31 +1,31 @@
 //! The neighbour list of the explicit driver: candidate pairs found once
-//! with a skin and kept over the steps until some particle has moved far
-//! enough to meet a pair that is not in it; each pair carries its contact
-//! points' history, so nothing is hashed or rebuilt per step.
+//! with a skin and kept over the steps until the particles may have moved
+//! far enough, relative to each other or to the walls, to meet a pair that
+//! is not in it; each pair carries its contact points' history, so nothing
+//! is hashed or rebuilt per step.
 //!
 //! A pair is listed when the particles' bounding boxes are closer than the
-//! skin `s` (in x and y) and so are their bounding circles. A particle's
-//! box and bounding circle move by at most `|Δx| + R |Δφ|` (`R` its
-//! bounding radius; 0 for a circle, whose box and circle a turn does not
-//! move) since the list was built; while that stays at or below `s/2`
-//! for every particle, two boxes (or bounding circles) apart by more than
-//! `s` at the build are still apart, so the list holds every pair whose
-//! boxes and bounding circles touch, a superset of the pairs that touch:
-//! the narrow phase sees every pair a per-step broad phase would give it
-//! that can touch. Walls are listed per particle the same way. The list is
-//! therefore exact, not an approximation: the forces are those of a broad
-//! phase rebuilt every step.
+//! skin `s` (in x and y) and so are their bounding circles; a wall, when
+//! the particle's box and the wall's are closer than `s`. While no pair
+//! left out can have closed its gap (`list_travel.rs` bounds that from the
+//! particles' displacements since the build), the list holds every pair
+//! whose boxes and bounding circles touch, a superset of the pairs that
+//! touch: the narrow phase sees every pair a per-step broad phase would
+//! give it that can touch. The list is therefore exact, not an
+//! approximation: the forces are those of a broad phase rebuilt every
+//! step.
 
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
+use super::list_travel::{BlockTravel, ListTravel};
 use crate::broad_phase::CellGrid;
 use crate::law::Regime;
 use crate::math::{Aabb2, Point, Vec2};
 use crate::query::ContactFeatures;
 use crate::scene::Particle;
-use crate::shape::{AnyShape2, Segment};
+use crate::shape::Segment;
 
 /// One contact point of a pair: the law's history and the last step's
 /// result.
@@ -187,14 +187,10 @@ pub(super) struct NeighbourList<S> {
     /// order.
     cross_in_start: Vec<usize>,
     cross_in: Vec<CrossIn>,
-    /// Centre and angle of each particle at the build.
-    reference: Vec<(Point, f64)>,
+    /// The poses of the last build, which decide when to build again.
+    travel: ListTravel,
     /// Bounding radius of each particle.
     radius: Vec<f64>,
-    /// How far a turn of one radian moves each particle's box and bounding
-    /// circle at most: its bounding radius, or 0 for a circle about its
-    /// centre (neither moves when it turns).
-    turn_arm: Vec<f64>,
     /// The wall pairs of the last build, `(particle, wall)`, in the list's
     /// order.
     wall_pairs: Vec<(usize, usize)>,
@@ -227,14 +223,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             block_walls: Vec::new(),
             cross_in_start: Vec::new(),
             cross_in: Vec::new(),
-            reference: Vec::new(),
-            turn_arm: particles
-                .iter()
-                .map(|p| match p.shape {
-                    AnyShape2::Circle(_) => 0.0,
-                    _ => p.shape.as_shape().bounding_radius(),
-                })
-                .collect(),
+            travel: ListTravel::new(skin, BLOCK, particles),
             radius: particles
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
@@ -294,8 +283,9 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         (shares, &self.wall_boxes)
     }
 
-    /// Build the list again if a particle has moved half the skin since
-    /// the last build (or it was never built).
+    /// Build the list again if the particles may have moved far enough
+    /// since the last build to meet a pair it does not hold (see
+    /// `list_travel.rs`), or it was never built.
     /// `parallel`: on rayon's threads.
     pub fn update(
         &mut self,
@@ -309,34 +299,24 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         }
     }
 
-    /// A bound on how far particle `i`'s box and bounding circle have
-    /// moved since the build, `|Δx| + R |Δφ|` (`R` = 0 for a circle); while
-    /// it is clearly below the build's limit it is taken without a square
-    /// root, as `|Δx| + |Δy| + R |Δφ|`.
+    /// Block `k`'s travel since the build, before any of its particles
+    /// is added.
     #[inline]
-    pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
-        let (centre, angle) = self.reference[i];
-        let moved = particle.pose.position - centre;
-        let turned = self.turn_arm[i] * (particle.pose.angle - angle).abs();
-        let rough = moved.x.abs() + moved.y.abs() + turned;
-        if rough <= self.limit() {
-            rough
-        } else {
-            moved.norm() + turned
-        }
+    pub fn start_travel(&self, k: usize) -> BlockTravel {
+        self.travel.start_block(k)
     }
 
-    /// The largest travel the list stands: half the skin, less a hair so
-    /// that the rounding of the boxes cannot lose a pair whose gap was
-    /// exactly the skin.
-    fn limit(&self) -> f64 {
-        0.5 * self.skin * (1.0 - 1e-9)
+    /// Add particle `i`, now at `particle`'s pose, to its block's travel.
+    #[inline]
+    pub fn add_travel(&self, travel: &mut BlockTravel, i: usize, particle: &Particle) {
+        self.travel.add(travel, i, particle);
     }
 
-    /// Mark the list for a build when the largest travel of the step
-    /// exceeds [`Self::limit`] (or is not a number).
-    pub fn note_travel(&mut self, largest: f64) {
-        if largest.is_nan() || largest > self.limit() {
+    /// Mark the list for a build unless it still holds every pair that can
+    /// touch, given every block's travel of the step, in the blocks'
+    /// order.
+    pub fn note_travels(&mut self, travels: &[BlockTravel]) {
+        if !self.travel.holds(travels) {
             self.stale = true;
         }
     }
@@ -356,34 +336,38 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         } else {
             self.boxes.extend(particles.iter().map(aabb));
         }
+        self.wall_boxes.clear();
+        self.wall_boxes
+            .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
+        let skin = self.skin;
+        // A wall is listed with a particle when their boxes are closer
+        // than the skin.
+        let wall_listed = |bounds: &Aabb2, wall: &Aabb2| bounds.inflated(skin).intersects(wall);
         // The poses of this build, which the travels are measured from.
-        self.reference.clear();
-        self.reference
-            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
+        let boxes = &self.boxes;
+        self.travel
+            .built(particles, boxes, &self.wall_boxes, |a, w| {
+                wall_listed(&boxes[a], &self.wall_boxes[w])
+            });
         // Of the pairs whose boxes are closer than the skin, those whose
         // bounding circles are too (a circle's box corner is far from the
         // circle: a square packing's diagonal neighbours have touching
         // boxes); a pair dropped here only when clearly beyond, against
         // rounding.
-        let (radius, reference) = (&self.radius, &self.reference);
-        let skin = self.skin;
+        let (radius, travel) = (&self.radius, &self.travel);
         let circles_near = |a: usize, b: usize| {
             let reach = radius[a] + radius[b] + skin;
-            let apart = (reference[b].0 - reference[a].0).norm_squared();
+            let apart = (travel.centre_at_build(b) - travel.centre_at_build(a)).norm_squared();
             apart <= reach * reach * (1.0 + 1e-12)
         };
         grid.candidate_pairs_filtered(&self.boxes, skin, circles_near, parallel, &mut self.pairs);
-        self.wall_boxes.clear();
-        self.wall_boxes
-            .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
         let wall_boxes = &self.wall_boxes;
         let boxes = &self.boxes;
         let walls_of = |a: usize| {
-            let grown = boxes[a].inflated(skin);
             wall_boxes
                 .iter()
                 .enumerate()
-                .filter(move |(_, wall)| grown.intersects(wall))
+                .filter(move |(_, wall)| wall_listed(&boxes[a], wall))
                 .map(move |(w, _)| (a, w))
         };
         self.wall_pairs.clear();

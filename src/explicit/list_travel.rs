@@ -1,0 +1,511 @@
+//! When the neighbour list must be built again: a bound, from how far the
+//! particles have moved since the build, on how much closer any two
+//! particles (or a particle and a wall) can have come.
+//!
+//! A pair is left out of the list when, at the build, the particles'
+//! boxes or their bounding circles were apart by more than the skin `s`.
+//! A particle's box (and bounding circle) now lies within its box at the
+//! build shifted by its displacement `Δxᵢ` and grown by `Rᵢ |Δφᵢ|` (`Rᵢ`
+//! its bounding radius, 0 for a circle, which a turn does not move). So
+//! two particles have come closer by at most
+//! `|Δxₐ − Δx_b| + Rₐ|Δφₐ| + R_b|Δφ_b|`, and the list holds every pair
+//! that can touch while that stays within `s` for every pair left out.
+//! What counts is the particles' *relative* displacement: a packing that
+//! moves as a whole (a settling column, a sliding mass) keeps its list.
+//!
+//! The bound is taken per block of particles (the driver's blocks of
+//! consecutive indices). Block `k` has a reference displacement `c_k`
+//! (the middle of its particles' displacements at the step before) and a
+//! spread `t_k = max_{i ∈ k} (|Δxᵢ − c_k| + Rᵢ|Δφᵢ|)`. For `a` in block
+//! `A` and `b` in block `B`,
+//! `|Δxₐ − Δx_b| + Rₐ|Δφₐ| + R_b|Δφ_b| ≤ t_A + t_B + |c_A − c_B|`, so the
+//! list holds while, for every pair of blocks, that sum is at most `s`,
+//! or at most the gap between the two blocks' boxes at the build (no
+//! particle of one can then have reached a particle of the other, listed
+//! or not). One block alone needs `2 t_A ≤ s`.
+//!
+//! A wall does not move: a particle reaches a wall it was not listed with
+//! only after moving by the gap between its box and the wall's at the
+//! build (more than `s`), so each particle's `|Δxᵢ| + Rᵢ|Δφᵢ|` is held
+//! to its own gap, kept from the build.
+//!
+//! Every comparison keeps a hair (1e-9 of the bound) against the rounding
+//! of the boxes. The test decides only when the list is built, never what
+//! a step computes: the forces are those of a broad phase run at every
+//! step.
+
+use std::cmp::Ordering;
+
+use crate::math::{Aabb2, Point, Vec2};
+use crate::scene::Particle;
+use crate::shape::AnyShape2;
+
+/// The part of a bound a comparison keeps against rounding.
+const HAIR: f64 = 1e-9;
+
+/// A particle at the last build: where it was, and how far it may travel
+/// before it can reach a wall it is not listed with.
+#[derive(Debug, Clone, Copy)]
+struct AtBuild {
+    centre: Point,
+    angle: f64,
+    /// The least gap between its box and the box of a wall not listed
+    /// with it (infinite when every wall is listed, or there is none),
+    /// less the hair.
+    wall_gap: f64,
+}
+
+/// How far the particles of one block have moved since the build.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BlockTravel {
+    /// The block's reference displacement `c_k`, which `spread` is
+    /// measured from.
+    reference: Vec2,
+    /// The largest `|Δxᵢ − c_k| + Rᵢ |Δφᵢ|` over the block.
+    spread: f64,
+    /// The box of the block's displacements, whose middle is the next
+    /// step's reference.
+    low: Vec2,
+    high: Vec2,
+    /// Whether a particle may have reached a wall it is not listed with,
+    /// or a displacement or turn is not finite.
+    stale: bool,
+}
+
+impl BlockTravel {
+    /// Nothing moved yet, measured from `reference`.
+    fn from(reference: Vec2) -> Self {
+        Self {
+            reference,
+            spread: 0.0,
+            low: Vec2::repeat(f64::INFINITY),
+            high: Vec2::repeat(f64::NEG_INFINITY),
+            stale: false,
+        }
+    }
+}
+
+/// The poses of the last build and the blocks' references, which decide
+/// when the list must be built again (see the module's docs).
+#[derive(Debug, Clone)]
+pub(super) struct ListTravel {
+    skin: f64,
+    /// The spread below which a particle's is taken as `|Δx| + |Δy|`
+    /// (no more than √2 times `|Δx|`) plus its turn, without a square
+    /// root: half the skin, less the hair.
+    rough_within: f64,
+    /// The particles of consecutive indices taken together.
+    block: usize,
+    at_build: Vec<AtBuild>,
+    /// How far a turn of one radian moves each particle's box and bounding
+    /// circle at most: its bounding radius, or 0 for a circle about its
+    /// centre (neither moves when it turns).
+    turn_arm: Vec<f64>,
+    /// Each block's box at the build: the union of its particles' boxes.
+    block_boxes: Vec<Aabb2>,
+    /// Each block's reference displacement for the next step.
+    references: Vec<Vec2>,
+}
+
+impl ListTravel {
+    /// Nothing built yet, for `particles` taken in blocks of `block`.
+    pub fn new(skin: f64, block: usize, particles: &[Particle]) -> Self {
+        Self {
+            skin,
+            rough_within: 0.5 * skin * (1.0 - HAIR),
+            block,
+            at_build: Vec::new(),
+            turn_arm: particles
+                .iter()
+                .map(|p| match p.shape {
+                    AnyShape2::Circle(_) => 0.0,
+                    _ => p.shape.as_shape().bounding_radius(),
+                })
+                .collect(),
+            block_boxes: Vec::new(),
+            references: Vec::new(),
+        }
+    }
+
+    /// Each particle's centre at the last build.
+    pub fn centre_at_build(&self, i: usize) -> Point {
+        self.at_build[i].centre
+    }
+
+    /// A build at the particles' present poses: `boxes` are their boxes,
+    /// `wall_boxes` the walls', and `listed(a, w)` whether wall `w` is
+    /// listed with particle `a`.
+    pub fn built(
+        &mut self,
+        particles: &[Particle],
+        boxes: &[Aabb2],
+        wall_boxes: &[Aabb2],
+        listed: impl Fn(usize, usize) -> bool,
+    ) {
+        self.at_build.clear();
+        self.at_build.extend(
+            particles
+                .iter()
+                .zip(boxes)
+                .enumerate()
+                .map(|(a, (p, bounds))| {
+                    let wall_gap = wall_boxes
+                        .iter()
+                        .enumerate()
+                        .filter(|&(w, _)| !listed(a, w))
+                        .map(|(_, wall)| bounds.separation(wall))
+                        .fold(f64::INFINITY, f64::min);
+                    AtBuild {
+                        centre: p.pose.position,
+                        angle: p.pose.angle,
+                        wall_gap: wall_gap * (1.0 - HAIR),
+                    }
+                }),
+        );
+        self.block_boxes.clear();
+        self.block_boxes
+            .extend(boxes.chunks(self.block).map(|chunk| {
+                chunk[1..]
+                    .iter()
+                    .fold(chunk[0], |union, bounds| union.merged(bounds))
+            }));
+        self.references.clear();
+        self.references
+            .resize(self.block_boxes.len(), Vec2::zeros());
+    }
+
+    /// Block `k`'s travel before any of its particles is added.
+    #[inline]
+    pub fn start_block(&self, k: usize) -> BlockTravel {
+        BlockTravel::from(self.references[k])
+    }
+
+    /// Add particle `i`, now at `particle`'s pose, to its block's travel.
+    #[inline]
+    pub fn add(&self, travel: &mut BlockTravel, i: usize, particle: &Particle) {
+        let at_build = &self.at_build[i];
+        let moved = particle.pose.position - at_build.centre;
+        let turned = self.turn_arm[i] * (particle.pose.angle - at_build.angle).abs();
+        // From the block's reference; without a square root while clearly
+        // within the bound (|v| ≤ |v_x| + |v_y|).
+        let off = moved - travel.reference;
+        let rough = off.x.abs() + off.y.abs() + turned;
+        let spread = if rough <= self.rough_within {
+            rough
+        } else {
+            off.norm() + turned
+        };
+        travel.spread = travel.spread.max(spread);
+        travel.low = travel.low.inf(&moved);
+        travel.high = travel.high.sup(&moved);
+        // Towards the walls not listed; a travel that is not finite fails
+        // both comparisons, even against an infinite gap.
+        let wall_bound = at_build.wall_gap;
+        let rough = moved.x.abs() + moved.y.abs() + turned;
+        let apart = rough < wall_bound || moved.norm() + turned < wall_bound;
+        travel.stale |= !apart;
+    }
+
+    /// Whether the list still holds every pair that can touch, given each
+    /// block's travel (in the blocks' order); each block's reference is
+    /// then moved to the middle of its displacements.
+    pub fn holds(&mut self, travels: &[BlockTravel]) -> bool {
+        debug_assert_eq!(travels.len(), self.references.len());
+        let within = self.skin * (1.0 - HAIR);
+        let mut holds = travels.iter().all(|t| !t.stale && !t.spread.is_nan());
+        if holds {
+            // Any pair of blocks within the widest spreads and the spread
+            // of the references: no pair of blocks needs a look.
+            let widest = travels.iter().fold(0.0f64, |m, t| m.max(t.spread));
+            let (low, high) = travels.iter().fold(
+                (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
+                |(low, high), t| (low.inf(&t.reference), high.sup(&t.reference)),
+            );
+            let references = if travels.is_empty() {
+                0.0
+            } else {
+                (high - low).norm()
+            };
+            let bound = 2.0 * widest + references;
+            if bound.partial_cmp(&within) != Some(Ordering::Less) {
+                holds = self.blocks_hold(travels, within);
+            }
+        }
+        for (reference, t) in self.references.iter_mut().zip(travels) {
+            if t.low.x <= t.high.x {
+                *reference = 0.5 * (t.low + t.high);
+            }
+        }
+        holds
+    }
+
+    /// The test pair of blocks by pair of blocks.
+    fn blocks_hold(&self, travels: &[BlockTravel], within: f64) -> bool {
+        travels.iter().enumerate().all(|(a, ta)| {
+            2.0 * ta.spread <= within
+                && travels[a + 1..].iter().enumerate().all(|(offset, tb)| {
+                    let b = a + 1 + offset;
+                    let gap = self.block_boxes[a].separation(&self.block_boxes[b]);
+                    let closer = ta.spread + tb.spread + (ta.reference - tb.reference).norm();
+                    closer <= within.max(gap * (1.0 - HAIR))
+                })
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::SplitMix64;
+    use crate::scene::{Frame, Scene};
+
+    /// Whenever the test says the list holds, no pair the list left out
+    /// can touch: every pair of particles whose boxes and bounding circles
+    /// now meet was listed (both within the skin at the build), and so
+    /// was every wall whose box a particle's box now meets. Random
+    /// circles and ellipses in blocks of four, moved in up to 20 steps
+    /// (each measured from the references the last one set) until the
+    /// test fails: all by one shift a step (up to 0.3 skin along x and y),
+    /// each block by a random one of up to a fifth of the skin more, each
+    /// particle about its block's place by up to 0.05 skin, with a turn.
+    #[test]
+    fn a_list_that_holds_misses_no_pair_that_can_touch() {
+        let skin = 0.05;
+        let mut random = SplitMix64(7);
+        let mut uniform = |low: f64, high: f64| low + (high - low) * random.next_uniform();
+        let (mut held, mut failed) = (0, 0);
+        for _ in 0..400 {
+            let mut scene = Scene::new(Frame::open_box(4.0, 4.0).unwrap(), Vec2::zeros()).unwrap();
+            for _ in 0..(uniform(2.0, 30.0) as usize) {
+                let centre = Point::new(uniform(0.5, 3.5), uniform(0.5, 3.5));
+                if uniform(0.0, 1.0) < 0.5 {
+                    scene.add_circle(centre, uniform(0.05, 0.2), 1.0).unwrap();
+                } else {
+                    let (a, b) = (uniform(0.1, 0.3), uniform(0.05, 0.1));
+                    let angle = uniform(0.0, 6.0);
+                    scene.add_ellipse(centre, a, b, angle, 1.0).unwrap();
+                }
+            }
+            let walls = [
+                Aabb2::from_corners(Point::new(-4.0, 0.0), Point::new(8.0, 0.0)),
+                Aabb2::from_corners(Point::new(uniform(0.0, 4.0), -4.0), Point::new(4.0, 8.0)),
+            ];
+            let particles = &mut scene.particles;
+            let n = particles.len();
+            let box_of = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
+            let boxes: Vec<Aabb2> = particles.iter().map(box_of).collect();
+            let wall_listed = |a: usize, w: usize| boxes[a].inflated(skin).intersects(&walls[w]);
+            // The neighbour list's rule: boxes and bounding circles within
+            // the skin.
+            let centres: Vec<Point> = particles.iter().map(|p| p.pose.position).collect();
+            let listed = |a: usize, b: usize| {
+                let radius = |i: usize| particles[i].shape.as_shape().bounding_radius();
+                let reach = radius(a) + radius(b) + skin;
+                boxes[a].inflated(skin).intersects(&boxes[b])
+                    && (centres[b] - centres[a]).norm() <= reach
+            };
+            let listed: Vec<Vec<bool>> = (0..n)
+                .map(|a| (0..n).map(|b| listed(a, b)).collect())
+                .collect();
+            let mut travel = ListTravel::new(skin, 4, particles);
+            travel.built(particles, &boxes, &walls, wall_listed);
+            let mut shifts = vec![Vec2::zeros(); n.div_ceil(4)];
+            let all = Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * (0.3 * skin);
+            let apart = uniform(0.0, 0.2) * skin;
+            for _ in 0..20 {
+                for shift in shifts.iter_mut() {
+                    *shift += all + Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * apart;
+                }
+                let mut travels = Vec::new();
+                for (k, chunk) in particles.chunks_mut(4).enumerate() {
+                    let mut block = travel.start_block(k);
+                    for (offset, p) in chunk.iter_mut().enumerate() {
+                        let i = 4 * k + offset;
+                        let own = Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * (0.05 * skin);
+                        p.pose.position = centres[i] + shifts[k] + own;
+                        p.pose.angle += uniform(-0.02, 0.02);
+                        travel.add(&mut block, i, p);
+                    }
+                    travels.push(block);
+                }
+                if !travel.holds(&travels) {
+                    failed += 1;
+                    break;
+                }
+                held += 1;
+                let now: Vec<Aabb2> = particles.iter().map(box_of).collect();
+                for a in 0..n {
+                    for b in a + 1..n {
+                        let (pa, pb) = (&particles[a], &particles[b]);
+                        let reach = pa.shape.as_shape().bounding_radius()
+                            + pb.shape.as_shape().bounding_radius();
+                        let circles_meet = (pb.pose.position - pa.pose.position).norm() <= reach;
+                        let may_touch = now[a].intersects(&now[b]) && circles_meet;
+                        assert!(!may_touch || listed[a][b], "({a}, {b})");
+                    }
+                    for (w, wall) in walls.iter().enumerate() {
+                        assert!(
+                            !now[a].intersects(wall) || wall_listed(a, w),
+                            "({a}, wall {w})"
+                        );
+                    }
+                }
+            }
+        }
+        println!("held {held}, failed {failed}");
+        assert!(held > 100 && failed > 100, "held {held}, failed {failed}");
+    }
+
+    /// Circles of radius 0.1 at `centres`, taken in blocks of `block`,
+    /// built with `walls`: the travel and its particles.
+    fn circles(
+        centres: &[(f64, f64)],
+        block: usize,
+        walls: &[Aabb2],
+    ) -> (ListTravel, Vec<Particle>) {
+        let mut scene = Scene::new(Frame::open_box(10.0, 10.0).unwrap(), Vec2::zeros()).unwrap();
+        for &(x, y) in centres {
+            scene.add_circle(Point::new(x, y), 0.1, 1.0).unwrap();
+        }
+        let particles = scene.particles;
+        let boxes: Vec<Aabb2> = particles
+            .iter()
+            .map(|p| p.shape.as_shape().aabb(&p.pose))
+            .collect();
+        let mut travel = ListTravel::new(SKIN, block, &particles);
+        travel.built(&particles, &boxes, walls, |a, w| {
+            boxes[a].inflated(SKIN).intersects(&walls[w])
+        });
+        (travel, particles)
+    }
+
+    const SKIN: f64 = 0.01;
+
+    /// Whether the list holds after particle `i` of `particles` moved by
+    /// `moves[i]` along x.
+    fn holds_after(
+        travel: &mut ListTravel,
+        particles: &mut [Particle],
+        block: usize,
+        moves: &[f64],
+    ) -> bool {
+        let mut travels = Vec::new();
+        for (k, chunk) in particles.chunks_mut(block).enumerate() {
+            let mut t = travel.start_block(k);
+            for (offset, p) in chunk.iter_mut().enumerate() {
+                let i = k * block + offset;
+                p.pose.position.x += moves[i];
+                travel.add(&mut t, i, p);
+            }
+            travels.push(t);
+        }
+        travel.holds(&travels)
+    }
+
+    /// Two particles in one block closing on each other hold the list
+    /// until they have come closer by the skin, however far apart they
+    /// were: the list is built against the skin alone.
+    #[test]
+    fn one_block_holds_until_its_particles_close_by_the_skin() {
+        for (closing, holds) in [(0.99 * SKIN, true), (1.01 * SKIN, false)] {
+            let (mut travel, mut particles) = circles(&[(1.0, 1.0), (3.0, 1.0)], 2, &[]);
+            let half = 0.5 * closing;
+            assert_eq!(
+                holds_after(&mut travel, &mut particles, 2, &[half, -half]),
+                holds,
+                "{closing}"
+            );
+        }
+    }
+
+    /// How many steps of `moves` (m along x, per particle) the list
+    /// holds, at most 1 000.
+    fn steps_held(centres: &[(f64, f64)], block: usize, moves: &[f64]) -> usize {
+        let (mut travel, mut particles) = circles(centres, block, &[]);
+        (0..1000)
+            .take_while(|_| holds_after(&mut travel, &mut particles, block, moves))
+            .count()
+    }
+
+    /// Two blocks of one particle each, 0.5 m apart between their boxes
+    /// and closing by 0.008 m a step, hold the list for the 62 steps
+    /// (0.496 m) before they may have closed that gap; blocks whose boxes
+    /// meet hold it only until they may have closed by the skin, however
+    /// far apart the two particles are.
+    #[test]
+    fn two_blocks_hold_until_they_may_have_closed_their_gap() {
+        let far = 1.0 + 0.2 + 0.5;
+        let step = 0.4 * SKIN;
+        assert_eq!(steps_held(&[(1.0, 1.0), (far, 1.0)], 1, &[step, -step]), 62);
+        // The first block reaches over the second's box with a particle
+        // 1 m higher; closing by 0.0022 m a step, they hold for 4 steps
+        // (0.0088 m).
+        let centres = [(1.0, 1.0), (far - 0.05, 2.0), (far, 1.0)];
+        let step = 0.11 * SKIN;
+        assert_eq!(steps_held(&centres, 2, &[step, step, -step]), 4);
+    }
+
+    /// A block moving as a whole holds the list: after one step, its
+    /// reference is its displacement, and its spread stays what the
+    /// particles move about it.
+    #[test]
+    fn a_block_moving_as_a_whole_holds_the_list() {
+        let (mut travel, mut particles) = circles(&[(1.0, 1.0), (1.3, 1.0), (3.0, 1.0)], 2, &[]);
+        let step = 0.3 * SKIN;
+        for k in 0..100 {
+            assert!(
+                holds_after(&mut travel, &mut particles, 2, &[step, step, step]),
+                "step {k}"
+            );
+        }
+    }
+
+    /// A particle falling 0.0041 m a step holds the list for the 97 steps
+    /// (0.398 m) before it may have reached the floor 0.4 m below its box,
+    /// a wall it is not listed with.
+    #[test]
+    fn a_particle_holds_until_it_may_reach_a_wall() {
+        let floor = [Aabb2::from_corners(
+            Point::new(-5.0, 0.0),
+            Point::new(5.0, 0.0),
+        )];
+        let (mut travel, mut particles) = circles(&[(1.0, 0.5)], 1, &floor);
+        let held = (0..1000)
+            .take_while(|_| {
+                particles[0].pose.position.y -= 0.41 * SKIN;
+                let mut travels = vec![travel.start_block(0)];
+                travel.add(&mut travels[0], 0, &particles[0]);
+                travel.holds(&travels)
+            })
+            .count();
+        assert_eq!(held, 97);
+    }
+
+    /// A position or angle that is not finite never holds the list, with
+    /// walls or without.
+    #[test]
+    fn a_pose_that_is_not_finite_does_not_hold_the_list() {
+        let floor = [Aabb2::from_corners(
+            Point::new(-5.0, 0.0),
+            Point::new(5.0, 0.0),
+        )];
+        for walls in [&floor[..], &[]] {
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                for field in 0..3 {
+                    let (mut travel, mut particles) = circles(&[(1.0, 1.0), (1.5, 1.0)], 2, walls);
+                    let pose = &mut particles[1].pose;
+                    match field {
+                        0 => pose.position.x = bad,
+                        1 => pose.position.y = bad,
+                        _ => pose.angle = bad,
+                    }
+                    let mut travels = vec![travel.start_block(0)];
+                    for (i, p) in particles.iter().enumerate() {
+                        travel.add(&mut travels[0], i, p);
+                    }
+                    assert!(!travel.holds(&travels), "{bad} in field {field}");
+                }
+            }
+        }
+    }
+}
