@@ -5,7 +5,6 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
-use super::list_travel::BlockTravel;
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::PairContext;
@@ -50,20 +49,31 @@ pub struct DemSettings {
     /// Skin of the neighbour list (m): pairs whose bounding boxes and
     /// bounding circles are both closer than this are listed (and the
     /// walls whose boxes are closer than this to a particle's), and the
-    /// list is built again once two particles may have come closer by it,
-    /// or a particle may have reached a wall not listed with it. What
-    /// counts is how the particles moved relative to each other: a packing
-    /// that moves as a whole keeps its list (the bound is taken per block
-    /// of 1024 particles of consecutive indices, from each particle's
-    /// `|Δx| + R |Δφ|` since the build, `R` the bounding radius, 0 for a
-    /// circle, whose box a turn does not move).
+    /// list is built again once a particle's box may have moved half of it
+    /// (`|Δx| + |Δy| + R |Δφ|` since the build, `R` the bounding radius,
+    /// 0 for a circle, whose box a turn does not move); see also
+    /// [`Self::relative_travel`].
     /// It changes the speed, not the forces (the list holds every pair
     /// that can touch). `None` (the default) takes 0.15 of the smallest
     /// particle's bounding radius; 0 builds the list at every step that
-    /// moves a particle. A larger skin builds less often and lists more
-    /// pairs that do not touch (a skin as large as the scene lists every
-    /// pair: n² of them).
+    /// moves a particle (with [`Self::relative_travel`], every step at
+    /// which two particles move relative to each other). A larger skin
+    /// builds less often and lists more pairs that do not touch (a skin as
+    /// large as the scene lists every pair: n² of them).
     pub neighbour_skin: Option<f64>,
+    /// Keep the neighbour list past a particle's travel of half the skin
+    /// while no two particles may have come closer by the skin, nor a
+    /// particle reached a wall not listed with it: what counts is then how
+    /// the particles moved relative to each other, so a packing that moves
+    /// as a whole (falling, sliding) keeps its list. The bound is taken
+    /// per block of 1024 particles of consecutive indices, from each
+    /// particle's displacement relative to its block's; it costs a pass
+    /// over the particles at each step past the half skin, about a tenth
+    /// of a step, so it pays where the list would otherwise be built
+    /// every 15 steps or so or more often, and slows a packing whose
+    /// particles rearrange among their neighbours (off by default). The
+    /// forces are the same either way.
+    pub relative_travel: bool,
 }
 
 impl Default for DemSettings {
@@ -73,6 +83,7 @@ impl Default for DemSettings {
             initial_overlap_tolerance: 1e-6,
             check_stability: true,
             neighbour_skin: None,
+            relative_travel: false,
         }
     }
 }
@@ -256,10 +267,6 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     neighbours: NeighbourList<L::State>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
-    /// What each block's move of the last step found, and its travel
-    /// alone (buffers kept over the steps).
-    block_checks: Vec<StepCheck>,
-    travels: Vec<BlockTravel>,
     increments: Vec<(Vec2, f64)>,
     /// Each ellipse's rotation, `UnitComplex::new(angle)`, kept with its
     /// pose so that its contacts do not take the sine and cosine per pair
@@ -360,10 +367,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             initial_kinetic: 0.0,
             initial_overlap: 0.0,
             stable_estimate: None,
-            neighbours: NeighbourList::new(skin, &scene.particles),
+            neighbours: NeighbourList::new(skin, settings.relative_travel, &scene.particles),
             manifold: Vec::new(),
-            block_checks: Vec::new(),
-            travels: Vec::new(),
             increments: vec![(Vec2::zeros(), 0.0); n],
             rotations: if scene
                 .particles
@@ -617,8 +622,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             &mut self.scene.particles,
             &mut self.increments,
         );
-        let checks = &mut self.block_checks;
-        if parallel {
+        let check = if parallel {
             (force.par_chunks_mut(3 * BLOCK))
                 .zip(particles.par_chunks_mut(BLOCK))
                 .zip(increments.par_chunks_mut(BLOCK))
@@ -626,28 +630,22 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .enumerate()
                 .with_max_len(1) // (as above)
                 .map(move_block)
-                .collect_into_vec(checks);
+                .reduce(StepCheck::default, StepCheck::combine)
         } else {
-            checks.clear();
-            checks.extend(
-                (force.chunks_mut(3 * BLOCK))
-                    .zip(particles.chunks_mut(BLOCK))
-                    .zip(increments.chunks_mut(BLOCK))
-                    .zip(rotations)
-                    .enumerate()
-                    .map(move_block),
-            );
-        }
-        // The first particle of each kind that went wrong.
-        let first = |of: fn(&StepCheck) -> Option<usize>| checks.iter().find_map(of);
-        let (bad_force, bad_motion) = (first(|c| c.bad_force), first(|c| c.bad_motion));
-        self.travels.clear();
-        self.travels.extend(checks.iter().map(|c| c.travel));
-        self.neighbours.note_travels(&self.travels);
-        if let Some(i) = bad_force {
+            (force.chunks_mut(3 * BLOCK))
+                .zip(particles.chunks_mut(BLOCK))
+                .zip(increments.chunks_mut(BLOCK))
+                .zip(rotations)
+                .enumerate()
+                .map(move_block)
+                .fold(StepCheck::default(), StepCheck::combine)
+        };
+        self.neighbours
+            .note_travel(check.travel, &self.scene.particles, parallel);
+        if let Some(i) = check.bad_force {
             return Err(self.non_finite(i, "force"));
         }
-        if let Some(i) = bad_motion {
+        if let Some(i) = check.bad_motion {
             let (dx, turn) = self.increments[i];
             let p = &self.scene.particles[i];
             let finite = dx.iter().all(|v| v.is_finite())

@@ -4,7 +4,6 @@
 
 use nalgebra::UnitComplex;
 
-use super::list_travel::BlockTravel;
 use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::{add_action, for_each_point};
 use crate::integrate::ExplicitIntegrator;
@@ -12,14 +11,37 @@ use crate::math::{Aabb2, Vec2};
 use crate::scene::Particle;
 use crate::shape::AnyShape2;
 
-/// What the per-particle update of a block found: how far its particles
-/// have moved since the neighbour list was built, and the first particle
-/// whose force, or whose new position or velocity, went wrong.
-#[derive(Debug, Clone, Copy)]
+/// What the per-particle update of a step found: the largest travel since
+/// the neighbour list was built, and the first particle whose force, or
+/// whose new position or velocity, went wrong.
+#[derive(Debug, Clone, Copy, Default)]
 pub(super) struct StepCheck {
-    pub travel: BlockTravel,
+    pub travel: f64,
     pub bad_force: Option<usize>,
     pub bad_motion: Option<usize>,
+}
+
+impl StepCheck {
+    /// Both parts' findings (the order does not matter: the largest
+    /// travel, the first particles).
+    #[inline]
+    pub fn combine(self, other: Self) -> Self {
+        let first = |x: Option<usize>, y: Option<usize>| match (x, y) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        // A travel that is not a number stays so (`max` would drop it).
+        let travel = if self.travel.is_nan() || other.travel.is_nan() {
+            f64::NAN
+        } else {
+            self.travel.max(other.travel)
+        };
+        Self {
+            travel,
+            bad_force: first(self.bad_force, other.bad_force),
+            bad_motion: first(self.bad_motion, other.bad_motion),
+        }
+    }
 }
 
 /// What moving a block of particles reads besides the block.
@@ -70,11 +92,7 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
                 |force_on_b, _, moment_b| add_action(&mut force[b..b + 3], force_on_b, moment_b),
             );
         }
-        let mut check = StepCheck {
-            travel: neighbours.start_travel(k),
-            bad_force: None,
-            bad_motion: None,
-        };
+        let mut check = StepCheck::default();
         for (offset, ((force, p), increment)) in force
             .chunks_exact_mut(3)
             .zip(particles.iter_mut())
@@ -83,7 +101,11 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
         {
             let i = start + offset;
             if !force.iter().all(|f| f.is_finite()) {
-                check.bad_force = check.bad_force.or(Some(i));
+                check = check.combine(StepCheck {
+                    travel: 0.0,
+                    bad_force: Some(i),
+                    bad_motion: None,
+                });
                 continue;
             }
             let mut dx = [0.0; 3];
@@ -104,10 +126,11 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
             }
             let finite = dx.iter().all(|v| v.is_finite()) && velocity.iter().all(|v| v.is_finite());
             let bad_motion = !(finite && self.reach.contains(&p.pose.position));
-            if bad_motion {
-                check.bad_motion = check.bad_motion.or(Some(i));
-            }
-            neighbours.add_travel(&mut check.travel, i, p);
+            check = check.combine(StepCheck {
+                travel: neighbours.travel(i, p),
+                bad_force: None,
+                bad_motion: bad_motion.then_some(i),
+            });
         }
         check
     }

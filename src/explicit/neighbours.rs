@@ -1,8 +1,9 @@
 //! The neighbour list of the explicit driver: candidate pairs found once
 //! with a skin and kept over the steps until the particles may have moved
-//! far enough, relative to each other or to the walls, to meet a pair that
-//! is not in it; each pair carries its contact points' history, so nothing
-//! is hashed or rebuilt per step.
+//! far enough to meet a pair that is not in it (a particle by half the
+//! skin, or, when asked, two particles relative to each other by the skin
+//! or one to a wall by its gap); each pair carries its contact points'
+//! history, so nothing is hashed or rebuilt per step.
 //!
 //! A pair is listed when the particles' bounding boxes are closer than the
 //! skin `s` (in x and y) and so are their bounding circles; a wall, when
@@ -19,7 +20,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
-use super::list_travel::{BlockTravel, ListTravel};
+use super::list_travel::ListTravel;
 use crate::broad_phase::CellGrid;
 use crate::law::Regime;
 use crate::math::{Aabb2, Point, Vec2};
@@ -189,6 +190,9 @@ pub(super) struct NeighbourList<S> {
     cross_in: Vec<CrossIn>,
     /// The poses of the last build, which decide when to build again.
     travel: ListTravel,
+    /// Whether a travel past half the skin is followed by the test of
+    /// the particles' relative travel ([`super::DemSettings::relative_travel`]).
+    relative_travel: bool,
     /// Bounding radius of each particle.
     radius: Vec<f64>,
     /// The wall pairs of the last build, `(particle, wall)`, in the list's
@@ -209,9 +213,10 @@ pub(super) struct NeighbourList<S> {
 
 impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// An empty list with skin `skin` (m), built at the first step.
-    pub fn new(skin: f64, particles: &[Particle]) -> Self {
+    pub fn new(skin: f64, relative_travel: bool, particles: &[Particle]) -> Self {
         Self {
             skin,
+            relative_travel,
             slots: Vec::new(),
             fill: Vec::new(),
             spare: Vec::new(),
@@ -299,24 +304,23 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         }
     }
 
-    /// Block `k`'s travel since the build, before any of its particles
-    /// is added.
+    /// A bound on how far particle `i`'s box and bounding circle have
+    /// moved since the build (see [`ListTravel::own_travel`]).
     #[inline]
-    pub fn start_travel(&self, k: usize) -> BlockTravel {
-        self.travel.start_block(k)
+    pub fn travel(&self, i: usize, particle: &Particle) -> f64 {
+        self.travel.own_travel(i, particle)
     }
 
-    /// Add particle `i`, now at `particle`'s pose, to its block's travel.
-    #[inline]
-    pub fn add_travel(&self, travel: &mut BlockTravel, i: usize, particle: &Particle) {
-        self.travel.add(travel, i, particle);
-    }
-
-    /// Mark the list for a build unless it still holds every pair that can
-    /// touch, given every block's travel of the step, in the blocks'
-    /// order.
-    pub fn note_travels(&mut self, travels: &[BlockTravel]) {
-        if !self.travel.holds(travels) {
+    /// Mark the list for a build when the largest travel of the step
+    /// (`largest`, of [`Self::travel`]) is not a number, or exceeds half
+    /// the skin and, when the relative travel is tested, the particles,
+    /// now at `particles`' poses, may have come closer to each other or
+    /// to a wall than the list stands (the test per block of
+    /// `list_travel.rs`, on rayon's threads when `parallel`).
+    pub fn note_travel(&mut self, largest: f64, particles: &[Particle], parallel: bool) {
+        let own = largest <= self.travel.own_limit();
+        let relative = || self.relative_travel && self.travel.holds(particles, parallel);
+        if !own && (largest.is_nan() || !relative()) {
             self.stale = true;
         }
     }
