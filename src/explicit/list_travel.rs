@@ -69,6 +69,10 @@ pub(super) struct ListTravel {
     skin: f64,
     /// The particles of consecutive indices taken together.
     block: usize,
+    /// Whether the relative travel is tested
+    /// ([`super::DemSettings::relative_travel`]); without it the walls'
+    /// gaps and the blocks' boxes are not kept.
+    relative: bool,
     /// Each particle's centre and angle at the build.
     at_build: Vec<(Point, f64)>,
     /// Each particle's least gap between its box and the box of a wall
@@ -84,11 +88,13 @@ pub(super) struct ListTravel {
 }
 
 impl ListTravel {
-    /// Nothing built yet, for `particles` taken in blocks of `block`.
-    pub fn new(skin: f64, block: usize, particles: &[Particle]) -> Self {
+    /// Nothing built yet, for `particles` taken in blocks of `block`, the
+    /// relative travel tested if `relative`.
+    pub fn new(skin: f64, block: usize, relative: bool, particles: &[Particle]) -> Self {
         Self {
             skin,
             block,
+            relative,
             at_build: Vec::new(),
             wall_gaps: Vec::new(),
             turn_arm: particles
@@ -121,6 +127,10 @@ impl ListTravel {
         self.at_build
             .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
         self.wall_gaps.clear();
+        self.block_boxes.clear();
+        if !self.relative {
+            return;
+        }
         self.wall_gaps
             .extend(boxes.iter().enumerate().map(|(a, bounds)| {
                 let gap = wall_boxes
@@ -131,7 +141,6 @@ impl ListTravel {
                     .fold(f64::INFINITY, f64::min);
                 gap * (1.0 - HAIR)
             }));
-        self.block_boxes.clear();
         self.block_boxes
             .extend(boxes.chunks(self.block).map(|chunk| {
                 chunk[1..]
@@ -202,8 +211,12 @@ impl ListTravel {
     /// Whether the list still holds every pair that can touch, the
     /// particles now at `particles`' poses, by the relative travel per
     /// block (the second test of the module's docs); the blocks on
-    /// rayon's threads when `parallel`.
-    pub fn holds(&self, particles: &[Particle], parallel: bool) -> bool {
+    /// rayon's threads when `parallel`. `false` when the relative travel
+    /// is not tested.
+    pub fn relative_holds(&self, particles: &[Particle], parallel: bool) -> bool {
+        if !self.relative {
+            return false;
+        }
         let of_block = |(k, block): (usize, &[Particle])| self.block_travel(k, block);
         let travels: Vec<BlockTravel> = if parallel {
             particles
@@ -306,7 +319,7 @@ mod tests {
             let listed: Vec<Vec<bool>> = (0..n)
                 .map(|a| (0..n).map(|b| listed(a, b)).collect())
                 .collect();
-            let mut travel = ListTravel::new(skin, 4, particles);
+            let mut travel = ListTravel::new(skin, 4, true, particles);
             travel.built(particles, &boxes, &walls, wall_listed);
             let mut shifts = vec![Vec2::zeros(); n.div_ceil(4)];
             let all = Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * (0.3 * skin);
@@ -323,7 +336,7 @@ mod tests {
                         p.pose.angle += uniform(-0.02, 0.02);
                     }
                 }
-                if !travel.holds(particles, false) {
+                if !travel.relative_holds(particles, false) {
                     failed += 1;
                     break;
                 }
@@ -367,7 +380,7 @@ mod tests {
             .iter()
             .map(|p| p.shape.as_shape().aabb(&p.pose))
             .collect();
-        let mut travel = ListTravel::new(SKIN, block, &particles);
+        let mut travel = ListTravel::new(SKIN, block, true, &particles);
         travel.built(&particles, &boxes, walls, |a, w| {
             boxes[a].inflated(SKIN).intersects(&walls[w])
         });
@@ -387,7 +400,7 @@ mod tests {
         for (p, step) in particles.iter_mut().zip(moves) {
             p.pose.position.x += step;
         }
-        travel.holds(particles, block > 1)
+        travel.relative_holds(particles, block > 1)
     }
 
     /// Two particles in one block closing on each other hold the list
@@ -461,7 +474,7 @@ mod tests {
         let held = (0..1000)
             .take_while(|_| {
                 particles[0].pose.position.y -= 0.41 * SKIN;
-                travel.holds(&particles, false)
+                travel.relative_holds(&particles, false)
             })
             .count();
         assert_eq!(held, 97);
@@ -485,7 +498,10 @@ mod tests {
                         1 => pose.position.y = bad,
                         _ => pose.angle = bad,
                     }
-                    assert!(!travel.holds(&particles, false), "{bad} in field {field}");
+                    assert!(
+                        !travel.relative_holds(&particles, false),
+                        "{bad} in field {field}"
+                    );
                 }
             }
         }
@@ -508,12 +524,12 @@ mod tests {
         let box_of = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
         let boxes: Vec<Aabb2> = particles.iter().map(box_of).collect();
         assert!(!boxes[0].inflated(SKIN).intersects(&boxes[1]), "listed");
-        let mut travel = ListTravel::new(SKIN, 2, &particles);
+        let mut travel = ListTravel::new(SKIN, 2, true, &particles);
         travel.built(&particles, &boxes, &[], |_, _| false);
         let (mut asked, mut met) = (None, None);
         for step in 1..=500 {
             particles[0].pose.angle += 0.001;
-            if asked.is_none() && !travel.holds(&particles, false) {
+            if asked.is_none() && !travel.relative_holds(&particles, false) {
                 asked = Some(step);
             }
             if met.is_none() && box_of(&particles[0]).intersects(&box_of(&particles[1])) {

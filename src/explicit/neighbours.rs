@@ -190,9 +190,6 @@ pub(super) struct NeighbourList<S> {
     cross_in: Vec<CrossIn>,
     /// The poses of the last build, which decide when to build again.
     travel: ListTravel,
-    /// Whether a travel past half the skin is followed by the test of
-    /// the particles' relative travel ([`super::DemSettings::relative_travel`]).
-    relative_travel: bool,
     /// Bounding radius of each particle.
     radius: Vec<f64>,
     /// The wall pairs of the last build, `(particle, wall)`, in the list's
@@ -216,7 +213,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     pub fn new(skin: f64, relative_travel: bool, particles: &[Particle]) -> Self {
         Self {
             skin,
-            relative_travel,
             slots: Vec::new(),
             fill: Vec::new(),
             spare: Vec::new(),
@@ -228,7 +224,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             block_walls: Vec::new(),
             cross_in_start: Vec::new(),
             cross_in: Vec::new(),
-            travel: ListTravel::new(skin, BLOCK, particles),
+            travel: ListTravel::new(skin, BLOCK, relative_travel, particles),
             radius: particles
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
@@ -319,8 +315,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// `list_travel.rs`, on rayon's threads when `parallel`).
     pub fn note_travel(&mut self, largest: f64, particles: &[Particle], parallel: bool) {
         let own = largest <= self.travel.own_limit();
-        let relative = || self.relative_travel && self.travel.holds(particles, parallel);
-        if !own && (largest.is_nan() || !relative()) {
+        if !own && (largest.is_nan() || !self.travel.relative_holds(particles, parallel)) {
             self.stale = true;
         }
     }
