@@ -49,6 +49,15 @@ use crate::shape::AnyShape2;
 /// The part of a bound a comparison keeps against rounding.
 const HAIR: f64 = 1e-9;
 
+/// The lower and upper corners of the box of `vectors` (infinite, and
+/// the wrong way round, for none).
+fn corners(vectors: impl Iterator<Item = Vec2>) -> (Vec2, Vec2) {
+    vectors.fold(
+        (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
+        |(low, high), v| (low.inf(&v), high.sup(&v)),
+    )
+}
+
 /// How far the particles of one block have moved since the build.
 #[derive(Debug, Clone, Copy)]
 struct BlockTravel {
@@ -178,12 +187,11 @@ impl ListTravel {
         let first = k * self.block;
         let displacement =
             |offset: usize, p: &Particle| p.pose.position - self.at_build[first + offset].0;
-        let (low, high) = particles.iter().enumerate().fold(
-            (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
-            |(low, high), (offset, p)| {
-                let moved = displacement(offset, p);
-                (low.inf(&moved), high.sup(&moved))
-            },
+        let (low, high) = corners(
+            particles
+                .iter()
+                .enumerate()
+                .map(|(offset, p)| displacement(offset, p)),
         );
         let reference = 0.5 * (low + high);
         let mut travel = BlockTravel {
@@ -238,10 +246,7 @@ impl ListTravel {
         // Any pair of blocks within the widest spreads and the spread of
         // the references: no pair of blocks needs a look.
         let widest = travels.iter().fold(0.0f64, |m, t| m.max(t.spread));
-        let (low, high) = travels.iter().fold(
-            (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
-            |(low, high), t| (low.inf(&t.reference), high.sup(&t.reference)),
-        );
+        let (low, high) = corners(travels.iter().map(|t| t.reference));
         let references = if travels.is_empty() {
             0.0
         } else {
@@ -392,7 +397,7 @@ mod tests {
     /// Whether the list holds after particle `i` of `particles` moved by
     /// `moves[i]` along x.
     fn holds_after(
-        travel: &mut ListTravel,
+        travel: &ListTravel,
         particles: &mut [Particle],
         block: usize,
         moves: &[f64],
@@ -409,10 +414,10 @@ mod tests {
     #[test]
     fn one_block_holds_until_its_particles_close_by_the_skin() {
         for (closing, holds) in [(0.99 * SKIN, true), (1.01 * SKIN, false)] {
-            let (mut travel, mut particles) = circles(&[(1.0, 1.0), (3.0, 1.0)], 2, &[]);
+            let (travel, mut particles) = circles(&[(1.0, 1.0), (3.0, 1.0)], 2, &[]);
             let half = 0.5 * closing;
             assert_eq!(
-                holds_after(&mut travel, &mut particles, 2, &[half, -half]),
+                holds_after(&travel, &mut particles, 2, &[half, -half]),
                 holds,
                 "{closing}"
             );
@@ -422,9 +427,9 @@ mod tests {
     /// How many steps of `moves` (m along x, per particle) the list
     /// holds, at most 1 000.
     fn steps_held(centres: &[(f64, f64)], block: usize, moves: &[f64]) -> usize {
-        let (mut travel, mut particles) = circles(centres, block, &[]);
+        let (travel, mut particles) = circles(centres, block, &[]);
         (0..1000)
-            .take_while(|_| holds_after(&mut travel, &mut particles, block, moves))
+            .take_while(|_| holds_after(&travel, &mut particles, block, moves))
             .count()
     }
 
@@ -451,11 +456,11 @@ mod tests {
     /// particles move about it.
     #[test]
     fn a_block_moving_as_a_whole_holds_the_list() {
-        let (mut travel, mut particles) = circles(&[(1.0, 1.0), (1.3, 1.0), (3.0, 1.0)], 2, &[]);
+        let (travel, mut particles) = circles(&[(1.0, 1.0), (1.3, 1.0), (3.0, 1.0)], 2, &[]);
         let step = 0.3 * SKIN;
         for k in 0..100 {
             assert!(
-                holds_after(&mut travel, &mut particles, 2, &[step, step, step]),
+                holds_after(&travel, &mut particles, 2, &[step, step, step]),
                 "step {k}"
             );
         }
