@@ -218,7 +218,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     };
     println!(
         "{:?} n={n} numbering={:?} threads={} settle={} ({settle_seconds:.2} s) steps={} in {seconds:.3} s: \
-         {rate:.4e} particle-steps/s; neighbour list built {} times; peak memory of the run {rss}; \
+         {rate:.4e} particle-steps/s; neighbour list built {} times (skin {:.4} m at the last build); peak memory of the run {rss}; \
          kinetic energy {:.4e} J; {:.2} contact points per particle at the end (each pair once, walls included)",
         args.shape,
         args.numbering,
@@ -226,6 +226,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         args.settle,
         args.steps,
         sim.neighbour_list_builds() - builds,
+        sim.neighbour_skin(),
         sim.kinetic_energy(),
         sim.contacts().len() as f64 / n as f64
     );

@@ -460,6 +460,90 @@ fn a_packing_falling_as_a_whole_keeps_its_list_until_it_meets_the_floor() {
     }
 }
 
+/// The tuned skin (the default, `neighbour_skin: None`) widens while the
+/// particles move fast and the list is built often, and narrows again once
+/// the builds are rare; only how often the list is built changes. The
+/// lattice of 1 200 disks above, thrown down at 4 m/s, falls 0.45 m in
+/// 1 000 steps: with the least skin held fixed (0.15 of the radius,
+/// 0.0075 m) the list is built more than 100 times, with the tuned skin
+/// at most half as often, its skin by then wider than the least. After
+/// 3 000 steps of landing and bouncing (1 200 contacts at the most) the
+/// skin is back to the least, and both runs end in the bits of one that builds the list
+/// at every step.
+#[test]
+fn the_tuned_skin_widens_in_a_fall_and_keeps_the_bits() {
+    let lattice = (40, 30);
+    let scene = || {
+        let mut scene =
+            Scene::new(Frame::open_box(6.0, 5.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
+        add_lattice(&mut scene, lattice, 0.6, 0.6, Vec2::new(0.0, -4.0));
+        scene
+    };
+    let least = 0.15 * 0.05;
+    let (fall, landing) = (1000, 3000);
+    let start = |skin| {
+        let settings = DemSettings {
+            dt: 1e-4,
+            neighbour_skin: skin,
+            ..DemSettings::default()
+        };
+        DemSimulation::new(scene(), law(1.6e7, 2000.0), ExplicitEuler, settings).unwrap()
+    };
+    let (mut tuned, mut fixed) = (start(None), start(Some(least)));
+    assert_eq!(tuned.neighbour_skin(), least);
+    for _ in 0..fall {
+        tuned.step().unwrap();
+        fixed.step().unwrap();
+    }
+    assert!(tuned.contacts().is_empty());
+    let lowest = tuned
+        .scene()
+        .particles
+        .iter()
+        .map(|p| p.pose.position.y)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest < 0.2 && lowest > 0.05,
+        "the lowest centre at {lowest} m"
+    );
+    let (tuned_builds, fixed_builds) =
+        (tuned.neighbour_list_builds(), fixed.neighbour_list_builds());
+    let falling_skin = tuned.neighbour_skin();
+    println!(
+        "in the fall: {fixed_builds} builds with the least skin, {tuned_builds} tuned (skin {falling_skin} m)"
+    );
+    assert!(fixed_builds > 100, "{fixed_builds}");
+    assert!(
+        2 * tuned_builds <= fixed_builds,
+        "{tuned_builds} against {fixed_builds}"
+    );
+    assert!(
+        falling_skin > 1.5 * least && falling_skin <= 4.0 * least,
+        "{falling_skin}"
+    );
+    assert_eq!(fixed.neighbour_skin(), least);
+    // The most contacts at a step of the landing.
+    let mut most_contacts = 0;
+    for _ in 0..landing {
+        tuned.step().unwrap();
+        fixed.step().unwrap();
+        most_contacts = most_contacts.max(tuned.contacts().len());
+    }
+    println!(
+        "{most_contacts} contacts at most in the landing, {} at the end",
+        tuned.contacts().len()
+    );
+    assert!(most_contacts > lattice.0 * 20, "{most_contacts} contacts");
+    let settled_skin = tuned.neighbour_skin();
+    println!("after landing: skin {settled_skin} m");
+    assert_eq!(settled_skin, least);
+    let every_step = run(scene(), (1.6e7, 2000.0), Some(0.0), fall + landing);
+    for sim in [&tuned, &fixed] {
+        assert_eq!(state_bits(sim), state_bits(&every_step));
+        assert_eq!(sim.contacts(), every_step.contacts());
+    }
+}
+
 /// With `relative_travel`, two blocks of particles moving towards each
 /// other keep the list until they may have met: two lattices of 1 024 disks (one block each),
 /// 0.3 m apart and closing at 2 m/s without gravity, need no build in

@@ -8,6 +8,7 @@ use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::PairContext;
+use super::skin::Skin;
 use super::stability::critical_time_step;
 use crate::broad_phase::CellGrid;
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
@@ -54,12 +55,19 @@ pub struct DemSettings {
     /// 0 for a circle, whose box a turn does not move); see also
     /// [`Self::relative_travel`].
     /// It changes the speed, not the forces (the list holds every pair
-    /// that can touch). `None` (the default) takes 0.15 of the smallest
-    /// particle's bounding radius; 0 builds the list at every step that
-    /// moves a particle (with [`Self::relative_travel`], every step at
-    /// which two particles move relative to each other). A larger skin
-    /// builds less often and lists more pairs that do not touch (a skin as
-    /// large as the scene lists every pair: n² of them).
+    /// that can touch). A larger skin builds less often and lists more
+    /// pairs that do not touch (a skin as large as the scene lists every
+    /// pair: n² of them). `Some(s)` keeps `s` at every build; 0 builds the
+    /// list at every step that moves a particle (with
+    /// [`Self::relative_travel`], every step at which two particles move
+    /// relative to each other). `None` (the default) tunes it at each
+    /// build, from 0.15 of the smallest particle's bounding radius up to
+    /// four times that, aiming at a build every 20 steps: the skin is
+    /// multiplied by `√(20 / k)`, `k` the steps since the last build, so
+    /// particles that move fast (a collapsing column, a flow) get a wider
+    /// skin and fewer builds, and a settled packing keeps the least one
+    /// ([`ExplicitDynamics::neighbour_skin`] gives the skin of the last
+    /// build).
     pub neighbour_skin: Option<f64>,
     /// Keep the neighbour list past a particle's travel of half the skin
     /// while no two particles may have come closer by the skin, nor a
@@ -89,19 +97,20 @@ impl Default for DemSettings {
 }
 
 impl DemSettings {
-    /// The skin for `scene`: the setting, or 0.15 of the smallest bounding
-    /// radius (for a scene without particles, which has no pairs, a huge
-    /// finite one).
-    fn skin_for(&self, scene: &Scene) -> Result<f64> {
+    /// The skin for `scene`: the setting, fixed, or tuned from 0.15 of
+    /// the smallest bounding radius (for a scene without particles, which
+    /// has no pairs, a huge finite one).
+    fn skin_for(&self, scene: &Scene) -> Result<Skin> {
         match self.neighbour_skin {
-            Some(skin) => require_non_negative("neighbour_skin", skin),
-            None => Ok(0.15
-                * scene
+            Some(skin) => require_non_negative("neighbour_skin", skin).map(Skin::fixed),
+            None => Ok(Skin::tuned(
+                0.15 * scene
                     .particles
                     .iter()
                     .map(|p| p.shape.as_shape().bounding_radius())
                     .fold(f64::INFINITY, f64::min)
-                    .min(f64::MAX)),
+                    .min(f64::MAX),
+            )),
         }
     }
 }
@@ -485,6 +494,12 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// How many times the neighbour list has been built.
     pub fn neighbour_list_builds(&self) -> u64 {
         self.neighbours.builds()
+    }
+
+    /// The skin of the neighbour list's last build (m; before the first,
+    /// the skin it will start from): see [`DemSettings::neighbour_skin`].
+    pub fn neighbour_skin(&self) -> f64 {
+        self.neighbours.skin()
     }
 
     /// Total kinetic energy (J/m).

@@ -158,6 +158,12 @@ impl ListTravel {
             }));
     }
 
+    /// The skin of the build to come (the list's skin may change from one
+    /// build to the next).
+    pub fn set_skin(&mut self, skin: f64) {
+        self.skin = skin;
+    }
+
     /// The largest travel the first test stands: half the skin, less the
     /// hair.
     pub fn own_limit(&self) -> f64 {

@@ -5,7 +5,7 @@
 //!
 //! | slot or step | piece |
 //! |---|---|
-//! | candidate pairs | a neighbour list with a skin ([`DemSettings::neighbour_skin`]), built by [`crate::broad_phase::CellGrid`] when a particle has moved half the skin (or, with [`DemSettings::relative_travel`], when two particles may have come closer by the skin or a particle reached a wall not listed with it: a packing moving as a whole keeps its list) |
+//! | candidate pairs | a neighbour list with a skin ([`DemSettings::neighbour_skin`]; by default tuned at each build towards a build every 20 steps: wider while the particles move fast, the least again once they settle), built by [`crate::broad_phase::CellGrid`] when a particle has moved half the skin (or, with [`DemSettings::relative_travel`], when two particles may have come closer by the skin or a particle reached a wall not listed with it: a packing moving as a whole keeps its list) |
 //! | pair geometry | [`crate::query::manifold::dispatch::contact_manifold_2d`] (several points for polygons; circles against circles and walls call [`crate::query::manifold::circle_circle`] and [`crate::query::manifold::circle_segment`] directly, two ellipses [`crate::query::manifold::ellipse::contact_ellipse_ellipse_oriented`] with each ellipse's rotation kept beside its pose; the radii of curvature (and a circle pair's width) are computed only for a law that reads them ([`crate::law::ContactLaw::uses_contact_shape`]); pairs of ellipses, or of an ellipse and a circle, seek their contact about the last step's contact point first) |
 //! | relative motion at the contact | [`crate::query::relative_increment`] |
 //! | contact force and history | any [`crate::law::ContactLaw<2>`] with a [`crate::law::BoundedStiffness`], e.g. [`crate::law::SpringDashpotCoulomb`] |
@@ -64,6 +64,7 @@ mod list_travel;
 mod motion;
 mod neighbours;
 mod pair_forces;
+mod skin;
 mod stability;
 
 pub use driver::{

@@ -21,6 +21,7 @@ use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
 use super::list_travel::ListTravel;
+use super::skin::Skin;
 use crate::broad_phase::CellGrid;
 use crate::law::Regime;
 use crate::math::{Aabb2, Point, Vec2};
@@ -160,7 +161,8 @@ pub(super) struct BlockSlots<'a, S> {
 /// list was built at.
 #[derive(Debug, Clone)]
 pub(super) struct NeighbourList<S> {
-    skin: f64,
+    /// The skin of the last build, and how the next is chosen.
+    skin: Skin,
     /// Pairs: particle pairs by (A, B), then walls by (particle, wall).
     pub slots: Vec<PairSlot<S>>,
     /// Scratch of the build's counting sort.
@@ -209,8 +211,8 @@ pub(super) struct NeighbourList<S> {
 }
 
 impl<S: Clone + Send + Sync> NeighbourList<S> {
-    /// An empty list with skin `skin` (m), built at the first step.
-    pub fn new(skin: f64, relative_travel: bool, particles: &[Particle]) -> Self {
+    /// An empty list with skin `skin`, built at the first step.
+    pub fn new(skin: Skin, relative_travel: bool, particles: &[Particle]) -> Self {
         Self {
             skin,
             slots: Vec::new(),
@@ -224,7 +226,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             block_walls: Vec::new(),
             cross_in_start: Vec::new(),
             cross_in: Vec::new(),
-            travel: ListTravel::new(skin, BLOCK, relative_travel, particles),
+            travel: ListTravel::new(skin.current(), BLOCK, relative_travel, particles),
             radius: particles
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
@@ -242,6 +244,11 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// How many times the list was built.
     pub fn builds(&self) -> u64 {
         self.builds
+    }
+
+    /// The skin of the last build (m).
+    pub fn skin(&self) -> f64 {
+        self.skin.current()
     }
 
     /// The pairs whose B is in block `k` and whose A is in an earlier
@@ -314,6 +321,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// to a wall than the list stands (the test per block of
     /// `list_travel.rs`, on rayon's threads when `parallel`).
     pub fn note_travel(&mut self, largest: f64, particles: &[Particle], parallel: bool) {
+        self.skin.stepped();
         let own = largest <= self.travel.own_limit();
         if !own && (largest.is_nan() || !self.travel.relative_holds(particles, parallel)) {
             self.stale = true;
@@ -328,6 +336,8 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         parallel: bool,
     ) {
         let n = particles.len();
+        let skin = self.skin.at_build();
+        self.travel.set_skin(skin);
         let aabb = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
         self.boxes.clear();
         if parallel {
@@ -338,7 +348,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         self.wall_boxes.clear();
         self.wall_boxes
             .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
-        let skin = self.skin;
         // A wall is listed with a particle when their boxes are closer
         // than the skin.
         let wall_listed = |bounds: &Aabb2, wall: &Aabb2| bounds.inflated(skin).intersects(wall);
