@@ -93,7 +93,8 @@ struct Args {
     /// Threads of the force loop (rayon's pool).
     #[arg(long, default_value_t = 1)]
     threads: usize,
-    /// Skin of the neighbour list (m); the driver's default when omitted.
+    /// Skin of the neighbour list (m), fixed; when omitted, the driver's
+    /// default, tuned at each build.
     #[arg(long)]
     skin: Option<f64>,
     /// Seed of the diameters and velocities.

@@ -383,6 +383,27 @@ fn add_lattice(
     }
 }
 
+/// The falling lattices' columns and rows.
+const FALLING_LATTICE: (usize, usize) = (40, 30);
+
+/// [`FALLING_LATTICE`]'s disks (1 200, two blocks), the lowest row's
+/// centres 0.6 m above the floor of a box 6 m wide, all at `velocity`,
+/// under gravity.
+fn falling_lattice(velocity: Vec2) -> Scene {
+    let mut scene = Scene::new(Frame::open_box(6.0, 5.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
+    add_lattice(&mut scene, FALLING_LATTICE, 0.6, 0.6, velocity);
+    scene
+}
+
+/// The lowest particle centre's height.
+fn lowest(sim: &DemSimulation<SpringDashpotCoulomb>) -> f64 {
+    sim.scene()
+        .particles
+        .iter()
+        .map(|p| p.pose.position.y)
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// With `relative_travel`, the list is kept while the particles move
 /// together: what decides a build is how far they may have come closer to
 /// each other (or to a wall they are not listed with), not how far they
@@ -395,13 +416,8 @@ fn add_lattice(
 /// one that builds the list at every step.
 #[test]
 fn a_packing_falling_as_a_whole_keeps_its_list_until_it_meets_the_floor() {
-    let lattice = (40, 30);
-    let scene = || {
-        let mut scene =
-            Scene::new(Frame::open_box(6.0, 5.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
-        add_lattice(&mut scene, lattice, 0.6, 0.6, Vec2::zeros());
-        scene
-    };
+    let lattice = FALLING_LATTICE;
+    let scene = || falling_lattice(Vec2::zeros());
     let skin = 0.01;
     let (fall, landing) = (3000, 2000);
     let settings = |relative_travel| DemSettings {
@@ -414,13 +430,6 @@ fn a_packing_falling_as_a_whole_keeps_its_list_until_it_meets_the_floor() {
         DemSimulation::new(scene(), law(1.6e7, 2000.0), ExplicitEuler, settings(true)).unwrap();
     let mut own =
         DemSimulation::new(scene(), law(1.6e7, 2000.0), ExplicitEuler, settings(false)).unwrap();
-    let lowest = |sim: &DemSimulation<SpringDashpotCoulomb>| {
-        sim.scene()
-            .particles
-            .iter()
-            .map(|p| p.pose.position.y)
-            .fold(f64::INFINITY, f64::min)
-    };
     for _ in 0..fall {
         kept.step().unwrap();
         own.step().unwrap();
@@ -468,17 +477,12 @@ fn a_packing_falling_as_a_whole_keeps_its_list_until_it_meets_the_floor() {
 /// 0.0075 m) the list is built more than 100 times, with the tuned skin
 /// at most half as often, its skin by then wider than the least. After
 /// 3 000 steps of landing and bouncing (1 200 contacts at the most) the
-/// skin is back to the least, and both runs end in the bits of one that builds the list
-/// at every step.
+/// skin is back to the least, and both runs end in the bits of one that
+/// builds the list at every step.
 #[test]
 fn the_tuned_skin_widens_in_a_fall_and_keeps_the_bits() {
-    let lattice = (40, 30);
-    let scene = || {
-        let mut scene =
-            Scene::new(Frame::open_box(6.0, 5.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
-        add_lattice(&mut scene, lattice, 0.6, 0.6, Vec2::new(0.0, -4.0));
-        scene
-    };
+    let lattice = FALLING_LATTICE;
+    let scene = || falling_lattice(Vec2::new(0.0, -4.0));
     let least = 0.15 * 0.05;
     let (fall, landing) = (1000, 3000);
     let start = |skin| {
@@ -496,15 +500,10 @@ fn the_tuned_skin_widens_in_a_fall_and_keeps_the_bits() {
         fixed.step().unwrap();
     }
     assert!(tuned.contacts().is_empty());
-    let lowest = tuned
-        .scene()
-        .particles
-        .iter()
-        .map(|p| p.pose.position.y)
-        .fold(f64::INFINITY, f64::min);
+    let bottom = lowest(&tuned);
     assert!(
-        lowest < 0.2 && lowest > 0.05,
-        "the lowest centre at {lowest} m"
+        bottom < 0.2 && bottom > 0.05,
+        "the lowest centre at {bottom} m"
     );
     let (tuned_builds, fixed_builds) =
         (tuned.neighbour_list_builds(), fixed.neighbour_list_builds());
