@@ -60,9 +60,10 @@ pub struct DemSettings {
     /// pair: n² of them). `Some(s)` keeps `s` at every build; 0 builds the
     /// list at every step that moves a particle (with
     /// [`Self::relative_travel`], every step at which two particles move
-    /// relative to each other). `None` (the default) tunes it at each
-    /// build, from 0.15 of the smallest particle's bounding radius up to
-    /// four times that, aiming at a build every 20 steps: the skin is
+    /// relative to each other). `None` (the default) starts from 0.15 of
+    /// the smallest particle's bounding radius and tunes it at each build
+    /// after the first, up to four times that, aiming at a build every 20
+    /// steps (more often at that ceiling): the skin is
     /// multiplied by `√(20 / k)`, `k` the steps since the last build, so
     /// particles that move fast (a collapsing column, a flow) get a wider
     /// skin and fewer builds, and a settled packing keeps the least one

@@ -99,9 +99,9 @@ pub(super) struct ListTravel {
 impl ListTravel {
     /// Nothing built yet, for `particles` taken in blocks of `block`, the
     /// relative travel tested if `relative`.
-    pub fn new(skin: f64, block: usize, relative: bool, particles: &[Particle]) -> Self {
+    pub fn new(block: usize, relative: bool, particles: &[Particle]) -> Self {
         Self {
-            skin,
+            skin: 0.0,
             block,
             relative,
             at_build: Vec::new(),
@@ -122,16 +122,19 @@ impl ListTravel {
         self.at_build[i].0
     }
 
-    /// A build at the particles' present poses: `boxes` are their boxes,
-    /// `wall_boxes` the walls', and `listed(a, w)` whether wall `w` is
-    /// listed with particle `a`.
+    /// A build with skin `skin` at the particles' present poses: `boxes`
+    /// are their boxes, `wall_boxes` the walls', and `listed(a, w)`
+    /// whether wall `w` is listed with particle `a`. The tests until the
+    /// next build measure from these poses against this skin.
     pub fn built(
         &mut self,
+        skin: f64,
         particles: &[Particle],
         boxes: &[Aabb2],
         wall_boxes: &[Aabb2],
         listed: impl Fn(usize, usize) -> bool,
     ) {
+        self.skin = skin;
         self.at_build.clear();
         self.at_build
             .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
@@ -156,12 +159,6 @@ impl ListTravel {
                     .iter()
                     .fold(chunk[0], |union, bounds| union.merged(bounds))
             }));
-    }
-
-    /// The skin of the build to come (the list's skin may change from one
-    /// build to the next).
-    pub fn set_skin(&mut self, skin: f64) {
-        self.skin = skin;
     }
 
     /// The largest travel the first test stands: half the skin, less the
@@ -330,8 +327,8 @@ mod tests {
             let listed: Vec<Vec<bool>> = (0..n)
                 .map(|a| (0..n).map(|b| listed(a, b)).collect())
                 .collect();
-            let mut travel = ListTravel::new(skin, 4, true, particles);
-            travel.built(particles, &boxes, &walls, wall_listed);
+            let mut travel = ListTravel::new(4, true, particles);
+            travel.built(skin, particles, &boxes, &walls, wall_listed);
             let mut shifts = vec![Vec2::zeros(); n.div_ceil(4)];
             let all = Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * (0.3 * skin);
             let apart = uniform(0.0, 0.2) * skin;
@@ -391,8 +388,8 @@ mod tests {
             .iter()
             .map(|p| p.shape.as_shape().aabb(&p.pose))
             .collect();
-        let mut travel = ListTravel::new(SKIN, block, true, &particles);
-        travel.built(&particles, &boxes, walls, |a, w| {
+        let mut travel = ListTravel::new(block, true, &particles);
+        travel.built(SKIN, &particles, &boxes, walls, |a, w| {
             boxes[a].inflated(SKIN).intersects(&walls[w])
         });
         (travel, particles)
@@ -535,8 +532,8 @@ mod tests {
         let box_of = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
         let boxes: Vec<Aabb2> = particles.iter().map(box_of).collect();
         assert!(!boxes[0].inflated(SKIN).intersects(&boxes[1]), "listed");
-        let mut travel = ListTravel::new(SKIN, 2, true, &particles);
-        travel.built(&particles, &boxes, &[], |_, _| false);
+        let mut travel = ListTravel::new(2, true, &particles);
+        travel.built(SKIN, &particles, &boxes, &[], |_, _| false);
         let (mut asked, mut met) = (None, None);
         for step in 1..=500 {
             particles[0].pose.angle += 0.001;

@@ -226,7 +226,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             block_walls: Vec::new(),
             cross_in_start: Vec::new(),
             cross_in: Vec::new(),
-            travel: ListTravel::new(skin.current(), BLOCK, relative_travel, particles),
+            travel: ListTravel::new(BLOCK, relative_travel, particles),
             radius: particles
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
@@ -319,7 +319,8 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// the skin and, when the relative travel is tested, the particles,
     /// now at `particles`' poses, may have come closer to each other or
     /// to a wall than the list stands (the test per block of
-    /// `list_travel.rs`, on rayon's threads when `parallel`).
+    /// `list_travel.rs`, on rayon's threads when `parallel`). Called once
+    /// a step: each call counts a step towards the tuning of the skin.
     pub fn note_travel(&mut self, largest: f64, particles: &[Particle], parallel: bool) {
         self.skin.stepped();
         let own = largest <= self.travel.own_limit();
@@ -337,7 +338,6 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     ) {
         let n = particles.len();
         let skin = self.skin.at_build();
-        self.travel.set_skin(skin);
         let aabb = |p: &Particle| p.shape.as_shape().aabb(&p.pose);
         self.boxes.clear();
         if parallel {
@@ -354,7 +354,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         // The poses of this build, which the travels are measured from.
         let boxes = &self.boxes;
         self.travel
-            .built(particles, boxes, &self.wall_boxes, |a, w| {
+            .built(skin, particles, boxes, &self.wall_boxes, |a, w| {
                 wall_listed(&boxes[a], &self.wall_boxes[w])
             });
         // Of the pairs whose boxes are closer than the skin, those whose

@@ -7,35 +7,36 @@
 //! tuned skin aims at one build every [`TARGET_STEPS_BETWEEN_BUILDS`]
 //! steps: at each build after the first it is multiplied by
 //! `√(target / k)`, `k` the steps since the last build, and kept between
-//! the least skin and [`CEILING`] times it. A particle reaches half the
-//! skin in a time proportional to the skin, so `target / k` would aim at
-//! the target in one build; the square root takes half of that step (in
-//! the logarithm), so that one short or long interval does not swing the
-//! skin. Only how often the list is built changes, never the forces: the
-//! list holds every pair that can touch at any skin.
+//! the least skin and [`CEILING_OVER_LEAST`] times it. A particle reaches
+//! half the skin in a time proportional to the skin, so `target / k`
+//! would aim at the target in one build; the square root takes half of
+//! that step in the logarithm, so the skin settles towards the target
+//! without overshooting it when the particles keep their pace (a single
+//! build one step after the last still multiplies it by √20, to the
+//! ceiling). Only the work changes (how often the list is built, how many
+//! pairs it holds), never the results: the list holds every pair that
+//! can touch at any skin.
 
 /// The steps between builds the tuned skin aims at. A build of the list
 /// costs about 1.2 steps (99 856 disks), so one in 20 steps is about 6 %
 /// of the time, about where the pairs a wider skin adds cost as much as
-/// the builds it saves (a fixed skin twice the least, 0.018 m against
-/// 0.009 m, made 1 024 settled disks 5 % slower, medians of three). The
-/// anchor's square column of 99 856 disks (renumbered), still collapsing
-/// after 20 000 steps, built its list 651 times in the next 6 000 steps
-/// with the least skin and 295 times tuned, and ran 12 % faster (medians
-/// of two runs); over 10 000 steps, 808 times against 452 and 3 % faster,
-/// the last 4 000 steps building as often either way (every 25 steps: the
-/// tuned skin is back to the least). Settled packings, built every few
-/// hundred steps, keep the least skin and their speed.
+/// the builds it saves (a fixed skin twice the least made 1 024 settled
+/// disks about 5 % slower). The value was chosen on the anchor's square
+/// column of 99 856 disks, still collapsing after 20 000 steps, not swept:
+/// the README's throughput section gives the measurements.
 pub(super) const TARGET_STEPS_BETWEEN_BUILDS: f64 = 20.0;
 
-/// How far above the least skin the tuned skin may go.
-pub(super) const CEILING: f64 = 4.0;
+/// The widest tuned skin, over the least. With the least skin 0.15 of the
+/// smallest radius, two such disks are listed at four times it out to 2.6
+/// radii between centres against 2.15: 1.46 times the area in which a
+/// neighbour's centre is listed.
+pub(super) const CEILING_OVER_LEAST: f64 = 4.0;
 
 /// The skin of each build and the steps since the last one.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Skin {
     /// The skin of the last build (the least before the first).
-    skin: f64,
+    current: f64,
     least: f64,
     most: f64,
     /// Steps since the last build.
@@ -50,14 +51,16 @@ impl Skin {
         Self::between(skin, skin)
     }
 
-    /// A skin tuned from `least` up to [`CEILING`] times it.
+    /// A skin tuned from `least` (finite, not negative) up to
+    /// [`CEILING_OVER_LEAST`] times it.
     pub fn tuned(least: f64) -> Self {
-        Self::between(least, (CEILING * least).min(f64::MAX))
+        debug_assert!(least.is_finite() && least >= 0.0, "least skin {least}");
+        Self::between(least, (CEILING_OVER_LEAST * least).min(f64::MAX))
     }
 
     fn between(least: f64, most: f64) -> Self {
         Self {
-            skin: least,
+            current: least,
             least,
             most,
             steps: 0,
@@ -67,7 +70,7 @@ impl Skin {
 
     /// The skin of the last build.
     pub fn current(&self) -> f64 {
-        self.skin
+        self.current
     }
 
     /// A step was taken.
@@ -79,11 +82,11 @@ impl Skin {
     pub fn at_build(&mut self) -> f64 {
         if self.built {
             let ratio = TARGET_STEPS_BETWEEN_BUILDS / self.steps.max(1) as f64;
-            self.skin = (self.skin * ratio.sqrt()).clamp(self.least, self.most);
+            self.current = (self.current * ratio.sqrt()).clamp(self.least, self.most);
         }
         self.built = true;
         self.steps = 0;
-        self.skin
+        self.current
     }
 }
 
@@ -123,9 +126,11 @@ mod tests {
     }
 
     #[test]
-    fn a_build_at_the_next_step_counts_as_one_step() {
+    fn a_build_with_no_step_between_is_taken_as_one_step_apart() {
         // √20 ≈ 4.47 from the least: capped at 4.
         assert_eq!(skins(Skin::tuned(1.0), &[0, 1]), vec![1.0, 4.0, 4.0]);
+        // A skin of 0 stays 0 (without the step, 0 · ∞ would be NaN).
+        assert_eq!(skins(Skin::tuned(0.0), &[0]), vec![0.0, 0.0]);
     }
 
     #[test]
