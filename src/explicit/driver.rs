@@ -5,6 +5,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
+use super::keys::pack_limits;
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, BLOCK};
 use super::pair_forces::PairContext;
@@ -361,6 +362,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             "initial_overlap_tolerance",
             settings.initial_overlap_tolerance,
         )?;
+        pack_limits(&scene)?;
         let n = scene.particles.len();
         let skin = settings.skin_for(&scene)?;
         let mut mass = Vec::with_capacity(3 * n);
@@ -424,8 +426,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     fn most_contacts(&self) -> usize {
         let mut count = vec![0usize; self.scene.particles.len()];
         for slot in &self.neighbours.slots {
-            count[slot.a] += slot.points.len();
-            if let ContactTarget::Particle(j) = slot.target {
+            count[slot.a()] += slot.points.len();
+            if let ContactTarget::Particle(j) = slot.target() {
                 count[j] += slot.points.len();
             }
         }
@@ -479,13 +481,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .iter()
                 .flat_map(|slot| {
                     slot.points.iter().map(move |p| ContactRecord {
-                        particle: slot.a,
-                        target: slot.target,
+                        particle: slot.a(),
+                        target: slot.target(),
                         point: p.point,
                         force_on_target: p.force_on_b,
                         normal: p.normal,
-                        regime: p.regime,
-                        features: p.features,
+                        regime: p.key.regime(),
+                        features: p.key.features(),
                     })
                 })
                 .collect()
@@ -529,7 +531,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         self.neighbours
             .slots
             .iter()
-            .filter(|slot| slot.target == ContactTarget::Wall(wall))
+            .filter(|slot| slot.target() == ContactTarget::Wall(wall))
             .flat_map(|slot| slot.points.iter().map(|p| p.force_on_b))
             .sum()
     }

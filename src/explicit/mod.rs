@@ -60,6 +60,7 @@
 
 mod checks;
 mod driver;
+mod keys;
 mod list_travel;
 mod motion;
 mod neighbours;

@@ -86,9 +86,13 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
         for cross in neighbours.cross_in(k) {
             let b = 3 * (cross.b - start);
             let points = || neighbours.slots[cross.slot].points.as_slice();
+            // B, in this block, has not moved yet.
+            let centre_b = &particles[cross.b - start].pose.position;
             for_each_point(
                 neighbours.cross_force(cross),
                 points,
+                // (A's moment went to A in A's block: not read here.)
+                |point| (f64::NAN, point.moment_b(centre_b)),
                 |force_on_b, _, moment_b| add_action(&mut force[b..b + 3], force_on_b, moment_b),
             );
         }

@@ -20,21 +20,24 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
+use super::keys::{PairKey, PointKey};
 use super::list_travel::ListTravel;
 use super::skin::Skin;
 use crate::broad_phase::CellGrid;
-use crate::law::Regime;
 use crate::math::{Aabb2, Point, Vec2};
-use crate::query::ContactFeatures;
+use crate::query::moment_about;
 use crate::scene::Particle;
 use crate::shape::Segment;
 
 /// One contact point of a pair: the law's history and the last step's
-/// result.
+/// result. (Its moments about the two centres are not kept: they follow
+/// from the point and the force, [`Self::moment_a`] and
+/// [`Self::moment_b`], while the bodies have not moved.)
 #[derive(Debug, Clone, Copy)]
 pub(super) struct PointContact<S> {
-    /// The features that name the point across steps.
-    pub features: ContactFeatures,
+    /// The features that name the point across steps, and the law's
+    /// regime at the last step.
+    pub key: PointKey,
     /// The law's state after the last step.
     pub state: S,
     /// The overlap at the last step (m).
@@ -45,12 +48,20 @@ pub(super) struct PointContact<S> {
     pub normal: Vec2,
     /// Force exerted by A on B.
     pub force_on_b: Vec2,
-    /// Moment of B's force on A about A's centre.
-    pub moment_a: f64,
-    /// Moment of A's force on B about B's centre (0 for a wall).
-    pub moment_b: f64,
-    /// Regime of the law.
-    pub regime: Regime,
+}
+
+impl<S> PointContact<S> {
+    /// The moment of B's force on A about A's centre `centre_a`.
+    #[inline]
+    pub fn moment_a(&self, centre_a: &Point) -> f64 {
+        moment_about(centre_a, &self.point, &(-self.force_on_b))
+    }
+
+    /// The moment of A's force on B about B's centre `centre_b`.
+    #[inline]
+    pub fn moment_b(&self, centre_b: &Point) -> f64 {
+        moment_about(centre_b, &self.point, &self.force_on_b)
+    }
 }
 
 /// The contact points of one pair; most pairs have at most one.
@@ -71,12 +82,25 @@ fn copy_points<S: Clone>(points: &PairPoints<S>) -> PairPoints<S> {
 /// of the last step.
 #[derive(Debug, Clone)]
 pub(super) struct PairSlot<S> {
-    /// The particle (A).
-    pub a: usize,
-    /// What it touches (B): a particle of higher index, or a wall.
-    pub target: ContactTarget,
+    /// The particle (A) and what it touches (B): a particle of higher
+    /// index, or a wall.
+    pub pair: PairKey,
     /// The contact points of the last step, in the manifold's order.
     pub points: PairPoints<S>,
+}
+
+impl<S> PairSlot<S> {
+    /// The particle A.
+    #[inline]
+    pub fn a(&self) -> usize {
+        self.pair.a()
+    }
+
+    /// What A may touch.
+    #[inline]
+    pub fn target(&self) -> ContactTarget {
+        self.pair.target()
+    }
 }
 
 /// A pair's force for the per-particle sums, apart from its points: the
@@ -96,21 +120,15 @@ pub(super) struct PairForce {
 }
 
 impl PairForce {
-    /// The summary of a pair's points.
-    pub fn of<S>(points: &[PointContact<S>]) -> Self {
-        match points.first() {
-            Some(p) => Self::of_point(p, points.len()),
-            None => Self::default(),
-        }
-    }
-
-    /// The summary of a pair of `points` points whose first is `first`.
+    /// The summary of a pair of `points` points whose first has the force
+    /// on B `force_on_b` and the moments `moment_a` about A's centre and
+    /// `moment_b` about B's.
     #[inline]
-    pub fn of_point<S>(first: &PointContact<S>, points: usize) -> Self {
+    pub fn of_first(force_on_b: Vec2, moment_a: f64, moment_b: f64, points: usize) -> Self {
         Self {
-            force_on_b: first.force_on_b,
-            moment_a: first.moment_a,
-            moment_b: first.moment_b,
+            force_on_b,
+            moment_a,
+            moment_b,
             count: points,
         }
     }
@@ -401,12 +419,15 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             let points = match (first, end) {
                 (Some(&first), Some(&end)) => old[first..end]
                     .iter()
-                    .find(|s| s.target == target)
+                    .find(|s| s.target() == target)
                     .map(|s| copy_points(&s.points))
                     .unwrap_or_default(),
                 _ => PairPoints::new(),
             };
-            PairSlot { a, target, points }
+            PairSlot {
+                pair: PairKey::new(a, target),
+                points,
+            }
         };
         let mut slots = std::mem::take(&mut self.spare);
         slots.clear();
@@ -453,9 +474,9 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         for k in 0..=blocks {
             let first = (k * BLOCK).min(n);
             self.block_pairs
-                .push(pairs.partition_point(|s| s.a < first));
+                .push(pairs.partition_point(|s| s.a() < first));
             self.block_walls
-                .push(self.particle_pairs + walls.partition_point(|s| s.a < first));
+                .push(self.particle_pairs + walls.partition_point(|s| s.a() < first));
         }
         // The pairs that cross blocks: their summaries by A's block in the
         // list's order, and where each goes by B's block (a counting sort
@@ -500,5 +521,21 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
 
         self.stale = false;
         self.builds += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law::SpringState;
+
+    /// A listed pair with its point of a spring–dashpot law takes 96
+    /// bytes (its key 8, its point 80, the point vector's length 8): each
+    /// step reads and writes every slot, and a large scene's list does
+    /// not fit in the caches.
+    #[test]
+    fn a_slot_takes_96_bytes() {
+        assert_eq!(std::mem::size_of::<PointContact<SpringState<2>>>(), 80);
+        assert_eq!(std::mem::size_of::<PairSlot<SpringState<2>>>(), 96);
     }
 }

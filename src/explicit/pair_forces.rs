@@ -5,6 +5,7 @@
 //! in `motion.rs`.
 
 use super::driver::ContactTarget;
+use super::keys::PointKey;
 use super::neighbours::{
     crosses_blocks, BlockSlots, PairForce, PairPoints, PairSlot, PointContact,
 };
@@ -15,18 +16,20 @@ use crate::query::manifold::circle_circle::contact_circle_circle_shaped;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
 use crate::query::manifold::ellipse::{contact_ellipse_ellipse_oriented, OrientedEllipse};
-use crate::query::{moment_about, relative_increment, ContactGeometry, ContactShape};
+use crate::query::{relative_increment, ContactGeometry, ContactShape};
 use crate::scene::Particle;
 use crate::shape::{AnyShape2, Segment};
 use nalgebra::UnitComplex;
 
 /// The force on B, the moment about A's centre and the moment about B's
 /// centre of each contact point of a pair, in the manifold's order, from
-/// its summary (a pair of one point) or its points.
+/// its summary (a pair of one point) or its points and their `moments`
+/// (about A's centre and B's, of those the caller reads).
 #[inline]
 pub(super) fn for_each_point<'a, S: 'a>(
     pair: &PairForce,
     points: impl FnOnce() -> &'a [PointContact<S>],
+    moments: impl Fn(&PointContact<S>) -> (f64, f64),
     mut add: impl FnMut(Vec2, f64, f64),
 ) {
     match pair.count {
@@ -34,7 +37,8 @@ pub(super) fn for_each_point<'a, S: 'a>(
         1 => add(pair.force_on_b, pair.moment_a, pair.moment_b),
         _ => {
             for p in points() {
-                add(p.force_on_b, p.moment_a, p.moment_b);
+                let (moment_a, moment_b) = moments(p);
+                add(p.force_on_b, moment_a, moment_b);
             }
         }
     }
@@ -104,14 +108,14 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             let mut pair = PairForce::default();
             self.evaluate(slot, &mut pair, manifold)?;
             // (The block's particle pairs, never a wall.)
-            let ContactTarget::Particle(b) = slot.target else {
+            let ContactTarget::Particle(b) = slot.target() else {
                 continue;
             };
-            let a = local(slot.a);
+            let a = local(slot.a());
             // B's entries when B is in the block; a pair across blocks
             // keeps its summary for B instead, in the build's order of
             // those pairs.
-            let b_local = if crosses_blocks(slot.a, b) {
+            let b_local = if crosses_blocks(slot.a(), b) {
                 let summary = cross_out.next();
                 debug_assert!(summary.is_some(), "a crossing the build did not count");
                 if let Some(summary) = summary {
@@ -121,9 +125,19 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             } else {
                 Some(local(b))
             };
+            let centres = || {
+                (
+                    &self.particles[slot.a()].pose.position,
+                    &self.particles[b].pose.position,
+                )
+            };
             for_each_point(
                 &pair,
                 || &slot.points,
+                |point| {
+                    let (centre_a, centre_b) = centres();
+                    (point.moment_a(centre_a), point.moment_b(centre_b))
+                },
                 |force_on_b, moment_a, moment_b| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                     if let Some(b) = b_local {
@@ -136,10 +150,12 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         for slot in block.walls.iter_mut() {
             let mut pair = PairForce::default();
             self.evaluate(slot, &mut pair, manifold)?;
-            let a = local(slot.a);
+            let a = local(slot.a());
+            let centre_a = &self.particles[slot.a()].pose.position;
             for_each_point(
                 &pair,
                 || &slot.points,
+                |point| (point.moment_a(centre_a), 0.0),
                 |force_on_b, moment_a, _| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                 },
@@ -167,9 +183,9 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         force: &mut PairForce,
         manifold: &mut Vec<ContactGeometry>,
     ) -> Result<()> {
-        let pa = &self.particles[slot.a];
+        let pa = &self.particles[slot.a()];
         let wall;
-        let (shape_b, pose_b, other): (&AnyShape2, &Pose2, Other) = match slot.target {
+        let (shape_b, pose_b, other): (&AnyShape2, &Pose2, Other) = match slot.target() {
             ContactTarget::Particle(b) => {
                 let pb = &self.particles[b];
                 let other = Some((pb.pose.position, self.increments[b], pb.mass));
@@ -178,7 +194,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                         OrientedEllipse {
                             shape: ea,
                             pose: &pa.pose,
-                            rotation: &self.rotations[slot.a],
+                            rotation: &self.rotations[slot.a()],
                         },
                         OrientedEllipse {
                             shape: eb,
@@ -245,10 +261,9 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         let previous = slot
             .points
             .first()
-            .filter(|p| p.features == geometry.features)
+            .filter(|p| p.key.has_features(&geometry.features))
             .map(|p| (p.state.clone(), p.overlap));
-        let point = self.point_contact(slot.a, &geometry, other, previous);
-        let force = PairForce::of_point(&point, 1);
+        let (point, force) = self.point_contact(slot.a(), &geometry, other, previous);
         if slot.points.len() == 1 {
             slot.points[0] = point;
         } else {
@@ -269,24 +284,31 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         pose_b: &Pose2,
         other: Other,
     ) -> Result<PairForce> {
-        let pa = &self.particles[slot.a];
+        let pa = &self.particles[slot.a()];
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, shape_b, pose_b, manifold)?;
         let mut points = PairPoints::new();
+        let mut first = PairForce::default();
         for geometry in manifold.iter() {
             let previous = slot
                 .points
                 .iter()
-                .find(|p| p.features == geometry.features)
+                .find(|p| p.key.has_features(&geometry.features))
                 .map(|p| (p.state.clone(), p.overlap));
-            points.push(self.point_contact(slot.a, geometry, other, previous));
+            let (point, force) = self.point_contact(slot.a(), geometry, other, previous);
+            if points.is_empty() {
+                first = force;
+            }
+            points.push(point);
         }
+        first.count = points.len();
         slot.points = points;
-        Ok(PairForce::of(&slot.points))
+        Ok(first)
     }
 
-    /// One contact point of the pair: its relative motion, the law, and
-    /// the force and moments on the two bodies.
+    /// One contact point of the pair (its relative motion, the law, and
+    /// the force on B), and its summary as a pair's first point (with the
+    /// moments on the two bodies).
     #[inline]
     fn point_contact(
         &self,
@@ -294,7 +316,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         geometry: &ContactGeometry,
         other: Other,
         previous: Option<(L::State, f64)>,
-    ) -> PointContact<L::State> {
+    ) -> (PointContact<L::State>, PairForce) {
         let pa = &self.particles[a];
         let increment_a = self.increments[a];
         let (centre_b, increment_b, mass_b) =
@@ -332,21 +354,23 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         );
         let force_on_b =
             geometry.normal * response.force[0] - geometry.tangent() * response.force[1];
-        let moment_b = match other {
-            Some(_) => moment_about(&centre_b, &geometry.point, &force_on_b),
-            None => 0.0,
-        };
-        PointContact {
-            features: geometry.features,
+        let point = PointContact {
+            key: PointKey::new(&geometry.features, response.regime),
             state: response.state,
             overlap: geometry.overlap,
             point: geometry.point,
             normal: geometry.normal,
             force_on_b,
-            moment_a: moment_about(&pa.pose.position, &geometry.point, &(-force_on_b)),
-            moment_b,
-            regime: response.regime,
-        }
+        };
+        let moment_a = point.moment_a(&pa.pose.position);
+        let moment_b = match other {
+            Some(_) => point.moment_b(&centre_b),
+            None => 0.0,
+        };
+        (
+            point,
+            PairForce::of_first(force_on_b, moment_a, moment_b, 1),
+        )
     }
 }
 
