@@ -206,6 +206,42 @@ fn momentum_imbalance(sim: &DemSimulation<SpringDashpotCoulomb>, before: &[Vec2]
     (gained - dt * (weight - on_walls)).norm() / (dt * average_weight)
 }
 
+/// Each particle's centre and velocities before a step.
+type Motion = (Point, Vec2, f64);
+
+/// The step's angular momentum about the origin gained by the forces,
+/// `Σ (m x × Δv + I Δω)` with `x` the centres before the step, less the
+/// impulse of the weights' and the walls' moments about the origin,
+/// `Δt (Σ x × m g + Σ p × (−f_wall))`, over the impulse of the average
+/// weight's moment at 0.07 m (about a body's radius). A pair's forces and
+/// their moments about the two centres have no moment about the origin
+/// together, so a moment lost or added twice (a polygon point's about B's
+/// centre, say) makes it of the order of that moment over a weight's
+/// (10–80 when one of the three sums of polygon points' moments is left
+/// out); the round-off of `m x × Δv` over the pile, about 12 m wide, made
+/// at most 1.7e-8 in this test's run.
+fn angular_momentum_imbalance(sim: &DemSimulation<SpringDashpotCoulomb>, before: &[Motion]) -> f64 {
+    let dt = 1e-4;
+    let cross = |a: Vec2, b: Vec2| a.x * b.y - a.y * b.x;
+    let g = sim.scene().gravity;
+    let particles = &sim.scene().particles;
+    let (mut gained, mut of_weights) = (0.0, 0.0);
+    for (p, &(x, v, omega)) in particles.iter().zip(before) {
+        gained +=
+            p.mass * cross(x.coords, p.velocity - v) + p.inertia * (p.angular_velocity - omega);
+        of_weights += cross(x.coords, p.mass * g);
+    }
+    let of_walls: f64 = sim
+        .contacts()
+        .iter()
+        .filter(|c| matches!(c.target, ContactTarget::Wall(_)))
+        .map(|c| cross(c.point.coords, -c.force_on_target))
+        .sum();
+    let average_weight =
+        particles.iter().map(|p| p.mass * g.norm()).sum::<f64>() / particles.len() as f64;
+    (gained - dt * (of_weights + of_walls)).abs() / (dt * average_weight * 0.07)
+}
+
 /// A pile of 2100 circles, ellipses and polygons: above the threshold of
 /// the parallel loops (2000 particles) and three blocks of the force sums
 /// (1024 particles each), with polygon pairs of several points whose B is
@@ -233,10 +269,19 @@ fn a_mixed_pile_of_three_blocks_gives_the_same_bits_on_two_threads_and_any_skin(
                 DemSimulation::new(scene, law(4e6, 200.0), ExplicitEuler, settings).unwrap();
             let mut crossing_polygon_points = 0;
             let mut worst_imbalance = 0.0f64;
+            let mut worst_turning_imbalance = 0.0f64;
             for _ in 0..steps {
-                let before: Vec<Vec2> = sim.scene().particles.iter().map(|p| p.velocity).collect();
+                let before: Vec<Motion> = sim
+                    .scene()
+                    .particles
+                    .iter()
+                    .map(|p| (p.pose.position, p.velocity, p.angular_velocity))
+                    .collect();
+                let velocities: Vec<Vec2> = before.iter().map(|m| m.1).collect();
                 sim.step().unwrap();
-                worst_imbalance = worst_imbalance.max(momentum_imbalance(&sim, &before));
+                worst_imbalance = worst_imbalance.max(momentum_imbalance(&sim, &velocities));
+                worst_turning_imbalance =
+                    worst_turning_imbalance.max(angular_momentum_imbalance(&sim, &before));
                 crossing_polygon_points += sim
                     .contacts()
                     .iter()
@@ -253,10 +298,11 @@ fn a_mixed_pile_of_three_blocks_gives_the_same_bits_on_two_threads_and_any_skin(
                 sim.neighbour_list_builds(),
                 crossing_polygon_points,
                 worst_imbalance,
+                worst_turning_imbalance,
             )
         })
     };
-    let (one, one_contacts, one_builds, crossing, imbalance) = run_on(1, None);
+    let (one, one_contacts, one_builds, crossing, imbalance, turning_imbalance) = run_on(1, None);
     assert!(
         crossing > 1000,
         "{crossing} polygon points across blocks over the run"
@@ -264,6 +310,12 @@ fn a_mixed_pile_of_three_blocks_gives_the_same_bits_on_two_threads_and_any_skin(
     // Every pair's force reached both bodies once, across blocks too: the
     // momentum gained is the impulse of the weights and the walls.
     assert!(imbalance < 1e-6, "momentum imbalance {imbalance:e}");
+    // And each moment about a centre too (those of a polygon pair's points
+    // are computed from the point and the force when they are summed).
+    assert!(
+        turning_imbalance < 1e-6,
+        "angular momentum imbalance {turning_imbalance:e}"
+    );
     let (two, two_contacts, two_builds, ..) = run_on(2, None);
     assert_eq!(two_builds, one_builds);
     assert_eq!(two, one);

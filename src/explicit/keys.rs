@@ -29,7 +29,26 @@ const MOST_VERTICES: usize = 1 << 29;
 /// # Errors
 /// [`DismechError::InvalidParameter`] naming the count.
 pub(super) fn pack_limits(scene: &Scene) -> Result<()> {
-    let too_many = |name, count: usize, most: usize, requirement| {
+    let most_vertices = scene
+        .particles
+        .iter()
+        .filter_map(|p| match &p.shape {
+            AnyShape2::Polygon(polygon) => Some(polygon.vertices().len()),
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0);
+    check_counts(
+        scene.particles.len(),
+        scene.frame.walls().len(),
+        most_vertices,
+    )
+}
+
+/// [`pack_limits`] for `particles` particles, `walls` walls and at most
+/// `most_vertices` vertices a polygon.
+fn check_counts(particles: usize, walls: usize, most_vertices: usize) -> Result<()> {
+    let within = |name, count: usize, most: usize, requirement| {
         if count < most {
             Ok(())
         } else {
@@ -40,28 +59,19 @@ pub(super) fn pack_limits(scene: &Scene) -> Result<()> {
             })
         }
     };
-    too_many(
+    within(
         "number of particles",
-        scene.particles.len(),
+        particles,
         MOST_BODIES,
         "must be below 2³¹ for the explicit driver",
     )?;
-    too_many(
+    within(
         "number of walls",
-        scene.frame.walls().len(),
+        walls,
         MOST_BODIES,
         "must be below 2³¹ for the explicit driver",
     )?;
-    let most_vertices = scene
-        .particles
-        .iter()
-        .filter_map(|p| match &p.shape {
-            AnyShape2::Polygon(polygon) => Some(polygon.vertices().len()),
-            _ => None,
-        })
-        .max()
-        .unwrap_or(0);
-    too_many(
+    within(
         "number of a polygon's vertices",
         most_vertices,
         MOST_VERTICES,
@@ -146,7 +156,8 @@ fn unpack_feature(bits: u64) -> Feature {
     match bits >> INDEX_BITS {
         0 => Feature::Whole,
         1 => Feature::Vertex(index),
-        _ => Feature::Edge(index),
+        2 => Feature::Edge(index),
+        kind => unreachable!("no feature is packed as kind {kind}"),
     }
 }
 
@@ -186,7 +197,8 @@ impl PointKey {
         match self.0 >> (2 * FEATURE_BITS) {
             0 => Regime::Open,
             1 => Regime::Stick,
-            _ => Regime::Slip,
+            2 => Regime::Slip,
+            regime => unreachable!("no regime is packed as {regime}"),
         }
     }
 }
@@ -240,7 +252,27 @@ mod tests {
         }
     }
 
-    /// The largest indices, and one beyond, at the edges of the packing.
+    /// Counts up to the largest that packs pass; one more is refused,
+    /// naming what is too many.
+    #[test]
+    fn counts_beyond_the_packing_are_refused() {
+        let most = (MOST_BODIES - 1, MOST_BODIES - 1, MOST_VERTICES - 1);
+        assert!(check_counts(most.0, most.1, most.2).is_ok());
+        for (counts, name) in [
+            ((MOST_BODIES, 0, 3), "number of particles"),
+            ((10, MOST_BODIES, 3), "number of walls"),
+            ((10, 4, MOST_VERTICES), "number of a polygon's vertices"),
+        ] {
+            match check_counts(counts.0, counts.1, counts.2) {
+                Err(DismechError::InvalidParameter { name: refused, .. }) => {
+                    assert_eq!(refused, name)
+                }
+                other => panic!("{counts:?}: {other:?}"),
+            }
+        }
+    }
+
+    /// The largest indices fit.
     #[test]
     fn the_largest_indices_fit() {
         let key = PairKey::new(MOST_BODIES - 1, ContactTarget::Wall(MOST_BODIES - 1));

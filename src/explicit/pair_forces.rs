@@ -24,7 +24,8 @@ use nalgebra::UnitComplex;
 /// The force on B, the moment about A's centre and the moment about B's
 /// centre of each contact point of a pair, in the manifold's order, from
 /// its summary (a pair of one point) or its points and their `moments`
-/// (about A's centre and B's, of those the caller reads).
+/// (about A's centre and B's: a caller that reads only one of them may
+/// give NaN for the other).
 #[inline]
 pub(super) fn for_each_point<'a, S: 'a>(
     pair: &PairForce,
