@@ -120,21 +120,6 @@ pub(super) struct PairForce {
     pub count: usize,
 }
 
-impl PairForce {
-    /// The summary of a pair of `points` points whose first has the force
-    /// on B `force_on_b` and the moments `moment_a` about A's centre and
-    /// `moment_b` about B's.
-    #[inline]
-    pub fn of_first(force_on_b: Vec2, moment_a: f64, moment_b: f64, points: usize) -> Self {
-        Self {
-            force_on_b,
-            moment_a,
-            moment_b,
-            count: points,
-        }
-    }
-}
-
 /// Particles are summed in blocks of this many consecutive indices. A
 /// block's pairs (those whose A is in it) are evaluated in the list's order
 /// and added at once to their particles in the block; a pair whose B lies

@@ -126,18 +126,14 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             } else {
                 Some(local(b))
             };
-            let centres = || {
-                (
-                    &self.particles[slot.a()].pose.position,
-                    &self.particles[b].pose.position,
-                )
-            };
             for_each_point(
                 &pair,
                 || &slot.points,
                 |point| {
-                    let (centre_a, centre_b) = centres();
-                    (point.moment_a(centre_a), point.moment_b(centre_b))
+                    (
+                        point.moment_a(&self.particles[slot.a()].pose.position),
+                        point.moment_b(&self.particles[b].pose.position),
+                    )
                 },
                 |force_on_b, moment_a, moment_b| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
@@ -152,11 +148,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             let mut pair = PairForce::default();
             self.evaluate(slot, &mut pair, manifold)?;
             let a = local(slot.a());
-            let centre_a = &self.particles[slot.a()].pose.position;
             for_each_point(
                 &pair,
                 || &slot.points,
-                |point| (point.moment_a(centre_a), 0.0),
+                |point| (point.moment_a(&self.particles[slot.a()].pose.position), 0.0),
                 |force_on_b, moment_a, _| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                 },
@@ -370,7 +365,12 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         };
         (
             point,
-            PairForce::of_first(force_on_b, moment_a, moment_b, 1),
+            PairForce {
+                force_on_b,
+                moment_a,
+                moment_b,
+                count: 1,
+            },
         )
     }
 }
