@@ -8,6 +8,7 @@ use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound
 use super::keys::pack_limits;
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, BLOCK};
+use super::pair_bodies::PairBody;
 use super::pair_forces::PairContext;
 use super::skin::Skin;
 use super::stability::critical_time_step;
@@ -23,12 +24,12 @@ use crate::shape::AnyShape2;
 use nalgebra::UnitComplex;
 
 /// One block's share of a step's motion: its index, its particles'
-/// forces (three entries each), the particles, their increments and their
+/// forces (three entries each), the particles, their pair records and their
 /// rotations (none in a scene without ellipses).
 type BlockMove<'a> = (
     usize,
     (
-        ((&'a mut [f64], &'a mut [Particle]), &'a mut [(Vec2, f64)]),
+        ((&'a mut [f64], &'a mut [Particle]), &'a mut [PairBody]),
         &'a mut [UnitComplex<f64>],
     ),
 );
@@ -278,7 +279,8 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     neighbours: NeighbourList<L::State>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
-    increments: Vec<(Vec2, f64)>,
+    /// What the pairs read of each particle (see `pair_bodies.rs`).
+    bodies: Vec<PairBody>,
     /// Each ellipse's rotation, `UnitComplex::new(angle)`, kept with its
     /// pose so that its contacts do not take the sine and cosine per pair
     /// (other particles' entries are not used); empty when the scene has
@@ -381,7 +383,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             stable_estimate: None,
             neighbours: NeighbourList::new(skin, settings.relative_travel, &scene.particles),
             manifold: Vec::new(),
-            increments: vec![(Vec2::zeros(), 0.0); n],
+            bodies: scene.particles.iter().map(PairBody::of).collect(),
             rotations: if scene
                 .particles
                 .iter()
@@ -586,7 +588,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             law: &self.law,
             dt,
             particles: &self.scene.particles,
-            increments: &self.increments,
+            bodies: &self.bodies,
             rotations: &self.rotations,
             walls: self.scene.frame.walls(),
             wall_boxes,
@@ -632,18 +634,18 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         } else {
             self.rotations.chunks_mut(BLOCK).collect()
         };
-        let move_block = |(k, (((force, particles), increments), rotations)): BlockMove<'_>| {
-            motion.block(neighbours, k, force, particles, increments, rotations)
+        let move_block = |(k, (((force, particles), bodies), rotations)): BlockMove<'_>| {
+            motion.block(neighbours, k, force, particles, bodies, rotations)
         };
-        let (force, particles, increments) = (
+        let (force, particles, bodies) = (
             &mut self.system.force,
             &mut self.scene.particles,
-            &mut self.increments,
+            &mut self.bodies,
         );
         let check = if parallel {
             (force.par_chunks_mut(3 * BLOCK))
                 .zip(particles.par_chunks_mut(BLOCK))
-                .zip(increments.par_chunks_mut(BLOCK))
+                .zip(bodies.par_chunks_mut(BLOCK))
                 .zip(rotations)
                 .enumerate()
                 .with_max_len(1) // (as above)
@@ -652,7 +654,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         } else {
             (force.chunks_mut(3 * BLOCK))
                 .zip(particles.chunks_mut(BLOCK))
-                .zip(increments.chunks_mut(BLOCK))
+                .zip(bodies.chunks_mut(BLOCK))
                 .zip(rotations)
                 .enumerate()
                 .map(move_block)
@@ -664,7 +666,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             return Err(self.non_finite(i, "force"));
         }
         if let Some(i) = check.bad_motion {
-            let (dx, turn) = self.increments[i];
+            let (dx, turn) = self.bodies[i].increment;
             let p = &self.scene.particles[i];
             let finite = dx.iter().all(|v| v.is_finite())
                 && turn.is_finite()

@@ -42,7 +42,10 @@
 //! in the list's order but for those whose A is in an earlier block, then
 //! those, each pair's points in order), so a run gives the same bits on
 //! one thread or many; a scene of at most 1024 particles sums in the
-//! list's order. Neighbours with near indices keep the step fast (few
+//! list's order. A pair reads of each body a record of one cache line
+//! kept beside the particles (its centre, last increment, mass and, for a
+//! circle, its shape), so a pair of two circles reads no particle.
+//! Neighbours with near indices keep the step fast (few
 //! pairs across blocks, and each pair's B read from nearby memory):
 //! [`crate::scene::Scene::renumber_for_locality`] numbers a scene so,
 //! column by column in bands 32 mean particle widths high (10⁵ disks in
@@ -64,6 +67,7 @@ mod keys;
 mod list_travel;
 mod motion;
 mod neighbours;
+mod pair_bodies;
 mod pair_forces;
 mod skin;
 mod stability;

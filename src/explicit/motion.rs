@@ -5,6 +5,7 @@
 use nalgebra::UnitComplex;
 
 use super::neighbours::{NeighbourList, BLOCK};
+use super::pair_bodies::PairBody;
 use super::pair_forces::{add_action, for_each_point};
 use crate::integrate::ExplicitIntegrator;
 use crate::math::{Aabb2, Vec2};
@@ -70,7 +71,7 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
         k: usize,
         force: &mut [f64],
         particles: &mut [Particle],
-        increments: &mut [(Vec2, f64)],
+        bodies: &mut [PairBody],
         rotations: &mut [UnitComplex<f64>],
     ) -> StepCheck
     where
@@ -78,9 +79,9 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
     {
         debug_assert!(
             force.len() == 3 * particles.len()
-                && increments.len() == particles.len()
+                && bodies.len() == particles.len()
                 && (rotations.is_empty() || rotations.len() == particles.len()),
-            "a block's forces, increments or rotations do not match its particles"
+            "a block's forces, pair records or rotations do not match its particles"
         );
         let start = k * BLOCK;
         for cross in neighbours.cross_in(k) {
@@ -97,10 +98,10 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
             );
         }
         let mut check = StepCheck::default();
-        for (offset, ((force, p), increment)) in force
+        for (offset, ((force, p), body)) in force
             .chunks_exact_mut(3)
             .zip(particles.iter_mut())
-            .zip(increments.iter_mut())
+            .zip(bodies.iter_mut())
             .enumerate()
         {
             let i = start + offset;
@@ -124,7 +125,8 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
             p.angular_velocity = velocity[2];
             p.pose.position += Vec2::new(dx[0], dx[1]);
             p.pose.angle += dx[2];
-            *increment = (Vec2::new(dx[0], dx[1]), dx[2]);
+            body.centre = p.pose.position;
+            body.increment = (Vec2::new(dx[0], dx[1]), dx[2]);
             if let (Some(rotation), AnyShape2::Ellipse(_)) = (rotations.get_mut(offset), &p.shape) {
                 *rotation = UnitComplex::new(p.pose.angle);
             }

@@ -9,10 +9,11 @@ use super::keys::PointKey;
 use super::neighbours::{
     crosses_blocks, BlockSlots, PairForce, PairPoints, PairSlot, PointContact,
 };
+use super::pair_bodies::PairBody;
 use crate::error::Result;
 use crate::law::{ContactInput, ContactLaw, PairProperties};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
-use crate::query::manifold::circle_circle::contact_circle_circle_shaped;
+use crate::query::manifold::circle_circle::contact_circles;
 use crate::query::manifold::circle_segment::contact_circle_segment;
 use crate::query::manifold::dispatch::{contact_2d_near, contact_manifold_2d};
 use crate::query::manifold::ellipse::{contact_ellipse_ellipse_oriented, OrientedEllipse};
@@ -68,9 +69,9 @@ pub(super) struct PairContext<'a, L> {
     pub law: &'a L,
     pub dt: f64,
     pub particles: &'a [Particle],
-    /// Each particle's increment of the previous step (translation,
-    /// rotation).
-    pub increments: &'a [(Vec2, f64)],
+    /// What the pairs read of each particle, its increment of the
+    /// previous step among it.
+    pub bodies: &'a [PairBody],
     /// Each ellipse's rotation (see the driver's field).
     pub rotations: &'a [UnitComplex<f64>],
     pub walls: &'a [Segment],
@@ -131,8 +132,8 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 || &slot.points,
                 |point| {
                     (
-                        point.moment_a(&self.particles[slot.a()].pose.position),
-                        point.moment_b(&self.particles[b].pose.position),
+                        point.moment_a(&self.bodies[slot.a()].centre),
+                        point.moment_b(&self.bodies[b].centre),
                     )
                 },
                 |force_on_b, moment_a, moment_b| {
@@ -151,7 +152,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             for_each_point(
                 &pair,
                 || &slot.points,
-                |point| (point.moment_a(&self.particles[slot.a()].pose.position), 0.0),
+                |point| (point.moment_a(&self.bodies[slot.a()].centre), 0.0),
                 |force_on_b, moment_a, _| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                 },
@@ -166,8 +167,8 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// which may touch at several points (the others touch at one at most
     /// and skip it; circles against circles and walls, the commonest
     /// pairs, call their geometry directly rather than through the
-    /// dispatch, and so do two ellipses, with their rotations kept by the
-    /// driver). A pair of ellipses, or of a circle and an ellipse, seeks
+    /// dispatch, two circles from their [`PairBody`] records alone, and
+    /// so do two ellipses, with their rotations kept by the driver). A pair of ellipses, or of a circle and an ellipse, seeks
     /// its contact about its last contact point first.
     ///
     /// # Errors
@@ -183,8 +184,22 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         let wall;
         let (shape_b, pose_b, other): (&AnyShape2, &Pose2, Other) = match slot.target() {
             ContactTarget::Particle(b) => {
+                let body_b = &self.bodies[b];
+                let other = Some((body_b.centre, body_b.increment, body_b.mass));
+                // Two circles: from their records alone.
+                let body_a = &self.bodies[slot.a()];
+                if let (Some(ca), Some(cb)) = (&body_a.circle, &body_b.circle) {
+                    let single = contact_circles(
+                        ca.radius(),
+                        &body_a.centre,
+                        cb.radius(),
+                        &body_b.centre,
+                        self.contact_shape,
+                    );
+                    *force = self.update_single(slot, single, other);
+                    return Ok(());
+                }
                 let pb = &self.particles[b];
-                let other = Some((pb.pose.position, self.increments[b], pb.mass));
                 if let (AnyShape2::Ellipse(ea), AnyShape2::Ellipse(eb)) = (&pa.shape, &pb.shape) {
                     let single = contact_ellipse_ellipse_oriented(
                         OrientedEllipse {
@@ -221,9 +236,6 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             }
         };
         let single = match (&pa.shape, shape_b) {
-            (AnyShape2::Circle(ca), AnyShape2::Circle(cb)) => {
-                contact_circle_circle_shaped(ca, &pa.pose, cb, pose_b, self.contact_shape)
-            }
             (AnyShape2::Circle(c), AnyShape2::Segment(s)) => contact_circle_segment(c, &pa.pose, s),
             (AnyShape2::Polygon(_), _) | (_, AnyShape2::Polygon(_)) => {
                 *force = self.evaluate_manifold(slot, manifold, shape_b, pose_b, other)?;
@@ -313,13 +325,13 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         other: Other,
         previous: Option<(L::State, f64)>,
     ) -> (PointContact<L::State>, PairForce) {
-        let pa = &self.particles[a];
-        let increment_a = self.increments[a];
+        let body_a = &self.bodies[a];
+        let increment_a = body_a.increment;
         let (centre_b, increment_b, mass_b) =
             other.unwrap_or((geometry.point, (Vec2::zeros(), 0.0), f64::INFINITY));
         let mut du = relative_increment(
             geometry,
-            &pa.pose.position,
+            &body_a.centre,
             (&increment_a.0, increment_a.1),
             &centre_b,
             (&increment_b.0, increment_b.1),
@@ -340,7 +352,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 curvature_radius_a: geometry.curvature_radius_a,
                 curvature_radius_b: geometry.curvature_radius_b,
                 width: geometry.width,
-                mass_a: pa.mass,
+                mass_a: body_a.mass,
                 mass_b,
             },
         };
@@ -358,7 +370,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             normal: geometry.normal,
             force_on_b,
         };
-        let moment_a = point.moment_a(&pa.pose.position);
+        let moment_a = point.moment_a(&body_a.centre);
         let moment_b = match other {
             Some(_) => point.moment_b(&centre_b),
             None => 0.0,

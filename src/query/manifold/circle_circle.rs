@@ -1,7 +1,7 @@
 //! Contact between two circles.
 
 use super::{ContactFeatures, ContactGeometry, ContactShape};
-use crate::math::{Pose2, Vec2};
+use crate::math::{Point, Pose2, Vec2};
 use crate::shape::Circle;
 
 /// The contact of circle `a` at `pose_a` with circle `b` at `pose_b`, or
@@ -32,8 +32,27 @@ pub fn contact_circle_circle_shaped(
     pose_b: &Pose2,
     shape: ContactShape,
 ) -> Option<ContactGeometry> {
-    let (ra, rb) = (a.radius(), b.radius());
-    let delta = pose_b.position - pose_a.position;
+    contact_circles(
+        a.radius(),
+        &pose_a.position,
+        b.radius(),
+        &pose_b.position,
+        shape,
+    )
+}
+
+/// [`contact_circle_circle_shaped`] for circles of radii `ra` and `rb`
+/// centred at `centre_a` and `centre_b` (a circle's contact does not
+/// depend on its angle).
+#[inline]
+pub fn contact_circles(
+    ra: f64,
+    centre_a: &Point,
+    rb: f64,
+    centre_b: &Point,
+    shape: ContactShape,
+) -> Option<ContactGeometry> {
+    let delta = centre_b - centre_a;
     // Clearly apart, without the square root: the margin 1e-12 covers the
     // rounding of both sides, so this refuses only pairs the test below
     // refuses too.
@@ -64,7 +83,7 @@ pub fn contact_circle_circle_shaped(
         (ra - 0.5 * overlap, 0.0)
     };
     Some(ContactGeometry {
-        point: pose_a.position + normal * along,
+        point: centre_a + normal * along,
         normal,
         overlap,
         width: 2.0 * half_width,
