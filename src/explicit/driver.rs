@@ -279,7 +279,7 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     neighbours: NeighbourList<L::State>,
     /// The contact points of the pair being evaluated.
     manifold: Vec<ContactGeometry>,
-    /// What the pairs read of each particle (see `pair_bodies.rs`).
+    /// What the pairs read of each particle: [`PairBody`].
     bodies: Vec<PairBody>,
     /// Each ellipse's rotation, `UnitComplex::new(angle)`, kept with its
     /// pose so that its contacts do not take the sine and cosine per pair

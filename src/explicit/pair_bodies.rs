@@ -1,10 +1,10 @@
 //! What the pairs of a step read of each body, one record per particle
 //! beside the scene's particles: the centre, the last step's increment,
 //! the mass and, for a circle, the shape. A pair of two circles (the
-//! commonest) reads only its two records, one cache line each, where the
-//! particles themselves (shape, pose, velocities, inertia, loads) take two
-//! lines and the increment a third; in a scene larger than the caches
-//! that is most of what a pair's B costs.
+//! commonest) reads only its two records, one cache line each, where a
+//! particle itself (shape, pose, velocities, inertia, loads) spans two;
+//! in a scene larger than the caches that is most of what a pair's B
+//! costs.
 
 use crate::math::{Point, Vec2};
 use crate::scene::Particle;

@@ -69,8 +69,8 @@ pub(super) struct PairContext<'a, L> {
     pub law: &'a L,
     pub dt: f64,
     pub particles: &'a [Particle],
-    /// What the pairs read of each particle, its increment of the
-    /// previous step among it.
+    /// Each particle's record (centre, increment of the previous step,
+    /// mass, circle): [`PairBody`].
     pub bodies: &'a [PairBody],
     /// Each ellipse's rotation (see the driver's field).
     pub rotations: &'a [UnitComplex<f64>],
@@ -167,9 +167,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// which may touch at several points (the others touch at one at most
     /// and skip it; circles against circles and walls, the commonest
     /// pairs, call their geometry directly rather than through the
-    /// dispatch, two circles from their [`PairBody`] records alone, and
-    /// so do two ellipses, with their rotations kept by the driver). A pair of ellipses, or of a circle and an ellipse, seeks
-    /// its contact about its last contact point first.
+    /// dispatch (two circles from their [`PairBody`] records alone), and
+    /// so do two ellipses, with their rotations kept by the driver). A
+    /// pair of ellipses, or of a circle and an ellipse, seeks its contact
+    /// about its last contact point first.
     ///
     /// # Errors
     /// The geometry's, for a pair it does not support.
@@ -180,6 +181,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
         force: &mut PairForce,
         manifold: &mut Vec<ContactGeometry>,
     ) -> Result<()> {
+        // (A reference only: a pair of two circles reads no particle.)
         let pa = &self.particles[slot.a()];
         let wall;
         let (shape_b, pose_b, other): (&AnyShape2, &Pose2, Other) = match slot.target() {

@@ -45,7 +45,7 @@ pub fn contact_circle_circle_shaped(
 /// centred at `centre_a` and `centre_b` (a circle's contact does not
 /// depend on its angle).
 #[inline]
-pub fn contact_circles(
+pub(crate) fn contact_circles(
     ra: f64,
     centre_a: &Point,
     rb: f64,
@@ -120,6 +120,41 @@ mod tests {
                 },
                 full
             );
+        }
+    }
+
+    /// A circle's contact does not depend on its angle (the explicit
+    /// driver's pairs of circles take it from the centres alone): the
+    /// same bits at any angles of the two circles.
+    #[test]
+    fn a_circle_pair_does_not_read_the_angles() {
+        let (a, b) = (Circle::new(0.7).unwrap(), Circle::new(0.45).unwrap());
+        for k in 0..100 {
+            let t = 0.37 * k as f64;
+            let d = 0.3 + 0.85 * (k as f64 / 100.0);
+            let (pa, pb) = (
+                Pose2::new(-0.1, 0.4, 0.0),
+                Pose2::new(-0.1 + d * t.cos(), 0.4 + d * t.sin(), 0.0),
+            );
+            for shape in [ContactShape::Computed, ContactShape::Skipped] {
+                let turned = contact_circle_circle_shaped(
+                    &a,
+                    &Pose2 {
+                        angle: 1.3 * t,
+                        ..pa
+                    },
+                    &b,
+                    &Pose2 {
+                        angle: -2.9 + t,
+                        ..pb
+                    },
+                    shape,
+                );
+                let plain = contact_circle_circle_shaped(&a, &pa, &b, &pb, shape);
+                assert!(plain.is_some(), "case {k}: the circles overlap");
+                // (NaN widths compare by their bits.)
+                assert_eq!(format!("{turned:?}"), format!("{plain:?}"), "case {k}");
+            }
         }
     }
 
