@@ -32,8 +32,12 @@
 //! * the shear reference point `x₀'` is the material point of the edge
 //!   under the vertex at the start of each step, and the shear force is
 //!   carried from step to step as contact history;
-//! * where two corners meet, each block may hold a contact on the other's
-//!   edge; no rule merges the two.
+//! * where two corners meet, the edge a vertex meets is the entrance line
+//!   of the two angles ([`crate::query::variation::entrance_edges`]): an
+//!   edge whose line separates the vertex's angle from the other block,
+//!   never a side edge through the corner that carries no load; where each
+//!   block's corner meets the other's edge both contacts are kept (no rule
+//!   merges them), and a vertex in a reflex corner meets both its edges.
 
 use crate::error::Result;
 use crate::implicit::{ImplicitDynamics, ImplicitSettings};

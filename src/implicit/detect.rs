@@ -5,8 +5,8 @@
 //!
 //! | pair | contacts |
 //! |---|---|
-//! | polygon – polygon | every vertex of each against the other's edge (DDA's rule: the previous step's edge if it qualifies, else the one with the largest gap) |
-//! | polygon – wall | every polygon vertex against the wall |
+//! | polygon – polygon | every vertex of each against the other's edges it meets ([`entrance_edges`]: DDA's rule — the previous step's edge, else the shallowest — with the entrance line at corners, none from behind, both edges of a reflex corner) |
+//! | polygon – wall | every polygon vertex against the wall (up to [`crate::query::variation::EDGE_END_TOLERANCE`] past its ends) |
 //! | circle/ellipse – polygon | each polygon edge the smooth body faces, and each convex corner beyond the edges' ends |
 //! | circle/ellipse – wall | the wall |
 //! | circle/ellipse – circle/ellipse | one, along the normal of the signed distance (its search starts from the previous step's normal) |
@@ -17,8 +17,8 @@
 use rustc_hash::FxHashMap;
 
 use crate::query::variation::{
-    smooth_polygon_contacts, wall_edge, PairContact, SmoothEdgeContact, SmoothSide,
-    SmoothSmoothContact, VariationError, VertexEdgeContact,
+    entrance_edges, smooth_polygon_contacts, wall_edge, PairContact, PolygonCorner,
+    SmoothEdgeContact, SmoothSide, SmoothSmoothContact, VariationError, VertexEdgeContact,
 };
 use crate::query::{ContactFeatures, Feature};
 
@@ -139,9 +139,8 @@ fn vertices_on_polygon<const N: usize>(
     };
     for v in 0..pa.vertex_count() {
         let prev = previous.edges.get(&(a, v, b)).copied();
-        if let Some((edge, c)) =
-            VertexEdgeContact::closest_edge(pa.vertex(v), pa.centroid(), pb, search, prev)
-        {
+        let corner = PolygonCorner::of(pa, v);
+        for (edge, c) in entrance_edges(&corner, pa.centroid(), pb, search, prev) {
             out.push(StepContact {
                 a,
                 b,

@@ -33,13 +33,13 @@
 //! ## The kinds
 //! | kind | pair | local variables | file |
 //! |---|---|---|---|
-//! | [`VertexEdgeContact`] | polygon vertex vs polygon or wall edge | `a = x₁ − x₂`, `b = x₃ − x₂` (M = 4) | `vertex_edge.rs` |
-//! | [`SmoothEdgeContact`] | circle or ellipse vs edge | centre − x₂, `b`, axes, support point − x₂ (M = 10) | `smooth_edge.rs` |
+//! | [`VertexEdgeContact`] | polygon vertex vs polygon or wall edge | `a' = x₁ − x₀'` (from the foot of the perpendicular), `b = x₃ − x₂` (M = 4) | `vertex_edge.rs`; which edges a vertex meets: `vertex_polygon.rs` |
+//! | [`SmoothEdgeContact`] | circle or ellipse vs edge | centre − x₀', `b`, axes, support point − x₀' (M = 10) | `smooth_edge.rs` |
 //! | [`SmoothSmoothContact`] | circle/ellipse pairs, polygon vertex vs circle/ellipse | centre difference, both axes, relative displacement (M = 12) | `smooth_smooth.rs` |
 //!
 //! ## Driver's view
 //! 1. start of step: detection helpers ([`VertexEdgeContact::detect`],
-//!    [`VertexEdgeContact::closest_edge`], [`SmoothEdgeContact::detect`],
+//!    [`entrance_edges`], [`SmoothEdgeContact::detect`],
 //!    [`SmoothSmoothContact::detect`], [`smooth_polygon_contacts`]) on the
 //!    start-of-step geometry give the fixed data, or `None` beyond the
 //!    search distance;
@@ -53,11 +53,13 @@ mod smooth_edge;
 mod smooth_smooth;
 mod support;
 mod vertex_edge;
+mod vertex_polygon;
 
 pub use smooth_edge::{smooth_polygon_contacts, SmoothEdgeContact};
 pub use smooth_smooth::SmoothSmoothContact;
 pub use support::SmoothSide;
-pub use vertex_edge::{local_geometry, wall_edge, VertexEdgeContact};
+pub use vertex_edge::{local_geometry, wall_edge, VertexEdgeContact, EDGE_END_TOLERANCE};
+pub use vertex_polygon::{entrance_edges, PolygonCorner, BEHIND_TOLERANCE, SEPARATION_TOLERANCE};
 
 use nalgebra::{SMatrix, SVector};
 

@@ -12,14 +12,19 @@
 //!   material point of the edge under P₁ at the start of the step, so that
 //!   `g_s` is the step's shear increment measured along the current edge.
 //!
-//! `a` and `b` are the local variables (M = 4): every point moves affinely
-//! in its body's map parameters, so `(a, b)` is linear in them and all the
-//! nonlinearity is in `n(b)`, `τ(b)`, `l(b)`, differentiated in closed form.
+//! The contact evaluates both from `a' = x₁ − x₀' = a − ξ b` (so `g_n = (a'
+//! × b)/l`, `g_s = a'·b/l`, [`local_geometry`] with ξ = 0): `a'` is of the
+//! size of the gap and the step's motion, whereas `a` is of the edge's
+//! length, and the round-off of `a × b / l` grows with it (on a 60 m
+//! incline it left Newton a relative residual of 3e-10). `a'` and `b` are
+//! the local variables (M = 4): every point moves affinely in its body's
+//! map parameters, so `(a', b)` is linear in them and all the nonlinearity
+//! is in `n(b)`, `τ(b)`, `l(b)`, differentiated in closed form.
 
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 
 use super::{GapVariation, LocalVariation, VariationError};
-use crate::kinematics::{point_map_jacobian, PlacedPolygon};
+use crate::kinematics::point_map_jacobian;
 use crate::math::{cross, Point};
 use crate::shape::Segment;
 
@@ -94,10 +99,38 @@ pub struct VertexEdgeContact {
     pub initial_gap: f64,
 }
 
+/// How far past an end of an edge (as a fraction of its length) a vertex
+/// still meets it: the round-off of corners that coincide, and their
+/// drift while blocks that share them rest under load.
+pub const EDGE_END_TOLERANCE: f64 = 1e-6;
+
 impl VertexEdgeContact {
     /// The contact of `vertex` (body A, reference `reference_a`) with
-    /// `edge` (body B) when the foot of the perpendicular lies on the edge,
-    /// `0 ≤ ξ ≤ 1`, and `|g_n| ≤ search`; `None` otherwise.
+    /// `edge` (body B), whatever its position: `ξ` is the position of the
+    /// foot of the perpendicular on the edge, `g_n` the signed distance
+    /// from the edge's line.
+    pub fn new(vertex: Point, reference_a: Point, edge: [Point; 2], reference_b: Point) -> Self {
+        let (a, b) = (vertex - edge[0], edge[1] - edge[0]);
+        let l2 = b.norm_squared();
+        Self {
+            vertex,
+            reference_a,
+            edge,
+            reference_b,
+            xi: a.dot(&b) / l2,
+            initial_gap: cross(&a, &b) / l2.sqrt(),
+        }
+    }
+
+    /// Whether the foot of the perpendicular lies on the edge, up to
+    /// [`EDGE_END_TOLERANCE`] past either end.
+    pub fn foot_on_edge(&self) -> bool {
+        (-EDGE_END_TOLERANCE..=1.0 + EDGE_END_TOLERANCE).contains(&self.xi)
+    }
+
+    /// The contact of `vertex` (body A, reference `reference_a`) with
+    /// `edge` (body B) when the foot of the perpendicular lies on the edge
+    /// ([`Self::foot_on_edge`]) and `|g_n| ≤ search`; `None` otherwise.
     pub fn detect(
         vertex: Point,
         reference_a: Point,
@@ -105,69 +138,40 @@ impl VertexEdgeContact {
         reference_b: Point,
         search: f64,
     ) -> Option<Self> {
-        let (a, b) = (vertex - edge[0], edge[1] - edge[0]);
-        let l2 = b.norm_squared();
-        let xi = a.dot(&b) / l2;
-        let gap = cross(&a, &b) / l2.sqrt();
-        if !(0.0..=1.0).contains(&xi) || gap.abs() > search {
-            return None;
-        }
-        Some(Self {
-            vertex,
-            reference_a,
-            edge,
-            reference_b,
-            xi,
-            initial_gap: gap,
-        })
+        let c = Self::new(vertex, reference_a, edge, reference_b);
+        (c.foot_on_edge() && c.initial_gap.abs() <= search).then_some(c)
     }
 
-    /// DDA's choice of edge of `polygon` (body B) for `vertex`: among the
-    /// edges [`Self::detect`] accepts, the edge `previous` (the contact's
-    /// edge in the previous step) if it qualifies, otherwise the one with
-    /// the largest `g_n` (for a vertex inside, the shallowest penetration;
-    /// near a corner, the edge it would cross first). Returns the edge
-    /// index (edge k runs from vertex k to k + 1) with the contact.
-    pub fn closest_edge(
-        vertex: Point,
-        reference_a: Point,
-        polygon: &PlacedPolygon,
-        search: f64,
-        previous: Option<usize>,
-    ) -> Option<(usize, Self)> {
-        let mut best: Option<(usize, Self)> = None;
-        for e in 0..polygon.vertex_count() {
-            let edge = [polygon.vertex(e), polygon.vertex(e + 1)];
-            let Some(c) = Self::detect(vertex, reference_a, edge, polygon.centroid(), search)
-            else {
-                continue;
-            };
-            if previous == Some(e) {
-                return Some((e, c));
-            }
-            if best.is_none_or(|(_, b)| c.initial_gap > b.initial_gap) {
-                best = Some((e, c));
-            }
-        }
-        best
+    /// The material point of the edge under the vertex at the start of
+    /// the step, `x₀' = x₂ + ξ (x₃ − x₂)`: the origin of the contact's local
+    /// variables.
+    pub fn foot(&self) -> Point {
+        self.edge[0] + (self.edge[1] - self.edge[0]) * self.xi
     }
 }
 
 impl GapVariation<4> for VertexEdgeContact {
+    /// `(a', b)` with `a' = x₁ − x₀'`: measured from the foot rather than
+    /// from the edge's start, so that `g_n` and `g_s` are computed from a
+    /// vector of the size of the gap and the step's motion, whatever the
+    /// length of the edge (from `x₂` the round-off of `a × b / l` grows with
+    /// the edge's length times the distance to its start).
     fn start(&self) -> SVector<f64, 4> {
-        let (a, b) = (self.vertex - self.edge[0], self.edge[1] - self.edge[0]);
+        let (a, b) = (self.vertex - self.foot(), self.edge[1] - self.edge[0]);
         SVector::<f64, 4>::new(a.x, a.y, b.x, b.y)
     }
 
-    /// `Δa = ∂x₁/∂Δp_A Δp_A − ∂x₂/∂Δp_B Δp_B`, `Δb = (∂x₃ − ∂x₂)/∂Δp_B Δp_B`.
+    /// `Δa' = ∂x₁/∂Δp_A Δp_A − ∂x₀'/∂Δp_B Δp_B`, `Δb = (∂x₃ − ∂x₂)/∂Δp_B
+    /// Δp_B`, with `x₀' = (1 − ξ) x₂ + ξ x₃` a material point of B.
     fn chain(&self) -> (SMatrix<f64, 4, 6>, SMatrix<f64, 4, 6>) {
         let j1 = point_map_jacobian(&(self.vertex - self.reference_a));
+        let j0 = point_map_jacobian(&(self.foot() - self.reference_b));
         let j2 = point_map_jacobian(&(self.edge[0] - self.reference_b));
         let j3 = point_map_jacobian(&(self.edge[1] - self.reference_b));
         let mut la = SMatrix::<f64, 4, 6>::zeros();
         la.fixed_view_mut::<2, 6>(0, 0).copy_from(&j1);
         let mut lb = SMatrix::<f64, 4, 6>::zeros();
-        lb.fixed_view_mut::<2, 6>(0, 0).copy_from(&(-j2));
+        lb.fixed_view_mut::<2, 6>(0, 0).copy_from(&(-j0));
         lb.fixed_view_mut::<2, 6>(2, 0).copy_from(&(j3 - j2));
         (la, lb)
     }
@@ -176,7 +180,7 @@ impl GapVariation<4> for VertexEdgeContact {
         Ok(local_geometry(
             &Vector2::new(z[0], z[1]),
             &Vector2::new(z[2], z[3]),
-            self.xi,
+            0.0,
         ))
     }
 }
