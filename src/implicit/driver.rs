@@ -308,14 +308,25 @@ where
             }
         }
         // The start of the iteration for the free unknowns.
+        let mut in_contact = vec![false; nb];
+        if self.settings.predictor == Predictor::FreeFlight {
+            for &(a, _, b, _) in self.history.keys() {
+                in_contact[a] = true;
+                in_contact[b] = true;
+            }
+        }
         for (i, b) in self.bodies.iter().enumerate() {
+            let extrapolate = match self.settings.predictor {
+                Predictor::FreeFlight => !in_contact[i],
+                Predictor::ConstantAcceleration => true,
+                Predictor::StartOfStep => false,
+            };
             for k in 0..N {
                 if !mask[N * i + k] {
-                    d[N * i + k] = match self.settings.predictor {
-                        Predictor::ConstantAcceleration => {
-                            dt * b.velocity[k] + 0.5 * dt * dt * b.acceleration[k]
-                        }
-                        Predictor::StartOfStep => 0.0,
+                    d[N * i + k] = if extrapolate {
+                        dt * b.velocity[k] + 0.5 * dt * dt * b.acceleration[k]
+                    } else {
+                        0.0
                     };
                 }
             }

@@ -43,6 +43,10 @@
 //!   (and refused as [`StepFailure::Imprecise`] if the equations then hold
 //!   only above a relative residual of 5e-6, the sign of a penalty too
 //!   stiff for double precision), and its tangent has no Hessian terms.
+//! * **Predictor**: the iteration starts from the constant-acceleration
+//!   motion for bodies in free flight and from the start-of-step
+//!   configuration for bodies that ended the last step in contact
+//!   ([`Predictor::FreeFlight`]).
 //! * **Search distance**: a step whose boundary point moves further than
 //!   the search distance relative to a body it could reach may have missed
 //!   a contact. With [`ImplicitSettings::max_search_distance`] above the

@@ -1,7 +1,12 @@
 //! The penalty Coulomb law of DDA in its two friction integrations (paper
 //! 003, §2.(2), eqs. 7–10 and Fig. 1), behind [`ContactLaw`]`<2>`.
 //!
-//! Normal: `t_n = p_c ⟨−g_n⟩` (eq. 7), no tension. Shear: the elastic part of
+//! Normal: `t_n = p_c ⟨−g_n⟩` (eq. 7), no tension. A contact exactly
+//! touching (`g_n = 0`) is closed, with zero force: its tangent is then the
+//! spring's, the convention of active-set methods at the kink, so that the
+//! Newton step of an implicit driver sees a contact that touches without
+//! load (blocks cut from joint sets start so; open, a wall of them fell
+//! through its first iterate). Shear: the elastic part of
 //! the shear displacement carries `t_s = p_c g_s^e` (eq. 8) with the same
 //! penalty, limited by Coulomb's `|t_s| ≤ μ t_n`.
 //!
@@ -238,7 +243,7 @@ impl PenaltyCoulomb {
         if self.bonded {
             return self.respond_bonded(input, state);
         }
-        if input.overlap <= 0.0 {
+        if input.overlap < 0.0 {
             let open = ContactResponse {
                 force: SVector::zeros(),
                 spring_force: SVector::zeros(),
