@@ -25,8 +25,8 @@
 use std::time::Instant;
 
 use dismech::dda::{
-    Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
-    Prescribed, StepStatus,
+    Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, Halvings, PenaltyCoulomb,
+    PlaneState, Prescribed, StepStatus,
 };
 use dismech::math::Point;
 
@@ -108,6 +108,7 @@ struct Run {
     open_close: f64,
     halvings: usize,
     late_halvings: usize,
+    causes: Halvings,
     reaction: f64,
     failure: Option<String>,
 }
@@ -119,13 +120,24 @@ fn run(
     steps: usize,
 ) -> Result<Run, Box<dyn std::error::Error>> {
     let law = PenaltyCoulomb::new(penalty, 0.6, integration)?;
-    let mut model = DdaModel::new(blocks, law, DdaSettings::default())?;
+    let mut model = DdaModel::new(
+        blocks,
+        law,
+        DdaSettings {
+            max_open_close: std::env::var("OC")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(20),
+            ..DdaSettings::default()
+        },
+    )?;
     let weight: f64 = model.blocks()[1..]
         .iter()
         .map(|b| b.area() * DENSITY * 9.8)
         .sum();
     let mut times = Vec::with_capacity(steps);
     let (mut solves, mut open_close, mut halvings, mut late_halvings) = (0, 0, 0, 0);
+    let mut causes = Halvings::default();
     let mut failure = None;
     for step in 0..steps {
         let start = Instant::now();
@@ -134,6 +146,7 @@ fn run(
         solves += report.iterations;
         open_close += report.open_close_iterations;
         halvings += report.reductions;
+        causes.add(&report.halvings);
         if step >= 10 {
             late_halvings += report.reductions;
         }
@@ -153,6 +166,7 @@ fn run(
         open_close: open_close as f64 / n,
         halvings,
         late_halvings,
+        causes,
         reaction: -model.contact_force_on(0).y / weight,
         failure,
     })
@@ -211,7 +225,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let count = blocks.len() - 1;
                     let r = run(blocks, k * E, integration, steps)?;
                     println!(
-                        "{count:>6} {state:>9} {:>7} {:>5} {:>8.1} {:>8.1} {:>8.1} {:>7.2} {:>6.2} {:>9} {:>9} {:>8.5}{}",
+                        "{count:>6} {state:>9} {:>7} {:>5} {:>8.1} {:>8.1} {:>8.1} {:>7.2} {:>6.2} {:>9} {:>9} {:>8.5}  {}{}",
                         format!("{k} E"),
                         integration.label(),
                         r.mean_ms,
@@ -222,6 +236,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         r.halvings,
                         r.late_halvings,
                         r.reaction,
+                        if r.halvings > 0 {
+                            format!(
+                                "(open-close {}, Newton {}, too fast {}, other {})",
+                                r.causes.open_close,
+                                r.causes.newton,
+                                r.causes.too_fast,
+                                r.causes.other
+                            )
+                        } else {
+                            String::new()
+                        },
                         r.failure.map_or(String::new(), |f| format!("  FAILED at {f}")),
                     );
                     means.push(r.mean_ms);

@@ -34,7 +34,7 @@ use crate::integrate::ImplicitCoefficients;
 use crate::kinematics::Kinematics;
 use crate::law::{ContactInput, ContactResponse, PairProperties, Regime, Tangent, TangentLaw};
 use crate::linsolve::{BlockAssembly, LinearSolver, SparseMatrix};
-use crate::query::variation::DofVariation;
+use crate::query::variation::{GapVariation, PairContact};
 
 /// The largest relative residual a law without a consistent tangent may
 /// leave once its contact states settled. A block resting on a base
@@ -70,6 +70,15 @@ pub(super) struct Evaluation<S> {
     pub regimes: Vec<i8>,
     pub states: Vec<S>,
     pub forces: Vec<(f64, f64)>,
+}
+
+/// One contact's share at an iterate: the law's response, and where the
+/// contact carries a force or has a tangent, its forces on bodies A and B
+/// and the tangent blocks `[[AA, AB], [BA, BB]]` in their unknowns.
+#[allow(clippy::type_complexity)]
+struct Share<const N: usize, S> {
+    response: ContactResponse<2, S>,
+    on_bodies: Option<([SVector<f64, N>; 2], [[SMatrix<f64, N, N>; 2]; 2])>,
 }
 
 /// Result of one trial step.
@@ -121,27 +130,22 @@ pub(super) fn body_dofs<const N: usize>(d: &[f64], i: usize) -> SVector<f64, N> 
 }
 
 impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
-    /// The pair query and the law at the iterate `d` for contact `c`.
-    pub fn evaluate(
+    /// The law for contact `c` at the gap `gap` and shear `shear` of an
+    /// iterate. Where it answers no force and no tangent (an open contact
+    /// of a penalty law) the iterate needs no variations of the contact,
+    /// which are most of its cost.
+    fn respond(
         &self,
         c: &StepContact,
-        d: &[f64],
-    ) -> Result<(DofVariation<N, N>, ContactResponse<2, L::State>, Tangent<2>), StepFailure> {
-        let var = c
-            .geometry
-            .dof_variation(
-                self.kinematics,
-                &body_dofs::<N>(d, c.a),
-                self.kinematics,
-                &body_dofs::<N>(d, c.b),
-            )
-            .map_err(|e| StepFailure::Variation(e.to_string()))?;
+        gap: f64,
+        shear: f64,
+    ) -> (ContactResponse<2, L::State>, Tangent<2>) {
         let key = c.key();
         let old = self.history.get(&key).cloned().unwrap_or_default();
         let (ba, bb) = (&self.bodies[c.a], &self.bodies[c.b]);
         let input = ContactInput {
-            overlap: -var.gap,
-            increment: SVector::<f64, 2>::new(c.geometry.initial_gap() - var.gap, var.shear),
+            overlap: -gap,
+            increment: SVector::<f64, 2>::new(c.geometry.initial_gap() - gap, shear),
             dt: self.dt,
             is_new: !self.history.contains_key(&key),
             pair: PairProperties {
@@ -153,8 +157,88 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             },
         };
         let law = self.laws.law(ba.group, bb.group);
-        let (response, tangent) = law.evaluate_with_tangent(&input, &old);
-        Ok((var, response, tangent))
+        law.evaluate_with_tangent(&input, &old)
+    }
+
+    /// Contact `c`'s share of the residual and (with `matrix`) of the
+    /// tangent at the iterate `d`, from its geometry `g`, written in the
+    /// contact's local variables `z = z₀ + C_A d_A + C_B d_B` and mapped to
+    /// the bodies' unknowns once: the forces `C_Aᵀ f`, `C_Bᵀ f` with `f =
+    /// −t_n ∇g_n + t_s ∇g_s`, and the tangent blocks `C_pᵀ K C_q` with `K =
+    /// Σ_ij c_ij r_i r_jᵀ − t_n ∇²g_n + t_s ∇²g_s` (`r = (−∇g_n, ∇g_s)`,
+    /// `c` the law's tangent; the second variations only for a consistent
+    /// law at a closed contact), plus the curvature of a nonlinear
+    /// kinematics' map weighted by `Lᵀ f`. Nothing is mapped where the law
+    /// answers no force and no tangent (an open contact of a penalty law),
+    /// and then the variations are not computed.
+    fn share<const M: usize, G: GapVariation<M>>(
+        &self,
+        g: &G,
+        c: &StepContact,
+        d: &[f64],
+        consistent: bool,
+        matrix: bool,
+    ) -> Result<Share<N, L::State>, StepFailure> {
+        let (d_a, d_b) = (body_dofs::<N>(d, c.a), body_dofs::<N>(d, c.b));
+        let k = self.kinematics;
+        let (z, ca, cb) = g.dof_local_variables(k, &d_a, k, &d_b);
+        let variation =
+            |e: crate::query::variation::VariationError| StepFailure::Variation(e.to_string());
+        let (gap, shear) = g.values(&z).map_err(variation)?;
+        let (response, mut tangent) = self.respond(c, gap, shear);
+        if response.force.iter().all(|f| *f == 0.0) && tangent.iter().all(|t| *t == 0.0) {
+            return Ok(Share {
+                response,
+                on_bodies: None,
+            });
+        }
+        if response.regime == Regime::Slip {
+            tangent[(1, 1)] += self.slip_regularization * tangent[(0, 0)].abs();
+        }
+        let local = g.local(&z).map_err(variation)?;
+        let (t_n, t_s) = (response.force[0], response.force[1]);
+        let f = local.grad_shear * t_s - local.grad_gap * t_n;
+        let (ta, tb) = (ca.transpose(), cb.transpose());
+        let forces = [ta * f, tb * f];
+        let mut blocks = [[SMatrix::<f64, N, N>::zeros(); 2]; 2];
+        if matrix {
+            let rows = [-local.grad_gap, local.grad_shear];
+            let mut kz = SMatrix::<f64, M, M>::zeros();
+            for (i, ri) in rows.iter().enumerate() {
+                for (j, rj) in rows.iter().enumerate() {
+                    let cij = tangent[(i, j)];
+                    if cij != 0.0 {
+                        kz += ri * rj.transpose() * cij;
+                    }
+                }
+            }
+            let curved = consistent && response.regime != Regime::Open;
+            if curved {
+                kz += local.hess_shear * t_s - local.hess_gap * t_n;
+            }
+            let (wa, wb) = (ta * kz, tb * kz);
+            blocks = [[wa * ca, wa * cb], [wb * ca, wb * cb]];
+            if curved && !(K::LINEAR) {
+                let (la, lb) = g.chain();
+                blocks[0][0] += k.map_curvature(&d_a, &(la.transpose() * f));
+                blocks[1][1] += k.map_curvature(&d_b, &(lb.transpose() * f));
+            }
+        }
+        Ok(Share {
+            response,
+            on_bodies: Some((forces, blocks)),
+        })
+    }
+
+    /// The regime code of contact `c` at the iterate `d` (the law alone,
+    /// without the variations).
+    fn regime_at(&self, c: &StepContact, d: &[f64]) -> Result<i8, StepFailure> {
+        let (d_a, d_b) = (body_dofs::<N>(d, c.a), body_dofs::<N>(d, c.b));
+        let (gap, shear) = c
+            .geometry
+            .dof_values(self.kinematics, &d_a, self.kinematics, &d_b)
+            .map_err(|e| StepFailure::Variation(e.to_string()))?;
+        Ok(regime_code(&self.respond(c, gap, shear).0))
     }
 
     /// The parts of the residual that do not depend on the iterate, for
@@ -260,59 +344,36 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             forces: Vec::with_capacity(self.contacts.len()),
         };
         for c in self.contacts {
-            let (var, resp, mut tangent) = self.evaluate(c, d)?;
-            if resp.regime == Regime::Slip {
-                tangent[(1, 1)] += self.slip_regularization * tangent[(0, 0)].abs();
-            }
-            let (t_n, t_s) = (resp.force[0], resp.force[1]);
+            let share = match &c.geometry {
+                PairContact::VertexEdge(g) => self.share(g, c, d, parts.consistent, matrix)?,
+                PairContact::SmoothEdge(g) => self.share(g, c, d, parts.consistent, matrix)?,
+                PairContact::SmoothSmooth(g) => self.share(g, c, d, parts.consistent, matrix)?,
+            };
+            let (t_n, t_s) = (share.response.force[0], share.response.force[1]);
             eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
-            let g_ov = [-var.grad_gap.a, -var.grad_gap.b];
-            let shear = [var.grad_shear.a, var.grad_shear.b];
+            eval.regimes.push(regime_code(&share.response));
+            eval.states.push(share.response.state);
+            eval.forces.push((t_n, t_s));
+            let Some((forces, blocks)) = share.on_bodies else {
+                continue;
+            };
             let bodies = [c.a, c.b];
-            for side in 0..2 {
-                let force = g_ov[side] * t_n + shear[side] * t_s;
+            for (side, force) in forces.iter().enumerate() {
                 for a in 0..N {
                     r[N * bodies[side] + a] += force[a];
                 }
             }
-            eval.regimes.push(regime_code(&resp));
-            eval.states.push(resp.state);
-            eval.forces.push((t_n, t_s));
             if !matrix {
                 continue;
             }
-            // kt = Σ_pq rows_p C_pq rows_qᵀ (− t_n ∇²g_n + t_s ∇²g_s), by
-            // blocks (A, A), (B, A), (A, B), (B, B).
-            let rows = [g_ov, shear];
-            let hessians = [
-                [&var.hess_gap.aa, &var.hess_gap.ab],
-                [&var.hess_gap.ba, &var.hess_gap.bb],
-            ];
-            let shear_hessians = [
-                [&var.hess_shear.aa, &var.hess_shear.ab],
-                [&var.hess_shear.ba, &var.hess_shear.bb],
-            ];
-            let curved = parts.consistent && resp.regime != Regime::Open;
             for (q, &column) in bodies.iter().enumerate() {
                 for (p, &row) in bodies.iter().enumerate() {
-                    let mut kt = SMatrix::<f64, N, N>::zeros();
-                    for (i, ri) in rows.iter().enumerate() {
-                        for (j, rj) in rows.iter().enumerate() {
-                            let cij = tangent[(i, j)];
-                            if cij != 0.0 {
-                                kt += ri[p] * rj[q].transpose() * cij;
-                            }
-                        }
-                    }
-                    if curved {
-                        kt -= hessians[p][q] * t_n;
-                        kt += shear_hessians[p][q] * t_s;
-                    }
                     // A block missing from the pattern has only prescribed
                     // entries.
                     let Some(slot) = assembly.slot(row, column) else {
                         continue;
                     };
+                    let kt = &blocks[p][q];
                     for b in 0..N {
                         for a in 0..N {
                             let (ra, cb) = (N * row + a, N * column + b);
@@ -433,23 +494,28 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             } else {
                 1.0
             };
+            // Each step tried is evaluated with its tangent, so that the
+            // one taken needs no second evaluation.
             let mut next = Vec::with_capacity(d.len());
-            for attempt in 0..=LINE_SEARCH {
+            let mut attempt = 0;
+            let taken = loop {
                 next.clear();
                 next.extend(d.iter().zip(&delta).map(|(x, dx)| x + alpha * dx));
-                if !consistent || attempt == LINE_SEARCH {
-                    break;
-                }
-                let probe = self.assemble(&next, parts, assembly, false)?;
-                if probe.norm < (1.0 - 1e-4 * alpha) * eval.norm || eval.norm == 0.0 {
-                    break;
+                let probe = self.assemble(&next, parts, assembly, true)?;
+                if !consistent
+                    || attempt == LINE_SEARCH
+                    || probe.norm < (1.0 - 1e-4 * alpha) * eval.norm
+                    || eval.norm == 0.0
+                {
+                    break probe;
                 }
                 alpha *= 0.5;
-            }
+                attempt += 1;
+            };
             // The step reached (accepted, or the last halving) is taken.
             step_lengths.push(alpha);
             std::mem::swap(&mut d, &mut next);
-            eval = self.assemble(&d, parts, assembly, true)?;
+            eval = taken;
         }
         Err(StepFailure::NewtonNotConverged {
             iterations: newton,
@@ -496,8 +562,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                     x[k] = d[k] + alpha * delta[k];
                 }
             }
-            let (_, response, _) = self.evaluate(c, &x)?;
-            Ok(regime_code(&response))
+            self.regime_at(c, &x)
         };
         let mut bound = 1.0f64;
         for ((c, &now), _) in self

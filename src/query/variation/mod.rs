@@ -182,19 +182,27 @@ pub trait GapVariation<const M: usize> {
         })
     }
 
-    /// `g_n`, `g_s` and their variations in the unknowns `(d_A, d_B)` of
-    /// two bodies with kinematics `k_a`, `k_b`, at the step increments
-    /// `d_a`, `d_b`.
+    /// `g_n` and `g_s` alone at `z`: the values [`Self::local`] gives, to
+    /// the bit (a kind may compute them without the variations).
     ///
     /// # Errors
     /// As [`Self::local`].
-    fn dof_variation<KA, KB, const NA: usize, const NB: usize>(
+    fn values(&self, z: &SVector<f64, M>) -> Result<(f64, f64), VariationError> {
+        self.local(z).map(|l| (l.gap, l.shear))
+    }
+
+    /// The local variables `z` at the step increments `d_a`, `d_b` of two
+    /// bodies with kinematics `k_a`, `k_b`, with `C_A = L_A P_A(d_a)` and
+    /// `C_B = L_B P_B(d_b)`: the first stage of
+    /// [`Self::dof_variation`], shared with [`Self::dof_values`].
+    #[allow(clippy::type_complexity)]
+    fn dof_local_variables<KA, KB, const NA: usize, const NB: usize>(
         &self,
         k_a: &KA,
         d_a: &SVector<f64, NA>,
         k_b: &KB,
         d_b: &SVector<f64, NB>,
-    ) -> Result<DofVariation<NA, NB>, VariationError>
+    ) -> (SVector<f64, M>, SMatrix<f64, M, NA>, SMatrix<f64, M, NB>)
     where
         KA: Kinematics<NA>,
         KB: Kinematics<NB>,
@@ -214,7 +222,50 @@ pub trait GapVariation<const M: usize> {
         } else {
             delta.gemv(1.0, &lb, &k_b.map_parameters(d_b), 1.0);
         }
-        let local = self.local(&(self.start() + delta))?;
+        (self.start() + delta, ca, cb)
+    }
+
+    /// `g_n` and `g_s` alone at the step increments: the values of
+    /// [`Self::dof_variation`], to the bit, without the variations (what a
+    /// driver needs to tell an open contact, which carries no force).
+    ///
+    /// # Errors
+    /// As [`Self::local`].
+    fn dof_values<KA, KB, const NA: usize, const NB: usize>(
+        &self,
+        k_a: &KA,
+        d_a: &SVector<f64, NA>,
+        k_b: &KB,
+        d_b: &SVector<f64, NB>,
+    ) -> Result<(f64, f64), VariationError>
+    where
+        KA: Kinematics<NA>,
+        KB: Kinematics<NB>,
+    {
+        let (z, _, _) = self.dof_local_variables(k_a, d_a, k_b, d_b);
+        self.values(&z)
+    }
+
+    /// `g_n`, `g_s` and their variations in the unknowns `(d_A, d_B)` of
+    /// two bodies with kinematics `k_a`, `k_b`, at the step increments
+    /// `d_a`, `d_b`.
+    ///
+    /// # Errors
+    /// As [`Self::local`].
+    fn dof_variation<KA, KB, const NA: usize, const NB: usize>(
+        &self,
+        k_a: &KA,
+        d_a: &SVector<f64, NA>,
+        k_b: &KB,
+        d_b: &SVector<f64, NB>,
+    ) -> Result<DofVariation<NA, NB>, VariationError>
+    where
+        KA: Kinematics<NA>,
+        KB: Kinematics<NB>,
+    {
+        let (la, lb) = self.chain();
+        let (z, ca, cb) = self.dof_local_variables(k_a, d_a, k_b, d_b);
+        let local = self.local(&z)?;
         let (ta, tb) = (ca.transpose(), cb.transpose());
         let chain = |grad: &SVector<f64, M>, hess: &SMatrix<f64, M, M>| {
             let (wa, wb) = (ta * hess, tb * hess);
@@ -285,6 +336,28 @@ impl PairContact {
             PairContact::VertexEdge(c) => c.map_variation(dp_a, dp_b),
             PairContact::SmoothEdge(c) => c.map_variation(dp_a, dp_b),
             PairContact::SmoothSmooth(c) => c.map_variation(dp_a, dp_b),
+        }
+    }
+
+    /// [`GapVariation::dof_values`] of the contact.
+    ///
+    /// # Errors
+    /// As [`GapVariation::local`].
+    pub fn dof_values<KA, KB, const NA: usize, const NB: usize>(
+        &self,
+        k_a: &KA,
+        d_a: &SVector<f64, NA>,
+        k_b: &KB,
+        d_b: &SVector<f64, NB>,
+    ) -> Result<(f64, f64), VariationError>
+    where
+        KA: Kinematics<NA>,
+        KB: Kinematics<NB>,
+    {
+        match self {
+            PairContact::VertexEdge(c) => c.dof_values(k_a, d_a, k_b, d_b),
+            PairContact::SmoothEdge(c) => c.dof_values(k_a, d_a, k_b, d_b),
+            PairContact::SmoothSmooth(c) => c.dof_values(k_a, d_a, k_b, d_b),
         }
     }
 

@@ -183,4 +183,12 @@ impl GapVariation<4> for VertexEdgeContact {
             0.0,
         ))
     }
+
+    /// The values of [`local_geometry`] (with ξ = 0), by the same
+    /// operations.
+    fn values(&self, z: &SVector<f64, 4>) -> Result<(f64, f64), VariationError> {
+        let (a, b) = (Vector2::new(z[0], z[1]), Vector2::new(z[2], z[3]));
+        let l = b.norm_squared().sqrt();
+        Ok((cross(&a, &b) / l, a.dot(&b) / l - 0.0 * l))
+    }
 }
