@@ -120,17 +120,7 @@ fn run(
     steps: usize,
 ) -> Result<Run, Box<dyn std::error::Error>> {
     let law = PenaltyCoulomb::new(penalty, 0.6, integration)?;
-    let mut model = DdaModel::new(
-        blocks,
-        law,
-        DdaSettings {
-            max_open_close: std::env::var("OC")
-                .ok()
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(20),
-            ..DdaSettings::default()
-        },
-    )?;
+    let mut model = DdaModel::new(blocks, law, DdaSettings::default())?;
     let weight: f64 = model.blocks()[1..]
         .iter()
         .map(|b| b.area() * DENSITY * 9.8)
