@@ -337,8 +337,11 @@ where
             bodies: &self.bodies,
             kinematics: &self.kinematics,
             laws: &self.laws,
-            history: &self.history,
             contacts,
+            histories: contacts
+                .iter()
+                .map(|c| self.history.get(&c.key()).cloned())
+                .collect(),
             dt,
             slip_regularization: self.settings.slip_regularization,
             search: self.search,
@@ -380,8 +383,11 @@ where
             bodies: &self.bodies,
             kinematics: &self.kinematics,
             laws: &self.laws,
-            history: &self.history,
             contacts: &contacts,
+            histories: contacts
+                .iter()
+                .map(|c| self.history.get(&c.key()).cloned())
+                .collect(),
             dt,
             slip_regularization: self.settings.slip_regularization,
             search: self.search,

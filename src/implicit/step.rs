@@ -21,12 +21,10 @@
 //! and solves `K_T Δd = −R` with the linear solver on a block pattern kept
 //! while the pairs in contact are unchanged.
 
-use rustc_hash::FxHashMap;
-
 use nalgebra::{SMatrix, SVector};
 
 use super::body::Body;
-use super::detect::{ContactKey, StepContact};
+use super::detect::StepContact;
 use super::laws::ContactLaws;
 use super::motion;
 use super::report::StepFailure;
@@ -99,8 +97,10 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     pub bodies: &'a [Body<N>],
     pub kinematics: &'a K,
     pub laws: &'a ContactLaws<L>,
-    pub history: &'a FxHashMap<ContactKey, L::State>,
     pub contacts: &'a [StepContact],
+    /// Per contact: its history from the last step, `None` for a new one
+    /// (looked up once for the step, not at every evaluation).
+    pub histories: Vec<Option<L::State>>,
     pub dt: f64,
     /// Fraction of the normal stiffness added to the shear stiffness of a
     /// slipping contact in the tangent ([`super::ImplicitSettings::slip_regularization`]).
@@ -136,18 +136,18 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
     /// which are most of its cost.
     fn respond(
         &self,
+        k: usize,
         c: &StepContact,
         gap: f64,
         shear: f64,
     ) -> (ContactResponse<2, L::State>, Tangent<2>) {
-        let key = c.key();
-        let old = self.history.get(&key).cloned().unwrap_or_default();
+        let history = &self.histories[k];
         let (ba, bb) = (&self.bodies[c.a], &self.bodies[c.b]);
         let input = ContactInput {
             overlap: -gap,
             increment: SVector::<f64, 2>::new(c.geometry.initial_gap() - gap, shear),
             dt: self.dt,
-            is_new: !self.history.contains_key(&key),
+            is_new: history.is_none(),
             pair: PairProperties {
                 curvature_radius_a: f64::INFINITY,
                 curvature_radius_b: f64::INFINITY,
@@ -157,7 +157,10 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             },
         };
         let law = self.laws.law(ba.group, bb.group);
-        law.evaluate_with_tangent(&input, &old)
+        match history {
+            Some(old) => law.evaluate_with_tangent(&input, old),
+            None => law.evaluate_with_tangent(&input, &L::State::default()),
+        }
     }
 
     /// Contact `c`'s share of the residual and (with `matrix`) of the
@@ -174,18 +177,19 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
     fn share<const M: usize, G: GapVariation<M>>(
         &self,
         g: &G,
+        k: usize,
         c: &StepContact,
         d: &[f64],
         consistent: bool,
         matrix: bool,
     ) -> Result<Share<N, L::State>, StepFailure> {
         let (d_a, d_b) = (body_dofs::<N>(d, c.a), body_dofs::<N>(d, c.b));
-        let k = self.kinematics;
-        let (z, ca, cb) = g.dof_local_variables(k, &d_a, k, &d_b);
+        let kin = self.kinematics;
+        let (z, ca, cb) = g.dof_local_variables(kin, &d_a, kin, &d_b);
         let variation =
             |e: crate::query::variation::VariationError| StepFailure::Variation(e.to_string());
         let (gap, shear) = g.values(&z).map_err(variation)?;
-        let (response, mut tangent) = self.respond(c, gap, shear);
+        let (response, mut tangent) = self.respond(k, c, gap, shear);
         if response.force.iter().all(|f| *f == 0.0) && tangent.iter().all(|t| *t == 0.0) {
             return Ok(Share {
                 response,
@@ -220,8 +224,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             blocks = [[wa * ca, wa * cb], [wb * ca, wb * cb]];
             if curved && !(K::LINEAR) {
                 let (la, lb) = g.chain();
-                blocks[0][0] += k.map_curvature(&d_a, &(la.transpose() * f));
-                blocks[1][1] += k.map_curvature(&d_b, &(lb.transpose() * f));
+                blocks[0][0] += kin.map_curvature(&d_a, &(la.transpose() * f));
+                blocks[1][1] += kin.map_curvature(&d_b, &(lb.transpose() * f));
             }
         }
         Ok(Share {
@@ -232,13 +236,13 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
 
     /// The regime code of contact `c` at the iterate `d` (the law alone,
     /// without the variations).
-    fn regime_at(&self, c: &StepContact, d: &[f64]) -> Result<i8, StepFailure> {
+    fn regime_at(&self, k: usize, c: &StepContact, d: &[f64]) -> Result<i8, StepFailure> {
         let (d_a, d_b) = (body_dofs::<N>(d, c.a), body_dofs::<N>(d, c.b));
         let (gap, shear) = c
             .geometry
             .dof_values(self.kinematics, &d_a, self.kinematics, &d_b)
             .map_err(|e| StepFailure::Variation(e.to_string()))?;
-        Ok(regime_code(&self.respond(c, gap, shear).0))
+        Ok(regime_code(&self.respond(k, c, gap, shear).0))
     }
 
     /// The parts of the residual that do not depend on the iterate, for
@@ -343,11 +347,11 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             states: Vec::with_capacity(self.contacts.len()),
             forces: Vec::with_capacity(self.contacts.len()),
         };
-        for c in self.contacts {
+        for (k, c) in self.contacts.iter().enumerate() {
             let share = match &c.geometry {
-                PairContact::VertexEdge(g) => self.share(g, c, d, parts.consistent, matrix)?,
-                PairContact::SmoothEdge(g) => self.share(g, c, d, parts.consistent, matrix)?,
-                PairContact::SmoothSmooth(g) => self.share(g, c, d, parts.consistent, matrix)?,
+                PairContact::VertexEdge(g) => self.share(g, k, c, d, parts.consistent, matrix)?,
+                PairContact::SmoothEdge(g) => self.share(g, k, c, d, parts.consistent, matrix)?,
+                PairContact::SmoothSmooth(g) => self.share(g, k, c, d, parts.consistent, matrix)?,
             };
             let (t_n, t_s) = (share.response.force[0], share.response.force[1]);
             eval.contact_scale = eval.contact_scale.max(t_n.abs() + t_s.abs());
@@ -556,26 +560,26 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         // The iterate `d + α delta`, written only for the two bodies of
         // the contact evaluated (the pair query reads no other).
         let mut x = d.to_vec();
-        let mut regime_along = |c: &StepContact, alpha: f64| -> Result<i8, StepFailure> {
+        let mut regime_along = |k: usize, alpha: f64| -> Result<i8, StepFailure> {
+            let c = &self.contacts[k];
             for body in [c.a, c.b] {
-                for k in N * body..N * body + N {
-                    x[k] = d[k] + alpha * delta[k];
+                for i in N * body..N * body + N {
+                    x[i] = d[i] + alpha * delta[i];
                 }
             }
-            self.regime_at(c, &x)
+            self.regime_at(k, c, &x)
         };
         let mut bound = 1.0f64;
-        for ((c, &now), _) in self
-            .contacts
+        for ((k, &now), _) in regimes
             .iter()
-            .zip(regimes)
+            .enumerate()
             .zip(reversed)
             .filter(|(_, &cycled)| cycled)
         {
             if now < 2 {
                 continue;
             }
-            let end = regime_along(c, 1.0)?;
+            let end = regime_along(k, 1.0)?;
             if end < 2 || end == now {
                 continue;
             }
@@ -583,7 +587,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             let (mut low, mut high) = (0.0f64, 1.0f64);
             for _ in 0..STICK_SEARCH {
                 let mid = 0.5 * (low + high);
-                match regime_along(c, mid)? {
+                match regime_along(k, mid)? {
                     r if r == now => low = mid,
                     0 | 1 => {
                         high = mid;
