@@ -23,7 +23,12 @@
 //! * shear and normal penalties are equal (eq. 8 uses `p_c` for both);
 //! * blocks are in plane stress by default (classic DDA);
 //! * within a step the displacement field is the linear one of eq. (14),
-//!   so a rotation `r₀` stretches a block slightly, as in classic DDA;
+//!   so a rotation `r₀` stretches a block by `√(1 + r₀²)` within the step,
+//!   as in classic DDA; at the end of the step the vertices are moved with
+//!   the rotation made exact (the post-correction of DDA practice,
+//!   [`crate::kinematics::Affine2`]), so that a block turning without
+//!   strain keeps its area (classic DDA grows it by `r₀²` a step: a disc
+//!   rolling 990° on a 40° incline grew by 45 %);
 //! * the density is kept as a block deforms, so its mass follows its area
 //!   (as in classic DDA);
 //! * the static analysis of classic DDA keeps the inertia term in the

@@ -479,7 +479,7 @@ where
             BodyGeometry::Ellipse(e) => BodyGeometry::Ellipse(self.kinematics.advance(e, d_i, i)?),
             BodyGeometry::Wall(s) => {
                 let c = self.bodies[i].centroid();
-                let map = self.kinematics.map(d_i);
+                let map = self.kinematics.committed_map(d_i);
                 BodyGeometry::Wall(Segment::new(map.apply(&c, &s.start), map.apply(&c, &s.end)))
             }
         })
@@ -510,8 +510,8 @@ where
         }
         for fp in &mut self.fixed_points {
             let di = body_dofs::<N>(&trial.d, fp.body);
-            let r = fp.point - self.bodies[fp.body].centroid();
-            fp.point += self.kinematics.point_jacobian(&di, &r) * di;
+            let c = self.bodies[fp.body].centroid();
+            fp.point = self.kinematics.committed_map(&di).apply(&c, &fp.point);
         }
         // Contact reports in the accepted configuration; history for the
         // contacts that did not open.

@@ -155,6 +155,14 @@ pub trait Kinematics<const N: usize> {
         BodyMap::from_parameters(&self.map_parameters(d))
     }
 
+    /// The map a committed increment `d` applies to the body's geometry
+    /// at the end of a step: [`Self::map`] unless the kinematics corrects
+    /// it (DDA's affine body makes its rotation exact there, see
+    /// [`Affine2`]).
+    fn committed_map(&self, d: &SVector<f64, N>) -> BodyMap {
+        self.map(d)
+    }
+
     /// `∂x/∂d` (2×N) at the point whose start-of-step offset from the
     /// reference point is `r`: loads, tractions and velocities of a point.
     fn point_jacobian(&self, d: &SVector<f64, N>, r: &Vec2) -> SMatrix<f64, 2, N> {

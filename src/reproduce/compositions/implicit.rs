@@ -189,8 +189,10 @@ pub(super) fn affine_disc(c: &mut Collector) -> Result<()> {
             "A disc of radius {} m (ρ = {} kg/m³, E = {:e} Pa, ν = {}) with DDA's six affine unknowns \
              on a {}° incline, μ = {} (it rolls: μ ≥ tan β / 3), penalty {:e} N/m per m, Newmark β = ½, \
              γ = 1, for {} s; the centre's acceleration is the curvature of a parabola fitted from {} s. \
-             The error is first order in Δt (Newmark with γ = 1 is first order, and DDA's first-order \
-             rotation grows the body's area by r₀² each step): the run is repeated at 2 Δt and 4 Δt.",
+             The error is first order in Δt (Newmark with γ = 1 is first order): the run is repeated \
+             at 2 Δt and 4 Δt. The body's geometry is moved with its rotation made exact at the end of \
+             each step (DDA's first-order rotation would grow its area by r₀² a step), so its area \
+             changes by its elastic strain alone.",
             setup.radius,
             setup.density,
             setup.youngs_modulus,
@@ -237,7 +239,7 @@ pub(super) fn affine_disc(c: &mut Collector) -> Result<()> {
                 what: &format!("relative area change over the run at {factor} Δt"),
                 reference: "a rigid rotation keeps the area",
                 unit: "-",
-                note: "Σ r₀² of DDA's linearised rotation",
+                note: "the elastic strain alone: the rotation is exact at the end of each step",
             },
             Some(0.0),
             run.area_change,
