@@ -6,7 +6,7 @@
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
-    Prescribed, StepStatus,
+    Prescribed, StepFailure, StepStatus,
 };
 use dismech::math::Point;
 
@@ -244,4 +244,47 @@ fn a_search_distance_as_large_as_a_brick_settles_the_wall() {
         assert!(error <= 5e-3, "|R/W − 1| = {error:e}");
         assert!(moved <= 4.0 * 1e-5 + 1e-3, "moved {moved:e} m");
     }
+}
+
+/// Newton's test of convergence knows the round-off of the equations: at a
+/// penalty of 1e8 E × 1 m (1e18) a column of five bricks converged only to
+/// a relative residual of 1e-7 against the tolerance 1e-10, and its steps
+/// were halved until the run failed; the residual's round-off (a contact's
+/// stiffness times the rounding of the two bodies' motions in its gap) is
+/// now the tolerance there, and the column stands, every step whole. At
+/// 1e22 that round-off alone is above what a step may leave, and the step
+/// is refused, with the penalty to go down to.
+#[test]
+fn a_penalty_stiff_to_round_off_converges_or_is_refused_naming_a_penalty() {
+    let model = |penalty: f64| {
+        DdaModel::new(
+            column(5, 0.0),
+            law(penalty, FrictionIntegration::ReturnMapping),
+            DdaSettings::default(),
+        )
+        .unwrap()
+    };
+    let mut stiff = model(1e18);
+    let weight: f64 = stiff.blocks()[1..]
+        .iter()
+        .map(|b| b.area() * DENSITY * G)
+        .sum();
+    let mut halvings = 0;
+    for _ in 0..100 {
+        let report = stiff.advance(1e-3).unwrap();
+        assert_eq!(report.status, StepStatus::Converged);
+        halvings += report.reductions;
+    }
+    let ratio = -stiff.contact_force_on(0).y / weight;
+    println!("1e18: {halvings} halvings, R/W = {ratio}");
+    assert_eq!(halvings, 0);
+    assert!((ratio - 1.0).abs() <= 5e-3);
+    let mut too_stiff = model(1e22);
+    let report = too_stiff.advance(1e-3).unwrap();
+    let StepStatus::Failed { reason, .. } = &report.status else {
+        panic!("{:?}", report.status)
+    };
+    println!("1e22: {reason}");
+    assert!(matches!(reason, StepFailure::RoundOff { .. }), "{reason}");
+    assert!(reason.to_string().contains("lower the penalty to about"));
 }

@@ -28,8 +28,11 @@
 //!   iterate to the next, the iteration is an open–close iteration (at
 //!   most `max_open_close`).
 //! * **Newton**: once the set is stable, a consistent law iterates to
-//!   `‖R‖ ≤ tol · scale` with the consistent tangent (at most `max_newton`
-//!   iterations), with the stick/slip states and slip directions unchanged
+//!   `‖R‖ ≤ tol · scale`, or to 100 times the residual's own round-off
+//!   where that is larger (a stiff penalty turns the rounding of the bodies'
+//!   motion in a contact's gap into forces; see [`StepFailure::RoundOff`]
+//!   for where that round-off alone is too large), with the consistent
+//!   tangent (at most `max_newton` iterations), with the stick/slip states and slip directions unchanged
 //!   between the last two iterates. An update that would take a slipping
 //!   contact, whose slip has already reversed once in the step, to slip
 //!   the other way again stops where that contact sticks (its stick band

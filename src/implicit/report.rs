@@ -43,6 +43,19 @@ pub enum StepFailure {
         /// The largest accepted.
         limit: f64,
     },
+    /// The round-off of the step's equations alone (relative to the loads)
+    /// is above what a step may leave: a contact stiffness times the
+    /// rounding of the bodies' motion in the contact's gap makes forces of
+    /// that size, so the answer would be noise.
+    RoundOff {
+        /// The residual's round-off over the loads.
+        floor: f64,
+        /// The largest accepted.
+        limit: f64,
+        /// The largest normal stiffness of a contact of the step (N/m per
+        /// m).
+        stiffness: f64,
+    },
 }
 
 impl std::fmt::Display for StepFailure {
@@ -55,6 +68,7 @@ impl std::fmt::Display for StepFailure {
             Self::Geometry(m) => write!(f, "{m}"),
             Self::Variation(m) => write!(f, "contact geometry: {m}"),
             Self::Imprecise { residual, limit } => write!(f, "the contact states settled but the equations hold only to a relative residual {residual:.3e} (more than {limit:.1e}): the contact penalty is too stiff for double precision against the bodies' stiffness and inertia; lower the penalty"),
+            Self::RoundOff { floor, limit, stiffness } => write!(f, "the round-off of the step's equations is {floor:.3e} of the loads (more than {limit:.1e}): a contact stiffness of {stiffness:.3e} N/m per m turns the rounding of the bodies' motion into forces of that size; lower the penalty to about {:.1e} or below", stiffness * limit / floor * 0.01),
         }
     }
 }
@@ -70,7 +84,7 @@ pub struct Halvings {
     /// [`StepFailure::TooFast`]: a motion beyond the search distance.
     pub too_fast: usize,
     /// The others: a failed linear solve, an invalid body, a contact
-    /// normal not found, an imprecise solve.
+    /// normal not found, an imprecise solve, round-off above the limit.
     pub other: usize,
 }
 
@@ -84,7 +98,8 @@ impl Halvings {
             StepFailure::Solve(_)
             | StepFailure::Geometry(_)
             | StepFailure::Variation(_)
-            | StepFailure::Imprecise { .. } => self.other += 1,
+            | StepFailure::Imprecise { .. }
+            | StepFailure::RoundOff { .. } => self.other += 1,
         }
     }
 

@@ -54,7 +54,10 @@ pub struct ImplicitSettings {
     pub max_open_close: usize,
     /// Most Newton iterations per step once the contact states settled.
     pub max_newton: usize,
-    /// Relative residual tolerance of Newton.
+    /// Relative residual tolerance of Newton: `‖R‖ ≤ tol · scale`, the
+    /// scale being the largest load or contact force. Where the residual's
+    /// round-off is larger (a very stiff penalty), Newton stops at 100 times
+    /// that round-off instead.
     pub residual_tolerance: f64,
     /// Smallest step, as a fraction of the requested one (e.g. 1/64).
     pub min_dt_ratio: f64,

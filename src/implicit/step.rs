@@ -41,6 +41,14 @@ use crate::query::variation::{GapVariation, PairContact};
 /// precision no longer resolves the gap and the stresses are wrong.
 pub(super) const SETTLED_RESIDUAL_LIMIT: f64 = 5e-6;
 
+/// How far above the estimated round-off of the residual
+/// ([`Evaluation::floor`]) Newton is taken to have reached it: the solve's
+/// own rounding and the sums over many terms leave the reachable residual
+/// some tens of times above the estimate (40 times on a stack of five
+/// blocks at penalties of 1e16 and 1e18, where Newton stalled at 1e-9 and
+/// 1e-7 against the default tolerance of 1e-10).
+pub(super) const FLOOR_FACTOR: f64 = 100.0;
+
 /// Most halvings of a Newton step in the backtracking line search.
 pub(super) const LINE_SEARCH: usize = 8;
 
@@ -64,6 +72,12 @@ pub(super) struct Evaluation<S> {
     pub r: Vec<f64>,
     pub norm: f64,
     pub contact_scale: f64,
+    /// The round-off of `norm`: the norm of the vector whose entries bound
+    /// the rounding of each entry of the residual (see
+    /// [`StepData::assemble`]).
+    pub floor: f64,
+    /// The largest normal stiffness of a contact's law at this iterate.
+    pub stiffness: f64,
     /// Per contact: 0 open, 1 stick, 2 / 3 slip with `t_s ≥ 0` / `< 0`.
     pub regimes: Vec<i8>,
     pub states: Vec<S>,
@@ -71,12 +85,19 @@ pub(super) struct Evaluation<S> {
 }
 
 /// One contact's share at an iterate: the law's response, and where the
-/// contact carries a force or has a tangent, its forces on bodies A and B
-/// and the tangent blocks `[[AA, AB], [BA, BB]]` in their unknowns.
+/// contact carries a force or has a tangent, its forces on bodies A and B,
+/// the tangent blocks `[[AA, AB], [BA, BB]]` in their unknowns, and the
+/// magnitudes whose `ε` multiple bounds the rounding of the forces.
 #[allow(clippy::type_complexity)]
 struct Share<const N: usize, S> {
     response: ContactResponse<2, S>,
-    on_bodies: Option<([SVector<f64, N>; 2], [[SMatrix<f64, N, N>; 2]; 2])>,
+    /// The law's normal stiffness.
+    stiffness: f64,
+    on_bodies: Option<(
+        [SVector<f64, N>; 2],
+        [[SMatrix<f64, N, N>; 2]; 2],
+        [SVector<f64, N>; 2],
+    )>,
 }
 
 /// Result of one trial step.
@@ -193,6 +214,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         if response.force.iter().all(|f| *f == 0.0) && tangent.iter().all(|t| *t == 0.0) {
             return Ok(Share {
                 response,
+                stiffness: 0.0,
                 on_bodies: None,
             });
         }
@@ -204,6 +226,13 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let f = local.grad_shear * t_s - local.grad_gap * t_n;
         let (ta, tb) = (ca.transpose(), cb.transpose());
         let forces = [ta * f, tb * f];
+        // The size of the terms of the forces, and the force the rounding
+        // of the gap and shear makes through the law's stiffnesses.
+        let motion = (ca * d_a).norm() + (cb * d_b).norm() + gap.abs() + shear.abs();
+        let stiffness = tangent.abs().column_sum();
+        let spread = local.grad_gap.abs() + local.grad_shear.abs();
+        let size = spread * (t_n.abs() + t_s.abs() + (stiffness[0] + stiffness[1]) * motion);
+        let magnitudes = [ta.abs() * size, tb.abs() * size];
         let mut blocks = [[SMatrix::<f64, N, N>::zeros(); 2]; 2];
         if matrix {
             let rows = [-local.grad_gap, local.grad_shear];
@@ -230,7 +259,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         }
         Ok(Share {
             response,
-            on_bodies: Some((forces, blocks)),
+            stiffness: tangent[(0, 0)].abs(),
+            on_bodies: Some((forces, blocks, magnitudes)),
         })
     }
 
@@ -305,7 +335,17 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
     }
 
     /// Residual (and, with `matrix`, the tangent in `assembly`) at the
-    /// iterate `d`.
+    /// iterate `d`, with the round-off of its norm.
+    ///
+    /// The round-off is that of the sums and products that make each entry
+    /// (`ε` times the sum of the magnitudes of their terms: the bodies'
+    /// `|f| + |K||d|`, each contact's forces), and that of each contact's
+    /// gap and shear, which its law multiplies by its stiffnesses: the
+    /// contact's local variables `z = z₀ + C_A d_A + C_B d_B` sum the two
+    /// bodies' motions over the step, which nearly cancel where they move
+    /// together, so a gap is known to `ε (|C_A d_A| + |C_B d_B|)` and a
+    /// penalty `p` makes a force of `p` times that. Below that Newton cannot
+    /// take the residual; the test of convergence accepts it there.
     pub fn assemble(
         &self,
         d: &[f64],
@@ -316,15 +356,19 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let nb = self.bodies.len();
         let mask = &parts.mask;
         let mut r = vec![0.0; N * nb];
+        let mut rounding = vec![0.0; N * nb];
         if matrix {
             assembly.clear();
         }
         for i in 0..nb {
             let k = &parts.block_k[i];
-            let fi = parts.block_f[i] + k * body_dofs::<N>(d, i);
+            let di = body_dofs::<N>(d, i);
+            let fi = parts.block_f[i] + k * di;
+            let magnitude = parts.block_f[i].abs() + k.abs() * di.abs();
             let slot = assembly.slot(i, i);
             for a in 0..N {
                 r[N * i + a] += fi[a];
+                rounding[N * i + a] += magnitude[a];
                 let Some(slot) = slot.filter(|_| matrix) else {
                     continue;
                 };
@@ -343,6 +387,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             r: Vec::new(),
             norm: 0.0,
             contact_scale: 0.0,
+            floor: 0.0,
+            stiffness: 0.0,
             regimes: Vec::with_capacity(self.contacts.len()),
             states: Vec::with_capacity(self.contacts.len()),
             forces: Vec::with_capacity(self.contacts.len()),
@@ -358,13 +404,15 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             eval.regimes.push(regime_code(&share.response));
             eval.states.push(share.response.state);
             eval.forces.push((t_n, t_s));
-            let Some((forces, blocks)) = share.on_bodies else {
+            eval.stiffness = eval.stiffness.max(share.stiffness);
+            let Some((forces, blocks, magnitudes)) = share.on_bodies else {
                 continue;
             };
             let bodies = [c.a, c.b];
             for (side, force) in forces.iter().enumerate() {
                 for a in 0..N {
                     r[N * bodies[side] + a] += force[a];
+                    rounding[N * bodies[side] + a] += magnitudes[side][a];
                 }
             }
             if !matrix {
@@ -392,9 +440,11 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         for (k, m) in mask.iter().enumerate() {
             if *m {
                 r[k] = 0.0;
+                rounding[k] = 0.0;
             }
         }
         eval.norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        eval.floor = f64::EPSILON * rounding.iter().map(|x| x * x).sum::<f64>().sqrt();
         eval.r = r;
         Ok(eval)
     }
@@ -424,17 +474,29 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let mut reversed = vec![false; self.contacts.len()];
         let mut eval = self.assemble(&d, parts, assembly, true)?;
         for _ in 0..=max_iter {
-            let rel = eval.norm / parts.scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
+            let scale = parts.scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
+            let (rel, floor) = (eval.norm / scale, eval.floor / scale);
             residuals.push(rel);
             if !rel.is_finite() {
                 return Err(StepFailure::Solve("non-finite residual".into()));
             }
+            if floor > SETTLED_RESIDUAL_LIMIT {
+                // The round-off of the residual alone is above what a step
+                // may leave: the answer would be noise.
+                return Err(StepFailure::RoundOff {
+                    floor,
+                    limit: SETTLED_RESIDUAL_LIMIT,
+                    stiffness: eval.stiffness,
+                });
+            }
+            // The tolerance, or the residual's round-off where the penalty
+            // makes that larger.
+            let tolerance = settings.residual_tolerance.max(FLOOR_FACTOR * floor);
             let open: Vec<bool> = eval.regimes.iter().map(|&r| r == 0).collect();
             let settled = last_open.as_ref() == Some(&open);
             if settled {
                 let done = if consistent {
-                    last_regimes.as_ref() == Some(&eval.regimes)
-                        && rel <= settings.residual_tolerance
+                    last_regimes.as_ref() == Some(&eval.regimes) && rel <= tolerance
                 } else {
                     // Classic DDA accepts settled states; a residual far
                     // above the tolerance there is lost precision, not an
