@@ -18,7 +18,7 @@
 //! mapping to the conventional one. A timed run, not a criterion loop.
 //!
 //! Run: `cargo bench --bench dda_blocks` (optionally sizes, e.g. `-- 100
-//! 400`, `steps=N` (20 by default), `touching` or `settling` for one state,
+//! 400`, `steps=N` (50 by default), `touching` or `settling` for one state,
 //! `penalty=1` or `penalty=10` for one penalty (× E × 1 m); for one core,
 //! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench --bench dda_blocks`).
 
@@ -171,7 +171,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps = args
         .iter()
         .find_map(|a| a.strip_prefix("steps=").and_then(|s| s.parse().ok()))
-        .unwrap_or(20usize)
+        .unwrap_or(50usize)
         .max(1);
     let states: Vec<(&str, f64, f64)> = [("touching", 0.0, 0.0), ("settling", 1e-5, 0.002)]
         .into_iter()
