@@ -1,5 +1,6 @@
-//! Body kinematics: the affine map is DDA's displacement field, its mass,
-//! stiffness and geometry update are DDA's bit for bit, the rigid map's
+//! Body kinematics: the affine map is DDA's displacement field, its mass
+//! and stiffness are DDA's bit for bit, its geometry update is DDA's with
+//! the rotation made exact (a turning body keeps its area), the rigid map's
 //! mass gives a disc's exact kinetic energy, and the map derivatives are
 //! the finite differences of the map parameters.
 

@@ -537,8 +537,10 @@ where
                 PairContact::SmoothEdge(s) => s.material,
                 PairContact::SmoothSmooth(s) => s.material_a,
             };
-            let point = material
-                + motion::displacement(&self.kinematics, &self.bodies[c.a], &material, &da);
+            let point = self
+                .kinematics
+                .committed_map(&da)
+                .apply(&self.bodies[c.a].centroid(), &material);
             let key = c.key();
             if trial.regimes[k] != 0 {
                 self.history.insert(key, trial.states[k].clone());

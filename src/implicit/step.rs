@@ -490,8 +490,10 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 });
             }
             // The tolerance, or the residual's round-off where the penalty
-            // makes that larger.
-            let tolerance = settings.residual_tolerance.max(FLOOR_FACTOR * floor);
+            // makes that larger, up to what a step may leave.
+            let tolerance = settings
+                .residual_tolerance
+                .max((FLOOR_FACTOR * floor).min(SETTLED_RESIDUAL_LIMIT));
             let open: Vec<bool> = eval.regimes.iter().map(|&r| r == 0).collect();
             let settled = last_open.as_ref() == Some(&open);
             if settled {

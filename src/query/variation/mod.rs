@@ -25,7 +25,8 @@
 //!   For a linear one ([`Affine2`](crate::kinematics::Affine2)) `z = z₀ +
 //!   C d` directly, so the vertex–edge contact of two DDA blocks reproduces
 //!   classic DDA's chain through the displacement matrices of paper 003
-//!   eq. (15) bit for bit (tested in `tests/variations.rs`).
+//!   eq. (15), to round-off (it measures the vertex from the foot of the
+//!   perpendicular; tested in `tests/variations.rs`).
 //!
 //! The result keeps the two bodies apart as blocks (`aa`, `ab`, `ba`,
 //! `bb`), so the bodies may have different numbers of unknowns.

@@ -88,7 +88,8 @@ impl PolygonCorner {
 ///    line among their four edges): the contact is B's corner against
 ///    that edge, found from B's side, and P₁ meets neither edge at C.
 /// 3. **Reflex corners: both edges.** A vertex in a reflex corner of B (a
-///    notch) meets both of its edges.
+///    notch) meets both of its edges (those of the reflex corner nearest
+///    it, in a slot narrower than the search distance).
 ///
 /// Among what remains, the edge of the previous step is kept if it is
 /// still met (the contact keeps its shear history), else the one with
@@ -121,38 +122,39 @@ pub fn entrance_edges(
             (c.foot_on_edge() && gap.abs() <= search && !from_behind).then_some(c)
         })
         .collect();
-    // Corners met from both of their edges.
-    let mut both_at_reflex: Option<usize> = None;
+    // Corners met from both of their edges, each judged on the edges as
+    // met before any corner dropped one (a short edge between two corners
+    // must be tested at both), and the reflex one nearest P₁.
+    let original = met.clone();
+    let mut nearest_reflex: Option<(usize, f64)> = None;
     for k in 0..count {
         let (before, after) = ((k + count - 1) % count, k);
-        let (Some(cb), Some(ca)) = (&met[before], &met[after]) else {
+        let (Some(cb), Some(ca)) = (&original[before], &original[after]) else {
             continue;
         };
-        let corner = polygon.vertex(k);
-        if (p - corner).norm() > search {
+        let distance = (p - polygon.vertex(k)).norm();
+        if distance > search {
             continue;
         }
         if polygon.polygon().is_reflex(k) {
-            both_at_reflex = Some(k);
+            if nearest_reflex.is_none_or(|(_, d)| distance < d) {
+                nearest_reflex = Some((k, distance));
+            }
             continue;
         }
         let normal = |c: &VertexEdgeContact| {
             let b = c.edge[1] - c.edge[0];
             Vec2::new(b.y, -b.x).normalize()
         };
-        let (keep_before, keep_after) = (
-            vertex.outside_of(&normal(cb)),
-            vertex.outside_of(&normal(ca)),
-        );
-        if !keep_before {
+        if !vertex.outside_of(&normal(cb)) {
             met[before] = None;
         }
-        if !keep_after {
+        if !vertex.outside_of(&normal(ca)) {
             met[after] = None;
         }
     }
     let mut out = SmallVec::new();
-    if let Some(k) = both_at_reflex {
+    if let Some((k, _)) = nearest_reflex {
         let (before, after) = ((k + count - 1) % count, k);
         if let (Some(cb), Some(ca)) = (met[before], met[after]) {
             out.push((before, cb));
@@ -346,5 +348,64 @@ mod tests {
         let from_b = PolygonCorner::of(&lower, 3);
         let met = entrance_edges(&from_b, lower.centroid(), &a, 0.01, None);
         assert_eq!(met.len(), 1, "{met:?}");
+        // Both of A's edges at the vertex separate the angles; the first of
+        // their equal (zero) gaps is taken: edge 0, from (0, 0.2).
+        assert_eq!(met[0].0, 0);
+        assert!(met[0].1.initial_gap.abs() < 1e-15);
+    }
+
+    /// A short (chamfer) edge between two corners: the corner rule is
+    /// applied at both, so a block's corner pressed into the top near the
+    /// chamfer meets the top, not the side beyond the chamfer.
+    #[test]
+    fn a_chamfer_does_not_let_a_side_edge_through() {
+        let chamfered = PlacedPolygon::from_world(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(0.4, 0.0),
+                Point::new(0.4, 0.2),
+                Point::new(0.001, 0.2),
+                Point::new(0.0, 0.199),
+            ],
+            0,
+        )
+        .unwrap();
+        let upper = rect(0.00101, 0.1985, 0.4, 0.4);
+        let corner = PolygonCorner::of(&upper, 0);
+        let met = entrance_edges(&corner, upper.centroid(), &chamfered, 0.01, None);
+        assert_eq!(
+            met.iter().map(|m| m.0).collect::<Vec<_>>(),
+            vec![2],
+            "{met:?}"
+        );
+    }
+
+    /// In a slot narrower than the search distance a block's corner meets
+    /// the bottom and the wall it presses on, not the far wall.
+    #[test]
+    fn in_a_narrow_slot_the_nearest_notch_is_met() {
+        // A U: the slot is 0.02 m wide, x from 0.14 to 0.16, bottom at 0.1.
+        let u = PlacedPolygon::from_world(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(0.3, 0.0),
+                Point::new(0.3, 0.3),
+                Point::new(0.16, 0.3),
+                Point::new(0.16, 0.1),
+                Point::new(0.14, 0.1),
+                Point::new(0.14, 0.3),
+                Point::new(0.0, 0.3),
+            ],
+            0,
+        )
+        .unwrap();
+        // A pin with its lower-right corner 1 mm off the right wall and 1
+        // mm above the bottom (the left wall is 19 mm away).
+        let pin = rect(0.1420, 0.101, 0.159, 0.25);
+        let corner = PolygonCorner::of(&pin, 1);
+        let met = entrance_edges(&corner, pin.centroid(), &u, 0.05, None);
+        let mut edges: Vec<usize> = met.iter().map(|m| m.0).collect();
+        edges.sort_unstable();
+        assert_eq!(edges, vec![3, 4], "{met:?}");
     }
 }
