@@ -24,6 +24,17 @@
 //! | the driver: time loop, Δt control, commit | `driver.rs` |
 //! | settings, reports | `settings.rs`, `report.rs` |
 //!
+//! * **Contacts**: detected at the start of each step; a polygon vertex
+//!   meets the edges [`crate::query::variation::entrance_edges`] gives it:
+//!   classic DDA's rule (Shi 1988, *Discontinuous Deformation Analysis*,
+//!   ch. 4: the previous step's edge, else the shortest way out) with the
+//!   entrance line at shared corners (the edge whose line separates the
+//!   vertex's angle from the other block; blocks cut from joint sets share
+//!   corners, and "the shortest way out" there picks a side edge that
+//!   carries no load, through which a block sank under `Converged` steps),
+//!   no edge met from behind, and both edges of a notch. Gaps are measured
+//!   from the foot of the perpendicular, so their round-off does not grow
+//!   with an edge's length.
 //! * **Open–close**: while the set of open contacts changes from one
 //!   iterate to the next, the iteration is an open–close iteration (at
 //!   most `max_open_close`).
