@@ -29,6 +29,18 @@ use crate::shape::{crossing_depth, Segment};
 /// times this, within the settings' bounds.
 const SEARCH_MARGIN: f64 = 1.5;
 
+/// Each contact's history from the last step, `None` for a new one (what
+/// a trial's [`StepData`] reads, looked up once a step).
+fn histories_of<S: Clone>(
+    history: &FxHashMap<ContactKey, S>,
+    contacts: &[StepContact],
+) -> Vec<Option<S>> {
+    contacts
+        .iter()
+        .map(|c| history.get(&c.key()).cloned())
+        .collect()
+}
+
 /// A penalty spring tying a material point of a body to its start position
 /// (the fixed point of classic DDA).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -338,10 +350,7 @@ where
             kinematics: &self.kinematics,
             laws: &self.laws,
             contacts,
-            histories: contacts
-                .iter()
-                .map(|c| self.history.get(&c.key()).cloned())
-                .collect(),
+            histories: histories_of(&self.history, contacts),
             dt,
             slip_regularization: self.settings.slip_regularization,
             search: self.search,
@@ -384,10 +393,7 @@ where
             kinematics: &self.kinematics,
             laws: &self.laws,
             contacts: &contacts,
-            histories: contacts
-                .iter()
-                .map(|c| self.history.get(&c.key()).cloned())
-                .collect(),
+            histories: histories_of(&self.history, &contacts),
             dt,
             slip_regularization: self.settings.slip_regularization,
             search: self.search,

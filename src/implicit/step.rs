@@ -209,7 +209,17 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let (z, ca, cb) = g.dof_local_variables(kin, &d_a, kin, &d_b);
         let variation =
             |e: crate::query::variation::VariationError| StepFailure::Variation(e.to_string());
-        let (gap, shear) = g.values(&z).map_err(variation)?;
+        // A kind whose values cost as much as its variations computes them
+        // once.
+        let mut known = None;
+        let (gap, shear) = if G::VALUES_ALONE {
+            g.values(&z).map_err(variation)?
+        } else {
+            let local = g.local(&z).map_err(variation)?;
+            let values = (local.gap, local.shear);
+            known = Some(local);
+            values
+        };
         let (response, mut tangent) = self.respond(k, c, gap, shear);
         if response.force.iter().all(|f| *f == 0.0) && tangent.iter().all(|t| *t == 0.0) {
             return Ok(Share {
@@ -221,7 +231,10 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         if response.regime == Regime::Slip {
             tangent[(1, 1)] += self.slip_regularization * tangent[(0, 0)].abs();
         }
-        let local = g.local(&z).map_err(variation)?;
+        let local = match known {
+            Some(local) => local,
+            None => g.local(&z).map_err(variation)?,
+        };
         let (t_n, t_s) = (response.force[0], response.force[1]);
         let f = local.grad_shear * t_s - local.grad_gap * t_n;
         let (ta, tb) = (ca.transpose(), cb.transpose());

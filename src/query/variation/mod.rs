@@ -183,6 +183,11 @@ pub trait GapVariation<const M: usize> {
         })
     }
 
+    /// Whether [`Self::values`] costs less than [`Self::local`] (a kind
+    /// that overrides it says so): a caller that may need the variations
+    /// after the values then takes both from one [`Self::local`].
+    const VALUES_ALONE: bool = false;
+
     /// `g_n` and `g_s` alone at `z`: the values [`Self::local`] gives, to
     /// the bit (a kind may compute them without the variations).
     ///

@@ -185,6 +185,8 @@ impl GapVariation<4> for VertexEdgeContact {
         ))
     }
 
+    const VALUES_ALONE: bool = true;
+
     /// The values of [`local_geometry`] (with ξ = 0), by the same
     /// operations.
     fn values(&self, z: &SVector<f64, 4>) -> Result<(f64, f64), VariationError> {
