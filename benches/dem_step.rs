@@ -48,6 +48,7 @@ fn settled_example1() -> Result<DemSimulation<SpringDashpotCoulomb, ExplicitEule
         check_every: 100,
         consecutive_checks: 10,
         unbalanced_force_ratio: 1e-4,
+        ..RestCriterion::default()
     };
     sim.run_to_rest(&rest, |_, _| {})?;
     Ok(sim)

@@ -7,7 +7,7 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DismechError {
     /// A parameter is outside its admissible range (non-finite, negative, zero…).
-    #[error("invalid {name} = {value}: {requirement}")]
+    #[error("invalid {name} = {}: {requirement}", Number(*value))]
     InvalidParameter {
         /// The parameter's name as the user wrote it (e.g. `radius`, `density`).
         name: &'static str,
@@ -17,7 +17,7 @@ pub enum DismechError {
         requirement: &'static str,
     },
     /// A particle starts inside a wall.
-    #[error("particle {body} starts inside wall {wall}: penetration {penetration:.3e} m exceeds the tolerance {tolerance:.3e} m")]
+    #[error("particle {body} starts inside wall {wall}: penetration {penetration:.3e} m exceeds the tolerance {tolerance:.3e} m{}", if *clockwise_frame { "; the frame's walls run clockwise, which puts the material outside them: list the walls counter-clockwise around what the frame holds" } else { "" })]
     StartsInsideWall {
         /// Index of the particle.
         body: usize,
@@ -27,6 +27,31 @@ pub enum DismechError {
         penetration: f64,
         /// Largest penetration accepted at the start.
         tolerance: f64,
+        /// Whether the frame's walls run clockwise (material outside them).
+        clockwise_frame: bool,
+    },
+    /// A particle's state or mass properties cannot start a run.
+    #[error("particle {particle}: invalid {name} = {}: {requirement}", Number(*value))]
+    InvalidParticle {
+        /// Index of the particle.
+        particle: usize,
+        /// The quantity (position, velocity, mass…).
+        name: &'static str,
+        /// The value found.
+        value: f64,
+        /// What it must satisfy, and what to change.
+        requirement: &'static str,
+    },
+    /// A model would take more memory than its budget or than the system
+    /// gives; refused before the memory is taken.
+    #[error("{what} needs about {bytes} bytes ({}): {advice}", Bytes(*bytes))]
+    OutOfMemory {
+        /// What would be allocated, with its sizes.
+        what: String,
+        /// Bytes it needs (an estimate where it is a budget).
+        bytes: u128,
+        /// Why it is refused and what to change.
+        advice: String,
     },
     /// Two particles overlap at the start by more than the tolerance.
     #[error("particles {a} and {b} overlap by {overlap:.3e} m at the start, more than the tolerance {tolerance:.3e} m")]
@@ -243,6 +268,27 @@ pub enum DismechError {
         /// What it must satisfy.
         requirement: &'static str,
     },
+    /// An edge traction that names no edge of its body, or is not finite.
+    #[error("body {body}: edge traction on edge {edge}: {reason}")]
+    InvalidEdgeTraction {
+        /// Index of the body.
+        body: usize,
+        /// The edge index given.
+        edge: usize,
+        /// What is wrong, with the body's edge count where that is it.
+        reason: String,
+    },
+    /// A time step too small for the clock: added to the time reached it
+    /// changes nothing, or its smallest sub-step underflows.
+    #[error("time step dt = {dt:e} s at t = {time} s: {reason}")]
+    TimeStepTooSmall {
+        /// The step asked for (s).
+        dt: f64,
+        /// The time reached (s).
+        time: f64,
+        /// Why it cannot be taken, and what to change.
+        reason: String,
+    },
     /// Two DDA blocks overlap at the start by more than the tolerance.
     #[error("vertex {vertex} of block {vertex_block} lies {depth:.3e} m inside block {edge_block} at the start, more than the tolerance {tolerance:.3e} m")]
     BlocksOverlap {
@@ -399,6 +445,37 @@ fn join<T: std::fmt::Display>(items: &[T]) -> String {
         .map(|i| i.to_string())
         .collect::<Vec<_>>()
         .join("; ")
+}
+
+/// A number in a message: as Rust writes it where that is short, in
+/// scientific notation where it is very small or very large (a subnormal
+/// written out in full takes 300 digits).
+struct Number(f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-6..1e15).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
+/// A byte count in binary units.
+struct Bytes(u128);
+
+impl std::fmt::Display for Bytes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let b = self.0 as f64;
+        let gib = 1024.0 * 1024.0 * 1024.0;
+        if b >= gib {
+            write!(f, "{:.1} GiB", b / gib)
+        } else {
+            write!(f, "{:.1} MiB", b / (1024.0 * 1024.0))
+        }
+    }
 }
 
 /// Shorthand for results with [`DismechError`].

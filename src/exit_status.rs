@@ -126,6 +126,10 @@ impl Exit {
             | E::InvalidPolygon { .. }
             | E::LawUndefinedForShape { .. }
             | E::InvalidBlock { .. }
+            | E::InvalidEdgeTraction { .. }
+            | E::InvalidParticle { .. }
+            | E::OutOfMemory { .. }
+            | E::TimeStepTooSmall { .. }
             | E::BlocksOverlap { .. }
             | E::BlocksCross { .. }
             | E::EmptyHpmModel { .. }

@@ -8,7 +8,7 @@ use dismech::dda::{
     Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed, StepStatus,
 };
 use dismech::error::DismechError;
-use dismech::math::Point;
+use dismech::math::{Point, Vec2};
 
 fn base() -> Block {
     let mut b = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), material(), 0).unwrap();
@@ -184,4 +184,104 @@ fn block_resting_in_a_concave_notch_is_not_refused_as_crossing() {
         Block::new(&rect(1.0, 1.5, 1.5, 2.0), material(), 2).unwrap(),
     ];
     DdaModel::new(blocks, law(), DdaSettings::default()).unwrap();
+}
+
+fn resting_block_model(settings: DdaSettings) -> dismech::error::Result<DdaModel> {
+    let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1)?;
+    DdaModel::new(vec![base(), block], law(), settings)
+}
+
+/// A subnormal step halved forever before: its smallest sub-step
+/// underflows to zero, so the halving bound was never reached.
+#[test]
+fn subnormal_time_step_is_refused_not_halved_forever() {
+    let mut model = resting_block_model(DdaSettings::default()).unwrap();
+    let err = model.advance(5e-324).unwrap_err();
+    assert!(
+        matches!(err, DismechError::TimeStepTooSmall { dt, .. } if dt == 5e-324),
+        "{err}"
+    );
+    assert!(err.to_string().contains("not a normal number"), "{err}");
+}
+
+/// A step that the clock cannot resolve once time has moved on: at
+/// t = 1e-3 s a sub-step of 1e-25 s / 64 leaves the time unchanged.
+#[test]
+fn time_step_lost_in_the_clock_is_refused() {
+    let mut model = resting_block_model(DdaSettings::default()).unwrap();
+    model.advance(1e-3).unwrap();
+    let err = model.advance(1e-25).unwrap_err();
+    assert!(
+        matches!(err, DismechError::TimeStepTooSmall { time, .. } if time > 0.0),
+        "{err}"
+    );
+    // A small step the clock can resolve is still taken.
+    assert_eq!(model.advance(1e-9).unwrap().status, StepStatus::Converged);
+}
+
+/// A ratio below 2⁻⁵² (1e-320 underflowed the bound on halvings).
+#[test]
+fn min_dt_ratio_below_its_floor_is_refused() {
+    for ratio in [1e-320, 1e-17, 0.0, f64::NAN] {
+        let settings = DdaSettings {
+            min_dt_ratio: ratio,
+            ..DdaSettings::default()
+        };
+        let err = resting_block_model(settings).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                DismechError::InvalidParameter {
+                    name: "min_dt_ratio",
+                    ..
+                }
+            ),
+            "{ratio}: {err}"
+        );
+    }
+    let floor = DdaSettings {
+        min_dt_ratio: dismech::implicit::MIN_DT_RATIO_FLOOR,
+        ..DdaSettings::default()
+    };
+    assert!(resting_block_model(floor).is_ok());
+}
+
+/// An edge index past the block's edges wrapped (edge 6 of a 4-gon acted
+/// as edge 2); it is refused, naming the edge count.
+#[test]
+fn edge_traction_on_an_edge_the_block_lacks_is_refused() {
+    for edge in [4usize, 6, 1_000_000] {
+        let mut block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap();
+        block.edge_tractions.push((edge, Vec2::new(0.0, -1e3)));
+        let err = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap_err();
+        assert!(
+            matches!(err, DismechError::InvalidEdgeTraction { body: 1, edge: e, .. } if e == edge),
+            "{err}"
+        );
+        assert!(err.to_string().contains("has 4 edges"), "{err}");
+    }
+    let mut block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap();
+    block.edge_tractions.push((3, Vec2::new(f64::NAN, 0.0)));
+    let err = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap_err();
+    assert!(err.to_string().contains("not finite"), "{err}");
+}
+
+/// A traction on a disc was ignored: a disc has no edges.
+#[test]
+fn edge_traction_on_a_disc_is_refused() {
+    let mut disc = Block::circle(Point::new(0.0, 0.3), 0.25, material(), 1).unwrap();
+    disc.edge_tractions.push((0, Vec2::new(0.0, -1e3)));
+    let err = DdaModel::new(vec![base(), disc], law(), DdaSettings::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DismechError::InvalidEdgeTraction {
+                body: 1,
+                edge: 0,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert!(err.to_string().contains("not a polygon"), "{err}");
 }

@@ -70,11 +70,105 @@ pub(crate) fn check_initial_overlaps(
                     wall: w,
                     penetration,
                     tolerance,
+                    clockwise_frame: scene.frame.runs_clockwise(),
                 });
             }
         }
     }
     Ok(largest)
+}
+
+/// Refuses a particle whose state or mass properties cannot start a run:
+/// a pose, velocity or external force that is not finite (a NaN written
+/// into a public field would otherwise surface as an energy blow-up), or a
+/// mass or moment of inertia that is not finite and positive (a radius of
+/// 1e-200 m has a mass that underflows to zero).
+pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
+    for (i, p) in scene.particles.iter().enumerate() {
+        let values = [
+            ("position x", p.pose.position.x, true),
+            ("position y", p.pose.position.y, true),
+            ("angle", p.pose.angle, true),
+            ("velocity x", p.velocity.x, true),
+            ("velocity y", p.velocity.y, true),
+            ("angular velocity", p.angular_velocity, true),
+            ("external force x", p.external_force.x, true),
+            ("external force y", p.external_force.y, true),
+            ("mass", p.mass, false),
+            ("moment of inertia", p.inertia, false),
+        ];
+        for (name, value, may_be_zero) in values {
+            let requirement = if !value.is_finite() {
+                "must be finite"
+            } else if !may_be_zero && value <= 0.0 {
+                "must be > 0 (a particle this small or this light has a mass that rounds to zero: scale the model's units)"
+            } else {
+                continue;
+            };
+            return Err(DismechError::InvalidParticle {
+                particle: i,
+                name,
+                value,
+                requirement,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The most pairs a neighbour list may hold per particle (and 10 000 in
+/// all for a small scene): a packed disc has about 6 neighbours and a skin
+/// of a few radii lists some tens; a list of hundreds per particle is a
+/// skin as large as the scene (every pair listed, n² of them, 19 GB for
+/// 20 000 discs), refused before it is built.
+pub const MAX_LISTED_PAIRS_PER_PARTICLE: usize = 256;
+
+/// Refuse a fixed neighbour skin `skin` that would list more pairs than
+/// the budget ([`MAX_LISTED_PAIRS_PER_PARTICLE`] per particle): the
+/// candidate pairs of the particles' boxes widened by the skin are counted
+/// (the count stops at the budget, so this costs at most the budget's
+/// pairs), `pair_bytes` a listed pair's size for the message.
+pub(crate) fn check_neighbour_budget(
+    scene: &Scene,
+    grid: &mut CellGrid,
+    skin: f64,
+    pair_bytes: usize,
+) -> Result<()> {
+    let n = scene.particles.len();
+    let budget = (MAX_LISTED_PAIRS_PER_PARTICLE * n).max(10_000);
+    let boxes: Vec<Aabb2> = scene
+        .particles
+        .iter()
+        .map(|p| p.shape.as_shape().aabb(&p.pose))
+        .collect();
+    let mut pairs = 0usize;
+    let over = grid.try_for_each_pair(&boxes, skin, |_, _| {
+        pairs += 1;
+        if pairs > budget {
+            Err(())
+        } else {
+            Ok(())
+        }
+    });
+    if over.is_ok() {
+        return Ok(());
+    }
+    // Every pair, where the skin spans the scene; at least the budget.
+    let all = (n as u128) * (n as u128 - 1) / 2;
+    let smallest = scene
+        .particles
+        .iter()
+        .map(|p| p.shape.as_shape().bounding_radius())
+        .fold(f64::INFINITY, f64::min);
+    Err(DismechError::OutOfMemory {
+        what: format!(
+            "a neighbour list at a skin of {skin:e} m over {n} particles (more than {budget} pairs, up to {all})"
+        ),
+        bytes: all * pair_bytes as u128,
+        advice: format!(
+            "more than {MAX_LISTED_PAIRS_PER_PARTICLE} pairs a particle is a skin far wider than the particles; use a skin of about the smallest bounding radius ({smallest:.3e} m) or leave neighbour_skin at None to tune it"
+        ),
+    })
 }
 
 /// The geometry of a polygon's contact point: a vertex (radius of curvature

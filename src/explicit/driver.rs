@@ -4,10 +4,13 @@ use std::sync::OnceLock;
 
 use rayon::prelude::*;
 
-use super::checks::{check_initial_overlaps, check_law_for_polygons, finite_bound};
+use super::checks::{
+    check_initial_overlaps, check_law_for_polygons, check_neighbour_budget, check_particles,
+    finite_bound,
+};
 use super::keys::pack_limits;
 use super::motion::{BlockMotion, StepCheck};
-use super::neighbours::{NeighbourList, BLOCK};
+use super::neighbours::{NeighbourList, PairSlot, BLOCK};
 use super::pair_bodies::PairBody;
 use super::pair_forces::PairContext;
 use super::skin::Skin;
@@ -139,6 +142,14 @@ pub struct RestCriterion {
     /// And the mean unbalanced force per particle (contact forces plus
     /// weight) must be below this fraction of the mean weight.
     pub unbalanced_force_ratio: f64,
+    /// Give up (status [`RunStatus::StepLimit`]) after this many steps of
+    /// the run, whatever the simulated time reached: a run at a tiny time
+    /// step ends (10⁸ by default).
+    pub max_steps: u64,
+    /// Give up (status [`RunStatus::WallTimeLimit`]) once the run has
+    /// taken this much wall-clock time, tested at each check (none by
+    /// default).
+    pub max_wall_time: Option<std::time::Duration>,
 }
 
 impl Default for RestCriterion {
@@ -150,6 +161,8 @@ impl Default for RestCriterion {
             check_every: 100,
             consecutive_checks: 10,
             unbalanced_force_ratio: 1e-4,
+            max_steps: 100_000_000,
+            max_wall_time: None,
         }
     }
 }
@@ -161,6 +174,10 @@ pub enum RunStatus {
     AtRest,
     /// The time limit was reached first.
     TimeLimit,
+    /// [`RestCriterion::max_steps`] steps were taken first.
+    StepLimit,
+    /// [`RestCriterion::max_wall_time`] ran out first.
+    WallTimeLimit,
 }
 
 /// The outcome of [`ExplicitDynamics::run_to_rest`].
@@ -298,6 +315,48 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     frame_reach: Aabb2,
 }
 
+/// Refuse a scene of `n` particles whose run the system cannot hold: the
+/// driver's memory (per particle: its pair-query data, forces, masses,
+/// loads, rotation and a few listed pairs) is asked of the allocator
+/// before any of it is taken, and given back, so that a scene too large
+/// for the machine is a typed error rather than an abort.
+fn check_memory<S>(n: usize) -> Result<()> {
+    let per_particle = std::mem::size_of::<PairBody>()
+        + 6 * std::mem::size_of::<f64>()
+        + 2 * std::mem::size_of::<Vec2>()
+        + 4 * std::mem::size_of::<PairSlot<S>>();
+    let bytes = (n as u128) * per_particle as u128;
+    let refused = |advice: String| DismechError::OutOfMemory {
+        what: format!("a DEM of {n} particles"),
+        bytes,
+        advice,
+    };
+    let len = usize::try_from(bytes)
+        .map_err(|_| refused("more than the address space; run fewer particles".into()))?;
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(len).map_err(|_| {
+        refused(
+            "the system refused the memory; run fewer particles or on a machine with more memory"
+                .into(),
+        )
+    })?;
+    Ok(())
+}
+
+/// Refuse a time step below the smallest normal double (a subnormal step
+/// loses its digits when added to the clock, and the clock stalls).
+fn require_normal_time_step(dt: f64) -> Result<()> {
+    if dt.is_normal() {
+        Ok(())
+    } else {
+        Err(DismechError::InvalidParameter {
+            name: "time step dt",
+            value: dt,
+            requirement: "must be a normal number (at least 2.2e-308 s; a subnormal step does not move the clock)",
+        })
+    }
+}
+
 /// See [`ExplicitDynamics::frame_reach`]. Without walls the reach is the
 /// whole plane.
 fn frame_reach(scene: &Scene) -> Aabb2 {
@@ -360,6 +419,8 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
     fn build(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
         require_positive("time step dt", settings.dt)?;
+        require_normal_time_step(settings.dt)?;
+        check_particles(&scene)?;
         require_non_negative(
             "initial_overlap_tolerance",
             settings.initial_overlap_tolerance,
@@ -367,6 +428,16 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         pack_limits(&scene)?;
         let n = scene.particles.len();
         let skin = settings.skin_for(&scene)?;
+        let mut grid = CellGrid::new();
+        if let Some(fixed) = settings.neighbour_skin {
+            check_neighbour_budget(
+                &scene,
+                &mut grid,
+                fixed,
+                std::mem::size_of::<PairSlot<L::State>>(),
+            )?;
+        }
+        check_memory::<L::State>(n)?;
         let mut mass = Vec::with_capacity(3 * n);
         for p in &scene.particles {
             mass.extend_from_slice(&[p.mass, p.mass, p.inertia]);
@@ -397,7 +468,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             } else {
                 Vec::new()
             },
-            grid: CellGrid::new(),
+            grid,
             system: LumpedSystem {
                 force: vec![0.0; 3 * n],
                 mass,
@@ -759,12 +830,21 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         require_positive("max_time", criterion.max_time)?;
         require_non_negative("min_time", criterion.min_time)?;
         require_non_negative("unbalanced_force_ratio", criterion.unbalanced_force_ratio)?;
+        if criterion.max_steps == 0 {
+            return Err(DismechError::InvalidParameter {
+                name: "max_steps",
+                value: 0.0,
+                requirement: "must be at least 1",
+            });
+        }
         let every = criterion.check_every.max(1);
         let start = self.step;
+        let clock = std::time::Instant::now();
         let mut calm_checks = 0u32;
         loop {
             self.step()?;
-            if (self.step - start) % every != 0 {
+            let taken = self.step - start;
+            if taken % every != 0 && taken < criterion.max_steps {
                 continue;
             }
             let kinetic = self.kinetic_energy();
@@ -788,6 +868,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 Some(RunStatus::AtRest)
             } else if self.time >= criterion.max_time {
                 Some(RunStatus::TimeLimit)
+            } else if taken >= criterion.max_steps {
+                Some(RunStatus::StepLimit)
+            } else if criterion
+                .max_wall_time
+                .is_some_and(|limit| clock.elapsed() >= limit)
+            {
+                Some(RunStatus::WallTimeLimit)
             } else {
                 None
             };

@@ -55,6 +55,17 @@
 //! for. `examples/dem_throughput.rs` measures particle-steps per second on
 //! the setup of the LAMMPS anchor (2D disks settling in a box).
 //!
+//! What a run is refused for before it starts: a time step that is not a
+//! normal number, a particle whose pose, velocity or load is not finite or
+//! whose mass is not positive, overlaps beyond the tolerance (with a word
+//! where the frame runs clockwise), a fixed neighbour skin that would list
+//! more than [`MAX_LISTED_PAIRS_PER_PARTICLE`] pairs a particle, and a
+//! scene whose memory the system does not give
+//! ([`crate::error::DismechError::OutOfMemory`], asked of the allocator
+//! before it is taken). [`ExplicitDynamics::run_to_rest`] ends at rest, at
+//! [`RestCriterion::max_time`], after [`RestCriterion::max_steps`] steps or
+//! after [`RestCriterion::max_wall_time`].
+//!
 //! Polygons are rigid bodies (3 DOF) here. Their contact points are vertices
 //! on edges, where paper 000's eq. (19) has no value (radius of curvature 0
 //! at the vertex, contact width 0): [`ExplicitDynamics::new`] refuses a law
@@ -72,6 +83,7 @@ mod pair_forces;
 mod skin;
 mod stability;
 
+pub use checks::MAX_LISTED_PAIRS_PER_PARTICLE;
 pub use driver::{
     ContactRecord, ContactTarget, DemSettings, ExplicitDynamics, RestCriterion, RunOutcome,
     RunStatus,

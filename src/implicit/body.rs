@@ -406,6 +406,37 @@ impl<const N: usize> Body<N> {
         self.polygon().map_or(self.centroid(), |p| p.vertex(k))
     }
 
+    /// Check the edge tractions of the body numbered `index`: each names
+    /// an edge of a polygon (`0 ≤ edge < vertex count`; a traction on an
+    /// ellipse, a circle or a wall has no edge to act on) and is finite.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidEdgeTraction`] naming the body and the edge.
+    pub fn validate_edge_tractions(&self, index: usize) -> Result<()> {
+        let edges = self.vertex_count();
+        for &(edge, traction) in &self.edge_tractions {
+            let reason = if self.polygon().is_none() {
+                "the body is not a polygon and has no edges; apply a load to a polygon's edge"
+                    .to_string()
+            } else if edge >= edges {
+                format!("the block has {edges} edges, numbered 0 to {}", edges - 1)
+            } else if !(traction.x.is_finite() && traction.y.is_finite()) {
+                format!(
+                    "the traction ({}, {}) Pa is not finite",
+                    traction.x, traction.y
+                )
+            } else {
+                continue;
+            };
+            return Err(DismechError::InvalidEdgeTraction {
+                body: index,
+                edge,
+                reason,
+            });
+        }
+        Ok(())
+    }
+
     /// Whether every unknown is imposed.
     pub fn is_fixed(&self) -> bool {
         self.prescribed

@@ -112,6 +112,9 @@ where
         settings: ImplicitSettings,
     ) -> Result<Self> {
         settings.validate()?;
+        for (index, body) in bodies.iter().enumerate() {
+            body.validate_edge_tractions(index)?;
+        }
         let settings_search = settings.search_distance;
         let assembly = BlockAssembly::new(bodies.len(), N, &[])?;
         let mut model = Self {
@@ -615,9 +618,29 @@ where
     /// completed within the reduction bound is a [`StepStatus::Failed`].
     ///
     /// # Errors
-    /// A time step that is not finite and positive.
+    /// [`DismechError::InvalidParameter`] for a time step that is not
+    /// finite and positive; [`DismechError::TimeStepTooSmall`] for one
+    /// whose smallest sub-step (`dt × min_dt_ratio`) is not a normal
+    /// number or does not move the clock on from the time reached (the
+    /// halving would never end).
     pub fn advance(&mut self, dt: f64) -> Result<StepReport> {
         require_positive("time step dt", dt)?;
+        let smallest = dt * self.settings.min_dt_ratio;
+        let too_small = |reason: String| DismechError::TimeStepTooSmall {
+            dt,
+            time: self.time,
+            reason,
+        };
+        if !smallest.is_normal() {
+            return Err(too_small(format!(
+                "its smallest sub-step dt × min_dt_ratio = {smallest:e} s is not a normal number; take a larger dt or min_dt_ratio"
+            )));
+        }
+        if self.time + smallest == self.time {
+            return Err(too_small(format!(
+                "its smallest sub-step dt × min_dt_ratio = {smallest:e} s added to the time reached leaves it unchanged in double precision; take a larger dt or min_dt_ratio"
+            )));
+        }
         if self.requested_dt != Some(dt) {
             self.requested_dt = Some(dt);
             self.current_dt = dt;
@@ -678,7 +701,7 @@ where
                     self.current_dt = (2.0 * self.current_dt).min(dt);
                 }
                 Err(reason) => {
-                    if h / 2.0 >= dt * self.settings.min_dt_ratio * (1.0 - 1e-12) {
+                    if h / 2.0 >= smallest * (1.0 - 1e-12) {
                         self.current_dt = h / 2.0;
                         report.reductions += 1;
                         report.halvings.count(&reason);

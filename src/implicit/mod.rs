@@ -77,7 +77,10 @@
 //!   the step doubles again up to the requested one
 //!   ([`StepReport::halvings`] counts the causes). Past that bound
 //!   [`ImplicitDynamics::advance`] returns a [`StepStatus::Failed`] saying
-//!   what failed.
+//!   what failed and what to change. The halving is bounded: `min_dt_ratio`
+//!   is at least [`MIN_DT_RATIO_FLOOR`] (52 halvings), and a step whose
+//!   smallest sub-step underflows or does not move the clock on from the
+//!   time reached is refused ([`crate::error::DismechError::TimeStepTooSmall`]).
 //!
 //! Conventions: the first two unknowns of every kinematics translate the
 //! body's reference point (its centroid); within a step every point moves
@@ -97,7 +100,7 @@ pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
 pub use laws::ContactLaws;
 pub use report::{ContactReport, Halvings, StepFailure, StepReport, StepStatus};
-pub use settings::{ImplicitSettings, Predictor};
+pub use settings::{ImplicitSettings, Predictor, MIN_DT_RATIO_FLOOR};
 
 #[cfg(test)]
 mod tests;

@@ -18,6 +18,9 @@ pub enum StepFailure {
         iterations: usize,
         /// Last relative residual.
         residual: f64,
+        /// The tolerance it was to reach (the settings' one, or the
+        /// residual's round-off where that was larger).
+        tolerance: f64,
     },
     /// The linear solve failed (singular tangent).
     Solve(String),
@@ -61,8 +64,15 @@ pub enum StepFailure {
 impl std::fmt::Display for StepFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::OpenCloseNotSettled { iterations } => write!(f, "open-close iteration did not settle in {iterations} iterations"),
-            Self::NewtonNotConverged { iterations, residual } => write!(f, "Newton-Raphson did not converge in {iterations} iterations (relative residual {residual:.3e})"),
+            Self::OpenCloseNotSettled { iterations } => write!(f, "open-close iteration did not settle in {iterations} iterations: contacts kept opening and closing; take a smaller time step (or a smaller min_dt_ratio, so that the step may be halved further) or raise max_open_close"),
+            Self::NewtonNotConverged { iterations, residual, tolerance } => {
+                write!(f, "Newton-Raphson did not converge in {iterations} iterations (relative residual {residual:.3e} against the tolerance {tolerance:.1e}): ")?;
+                if *residual <= 1e3 * tolerance {
+                    write!(f, "it stalled near the tolerance, the sign of a penalty stiff enough that rounding limits the residual; lower the contact penalty or raise residual_tolerance")
+                } else {
+                    write!(f, "take a smaller time step (or a smaller min_dt_ratio, so that the step may be halved further) or raise max_newton")
+                }
+            }
             Self::Solve(m) => write!(f, "linear solve failed: {m}"),
             Self::TooFast { block, motion } => write!(f, "a point of body {block} moved {motion:.3e} m relative to a neighbour in one step, beyond the search distance"),
             Self::Geometry(m) => write!(f, "{m}"),
@@ -183,4 +193,33 @@ pub struct ContactReport<S> {
     pub normal: Vec2,
     /// A's material point of the contact at the end of the step (world).
     pub point: Point,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::StepFailure;
+
+    /// A failed step's reason says what to change: a residual that stalled
+    /// near its tolerance points at the penalty, one far above it at the
+    /// step.
+    #[test]
+    fn newton_failure_says_what_to_change() {
+        let stalled = StepFailure::NewtonNotConverged {
+            iterations: 20,
+            residual: 3.3e-10,
+            tolerance: 1e-10,
+        }
+        .to_string();
+        assert!(stalled.contains("lower the contact penalty"), "{stalled}");
+        assert!(stalled.contains("residual_tolerance"), "{stalled}");
+        let far = StepFailure::NewtonNotConverged {
+            iterations: 20,
+            residual: 1e-3,
+            tolerance: 1e-10,
+        }
+        .to_string();
+        assert!(far.contains("smaller time step"), "{far}");
+        let cycling = StepFailure::OpenCloseNotSettled { iterations: 20 }.to_string();
+        assert!(cycling.contains("max_open_close"), "{cycling}");
+    }
 }

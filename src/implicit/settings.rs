@@ -3,6 +3,11 @@
 use crate::error::{require_positive, DismechError, Result};
 use crate::math::Vec2;
 
+/// The smallest [`ImplicitSettings::min_dt_ratio`] accepted, 2⁻⁵²: a step
+/// is halved at most 52 times (a smaller sub-step is below the rounding
+/// of the step itself).
+pub const MIN_DT_RATIO_FLOOR: f64 = f64::EPSILON;
+
 /// Where the iteration of a step starts for the free unknowns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Predictor {
@@ -59,7 +64,8 @@ pub struct ImplicitSettings {
     /// round-off is larger (a very stiff penalty), Newton stops at 100 times
     /// that round-off instead.
     pub residual_tolerance: f64,
-    /// Smallest step, as a fraction of the requested one (e.g. 1/64).
+    /// Smallest step, as a fraction of the requested one (e.g. 1/64; at
+    /// least [`MIN_DT_RATIO_FLOOR`]).
     pub min_dt_ratio: f64,
     /// Where each step's iteration starts.
     pub predictor: Predictor,
@@ -125,11 +131,11 @@ impl ImplicitSettings {
         require_positive("residual tolerance", self.residual_tolerance)?;
         crate::error::require_non_negative("slip regularization", self.slip_regularization)?;
         crate::error::require_non_negative("mass damping", self.mass_damping)?;
-        if !(self.min_dt_ratio > 0.0 && self.min_dt_ratio <= 1.0) {
+        if !(self.min_dt_ratio >= MIN_DT_RATIO_FLOOR && self.min_dt_ratio <= 1.0) {
             return Err(DismechError::InvalidParameter {
                 name: "min_dt_ratio",
                 value: self.min_dt_ratio,
-                requirement: "must lie in (0, 1]",
+                requirement: "must lie in [2^-52, 1] (at most 52 halvings of a step)",
             });
         }
         if !(self.gravity.x.is_finite() && self.gravity.y.is_finite()) {

@@ -485,6 +485,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let mut last_regimes: Option<Vec<i8>> = None;
         // Per contact: whether its slip has reversed between two iterates.
         let mut reversed = vec![false; self.contacts.len()];
+        let mut last_tolerance = settings.residual_tolerance;
         let mut eval = self.assemble(&d, parts, assembly, true)?;
         for _ in 0..=max_iter {
             let scale = parts.scale.max(eval.contact_scale).max(f64::MIN_POSITIVE);
@@ -507,6 +508,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             let tolerance = settings
                 .residual_tolerance
                 .max((FLOOR_FACTOR * floor).min(SETTLED_RESIDUAL_LIMIT));
+            last_tolerance = tolerance;
             let open: Vec<bool> = eval.regimes.iter().map(|&r| r == 0).collect();
             let settled = last_open.as_ref() == Some(&open);
             if settled {
@@ -541,6 +543,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                     return Err(StepFailure::NewtonNotConverged {
                         iterations: newton - 1,
                         residual: rel,
+                        tolerance,
                     });
                 }
             } else if last_open.is_some() {
@@ -601,6 +604,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         Err(StepFailure::NewtonNotConverged {
             iterations: newton,
             residual: residuals.last().copied().unwrap_or(f64::NAN),
+            tolerance: last_tolerance,
         })
     }
 }

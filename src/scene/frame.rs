@@ -77,6 +77,26 @@ impl Frame {
         ])
     }
 
+    /// Whether the walls run clockwise: the polygon they close (the last
+    /// wall's end joined to the first wall's start) has a negative signed
+    /// area, so the material on their left lies outside. A frame around an
+    /// obstacle in a flow is drawn so; one meant to hold particles is not.
+    pub fn runs_clockwise(&self) -> bool {
+        let area2: f64 = self
+            .walls
+            .iter()
+            .map(|w| w.start.x * w.end.y - w.end.x * w.start.y)
+            .sum::<f64>()
+            + self
+                .walls
+                .last()
+                .zip(self.walls.first())
+                .map_or(0.0, |(last, first)| {
+                    last.end.x * first.start.y - first.start.x * last.end.y
+                });
+        area2 < 0.0
+    }
+
     /// The walls.
     pub fn walls(&self) -> &[Segment] {
         &self.walls

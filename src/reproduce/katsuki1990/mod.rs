@@ -135,6 +135,7 @@ pub fn rest_criterion() -> RestCriterion {
         check_every: 100,
         consecutive_checks: 10,
         unbalanced_force_ratio: 1e-4,
+        ..RestCriterion::default()
     }
 }
 
