@@ -174,8 +174,9 @@
 //! ## Data flow of one step
 //! 1. **World**: bodies (shape, kinematics, material, state), walls,
 //!    loads, contact history ([`scene`], [`implicit::Body`]).
-//! 2. **Broad phase**: candidate pairs from a uniform cell grid
-//!    ([`broad_phase::CellGrid`]), or a fixed adjacency (HPM).
+//! 2. **Broad phase**: candidate pairs from a uniform cell grid, or a grid
+//!    per size level when the sizes spread wide ([`broad_phase::CellGrid`]),
+//!    or a fixed adjacency (HPM).
 //! 3. **Pair query**: a manifold ([`query::manifold`]), or gaps with their
 //!    variations ([`query::variation`]).
 //! 4. **Contact law**: force, tangent, regime, new history ([`law`]).

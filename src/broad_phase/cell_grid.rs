@@ -1,16 +1,57 @@
-//! The uniform cell grid.
+//! The cell grids: one uniform grid when the bodies' sizes are alike, a
+//! grid per size level when they are not.
 
 use rayon::prelude::*;
 
 use crate::math::Aabb2;
 
-/// A uniform grid of square cells, rebuilt every step from the bodies'
-/// bounding boxes: dense (every cell of the span stored) while the span
-/// needs at most about 4 cells per body, sparse (only the occupied cells,
-/// found by binary search) when the bodies spread wider, e.g. around a far
+/// The broad phase's cell grids, rebuilt every step from the bodies'
+/// bounding boxes.
+///
+/// When every body's extent (the larger side of its box, plus twice the
+/// margin) lies within a factor 2 of the largest, the bodies share one
+/// uniform grid whose cell is the largest extent: each body meets its
+/// partners in its cell and the eight around it. Otherwise (a wide size
+/// distribution: one boulder among fine grains) one grid's cell would be
+/// the boulder's and hold thousands of grains, each tested against all
+/// the others of its nine cells (a cost that grows as the square of the
+/// grains a cell holds); the bodies are then binned by size level
+/// instead, level `k` holding the extents in `(e/2^(k+1), e/2^k]` (`e` the
+/// largest), each level a grid of its own whose cell is its own largest
+/// extent (the multilevel grids of LIGGGHTS' neighbour lists, the
+/// hierarchical grid of collision detection). A body meets its partners of
+/// every level in the cells of that level that its box, grown by one cell,
+/// covers: a few cells of a level of larger bodies, the cells under its
+/// box in a level of smaller ones. Each pair is found once, from its lower
+/// index, so the list is the same set, in the same order, as one grid's.
+///
+/// Each grid is dense (every cell of its span stored) while the span needs
+/// at most about 4 cells per body, sparse (only the occupied cells, found
+/// by binary search) when its bodies spread wider, e.g. around a far
 /// outlier.
 #[derive(Debug, Clone, Default)]
 pub struct CellGrid {
+    /// The one grid of bodies of alike sizes.
+    single: Level,
+    /// Whether the last layout is the grids of several size levels.
+    multilevel: bool,
+    /// The grids of the size levels (those of the last layout first; empty
+    /// ones are kept for their buffers).
+    levels: Vec<Level>,
+    /// How many levels the last layout has.
+    level_count: usize,
+    /// The bodies of each level (scratch of the layout).
+    members: Vec<Vec<usize>>,
+}
+
+/// The most size levels; smaller bodies share the last one (correct, only
+/// less selective).
+const MAX_LEVELS: usize = 16;
+
+/// One uniform grid of square cells over some of the bodies (all of them,
+/// or those of one size level).
+#[derive(Debug, Clone, Default)]
+struct Level {
     cell_size: f64,
     origin: (f64, f64),
     columns: usize,
@@ -22,13 +63,15 @@ pub struct CellGrid {
     /// Their boxes, in the same order: a cell's run, and a row's run of
     /// neighbouring cells, is read from consecutive memory.
     sorted_boxes: Vec<Aabb2>,
-    /// The cell of each body.
+    /// The cell of each body (of the grid of all bodies; of each member in
+    /// the members' order for a level).
     body_cell: Vec<usize>,
     /// Scratch of the counting sort.
     fill: Vec<usize>,
     /// Whether the last layout is the sparse one.
     sparse: bool,
-    /// The sparse grid's key of each body and its occupied cells, sorted.
+    /// The sparse grid's key of each body (as `body_cell`) and its
+    /// occupied cells, sorted.
     keys: Vec<(i64, i64)>,
     occupied: Vec<(i64, i64)>,
 }
@@ -140,11 +183,17 @@ impl CellGrid {
         Ok(())
     }
 
-    /// Sort the bodies into cells: a dense grid of at most about 4 cells
-    /// per body, or, when the bodies spread wider than that (a far
-    /// outlier), a sparse grid whose cost does not depend on the spread.
-    /// `false` when there is nothing to pair (fewer than two bodies, or a
-    /// box that is not finite).
+    /// Whether the last layout binned the bodies by size level (sizes
+    /// spread over more than a factor 2).
+    pub fn is_multilevel(&self) -> bool {
+        self.multilevel
+    }
+
+    /// Sort the bodies into cells: one grid when their extents are within
+    /// a factor 2 of the largest (or a box has its corners swapped), else
+    /// a grid per size level (see [`CellGrid`]). `false` when there is
+    /// nothing to pair (fewer than two bodies, or a box that is not
+    /// finite).
     fn lay_out(&mut self, boxes: &[Aabb2], margin: f64) -> bool {
         let n = boxes.len();
         if n < 2 {
@@ -153,15 +202,89 @@ impl CellGrid {
         let mut min = (f64::INFINITY, f64::INFINITY);
         let mut max = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut largest = 0.0f64;
+        let mut smallest = f64::INFINITY;
         for b in boxes {
             min = (min.0.min(b.min.x), min.1.min(b.min.y));
             max = (max.0.max(b.max.x), max.1.max(b.max.y));
-            largest = largest.max(b.max.x - b.min.x).max(b.max.y - b.min.y);
+            let side = (b.max.x - b.min.x).max(b.max.y - b.min.y);
+            largest = largest.max(side);
+            smallest = smallest.min(side);
         }
         if !(min.0.is_finite() && min.1.is_finite() && max.0.is_finite() && max.1.is_finite()) {
             return false;
         }
-        self.cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
+        let cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
+        // (A box with swapped corners has a negative side: it takes the
+        // one grid, as it always has.)
+        self.multilevel = smallest >= 0.0 && smallest + 2.0 * margin <= 0.5 * cell_size;
+        if !self.multilevel {
+            self.single.lay_out(boxes, None, cell_size, min, max);
+            return true;
+        }
+        // Each body's level: extents in (e/2^(k+1), e/2^k] at level k.
+        self.members.resize_with(MAX_LEVELS, Vec::new);
+        for members in &mut self.members {
+            members.clear();
+        }
+        let mut count = 1;
+        for (i, b) in boxes.iter().enumerate() {
+            let extent = (b.max.x - b.min.x).max(b.max.y - b.min.y) + 2.0 * margin;
+            let (mut level, mut bound) = (0, 0.5 * cell_size);
+            while level + 1 < MAX_LEVELS && extent <= bound {
+                level += 1;
+                bound *= 0.5;
+            }
+            self.members[level].push(i);
+            count = count.max(level + 1);
+        }
+        self.level_count = count;
+        if self.levels.len() < count {
+            self.levels.resize_with(count, Level::default);
+        }
+        for (level, members) in self.levels.iter_mut().zip(&self.members).take(count) {
+            level.lay_out_members(boxes, members, margin);
+        }
+        true
+    }
+
+    /// Visit body `i`'s partners `j > i` whose boxes overlap its box grown
+    /// by `margin`: in its cell and the eight around it of the one grid,
+    /// or in the cells of each level's grid that its grown box, grown by
+    /// one more cell, covers.
+    fn visit_partners<E>(
+        &self,
+        i: usize,
+        boxes: &[Aabb2],
+        margin: f64,
+        visit: &mut impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
+        if !self.multilevel {
+            return self.single.visit_partners(i, boxes, margin, visit);
+        }
+        let grown = boxes[i].inflated(margin);
+        for level in &self.levels[..self.level_count] {
+            level.visit_near(i, &grown, visit)?;
+        }
+        Ok(())
+    }
+}
+
+impl Level {
+    /// Lay out the bodies `members` (all of them when `None`), whose boxes
+    /// span `min` to `max`, in cells of `cell_size`: a dense grid of at
+    /// most about 4 cells per body, or, when the bodies spread wider than
+    /// that (a far outlier), a sparse grid whose cost does not depend on
+    /// the spread.
+    fn lay_out(
+        &mut self,
+        boxes: &[Aabb2],
+        members: Option<&[usize]>,
+        cell_size: f64,
+        min: (f64, f64),
+        max: (f64, f64),
+    ) {
+        let n = members.map_or(boxes.len(), <[usize]>::len);
+        self.cell_size = cell_size;
         self.origin = min;
         let max_cells = (4 * n).max(16) as f64;
         let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
@@ -171,8 +294,8 @@ impl CellGrid {
         // without indexing an empty grid.)
         self.sparse = !(columns >= 1.0 && rows >= 1.0) || columns * rows > max_cells;
         if self.sparse {
-            self.lay_out_sparse(boxes);
-            return true;
+            self.lay_out_sparse(boxes, members);
+            return;
         }
         self.columns = columns as usize;
         self.rows = rows as usize;
@@ -181,10 +304,14 @@ impl CellGrid {
         self.body_cell.clear();
         self.cell_start.clear();
         self.cell_start.resize(cells + 1, 0);
-        for b in boxes {
+        let mut count = |b: &Aabb2| {
             let cell = self.cell_of(b);
             self.body_cell.push(cell);
             self.cell_start[cell + 1] += 1;
+        };
+        match members {
+            None => boxes.iter().for_each(&mut count),
+            Some(members) => members.iter().for_each(|&i| count(&boxes[i])),
         }
         for c in 0..cells {
             self.cell_start[c + 1] += self.cell_start[c];
@@ -198,8 +325,31 @@ impl CellGrid {
             self.sorted[fill[cell]] = i;
             fill[cell] += 1;
         }
+        if let Some(members) = members {
+            self.sorted.iter_mut().for_each(|k| *k = members[*k]);
+        }
         self.sort_boxes(boxes);
-        true
+    }
+
+    /// Lay out the bodies of one size level (indices ascending), in cells
+    /// of their own largest extent.
+    fn lay_out_members(&mut self, boxes: &[Aabb2], members: &[usize], margin: f64) {
+        if members.is_empty() {
+            self.sorted.clear();
+            self.sorted_boxes.clear();
+            return;
+        }
+        let mut min = (f64::INFINITY, f64::INFINITY);
+        let mut max = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut largest = 0.0f64;
+        for &i in members {
+            let b = &boxes[i];
+            min = (min.0.min(b.min.x), min.1.min(b.min.y));
+            max = (max.0.max(b.max.x), max.1.max(b.max.y));
+            largest = largest.max(b.max.x - b.min.x).max(b.max.y - b.min.y);
+        }
+        let cell_size = (largest + 2.0 * margin).max(f64::MIN_POSITIVE);
+        self.lay_out(boxes, Some(members), cell_size, min, max);
     }
 
     /// The boxes in the order of `sorted`.
@@ -210,7 +360,8 @@ impl CellGrid {
     }
 
     /// Visit body `i`'s partners `j > i` in its cell and the eight around
-    /// it whose boxes overlap its box grown by `margin`.
+    /// it whose boxes overlap its box grown by `margin` (the grid of all
+    /// bodies).
     fn visit_partners<E>(
         &self,
         i: usize,
@@ -230,13 +381,7 @@ impl CellGrid {
                     let Ok(c) = self.occupied.binary_search(&key) else {
                         continue;
                     };
-                    let run = self.cell_start[c]..self.cell_start[c + 1];
-                    for (&j, other) in self.sorted[run.clone()].iter().zip(&self.sorted_boxes[run])
-                    {
-                        if j > i && grown.intersects(other) {
-                            visit(i, j)?;
-                        }
-                    }
+                    self.visit_cells(i, &grown, c..c + 1, visit)?;
                 }
             }
             return Ok(());
@@ -247,13 +392,111 @@ impl CellGrid {
         let (col, row) = (cell % self.columns, cell / self.columns);
         let (first_col, last_col) = (col.saturating_sub(1), (col + 1).min(self.columns - 1));
         for r in row.saturating_sub(1)..=(row + 1).min(self.rows - 1) {
-            let run = self.cell_start[r * self.columns + first_col]
-                ..self.cell_start[r * self.columns + last_col + 1];
-            for (&j, other) in self.sorted[run.clone()].iter().zip(&self.sorted_boxes[run]) {
-                if j > i && grown.intersects(other) {
-                    visit(i, j)?;
-                }
+            self.visit_cells(
+                i,
+                &grown,
+                r * self.columns + first_col..r * self.columns + last_col + 1,
+                visit,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Visit the bodies `j > i` of the consecutive cells `cells` (of the
+    /// dense grid, or occupied cells of the sparse one) whose boxes
+    /// overlap `grown`.
+    #[inline]
+    fn visit_cells<E>(
+        &self,
+        i: usize,
+        grown: &Aabb2,
+        cells: std::ops::Range<usize>,
+        visit: &mut impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let run = self.cell_start[cells.start]..self.cell_start[cells.end];
+        for (&j, other) in self.sorted[run.clone()].iter().zip(&self.sorted_boxes[run]) {
+            if j > i && grown.intersects(other) {
+                visit(i, j)?;
             }
+        }
+        Ok(())
+    }
+
+    /// Visit the bodies `j > i` of this grid whose boxes overlap `grown`
+    /// (body `i`'s box grown by the margin; `i` need not be in the grid):
+    /// those of the cells that `grown`, grown by one more cell, covers. A
+    /// body whose box meets `grown` has its centre within half its extent,
+    /// at most half a cell, of `grown`; the other half cell keeps the
+    /// rounding of the cells' indices. When `grown` is no wider than a
+    /// cell, the cells within one of its centre's hold them all.
+    fn visit_near<E>(
+        &self,
+        i: usize,
+        grown: &Aabb2,
+        visit: &mut impl FnMut(usize, usize) -> Result<(), E>,
+    ) -> Result<(), E> {
+        if self.sorted.is_empty() {
+            return Ok(());
+        }
+        let index = |x: f64, origin: f64| ((x - origin) / self.cell_size).floor();
+        // A body no larger than the cells (grown by the margin) meets only
+        // bodies whose centres are within a cell of its own: the cell of
+        // its centre and the eight around it, as in the one grid.
+        let ((low_x, high_x), (low_y, high_y)) =
+            if (grown.max.x - grown.min.x).max(grown.max.y - grown.min.y) <= self.cell_size {
+                let centre = (
+                    0.5 * (grown.min.x + grown.max.x),
+                    0.5 * (grown.min.y + grown.max.y),
+                );
+                ((centre.0, centre.0), (centre.1, centre.1))
+            } else {
+                ((grown.min.x, grown.max.x), (grown.min.y, grown.max.y))
+            };
+        let (first_col, last_col) = (
+            index(low_x, self.origin.0) - 1.0,
+            index(high_x, self.origin.0) + 1.0,
+        );
+        let (first_row, last_row) = (
+            index(low_y, self.origin.1) - 1.0,
+            index(high_y, self.origin.1) + 1.0,
+        );
+        if !self.sparse {
+            let (max_col, max_row) = ((self.columns - 1) as f64, (self.rows - 1) as f64);
+            if last_col < 0.0 || last_row < 0.0 || first_col > max_col || first_row > max_row {
+                return Ok(());
+            }
+            let (first_col, last_col) =
+                (first_col.max(0.0) as usize, last_col.min(max_col) as usize);
+            let (first_row, last_row) =
+                (first_row.max(0.0) as usize, last_row.min(max_row) as usize);
+            for r in first_row..=last_row {
+                self.visit_cells(
+                    i,
+                    grown,
+                    r * self.columns + first_col..r * self.columns + last_col + 1,
+                    visit,
+                )?;
+            }
+            return Ok(());
+        }
+        // The sparse grid's keys (saturating, as the bodies' are).
+        let (first_col, last_col) = (first_col as i64, last_col as i64);
+        let (first_row, last_row) = (first_row as i64, last_row as i64);
+        let within = |&(r, c): &(i64, i64)| {
+            (first_row..=last_row).contains(&r) && (first_col..=last_col).contains(&c)
+        };
+        let spanned = i128::from(last_row) - i128::from(first_row) + 1;
+        if spanned > self.occupied.len() as i128 {
+            // Fewer occupied cells than rows to search: each one once.
+            for (c, _) in self.occupied.iter().enumerate().filter(|(_, k)| within(k)) {
+                self.visit_cells(i, grown, c..c + 1, visit)?;
+            }
+            return Ok(());
+        }
+        for r in first_row..=last_row {
+            let start = self.occupied.partition_point(|&k| k < (r, first_col));
+            let end = start + self.occupied[start..].partition_point(|&k| k <= (r, last_col));
+            self.visit_cells(i, grown, start..end, visit)?;
         }
         Ok(())
     }
@@ -272,9 +515,12 @@ impl CellGrid {
     /// The sparse grid: the bodies sorted by cell, and each body's
     /// neighbouring cells found by binary search among the occupied ones
     /// (`O(n log n)` however far apart the bodies are).
-    fn lay_out_sparse(&mut self, boxes: &[Aabb2]) {
-        let n = boxes.len();
-        let keys: Vec<(i64, i64)> = boxes.iter().map(|b| self.cell_key(b)).collect();
+    fn lay_out_sparse(&mut self, boxes: &[Aabb2], members: Option<&[usize]>) {
+        let keys: Vec<(i64, i64)> = match members {
+            None => boxes.iter().map(|b| self.cell_key(b)).collect(),
+            Some(members) => members.iter().map(|&i| self.cell_key(&boxes[i])).collect(),
+        };
+        let n = keys.len();
         self.keys = keys;
         self.sorted.clear();
         self.sorted.extend(0..n);
@@ -290,6 +536,9 @@ impl CellGrid {
             }
         }
         self.cell_start.push(n);
+        if let Some(members) = members {
+            self.sorted.iter_mut().for_each(|k| *k = members[*k]);
+        }
         self.sort_boxes(boxes);
         self.columns = 0;
         self.rows = 0;
@@ -456,10 +705,87 @@ mod tests {
         grid.candidate_pairs(&boxes, 0.0, &mut pairs);
         assert!(pairs.is_empty());
         assert!(
-            (grid.cell_size - 0.8).abs() < 1e-12,
+            (grid.single.cell_size - 0.8).abs() < 1e-12,
             "cell size {}",
-            grid.cell_size
+            grid.single.cell_size
         );
-        assert_eq!(grid.cell_start.len(), boxes.len() + 1);
+        assert_eq!(grid.single.cell_start.len(), boxes.len() + 1);
+    }
+
+    /// All pairs `(i, j)`, `i < j`, whose boxes overlap, `i`'s grown by
+    /// `margin`: the answer the grids must give.
+    fn brute_force(boxes: &[Aabb2], margin: f64) -> Vec<(usize, usize)> {
+        (0..boxes.len())
+            .flat_map(|i| (i + 1..boxes.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| boxes[i].inflated(margin).intersects(&boxes[j]))
+            .collect()
+    }
+
+    proptest! {
+        /// Sizes spread over four orders of magnitude (boulders among
+        /// grains, grains among dust, some far away): the grids of the
+        /// size levels find exactly the brute force's pairs, in its order,
+        /// sorted or visited one by one, on one thread or rayon's.
+        #[test]
+        fn size_levels_find_exactly_the_overlapping_pairs(
+            bodies in prop::collection::vec(
+                (-20.0f64..20.0, -20.0f64..20.0, 0.0f64..1.0, 0u8..6), 2..400),
+            outlier in prop::option::of((-1e9f64..1e9, -1e9f64..1e9)),
+            margin in prop_oneof![Just(0.0), 0.0f64..0.05],
+        ) {
+            let mut boxes: Vec<Aabb2> = bodies
+                .iter()
+                .map(|&(x, y, h, level)| square(x, y, 0.001 + h * 0.1 * 4f64.powi(i32::from(level) - 2)))
+                .collect();
+            if let Some((x, y)) = outlier {
+                boxes.push(square(x, y, 0.01));
+                boxes.push(square(x + 0.015, y, 0.01));
+                boxes.push(square(x, y + 1.0, 3.0));
+            }
+            let brute = brute_force(&boxes, margin);
+            let mut grid = CellGrid::new();
+            let mut pairs = Vec::new();
+            grid.candidate_pairs(&boxes, margin, &mut pairs);
+            prop_assert_eq!(&pairs, &brute);
+            for parallel in [false, true] {
+                grid.candidate_pairs_filtered(&boxes, margin, |_, _| true, parallel, &mut pairs);
+                prop_assert_eq!(&pairs, &brute);
+            }
+            let mut visited = Vec::new();
+            let _: Result<(), ()> = grid.try_for_each_pair(&boxes, margin, |i, j| {
+                visited.push((i, j));
+                Ok(())
+            });
+            prop_assert!(visited.windows(2).all(|w| w[0].0 <= w[1].0), "not by ascending i");
+            visited.sort_unstable();
+            visited.dedup();
+            prop_assert_eq!(&visited, &brute);
+        }
+    }
+
+    /// One boulder 80 grain widths across among 10 000 grains of alike
+    /// sizes: the grains are binned apart from the boulder (their cells
+    /// are a grain's, not the boulder's), and the pairs are the brute
+    /// force's; the grains alone take the one grid.
+    #[test]
+    fn a_boulder_among_grains_takes_a_level_of_its_own() {
+        let mut boxes: Vec<Aabb2> = (0..10_000)
+            .map(|k| {
+                let h = 0.4 + 0.05 * ((k * 7919) % 13) as f64 / 13.0;
+                square((k % 100) as f64, (k / 100) as f64, h)
+            })
+            .collect();
+        let mut grid = CellGrid::new();
+        let mut pairs = Vec::new();
+        grid.candidate_pairs(&boxes, 0.01, &mut pairs);
+        assert!(!grid.is_multilevel());
+        boxes.insert(5_000, square(50.0, 99.0 + 40.0 - 0.3, 40.0));
+        grid.candidate_pairs(&boxes, 0.01, &mut pairs);
+        assert!(grid.is_multilevel());
+        assert_eq!(grid.level_count, 7);
+        assert!(grid.levels[0].cell_size > 80.0);
+        assert!(grid.levels[6].cell_size < 1.0);
+        assert_eq!(pairs, brute_force(&boxes, 0.01));
+        assert!(pairs.iter().any(|&(i, j)| i == 5_000 || j == 5_000));
     }
 }

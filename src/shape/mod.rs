@@ -20,6 +20,7 @@ mod column;
 mod ellipse;
 mod polygon;
 mod segment;
+mod simple;
 
 pub use circle::Circle;
 pub use column::Column;

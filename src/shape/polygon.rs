@@ -4,6 +4,7 @@ use std::sync::Arc;
 
 use nalgebra::SMatrix;
 
+use super::simple::{first_defect, Defect};
 use super::{MassProperties, Shape, Shape2, ShapeKind};
 use crate::error::{require_positive, DismechError, Result};
 use crate::math::{cross, Aabb2, Point, Pose2, Vec2};
@@ -136,7 +137,8 @@ impl Polygon {
     /// polygon (in its centroid frame) and the centroid. Refuses fewer than
     /// three vertices, non-finite coordinates, a zero or negative
     /// (clockwise) area (judged against the polygon's own size), moments
-    /// of area that overflow, and self-intersection; `block` names the
+    /// of area that overflow, and self-intersection (every pair of edges,
+    /// found by a quadtree in about `n log n`: `simple.rs`); `block` names the
     /// block in the error.
     pub fn from_world(vertices: &[Point], block: usize) -> Result<(Self, Point)> {
         let bad = |reason: &'static str| DismechError::InvalidPolygon { block, reason };
@@ -150,21 +152,15 @@ impl Polygon {
             return Err(bad("a vertex is not finite"));
         }
         let n = vertices.len();
-        for i in 0..n {
-            for j in i + 1..n {
-                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
-                let (p, q) = (vertices[i], vertices[(i + 1) % n]);
-                let (r, s) = (vertices[j], vertices[(j + 1) % n]);
-                if adjacent {
-                    if p == q || r == s {
-                        return Err(bad("two consecutive vertices coincide"));
-                    }
-                    continue;
-                }
-                if segments_meet(&p, &q, &r, &s) {
-                    return Err(bad("its edges intersect (not a simple polygon)"));
-                }
+        // Every pair of edges as if tested in order, by a quadtree.
+        match first_defect(vertices) {
+            Some(Defect::CoincidentVertices) => {
+                return Err(bad("two consecutive vertices coincide"))
             }
+            Some(Defect::Intersection) => {
+                return Err(bad("its edges intersect (not a simple polygon)"))
+            }
+            None => {}
         }
         // Area and moments measured from the first vertex (not the world
         // origin, against which a small block far away loses its area to
