@@ -1,0 +1,383 @@
+//! A fuzzer of the DEM's and the DDA's public constructors and first
+//! steps: every value drawn from a mix of ordinary, extreme (subnormal,
+//! 1e±300, ±0) and invalid (negative, NaN, ±∞) numbers. Whatever is drawn,
+//! nothing panics, every call returns within its bounds, an accepted model
+//! steps to finite states or stops with a typed error, and an error's
+//! message is not empty.
+//!
+//! `cargo test` runs 1 500 cases a driver; set `DISMECH_FUZZ_CASES` for
+//! more (`DISMECH_FUZZ_CASES=100000 cargo test --release --test
+//! constructor_fuzz`, a few minutes).
+
+use dismech::dda::{
+    Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
+    Prescribed, StepStatus,
+};
+use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::error::DismechError;
+use dismech::integrate::ExplicitEuler;
+use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
+use dismech::math::{Point, Vec2};
+use dismech::scene::{Frame, Scene};
+use proptest::prelude::*;
+
+/// Cases a driver: 1 500, or `DISMECH_FUZZ_CASES`.
+fn cases() -> u32 {
+    std::env::var("DISMECH_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1500)
+}
+
+/// A number around `typical`: mostly ordinary (a factor of 1e±1 of it),
+/// one in 21 extreme or invalid (so that about half the cases draw only
+/// ordinary values and reach the stepping).
+fn wild(typical: f64) -> impl Strategy<Value = f64> {
+    prop_oneof![
+        20 => (-1.0f64..1.0).prop_map(move |e| typical * 10f64.powf(e)),
+        1 => prop::sample::select(vec![
+            0.0,
+            -0.0,
+            5e-324,
+            1e-300,
+            1e300,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            -typical,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ]),
+    ]
+}
+
+/// A message says something.
+fn said(e: &DismechError) -> bool {
+    !e.to_string().trim().is_empty()
+}
+
+#[derive(Debug, Clone)]
+enum Grain {
+    Circle {
+        x: f64,
+        y: f64,
+        r: f64,
+    },
+    Ellipse {
+        x: f64,
+        y: f64,
+        a: f64,
+        b: f64,
+        angle: f64,
+    },
+    Rectangle {
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+        angle: f64,
+    },
+}
+
+fn grain() -> impl Strategy<Value = Grain> {
+    prop_oneof![
+        (wild(0.5), wild(0.5), wild(0.05)).prop_map(|(x, y, r)| Grain::Circle { x, y, r }),
+        (wild(0.5), wild(0.5), wild(0.05), wild(0.03), wild(0.5))
+            .prop_map(|(x, y, a, b, angle)| Grain::Ellipse { x, y, a, b, angle }),
+        (wild(0.5), wild(0.5), wild(0.08), wild(0.04), wild(0.5))
+            .prop_map(|(x, y, w, h, angle)| Grain::Rectangle { x, y, w, h, angle }),
+    ]
+}
+
+#[derive(Debug, Clone)]
+struct DemCase {
+    box_size: (f64, f64),
+    gravity: f64,
+    grains: Vec<Grain>,
+    density: f64,
+    stiffness: (f64, f64, f64),
+    damping: (f64, f64),
+    dt: f64,
+    skin: Option<f64>,
+    overlap_tolerance: f64,
+}
+
+fn dem_case() -> impl Strategy<Value = DemCase> {
+    (
+        (wild(1.0), wild(1.0)),
+        wild(9.8),
+        prop::collection::vec(grain(), 1..6),
+        wild(2650.0),
+        (wild(1e6), wild(0.3), wild(0.5)),
+        (wild(100.0), wild(50.0)),
+        wild(1e-5),
+        prop::option::of(wild(0.01)),
+        wild(1e-6),
+    )
+        .prop_map(
+            |(box_size, gravity, grains, density, stiffness, damping, dt, skin, overlap)| DemCase {
+                box_size,
+                gravity,
+                grains,
+                density,
+                stiffness,
+                damping,
+                dt,
+                skin,
+                overlap_tolerance: overlap,
+            },
+        )
+}
+
+/// Build and run a DEM case: `Err` is a typed refusal or a stop.
+fn run_dem(case: &DemCase) -> Result<bool, DismechError> {
+    let frame = Frame::open_box(case.box_size.0, case.box_size.1)?;
+    let mut scene = Scene::new(frame, Vec2::new(0.0, -case.gravity))?;
+    for g in &case.grains {
+        match *g {
+            Grain::Circle { x, y, r } => scene.add_circle(Point::new(x, y), r, case.density),
+            Grain::Ellipse { x, y, a, b, angle } => {
+                scene.add_ellipse(Point::new(x, y), a, b, angle, case.density)
+            }
+            Grain::Rectangle { x, y, w, h, angle } => {
+                scene.add_rectangle(Point::new(x, y), w, h, angle, case.density)
+            }
+        }?;
+    }
+    let (k, ratio, mu) = case.stiffness;
+    let law = SpringDashpotCoulomb::new(
+        NormalStiffness::Constant(k),
+        ratio,
+        mu,
+        Damping::PerMass {
+            normal: case.damping.0,
+            shear: case.damping.1,
+        },
+    )?;
+    let settings = DemSettings {
+        dt: case.dt,
+        neighbour_skin: case.skin,
+        initial_overlap_tolerance: case.overlap_tolerance,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings)?;
+    for _ in 0..20 {
+        if let Err(e) = sim.step() {
+            // A stop after the start is a run, not a refusal.
+            assert!(said(&e), "{e:?}");
+            return Ok(true);
+        }
+        for p in &sim.scene().particles {
+            let state = [
+                p.pose.position.x,
+                p.pose.position.y,
+                p.pose.angle,
+                p.velocity.x,
+                p.velocity.y,
+                p.angular_velocity,
+            ];
+            assert!(
+                state.iter().all(|v| v.is_finite()),
+                "a step returned Ok with a non-finite state: {p:?}"
+            );
+        }
+    }
+    let criterion = RestCriterion {
+        max_steps: 50,
+        ..RestCriterion::default()
+    };
+    let outcome = sim.run_to_rest(&criterion, |_, _| {})?;
+    assert!(outcome.steps <= 50, "{outcome:?}");
+    Ok(true)
+}
+
+#[derive(Debug, Clone)]
+struct Brick {
+    x0: f64,
+    y0: f64,
+    w: f64,
+    h: f64,
+}
+
+#[derive(Debug, Clone)]
+struct DdaCase {
+    bricks: Vec<Brick>,
+    material: (f64, f64, f64),
+    penalty: f64,
+    friction: f64,
+    return_mapping: bool,
+    search: f64,
+    min_dt_ratio: f64,
+    tolerance: f64,
+    dt: f64,
+    traction: Option<(usize, f64)>,
+}
+
+fn dda_case() -> impl Strategy<Value = DdaCase> {
+    (
+        prop::collection::vec(
+            (wild(0.5), wild(0.1), wild(0.4), wild(0.2)).prop_map(|(x0, y0, w, h)| Brick {
+                x0,
+                y0,
+                w,
+                h,
+            }),
+            1..4,
+        ),
+        (wild(2200.0), wild(1e9), wild(0.25)),
+        wild(1e9),
+        wild(0.5),
+        any::<bool>(),
+        wild(0.01),
+        wild(1.0 / 64.0),
+        wild(1e-10),
+        wild(1e-3),
+        prop::option::of((0usize..8, wild(1e3))),
+    )
+        .prop_map(
+            |(bricks, material, penalty, friction, rm, search, ratio, tolerance, dt, traction)| {
+                DdaCase {
+                    bricks,
+                    material,
+                    penalty,
+                    friction,
+                    return_mapping: rm,
+                    search,
+                    min_dt_ratio: ratio,
+                    tolerance,
+                    dt,
+                    traction,
+                }
+            },
+        )
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Point> {
+    vec![
+        Point::new(x0, y0),
+        Point::new(x1, y0),
+        Point::new(x1, y1),
+        Point::new(x0, y1),
+    ]
+}
+
+/// Build and advance a DDA case: `Err` is a typed refusal.
+fn run_dda(case: &DdaCase) -> Result<bool, DismechError> {
+    let material = BlockMaterial {
+        density: case.material.0,
+        youngs_modulus: case.material.1,
+        poisson_ratio: case.material.2,
+        plane: PlaneState::Strain,
+    };
+    let mut base = Block::new(&rect(-2.0, -1.0, 2.0, 0.0), material, 0)?;
+    base.prescribed = Some(Prescribed::fixed());
+    let mut blocks = vec![base];
+    for (i, b) in case.bricks.iter().enumerate() {
+        let mut block = Block::new(&rect(b.x0, b.y0, b.x0 + b.w, b.y0 + b.h), material, i + 1)?;
+        if let Some((edge, t)) = case.traction {
+            block.edge_tractions.push((edge, Vec2::new(0.0, -t)));
+        }
+        blocks.push(block);
+    }
+    let integration = if case.return_mapping {
+        FrictionIntegration::ReturnMapping
+    } else {
+        FrictionIntegration::Conventional
+    };
+    let law = PenaltyCoulomb::new(case.penalty, case.friction, integration)?;
+    let settings = DdaSettings {
+        search_distance: case.search,
+        min_dt_ratio: case.min_dt_ratio,
+        residual_tolerance: case.tolerance,
+        ..DdaSettings::default()
+    };
+    let mut model = DdaModel::new(blocks, law, settings)?;
+    for _ in 0..3 {
+        let report = model.advance(case.dt)?;
+        if let StepStatus::Failed { reason, .. } = &report.status {
+            assert!(!reason.to_string().is_empty());
+            break;
+        }
+        for block in model.blocks() {
+            for v in 0..block.vertex_count() {
+                let p = block.vertex(v);
+                assert!(
+                    p.x.is_finite() && p.y.is_finite(),
+                    "a converged step left a non-finite vertex"
+                );
+            }
+        }
+    }
+    Ok(true)
+}
+
+/// Counts of how far the cases went.
+#[derive(Debug, Default)]
+struct Reach {
+    cases: u64,
+    stepped: u64,
+    errors: std::collections::BTreeMap<String, u64>,
+}
+
+impl Reach {
+    fn note(&mut self, outcome: &Result<bool, DismechError>) {
+        self.cases += 1;
+        match outcome {
+            Ok(true) => self.stepped += 1,
+            Ok(false) => {}
+            Err(e) => {
+                let kind = format!("{e:?}");
+                let kind = kind.split([' ', '(', '{']).next().unwrap_or("").to_string();
+                *self.errors.entry(kind).or_default() += 1;
+            }
+        }
+    }
+}
+
+/// Run `check` on `cases()` cases of `strategy` (seeded, so that a run
+/// is repeatable), asserting each; return how far they went.
+fn fuzz<T: std::fmt::Debug>(
+    strategy: impl Strategy<Value = T>,
+    check: impl Fn(&T) -> Result<bool, DismechError>,
+) -> Reach {
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let config = Config {
+        cases: cases(),
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &[7; 32]);
+    let mut runner = TestRunner::new_with_rng(config, rng);
+    let reach = std::cell::RefCell::new(Reach::default());
+    let result = runner.run(&strategy, |case| {
+        let outcome = check(&case);
+        if let Err(e) = &outcome {
+            prop_assert!(said(e), "{e:?}");
+        }
+        reach.borrow_mut().note(&outcome);
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    reach.into_inner()
+}
+
+/// Any DEM set-up is accepted and steps to finite states, or is refused
+/// (or stopped) with a message.
+#[test]
+fn dem_constructors_and_steps_never_panic() {
+    let reach = fuzz(dem_case(), run_dem);
+    eprintln!("{reach:?}");
+    // The cases reach the stepping, not only the refusals.
+    assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
+}
+
+/// Any DDA set-up is accepted and advances to finite blocks or a failed
+/// status, or is refused with a message.
+#[test]
+fn dda_constructors_and_steps_never_panic() {
+    let reach = fuzz(dda_case(), run_dda);
+    eprintln!("{reach:?}");
+    assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
+}
