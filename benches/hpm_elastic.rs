@@ -74,7 +74,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             (t3 - t2).as_secs_f64(),
             (t3 - t0).as_secs_f64(),
             result.convergence,
-            result.safety_factor(&model),
+            result.safety_factor(&model)?,
             peak_memory_mib()
         );
         let largest = result
@@ -83,7 +83,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .fold(0.0f64, |m, v| m.max(v.abs()));
         println!(
             "relative tolerance {relative_tolerance:e}; largest |u| = {largest:.6e} m; Fs = {:.8}",
-            result.safety_factor(&model)
+            result.safety_factor(&model)?
         );
         return Ok(());
     }
@@ -115,7 +115,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "{} stored entries of the Cholesky factor L (faer, AMD ordering); Fs = {:.4}; peak resident memory {:?} MiB",
         factor.factor_entries().unwrap_or(0),
-        result.safety_factor(&model),
+        result.safety_factor(&model)?,
         peak_memory_mib()
     );
     Ok(())

@@ -48,8 +48,8 @@ fn main() -> Result<(), DismechError> {
         let hov = hovland(&model, &load, 270.0)?;
         println!(
             "{case}: Fs elastic {:.4}, nonlinear {:.4} ({:?}), Hovland {:.4}",
-            elastic.safety_factor(&model),
-            nonlinear.safety_factor(&model),
+            elastic.safety_factor(&model)?,
+            nonlinear.safety_factor(&model)?,
             nonlinear.convergence,
             hov.safety_factor
         );

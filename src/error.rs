@@ -425,6 +425,50 @@ pub enum DismechError {
         /// The largest number of elements accepted.
         limit: usize,
     },
+    /// An HPM model whose elements, springs and stiffness would take more
+    /// memory than [`crate::hpm::MAX_HPM_MODEL_BYTES`]; refused before any
+    /// of it is allocated.
+    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes for its elements, springs, stiffness and solution vectors, more than the budget of {budget} bytes; use fewer layers, or crop or coarsen the grid")]
+    HpmModelTooLarge {
+        /// Valid columns of the grid.
+        columns: usize,
+        /// Layers per column ([`crate::hpm::HpmSettings::layers`]).
+        layers: usize,
+        /// Their exact product.
+        elements: u128,
+        /// The memory the model would take ([`crate::hpm::HpmModel::memory_estimate`]).
+        bytes: u128,
+        /// The largest memory accepted.
+        budget: u64,
+    },
+    /// A grid too small for a grid-column slope analysis: the corner
+    /// heights and the slopes of the surfaces are interpolated between cell
+    /// centres, which needs two of them along each axis.
+    #[error("{file}: a grid of {rows} row(s) × {columns} column(s) is too small for a slope analysis: corner heights and the slopes of the surfaces are interpolated between cell centres, which needs at least 2 rows and 2 columns; extend the grids by a cell beyond the slide on each side")]
+    GridTooSmall {
+        /// The file (or the name given to the raster).
+        file: String,
+        /// Grid rows.
+        rows: usize,
+        /// Grid columns.
+        columns: usize,
+    },
+    /// A safety factor asked of a slide that nothing drives along the
+    /// direction it is measured in: the ratio of resisting to driving
+    /// forces is undefined (infinite for a slide at rest on level ground,
+    /// meaningless against a direction up the slope).
+    #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
+    NothingDrivesSliding {
+        /// Which safety factor, and along which direction.
+        what: String,
+        /// The driving force along the slip direction (N).
+        driving: f64,
+        /// The weight of the slide (N).
+        weight: f64,
+        /// The smallest driving force, as a share of the weight, that
+        /// counts ([`crate::hpm::MIN_DRIVING_RATIO`]).
+        ratio: f64,
+    },
     /// A limit analysis without a limit load was asked for one.
     #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
     NoLimitLoad {

@@ -107,6 +107,9 @@ impl Exit {
             // Strength reduction: no factor fails the slope (it cannot
             // collapse), or none holds it (it collapses under its weight).
             E::StrengthReductionNoFailure { .. } => Exit::Locked,
+            // Nothing drives the slide: its safety factor is undefined
+            // (infinite on level ground), as a slope that cannot fail.
+            E::NothingDrivesSliding { .. } => Exit::Locked,
             E::StrengthReductionNoEquilibrium { .. } => Exit::Unbounded,
             E::InvalidParameter { .. }
             | E::UnstableTimeStep { .. }
@@ -136,6 +139,8 @@ impl Exit {
             | E::DuplicateBody { .. }
             | E::DuplicateContact { .. }
             | E::LatticeTooLarge { .. }
+            | E::HpmModelTooLarge { .. }
+            | E::GridTooSmall { .. }
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
@@ -170,5 +175,30 @@ mod tests {
         assert_eq!(Exit::of_limit(&status), Exit::SolverFailure);
         assert_eq!(Exit::of_limit(&LimitStatus::Locked), Exit::Locked);
         assert_eq!(Exit::of_limit(&LimitStatus::Collapse), Exit::Success);
+    }
+
+    #[test]
+    fn a_slide_nothing_drives_exits_as_locked_and_a_model_too_large_as_bad_input() {
+        let nothing = DismechError::NothingDrivesSliding {
+            what: "Hovland".into(),
+            driving: 0.0,
+            weight: 1.0,
+            ratio: 1e-6,
+        };
+        assert_eq!(Exit::of_error(&nothing), Exit::Locked);
+        let large = DismechError::HpmModelTooLarge {
+            columns: 1,
+            layers: usize::MAX,
+            elements: u128::from(u64::MAX),
+            bytes: u128::MAX,
+            budget: 1,
+        };
+        assert_eq!(Exit::of_error(&large), Exit::BadInput);
+        let small = DismechError::GridTooSmall {
+            file: "g.asc".into(),
+            rows: 1,
+            columns: 2,
+        };
+        assert_eq!(Exit::of_error(&small), Exit::BadInput);
     }
 }

@@ -21,6 +21,13 @@
 //! (computed exactly) at most [`MAX_GRID_CELLS`]; the cell size, corner and
 //! grid extent must be finite. Memory for the values grows with the values
 //! actually read, never with the size the header claims.
+//!
+//! A file is checked before its text is read ([`read_esri_ascii`]): it must
+//! be a regular file (a FIFO would block the reader forever, `/dev/zero`
+//! never ends), its header must end within its first [`MAX_HEADER_BYTES`],
+//! and its size may not exceed what the header's `ncols × nrows` values can
+//! need, [`MAX_BYTES_PER_VALUE`] a value: a 3 GB file of zeros, sparse or
+//! not, is refused after reading 64 KiB of it.
 
 use std::path::Path;
 
@@ -42,12 +49,174 @@ fn format_error(
     }
 }
 
+/// The most bytes read before the header is checked: the header must end
+/// (the first value begin) within them.
+pub const MAX_HEADER_BYTES: usize = 64 * 1024;
+
+/// The most bytes of text a value of a grid file may take on average,
+/// separators included, on top of [`MAX_HEADER_BYTES`] for the header. A
+/// number written in full (`-1.2345678901234567e-308`) takes 24; 256 leaves
+/// room for any padding a writer uses. A larger file is refused before its
+/// values are read: it is not the grid its header describes.
+pub const MAX_BYTES_PER_VALUE: u64 = 256;
+
+/// What a file that is not a regular file is, in words.
+fn describe(kind: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if kind.is_char_device() {
+            return "a character device";
+        }
+        if kind.is_block_device() {
+            return "a block device";
+        }
+        if kind.is_socket() {
+            return "a socket";
+        }
+    }
+    if kind.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}
+
 /// Read an ESRI ASCII grid file.
+///
+/// The file is checked before its values are read: it must be a regular
+/// file (a FIFO would block the reader, a device such as `/dev/zero` never
+/// ends), its header must end within its first [`MAX_HEADER_BYTES`], and it
+/// may be no larger than [`MAX_HEADER_BYTES`] plus [`MAX_BYTES_PER_VALUE`]
+/// for each of the header's `ncols × nrows` values. Then the whole text is
+/// parsed as by [`parse_esri_ascii`].
+///
+/// # Errors
+/// [`DismechError::GridFormat`] (line 0) for a path that cannot be read or
+/// is not a regular file (naming what it is), a file that is not UTF-8
+/// text, a header that does not end within [`MAX_HEADER_BYTES`], or a file
+/// larger than its header's grid can need (naming both sizes); then those
+/// of [`parse_esri_ascii`], a header's [`DismechError::GridHeader`] and
+/// [`DismechError::GridTooLarge`] before any value is read.
 pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
+    use std::io::Read;
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format_error(&name, 0, 0, format!("cannot read the file: {e}")))?;
+    let cannot =
+        |e: std::io::Error| format_error(&name, 0, 0, format!("cannot read the file: {e}"));
+    let not_regular = |kind: std::fs::FileType| {
+        format_error(
+            &name,
+            0,
+            0,
+            format!(
+                "is {}, not a regular file: give the path of an ESRI ASCII grid file",
+                describe(kind)
+            ),
+        )
+    };
+    // The kind first, without opening: opening a FIFO blocks until a writer
+    // comes.
+    let kind = std::fs::metadata(path).map_err(cannot)?.file_type();
+    if !kind.is_file() {
+        return Err(not_regular(kind));
+    }
+    let mut file = std::fs::File::open(path).map_err(cannot)?;
+    // The file opened is the one checked, even if the path changed since.
+    let meta = file.metadata().map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    let size = meta.len();
+    let mut bytes = Vec::with_capacity(size.min(MAX_HEADER_BYTES as u64) as usize);
+    (&mut file)
+        .take(MAX_HEADER_BYTES as u64)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() == MAX_HEADER_BYTES {
+        // More may follow: the header decides how much the file may hold.
+        let limit = allowed_size(&bytes, &name, size)?;
+        let rest = size.saturating_sub(bytes.len() as u64).min(limit) as usize;
+        bytes.reserve_exact(rest);
+        (&mut file)
+            .take(limit + 1 - bytes.len() as u64)
+            .read_to_end(&mut bytes)
+            .map_err(cannot)?;
+        if bytes.len() as u64 > limit {
+            // It grew while being read.
+            return Err(too_big(&name, bytes.len() as u64, limit));
+        }
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        format_error(
+            &name,
+            0,
+            0,
+            format!(
+                "is not UTF-8 text (invalid byte at offset {}): an ESRI ASCII grid is text",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })?;
     parse_esri_ascii(&text, &name)
+}
+
+/// The largest size a file may have whose first [`MAX_HEADER_BYTES`] are
+/// `head`, from the grid its header describes; the header's errors, or a
+/// [`DismechError::GridFormat`] when the header does not end in `head` or
+/// the file's `size` is over the limit.
+fn allowed_size(head: &[u8], name: &str, size: u64) -> Result<u64> {
+    // Whole tokens only: cut at the last whitespace, and at the end of the
+    // text that is valid UTF-8 (a character may be cut at the end).
+    let text = match std::str::from_utf8(head) {
+        Ok(text) => text,
+        Err(e) if e.error_len().is_none() => {
+            std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or_default()
+        }
+        Err(e) => {
+            return Err(format_error(
+                name,
+                0,
+                0,
+                format!(
+                    "is not UTF-8 text (invalid byte at offset {}): an ESRI ASCII grid is text",
+                    e.valid_up_to()
+                ),
+            ))
+        }
+    };
+    let text = &text[..text.rfind(char::is_whitespace).unwrap_or(0)];
+    let Ok((header, _)) = parse_header(&mut tokens(text), name)? else {
+        return Err(format_error(
+            name,
+            0,
+            0,
+            format!(
+                "no complete header in the first {MAX_HEADER_BYTES} bytes of a file of {size} bytes: an ESRI ASCII grid starts with ncols, nrows, xllcorner, yllcorner, cellsize (and NODATA_value), then its values"
+            ),
+        ));
+    };
+    let limit = (header.cells as u64)
+        .saturating_mul(MAX_BYTES_PER_VALUE)
+        .saturating_add(MAX_HEADER_BYTES as u64);
+    if size > limit {
+        return Err(too_big(name, size, limit));
+    }
+    Ok(limit)
+}
+
+/// A file of `size` bytes, over the `limit` its header's grid can need.
+fn too_big(name: &str, size: u64, limit: u64) -> DismechError {
+    format_error(
+        name,
+        0,
+        0,
+        format!(
+            "the file has {size} bytes, more than the {limit} its header's grid can need ({MAX_HEADER_BYTES} for the header and {MAX_BYTES_PER_VALUE} a value): it is not the grid its header describes (check ncols and nrows), or its values are padded far beyond any writer's"
+        ),
+    )
 }
 
 /// A header entry: key and value as written, and where the value stands.
@@ -106,15 +275,9 @@ impl Entry<'_> {
     }
 }
 
-/// Parse the text of an ESRI ASCII grid; `name` is used in errors.
-///
-/// Errors: [`DismechError::GridHeader`] for a header value that cannot be
-/// used, [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`]
-/// cells, [`DismechError::GridFormat`] for anything else (a missing key, a
-/// value that is not a number, too few or too many values).
-pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
-    // Tokens with their line and column.
-    let mut tokens = text.lines().enumerate().flat_map(|(l, line)| {
+/// The tokens of `text` with their line and column (from 1).
+fn tokens(text: &str) -> impl Iterator<Item = (usize, usize, &str)> {
+    text.lines().enumerate().flat_map(|(l, line)| {
         let mut out = Vec::new();
         let mut start = None;
         for (c, ch) in line
@@ -131,14 +294,43 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
             }
         }
         out
-    });
+    })
+}
+
+/// A header, checked.
+struct Header {
+    columns: usize,
+    rows: usize,
+    cells: usize,
+    x0: f64,
+    y0: f64,
+    cell: f64,
+    nodata: Option<f64>,
+}
+
+/// A token with its line and column.
+type Token<'a> = (usize, usize, &'a str);
+
+/// Read and check the header from `tokens`, up to the first value, which
+/// it returns with the header. The inner error is the tokens ending inside
+/// the header (a key without its value, or no value after the keys): an
+/// error of a whole text, not of a text cut short.
+fn parse_header<'a>(
+    tokens: &mut impl Iterator<Item = Token<'a>>,
+    name: &str,
+) -> Result<std::result::Result<(Header, Token<'a>), DismechError>> {
     let mut header: [Option<Entry>; 6] = [None; 6];
     let mut centred = (false, false);
     let keys = ["ncols", "nrows", "xll", "yll", "cellsize", "nodata_value"];
     let first_value;
     loop {
         let Some((line, column, token)) = tokens.next() else {
-            return Err(format_error(name, 0, 0, "the file ends inside the header"));
+            return Ok(Err(format_error(
+                name,
+                0,
+                0,
+                "the file ends inside the header",
+            )));
         };
         let lower = token.to_ascii_lowercase();
         let slot = match lower.as_str() {
@@ -161,12 +353,12 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
             break;
         };
         let Some((vline, _, value)) = tokens.next() else {
-            return Err(format_error(
+            return Ok(Err(format_error(
                 name,
                 line,
                 column,
                 format!("`{token}` has no value"),
-            ));
+            )));
         };
         if header[slot].is_some() {
             return Err(format_error(
@@ -237,6 +429,39 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
     let x0 = corner(xll, centred.0, columns)?;
     let y0 = corner(yll, centred.1, rows)?;
     let nodata = header[5].map(|entry| entry.number(name)).transpose()?;
+    Ok(Ok((
+        Header {
+            columns,
+            rows,
+            cells,
+            x0,
+            y0,
+            cell,
+            nodata,
+        },
+        first_value,
+    )))
+}
+
+/// Parse the text of an ESRI ASCII grid; `name` is used in errors.
+///
+/// # Errors
+/// [`DismechError::GridHeader`] for a header value that cannot be
+/// used, [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`]
+/// cells, [`DismechError::GridFormat`] for anything else (a missing key, a
+/// value that is not a number, too few or too many values).
+pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
+    let mut tokens = tokens(text);
+    let (header, first_value) = parse_header(&mut tokens, name)??;
+    let Header {
+        columns,
+        rows,
+        cells,
+        x0,
+        y0,
+        cell,
+        nodata,
+    } = header;
     let is_nodata = |v: f64| nodata.is_some_and(|n| n == v || (n.is_nan() && v.is_nan()));
 
     // Each value takes at least two bytes of text (a digit and a separator):

@@ -5,5 +5,8 @@
 mod esri_ascii;
 mod raster;
 
-pub use esri_ascii::{parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii};
+pub use esri_ascii::{
+    parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii, MAX_BYTES_PER_VALUE,
+    MAX_HEADER_BYTES,
+};
 pub use raster::{Raster, MAX_GRID_CELLS};

@@ -52,12 +52,29 @@
 //!   the slide's equilibrium fixes: both definitions reduce to the exact
 //!   `(cA + N tan φ) / T` of a planar slab when the springs carry the
 //!   load along d (tested in `tests/hpm_exact.rs`).
+//!
+//! Either Fs is a ratio of the strength the slip surface offers to the
+//! shear that drives the slide, so it is given only where something drives
+//! it: the horizontal part of the springs' resultant shear force `Σ τ A`
+//! (which balances the horizontal loads and the horizontal push of the
+//! slip surface) above [`MIN_DRIVING_RATIO`] of the slide's weight, and for
+//! the second definition the shear along the direction too. On a level
+//! slip surface without seismic load that resultant is rounding alone: the
+//! springs still carry shear (the soil squeezed over the surface), which
+//! would make the stress ratio a finite number (9.07 for a 6 m slab of
+//! 3 × 4 cells on level ground) while Hovland's Fs is infinite, and the Fs
+//! along the sliding direction 2.6e14 (a direction of rounding); none of
+//! them means anything, and
+//! both are refused with [`DismechError::NothingDrivesSliding`] naming the
+//! driving force and the weight. The local factors
+//! ([`HpmResult::local_safety_factors`]) stay the stress ratio of each
+//! column, a measure of the strength mobilised there.
 
 use nalgebra::Vector3;
 
 use super::conditioning::IllConditioning;
 use super::material::Seismic;
-use super::model::{HpmModel, SlipSpring};
+use super::model::{HpmModel, SlipSpring, MAX_HPM_MODEL_BYTES};
 use super::stiffness::BlockMatrix;
 use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
@@ -89,6 +106,44 @@ impl Default for NonlinearSettings {
         }
     }
 }
+
+impl NonlinearSettings {
+    /// Check the values; errors name the field.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a tolerance that is not a
+    /// finite number in (0, 1) (0 is never reached; at 1 the unloaded state
+    /// passes for equilibrium), or an iteration limit of 0 (no iteration
+    /// could correct the unloaded state).
+    pub fn validate(&self) -> Result<()> {
+        let tol = self.tolerance;
+        if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
+            return Err(DismechError::InvalidParameter {
+                name: "NonlinearSettings::tolerance (relative out-of-balance force)",
+                value: tol,
+                requirement: "must be a finite number in (0, 1), e.g. 1e-6",
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(DismechError::InvalidParameter {
+                name: "NonlinearSettings::max_iterations",
+                value: 0.0,
+                requirement: "must be at least 1, e.g. 3000",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The smallest driving force, as a share of the slide's weight, for which
+/// a safety factor is given: below it (or a driving force that points up
+/// the slope) nothing drives sliding, and the ratio of resisting to driving
+/// forces is refused with [`DismechError::NothingDrivesSliding`] rather
+/// than returned as a huge, negative or NaN number. At 1e-6 of the weight
+/// the Fs of a frictional slide would be about a million; a level slip
+/// surface leaves a driving force of rounding (and of the nonlinear
+/// solve's residual, at most its tolerance, 1e-6 by default) alone.
+pub const MIN_DRIVING_RATIO: f64 = 1e-6;
 
 /// Whether a solve reached equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -195,6 +250,9 @@ impl HpmSolver<SparseCholesky> {
     }
 
     /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
+    ///
+    /// # Errors
+    /// A failed factorization ([`DismechError::Solve`]).
     pub fn from_stiffness(stiffness: BlockMatrix) -> Result<Self> {
         Self::with_solver(stiffness, SparseCholesky::new())
     }
@@ -204,7 +262,29 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
     /// Assemble the elastic stiffness of `model` for preconditioned
     /// conjugate gradients with the stopping rule `settings`, the
     /// preconditioner one dense block per grid column (all its layers).
+    ///
+    /// # Errors
+    /// Settings out of range ([`CgSettings::validate`]);
+    /// [`DismechError::HpmModelTooLarge`] when the model and the dense
+    /// column blocks, `(12 × layers)²` numbers a column, would take more
+    /// than [`MAX_HPM_MODEL_BYTES`], refused before they are made; a failed
+    /// factorization of a block, as for [`HpmSolver::new`].
     pub fn iterative(model: &HpmModel, settings: CgSettings) -> Result<Self> {
+        settings.validate()?;
+        let layers = model.settings.layers;
+        let block =
+            (ELEMENT_DOF as u128 * layers as u128).pow(2) * std::mem::size_of::<f64>() as u128;
+        let bytes = HpmModel::memory_estimate(model.columns.len(), layers)
+            .saturating_add(block.saturating_mul(model.columns.len() as u128));
+        if bytes > u128::from(MAX_HPM_MODEL_BYTES) {
+            return Err(DismechError::HpmModelTooLarge {
+                columns: model.columns.len(),
+                layers,
+                elements: model.elements.len() as u128,
+                bytes,
+                budget: MAX_HPM_MODEL_BYTES,
+            });
+        }
         let groups = model
             .columns
             .iter()
@@ -217,6 +297,9 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
 
 impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
     /// Factor `stiffness` with `solver`.
+    ///
+    /// # Errors
+    /// The solver's error ([`DismechError::Solve`]).
     pub fn with_solver(stiffness: BlockMatrix, mut solver: S) -> Result<Self> {
         solver.factor(&stiffness)?;
         Ok(Self { stiffness, solver })
@@ -244,6 +327,9 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
     /// `NotConverged` when it is above [`EQUILIBRIUM_TOLERANCE`] or not
     /// finite, or when an iterative solver stopped at its limit (the
     /// convergence then reports its iterations).
+    ///
+    /// # Errors
+    /// An invalid seismic load ([`Seismic::validate`]); a failed solve.
     pub fn elastic(&mut self, model: &HpmModel, seismic: &Seismic) -> Result<HpmResult> {
         seismic.validate()?;
         self.elastic_with_loads(model, &model.loads(seismic))
@@ -251,6 +337,10 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
 
     /// Elastic analysis under the load vector `f` (12 generalised forces
     /// per element, conjugate to the DOFs of eq. 2).
+    ///
+    /// # Errors
+    /// A load vector whose length is not the model's unknowns, or another
+    /// failed solve ([`DismechError::Solve`]).
     pub fn elastic_with_loads(&mut self, model: &HpmModel, f: &[f64]) -> Result<HpmResult> {
         let (u, stats) = self.solve(f)?;
         Ok(elastic_result(
@@ -268,6 +358,11 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
     /// iterative solver the corrections `K⁻¹ r` are those of its
     /// tolerance; the out-of-balance force, evaluated exactly, decides
     /// convergence.
+    ///
+    /// # Errors
+    /// An invalid seismic load ([`Seismic::validate`]) or setting
+    /// ([`NonlinearSettings::validate`]), a `reduction` that is not finite
+    /// and positive ([`DismechError::InvalidParameter`]); a failed solve.
     pub fn nonlinear(
         &mut self,
         model: &HpmModel,
@@ -276,6 +371,7 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         settings: &NonlinearSettings,
     ) -> Result<HpmResult> {
         seismic.validate()?;
+        settings.validate()?;
         crate::error::require_positive("strength reduction factor", reduction)?;
         let strength = Strength {
             cohesion: model.material.cohesion / reduction,
@@ -485,45 +581,102 @@ const MIN_RELAXATION: f64 = 0.1;
 const MAX_RELAXATION: f64 = 10.0;
 
 impl HpmResult {
-    /// Global safety factor `Σ (c + σ tan φ) A / Σ |τ| A` with the
-    /// material's own c and φ.
-    pub fn safety_factor(&self, model: &HpmModel) -> f64 {
+    /// Global safety factor `Σ (c + σ tan φ) A / Σ |τ| A` (the stress
+    /// ratio) with the material's own c and φ.
+    ///
+    /// # Errors
+    /// [`DismechError::NothingDrivesSliding`] when the horizontal part of
+    /// the springs' resultant shear force `Σ τ A`, the force that pushes the
+    /// slide along the ground, is not above [`MIN_DRIVING_RATIO`] of the
+    /// slide's weight (a level slip surface without seismic load): the
+    /// springs' `|τ|` are then the squeeze of the soil on the surface, not
+    /// a push that strength resists, and Hovland's Fs is infinite.
+    pub fn safety_factor(&self, model: &HpmModel) -> Result<f64> {
+        self.driven(model, "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A")?;
         let (num, den) = self.strength_and_shear(model);
-        num.iter().sum::<f64>() / den.iter().sum::<f64>()
+        Ok(num.iter().sum::<f64>() / den.iter().sum::<f64>())
     }
 
-    /// Plan direction `ĥ = (h_x, h_y)` (unit) of the resultant shear force
-    /// `Σ (τ_s s + τ_t t) A` of the slip springs: the direction the slide
-    /// pushes the ground, along which it slides. `None` when the resultant
-    /// has no horizontal component.
-    pub fn sliding_direction(&self, model: &HpmModel) -> Option<(f64, f64)> {
-        let resultant: Vector3<f64> = model
+    /// The resultant shear force `Σ (τ_s s + τ_t t) A` of the slip springs.
+    fn resultant_shear(&self, model: &HpmModel) -> Vector3<f64> {
+        model
             .slip
             .iter()
             .zip(&self.tractions)
             .map(|(s, t)| shear_vector(s, t) * s.point.point.area)
-            .sum();
+            .sum()
+    }
+
+    /// The plan direction of the resultant shear force, or the
+    /// [`DismechError::NothingDrivesSliding`] of `what` when its horizontal
+    /// part is not above [`MIN_DRIVING_RATIO`] of the weight.
+    fn driven(&self, model: &HpmModel, what: &str) -> Result<(f64, f64)> {
+        let resultant = self.resultant_shear(model);
         let plan = resultant.x.hypot(resultant.y);
-        (plan > 0.0).then(|| (resultant.x / plan, resultant.y / plan))
+        let weight = model.total_weight();
+        // `>` is false for NaN: a NaN resultant drives nothing.
+        if plan > MIN_DRIVING_RATIO * weight {
+            Ok((resultant.x / plan, resultant.y / plan))
+        } else {
+            Err(DismechError::NothingDrivesSliding {
+                what: format!(
+                    "{what}: the horizontal part of the slip springs' resultant shear force"
+                ),
+                driving: plan,
+                weight,
+                ratio: MIN_DRIVING_RATIO,
+            })
+        }
+    }
+
+    /// Plan direction `ĥ = (h_x, h_y)` (unit) of the resultant shear force
+    /// `Σ (τ_s s + τ_t t) A` of the slip springs: the direction the slide
+    /// pushes the ground, along which it slides. `None` when nothing drives
+    /// sliding: the resultant's horizontal part is not above
+    /// [`MIN_DRIVING_RATIO`] of the slide's weight.
+    pub fn sliding_direction(&self, model: &HpmModel) -> Option<(f64, f64)> {
+        self.driven(model, "").ok()
     }
 
     /// Global safety factor along the sliding direction,
     /// `Σ (c + σ tan φ) A / Σ (τ · d_i) A` with `d_i` the unit tangent of
     /// the slip surface over the plan direction
     /// [`HpmResult::sliding_direction`] (Hovland's assumption; see the
-    /// module documentation). NaN when the springs carry no horizontal
-    /// shear resultant.
-    pub fn sliding_safety_factor(&self, model: &HpmModel) -> f64 {
-        match self.sliding_direction(model) {
-            Some(plan) => self.safety_factor_along(model, plan),
-            None => f64::NAN,
-        }
+    /// module documentation).
+    ///
+    /// # Errors
+    /// [`DismechError::NothingDrivesSliding`] when there is no sliding
+    /// direction (the springs' resultant shear force has no horizontal part
+    /// above [`MIN_DRIVING_RATIO`] of the weight), or the shear along it is
+    /// not above that share of the weight (see
+    /// [`HpmResult::safety_factor_along`]).
+    pub fn sliding_safety_factor(&self, model: &HpmModel) -> Result<f64> {
+        let plan = self.driven(
+            model,
+            "HPM along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A",
+        )?;
+        self.safety_factor_along(model, plan)
     }
 
     /// `Σ (c + σ tan φ) A / Σ (τ · d_i) A` for the horizontal sliding
     /// direction `plan` (need not be unit), `d_i` the unit tangent of the
     /// slip surface at spring i whose plan projection points along `plan`.
-    pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> f64 {
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a `plan` that is not finite or
+    /// is zero; [`DismechError::NothingDrivesSliding`] when the driving
+    /// shear `Σ (τ · d_i) A` is not above [`MIN_DRIVING_RATIO`] of the
+    /// slide's weight: nothing pushes the slide that way (a direction up
+    /// the slope gives a negative one).
+    pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> Result<f64> {
+        let length = plan.0.hypot(plan.1);
+        if !(length.is_finite() && length > 0.0) {
+            return Err(DismechError::InvalidParameter {
+                name: "plan sliding direction (its length)",
+                value: length,
+                requirement: "must be a finite, non-zero horizontal vector",
+            });
+        }
         let (c, mu) = (model.material.cohesion, model.material.friction());
         // The vertical plane through `plan` has normal m = ĥ × e_z.
         let m = Vector3::new(plan.1, -plan.0, 0.0);
@@ -536,7 +689,21 @@ impl HpmResult {
             num += (c + t.normal * mu) * a;
             den += shear_vector(s, t).dot(&along) * a;
         }
-        num / den
+        let weight = model.total_weight();
+        if den > MIN_DRIVING_RATIO * weight {
+            Ok(num / den)
+        } else {
+            Err(DismechError::NothingDrivesSliding {
+                what: format!(
+                    "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
+                    plan.0 / length,
+                    plan.1 / length
+                ),
+                driving: den,
+                weight,
+                ratio: MIN_DRIVING_RATIO,
+            })
+        }
     }
 
     /// Local safety factor of each column (same ratio over its springs);

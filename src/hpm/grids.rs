@@ -17,6 +17,11 @@ use std::path::Path;
 use crate::error::{DismechError, Result};
 use crate::grid::{read_esri_ascii, Raster};
 
+/// The fewest rows, and the fewest columns, of slope grids: corner heights
+/// are interpolated (and at the edge extrapolated) between two cell centres
+/// along each axis, so that a plane is exact (eq. 23).
+pub const MIN_GRID_SIDE: usize = 2;
+
 /// A raster with the name of the file it came from (used in errors).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedRaster {
@@ -36,6 +41,9 @@ impl NamedRaster {
     }
 
     /// Read an ESRI ASCII grid file.
+    ///
+    /// # Errors
+    /// Those of [`crate::grid::read_esri_ascii`].
     pub fn read(path: &Path) -> Result<Self> {
         Ok(Self::new(
             path.display().to_string(),
@@ -60,7 +68,11 @@ pub type Corners = [f64; 4];
 impl SlopeGrids {
     /// Check the rasters and find the valid columns.
     ///
-    /// Errors: rasters on different grids ([`DismechError::GridMismatch`]);
+    /// # Errors
+    /// Rasters on different grids ([`DismechError::GridMismatch`]); a grid
+    /// of fewer than [`MIN_GRID_SIDE`] rows or columns
+    /// ([`DismechError::GridTooSmall`], naming its size: the corner heights
+    /// and slopes need two cell centres along each axis);
     /// a cell of the slide without ground data, a slip-surface hole inside
     /// the slide, or a water table without data over a valid column
     /// ([`DismechError::GridCell`], naming file, row and column); no valid
@@ -87,6 +99,15 @@ impl SlopeGrids {
             }
         }
         let (rows, columns) = (ground.raster.rows(), ground.raster.columns());
+        if rows < MIN_GRID_SIDE || columns < MIN_GRID_SIDE {
+            // One cell centre along an axis gives no slope along it: a
+            // slope along a single row would be analysed as level ground.
+            return Err(DismechError::GridTooSmall {
+                file: ground.name.clone(),
+                rows,
+                columns,
+            });
+        }
         let mut valid = vec![false; rows * columns];
         for r in 0..rows {
             for c in 0..columns {
@@ -153,9 +174,12 @@ impl SlopeGrids {
 
     /// Read the three grids from ESRI ASCII files.
     ///
-    /// Errors: those of [`crate::grid::parse_esri_ascii`] for each file (a
-    /// header over [`crate::grid::MAX_GRID_CELLS`] cells is refused before
-    /// its grid is allocated), then those of [`SlopeGrids::new`]; grids that
+    /// # Errors
+    /// Those of [`crate::grid::read_esri_ascii`] for each file (a path that
+    /// is not a regular file, a file far larger than its header's grid can
+    /// need, a header over [`crate::grid::MAX_GRID_CELLS`] cells: each
+    /// refused before the values are read), then those of
+    /// [`SlopeGrids::new`]; grids that
     /// differ in shape, corner or cell size are refused before any cell is
     /// looked at.
     pub fn read(ground: &Path, slip: &Path, water: Option<&Path>) -> Result<Self> {

@@ -10,12 +10,21 @@
 //! sliding direction (the horizontal direction given, lifted onto the base):
 //! `N = w · n`, `T = w · d`, `A` the true base area and
 //! `Fs = Σ (c A + N tan φ) / Σ T`.
+//!
+//! The Fs is a ratio of resisting to driving forces: it is given only where
+//! the columns' loads drive the slide along the direction asked,
+//! `Σ T > `[`MIN_DRIVING_RATIO`]` × Σ W`. On a level slip surface without
+//! seismic load `Σ T` is zero (the Fs would be infinite, or a huge number
+//! of either sign from rounding), and towards a direction up the slope it
+//! is negative (a negative Fs means nothing): both are refused with
+//! [`DismechError::NothingDrivesSliding`], naming `Σ T` and `Σ W`.
 
 use nalgebra::Vector3;
 
+use super::analysis::MIN_DRIVING_RATIO;
 use super::material::Seismic;
 use super::model::HpmModel;
-use crate::error::{require_finite, Result};
+use crate::error::{require_finite, DismechError, Result};
 
 /// One column's terms in Hovland's sums.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +48,13 @@ pub struct Hovland {
 
 /// Hovland's method for the columns of `model`, sliding horizontally
 /// towards `direction_deg` (degrees from +x, counter-clockwise).
+///
+/// # Errors
+/// An invalid seismic load ([`Seismic::validate`]) or a direction that is
+/// not finite ([`DismechError::InvalidParameter`]);
+/// [`DismechError::NothingDrivesSliding`] when the driving force `Σ T` is
+/// not above [`MIN_DRIVING_RATIO`] of the columns' weight `Σ W`: level
+/// ground, or a direction up the slope.
 pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Result<Hovland> {
     seismic.validate()?;
     require_finite("sliding direction (degrees)", direction_deg)?;
@@ -77,8 +93,19 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Resul
         .collect();
     let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
     let driving: f64 = columns.iter().map(|k| k.driving).sum();
-    Ok(Hovland {
-        safety_factor: resisting / driving,
-        columns,
-    })
+    let weight = model.total_weight();
+    // `>` is false for NaN: a NaN driving force drives nothing.
+    if driving > MIN_DRIVING_RATIO * weight {
+        Ok(Hovland {
+            safety_factor: resisting / driving,
+            columns,
+        })
+    } else {
+        Err(DismechError::NothingDrivesSliding {
+            what: format!("Hovland's method sliding towards {direction_deg}°: Σ T"),
+            driving,
+            weight,
+            ratio: MIN_DRIVING_RATIO,
+        })
+    }
 }

@@ -67,14 +67,14 @@ pub use crate::kinematics::affine3::{
 };
 pub use analysis::{
     Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
-    SurfacePoint, EQUILIBRIUM_TOLERANCE,
+    SurfacePoint, EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
-pub use grids::{NamedRaster, SlopeGrids};
+pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic};
-pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring};
+pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, MAX_HPM_MODEL_BYTES};
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
     strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,

@@ -23,6 +23,14 @@ use crate::kinematics::affine3::{elasticity, element_stiffness, shape_matrix, Bl
 use crate::law::MohrCoulombSpring;
 use crate::shape::Column;
 
+/// Gauss points of a face (2 × 2).
+const FACE_POINTS: u128 = 4;
+
+/// Vectors of 12 unknowns per element an analysis holds at once (loads,
+/// displacements, residual, `K u`, corrections and their difference, the
+/// solver's work vector), counted generously.
+const SOLUTION_VECTORS: u128 = 10;
+
 /// One element: a layer of a column.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Element {
@@ -102,6 +110,22 @@ pub struct HpmModel {
     pub grid: (usize, usize, f64),
 }
 
+/// The most memory an HPM model may take for its elements, springs,
+/// elastic stiffness (blocks and the compressed copy a direct solver reads)
+/// and solution vectors, as [`HpmModel::memory_estimate`] counts it: 4 GiB,
+/// about 280 000 elements (the 100 × 100-column, 5-layer slope of the
+/// `hpm_elastic` bench, 50 000 elements, takes about 0.75 GB). A larger
+/// model is refused with [`DismechError::HpmModelTooLarge`] before any of it
+/// is allocated. The fill of a sparse Cholesky factor comes on top (the
+/// conjugate gradients of [`crate::hpm::HpmIterativeSolver`] need none).
+pub const MAX_HPM_MODEL_BYTES: u64 = 4 << 30;
+
+/// Faces of a column with `layers` elements, at most: between its layers,
+/// and each layer's east and north sides.
+fn faces_per_column(layers: u128) -> u128 {
+    (layers.saturating_sub(1)).saturating_add(layers.saturating_mul(2))
+}
+
 /// Mean of four corner heights (eqs. 5–7).
 fn mean(z: &[f64; 4]) -> f64 {
     0.25 * z.iter().sum::<f64>()
@@ -126,10 +150,65 @@ fn element_weight(
 }
 
 impl HpmModel {
+    /// Bytes a model of `columns` columns of `layers` layers takes, at most:
+    /// its elements, columns, slip springs and faces with their Gauss
+    /// points, its stiffness (a diagonal block per element, a coupling block
+    /// per face, their block rows and the compressed lower triangle a direct
+    /// solver reads) and the vectors of 12 unknowns per element the analyses
+    /// hold. Saturates rather than wraps for absurd sizes.
+    pub fn memory_estimate(columns: usize, layers: usize) -> u128 {
+        use std::mem::size_of;
+        let block = size_of::<Block>() as u128;
+        let dof = ELEMENT_DOF as u128;
+        // Values and row indices of the compressed lower triangle.
+        let compressed = (size_of::<f64>() + size_of::<usize>()) as u128;
+        let per_element = size_of::<Element>() as u128
+            + block
+            + SOLUTION_VECTORS * dof * size_of::<f64>() as u128
+            + compressed * dof * (dof + 1) / 2
+            + size_of::<usize>() as u128 * (1 + dof);
+        let per_face = size_of::<Interface>() as u128
+            + FACE_POINTS * size_of::<FacePoint>() as u128
+            + size_of::<(usize, usize, Block)>() as u128
+            + 2 * size_of::<(usize, usize, bool)>() as u128
+            + compressed * dof * dof;
+        let per_column = size_of::<GridColumn>() as u128
+            + FACE_POINTS
+                * (size_of::<SlipSpring>()
+                    + size_of::<MohrCoulombSpring>()
+                    + size_of::<super::analysis::SpringTraction>()) as u128;
+        let (columns, layers) = (columns as u128, layers as u128);
+        let column = per_column
+            .saturating_add(layers.saturating_mul(per_element))
+            .saturating_add(faces_per_column(layers).saturating_mul(per_face));
+        columns.saturating_mul(column)
+    }
+
+    /// Refuse a model of `columns` columns and `layers` layers whose
+    /// [`HpmModel::memory_estimate`] is over [`MAX_HPM_MODEL_BYTES`].
+    fn check_budget(columns: usize, layers: usize) -> Result<()> {
+        let bytes = Self::memory_estimate(columns, layers);
+        if bytes > u128::from(MAX_HPM_MODEL_BYTES) {
+            return Err(DismechError::HpmModelTooLarge {
+                columns,
+                layers,
+                elements: columns as u128 * layers as u128,
+                bytes,
+                budget: MAX_HPM_MODEL_BYTES,
+            });
+        }
+        Ok(())
+    }
+
     /// Build the model; validates the material and settings.
     ///
     /// # Errors
-    /// An invalid material or setting; [`DismechError::EmptyHpmModel`]
+    /// An invalid material or setting ([`DismechError::InvalidParameter`],
+    /// naming it: see [`HpmMaterial::validate`] and
+    /// [`HpmSettings::validate`]); [`DismechError::HpmModelTooLarge`] when
+    /// the valid columns times the layers would take more memory than
+    /// [`MAX_HPM_MODEL_BYTES`], refused before any element is made;
+    /// [`DismechError::EmptyHpmModel`]
     /// when every valid column has zero thickness at all four corners (its
     /// slip corners, lowered to the ground, leave no volume), so that there
     /// is no element to analyse.
@@ -143,12 +222,22 @@ impl HpmModel {
         let (fn_, fs) = material.spring_factors();
         let e_pen = settings.penalty * material.youngs_modulus;
         let friction = material.friction();
+        if !e_pen.is_finite() {
+            return Err(DismechError::InvalidParameter {
+                name: "penalty factor p",
+                value: settings.penalty,
+                requirement: "p × E (the modulus of the springs between elements) must be finite",
+            });
+        }
 
-        let mut columns = Vec::new();
-        let mut elements = Vec::new();
-        let mut slip = Vec::new();
+        let valid = grids.valid_cells();
+        Self::check_budget(valid.len(), layers)?;
+        // Within the budget, so these products are far below usize::MAX.
+        let mut columns = Vec::with_capacity(valid.len());
+        let mut elements = Vec::with_capacity(valid.len() * layers);
+        let mut slip = Vec::with_capacity(valid.len() * FACE_POINTS as usize);
         let mut index = vec![usize::MAX; rows * grid_columns];
-        for (r, c) in grids.valid_cells() {
+        for (r, c) in valid {
             let (ground, slip_z, water) = grids.corners(r, c);
             let origin = (x_ll + c as f64 * d, y_ll + (rows - r - 1) as f64 * d);
             let shape = Column::new(origin.0, origin.1, d, slip_z, ground)?;
@@ -202,7 +291,8 @@ impl HpmModel {
             });
         }
 
-        let mut interfaces = Vec::new();
+        let mut interfaces =
+            Vec::with_capacity(columns.len() * faces_per_column(layers as u128) as usize);
         // Between layers (eqs. 20–22): the normal of the shared bilinear face
         // points up, from the lower element into the upper.
         for column in &columns {
@@ -286,7 +376,7 @@ impl HpmModel {
     /// the slip springs: singular (six rigid-body modes of the slide).
     pub fn free_stiffness(&self) -> BlockMatrix {
         let d = elasticity(self.material.youngs_modulus, self.material.poisson_ratio);
-        let mut k = BlockMatrix::zeros(self.elements.len());
+        let mut k = BlockMatrix::with_capacity(self.elements.len(), self.interfaces.len());
         for (e, element) in self.elements.iter().enumerate() {
             k.diagonal_mut()[e] += element_stiffness(element.volume, &d);
         }

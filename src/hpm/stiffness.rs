@@ -80,6 +80,16 @@ impl BlockMatrix {
         }
     }
 
+    /// A zero matrix for `elements` elements with room for `couplings`
+    /// coupling blocks, so that adding them never reallocates.
+    pub(super) fn with_capacity(elements: usize, couplings: usize) -> Self {
+        Self {
+            diagonal: vec![Block::zeros(); elements],
+            coupling: Vec::with_capacity(couplings),
+            rows: OnceLock::new(),
+        }
+    }
+
     /// Dimension (12 × elements).
     pub fn dimension(&self) -> usize {
         ELEMENT_DOF * self.diagonal.len()

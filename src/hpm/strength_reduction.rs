@@ -40,7 +40,9 @@ pub struct StrengthReduction {
 /// factor, or conjugate gradients).
 ///
 /// # Errors
-/// A resolution that is not positive; a failed solve;
+/// A resolution that is not finite and positive, or settings out of range
+/// ([`NonlinearSettings::validate`]), each a
+/// [`DismechError::InvalidParameter`] naming it; a failed solve;
 /// [`DismechError::StrengthReductionNoFailure`] when every factor up to
 /// past [`MAX_REDUCTION_FACTOR`] finds equilibrium, and
 /// [`DismechError::StrengthReductionNoEquilibrium`] when none down to
@@ -53,6 +55,8 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
     resolution: f64,
 ) -> Result<StrengthReduction> {
     require_positive("strength-reduction resolution", resolution)?;
+    settings.validate()?;
+    seismic.validate()?;
     let mut trials = Vec::new();
     let mut converges = |f: f64, trials: &mut Vec<(f64, Convergence)>| -> Result<bool> {
         let r = solver.nonlinear(model, seismic, f, settings)?;

@@ -58,6 +58,32 @@ impl Default for CgSettings {
     }
 }
 
+impl CgSettings {
+    /// Check the values; errors name the field.
+    ///
+    /// # Errors
+    /// [`SolveError::InvalidSetting`] for a relative tolerance that is not
+    /// a finite number in (0, 1), or an iteration limit of 0.
+    pub fn validate(&self) -> Result<(), SolveError> {
+        let tol = self.relative_tolerance;
+        if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
+            return Err(SolveError::InvalidSetting {
+                name: "CgSettings::relative_tolerance",
+                value: tol,
+                requirement: "must be a finite number in (0, 1), e.g. 1e-10",
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(SolveError::InvalidSetting {
+                name: "CgSettings::max_iterations",
+                value: 0.0,
+                requirement: "must be at least 1, e.g. 20000",
+            });
+        }
+        Ok(())
+    }
+}
+
 /// What a PCG solve returns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CgSolution {

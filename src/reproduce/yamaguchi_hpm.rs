@@ -210,7 +210,7 @@ fn write_maps(
         ("1.5 <= Fs < 2".to_string(), fs_colour(1.7)),
         ("Fs >= 2".to_string(), fs_colour(2.0)),
     ];
-    let fs = result.safety_factor(model);
+    let fs = result.safety_factor(model)?;
     draw(
         format!("local_fs_{tag}.svg"),
         format!("Local safety factor on the slip surface, {tag} (Fs = {fs:.3})"),
@@ -365,8 +365,8 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     ] {
         let exact = planar_exact(&material, dip, plan, thickness, kh);
         let elastic = solver.elastic(&model, load)?;
-        let fs = elastic.safety_factor(&model);
-        let sliding = elastic.sliding_safety_factor(&model);
+        let fs = elastic.safety_factor(&model)?;
+        let sliding = elastic.sliding_safety_factor(&model)?;
         let hov = hovland(&model, load, TOE_DIRECTION_DEG)?.safety_factor;
         let _ = writeln!(
             report,
@@ -424,15 +424,15 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let elastic = solver.elastic(&model, load)?;
         let nl = solver.nonlinear(&model, load, 1.0, &nonlinear)?;
         let hov = hovland(&model, load, TOE_DIRECTION_DEG)?;
-        fs.insert(format!("elastic.{case}"), elastic.safety_factor(&model));
-        fs.insert(format!("nonlinear.{case}"), nl.safety_factor(&model));
+        fs.insert(format!("elastic.{case}"), elastic.safety_factor(&model)?);
+        fs.insert(format!("nonlinear.{case}"), nl.safety_factor(&model)?);
         fs.insert(
             format!("sliding.elastic.{case}"),
-            elastic.sliding_safety_factor(&model),
+            elastic.sliding_safety_factor(&model)?,
         );
         fs.insert(
             format!("sliding.nonlinear.{case}"),
-            nl.sliding_safety_factor(&model),
+            nl.sliding_safety_factor(&model)?,
         );
         fs.insert(format!("hovland.{case}"), hov.safety_factor);
         write_maps(
@@ -659,7 +659,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let m = HpmModel::new(&grids, &m, &settings)?;
         let f = HpmSolver::new(&m)?
             .elastic(&m, &static_load)?
-            .safety_factor(&m);
+            .safety_factor(&m)?;
         let _ = writeln!(report, "| {variant} | {f:.4} |");
     }
     // Where the shear of the elastic static run goes.
@@ -687,7 +687,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
             .iter()
             .map(|p| p.displacement.norm())
             .fold(0.0, f64::max);
-        let f = r.safety_factor(&m);
+        let f = r.safety_factor(&m)?;
         let _ = writeln!(
             report,
             "| {layers} | {} | {f:.5} | {:.4} |",

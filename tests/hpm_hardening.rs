@@ -1,0 +1,599 @@
+//! HPM and its grid reader against hostile input: memory checked before it
+//! is taken, files checked for kind and size before they are read, settings
+//! checked field by field, grids too small for the method refused, and no
+//! safety factor where nothing drives sliding (a ratio of resisting to
+//! driving forces is undefined there, never a huge, negative or NaN number).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use dismech::error::{DismechError, SolveError};
+use dismech::grid::{
+    read_esri_ascii, to_esri_ascii, Raster, MAX_BYTES_PER_VALUE, MAX_HEADER_BYTES,
+};
+use dismech::hpm::*;
+use dismech::linsolve::CgSettings;
+
+/// A slab of vertical thickness `thickness` on a plane dipping `dip`
+/// degrees towards −y (the toe, 270°), over `rows × columns` cells of 10 m.
+fn slab(rows: usize, columns: usize, dip: f64, thickness: f64) -> (Raster, Raster) {
+    let slope = dip.to_radians().tan();
+    let raster = |offset: f64| {
+        Raster::from_fn(columns, rows, 0.0, 0.0, 10.0, move |_, y| {
+            Some(100.0 + slope * y + offset)
+        })
+        .unwrap()
+    };
+    (raster(thickness), raster(0.0))
+}
+
+fn grids(
+    rows: usize,
+    columns: usize,
+    dip: f64,
+    thickness: f64,
+) -> Result<SlopeGrids, DismechError> {
+    let (ground, slip) = slab(rows, columns, dip, thickness);
+    SlopeGrids::new(
+        NamedRaster::new("ground.asc", ground),
+        NamedRaster::new("slip.asc", slip),
+        None,
+    )
+}
+
+fn model(rows: usize, columns: usize, dip: f64, thickness: f64) -> HpmModel {
+    HpmModel::new(
+        &grids(rows, columns, dip, thickness).unwrap(),
+        &HpmMaterial::paper(),
+        &HpmSettings::default(),
+    )
+    .unwrap()
+}
+
+/// A scratch folder of this test process.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "dismech-hpm-hardening-{}-{test}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The message of a `GridFormat` error of `file`, or a panic.
+fn grid_format_message(result: dismech::error::Result<Raster>, file: &Path) -> String {
+    match result {
+        Err(DismechError::GridFormat {
+            file: name,
+            line,
+            message,
+            ..
+        }) => {
+            assert_eq!((name, line), (file.display().to_string(), 0));
+            message
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+// ---- 1. Memory without a bound -------------------------------------------
+
+#[test]
+fn hpm_layers_beyond_memory_budget_are_refused() {
+    // layers = 10^6 used to try to allocate 11.8 GB and abort; usize::MAX
+    // overflowed the element count.
+    let grids = grids(3, 4, 20.0, 5.0).unwrap();
+    let columns = grids.valid_cells().len();
+    for layers in [1_000_000, usize::MAX] {
+        let settings = HpmSettings {
+            layers,
+            ..HpmSettings::default()
+        };
+        let mut result = None;
+        let memory = allocation_counter::measure(|| {
+            result = Some(HpmModel::new(&grids, &HpmMaterial::paper(), &settings));
+        });
+        match result.unwrap() {
+            Err(DismechError::HpmModelTooLarge {
+                columns: c,
+                layers: l,
+                elements,
+                bytes,
+                budget,
+            }) => {
+                assert_eq!((c, l), (columns, layers));
+                assert_eq!(elements, columns as u128 * layers as u128);
+                assert_eq!(budget, MAX_HPM_MODEL_BYTES);
+                assert!(bytes > u128::from(budget));
+                assert_eq!(bytes, HpmModel::memory_estimate(columns, layers));
+            }
+            other => panic!("layers = {layers}: {other:?}"),
+        }
+        assert!(
+            memory.bytes_max < 1 << 20,
+            "refusing layers = {layers} took {} bytes",
+            memory.bytes_max
+        );
+    }
+}
+
+#[test]
+fn hpm_layers_zero_one_and_two_are_refused_naming_the_setting() {
+    let grids = grids(3, 4, 20.0, 5.0).unwrap();
+    for layers in [0, 1, 2] {
+        let settings = HpmSettings {
+            layers,
+            ..HpmSettings::default()
+        };
+        match HpmModel::new(&grids, &HpmMaterial::paper(), &settings) {
+            Err(DismechError::InvalidParameter { name, value, .. }) => {
+                assert_eq!((name, value), ("layers per column", layers as f64));
+            }
+            other => panic!("layers = {layers}: {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn hpm_memory_estimate_bounds_the_model_and_its_stiffness() {
+    // The budget is honest: what building the model, its block stiffness
+    // and the compressed copy a direct solver reads take at most is within
+    // the estimate, and the estimate is not loose by more than 3 times.
+    let grids = grids(8, 6, 20.0, 8.0).unwrap();
+    let columns = grids.valid_cells().len();
+    for layers in [3, 12] {
+        let settings = HpmSettings {
+            layers,
+            ..HpmSettings::default()
+        };
+        let memory = allocation_counter::measure(|| {
+            let model = HpmModel::new(&grids, &HpmMaterial::paper(), &settings).unwrap();
+            let stiffness = model.stiffness();
+            let lower = stiffness.lower_triangle().unwrap();
+            std::hint::black_box((&model, &stiffness, &lower));
+        });
+        let estimate = HpmModel::memory_estimate(columns, layers);
+        let taken = u128::from(memory.bytes_max);
+        assert!(
+            taken <= estimate && estimate <= 3 * taken,
+            "{layers} layers: {taken} bytes taken, {estimate} estimated"
+        );
+    }
+}
+
+#[test]
+fn hpm_iterative_column_blocks_beyond_memory_budget_are_refused() {
+    // 2 000 layers: the model (8 000 elements) fits, but each column's
+    // dense preconditioner block, 24 000² numbers, would take 4.6 GB.
+    let grids = grids(2, 2, 20.0, 5.0).unwrap();
+    let settings = HpmSettings {
+        layers: 2000,
+        ..HpmSettings::default()
+    };
+    let model = HpmModel::new(&grids, &HpmMaterial::paper(), &settings).unwrap();
+    match HpmSolver::iterative(&model, CgSettings::default()) {
+        Err(DismechError::HpmModelTooLarge {
+            columns,
+            layers,
+            bytes,
+            budget,
+            ..
+        }) => {
+            assert_eq!((columns, layers), (4, 2000));
+            assert!(bytes > 4 * (12u128 * 2000).pow(2) * 8, "{bytes}");
+            assert_eq!(budget, MAX_HPM_MODEL_BYTES);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+// ---- 2. Hangs in the grid reader ----------------------------------------
+
+#[test]
+fn grid_reader_refuses_a_fifo() {
+    // Used to block forever in open(2), waiting for a writer.
+    let dir = scratch("fifo");
+    let fifo = dir.join("ground.asc");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        eprintln!("skipped: mkfifo is not available here");
+        return;
+    }
+    let (send, receive) = std::sync::mpsc::channel();
+    let path = fifo.clone();
+    std::thread::spawn(move || {
+        let _ = send.send(read_esri_ascii(&path));
+    });
+    let result = receive
+        .recv_timeout(Duration::from_secs(20))
+        .expect("reading a FIFO returned within 20 s");
+    let message = grid_format_message(result, &fifo);
+    assert!(message.contains("FIFO"), "{message}");
+    assert!(message.contains("not a regular file"), "{message}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn grid_reader_refuses_dev_zero_and_a_directory() {
+    // /dev/zero was read whole (it never ends) before the header was checked.
+    let zero = Path::new("/dev/zero");
+    if zero.exists() {
+        let message = grid_format_message(read_esri_ascii(zero), zero);
+        assert!(message.contains("character device"), "{message}");
+    }
+    let dir = scratch("directory");
+    let message = grid_format_message(read_esri_ascii(&dir), &dir);
+    assert!(message.contains("a directory"), "{message}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn grid_reader_refuses_a_file_of_zeros_from_its_first_bytes() {
+    // A 3 GB file of zero bytes (sparse: made at once) has no header within
+    // the first MAX_HEADER_BYTES: refused without reading the rest (it was
+    // read whole, 6.3 GB and 21 s, before the header was looked at).
+    let dir = scratch("zeros");
+    let path = dir.join("slip.asc");
+    let file = std::fs::File::create(&path).unwrap();
+    file.set_len(3 << 30).unwrap();
+    drop(file);
+    let start = Instant::now();
+    let mut result = None;
+    let memory = allocation_counter::measure(|| result = Some(read_esri_ascii(&path)));
+    let message = grid_format_message(result.unwrap(), &path);
+    assert!(message.contains("no complete header"), "{message}");
+    assert!(message.contains("3221225472 bytes"), "{message}");
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    assert!(
+        memory.bytes_max < 4 * MAX_HEADER_BYTES as u64,
+        "{}",
+        memory.bytes_max
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn grid_reader_refuses_a_huge_sparse_file_after_a_valid_header_before_reading_it() {
+    // A 3 × 4 grid's header and values, then zeros to 3 GB: the size is
+    // refused from the header's 12 cells before anything past the first
+    // MAX_HEADER_BYTES is read.
+    let dir = scratch("sparse");
+    let path = dir.join("ground.asc");
+    let (ground, _) = slab(3, 4, 20.0, 5.0);
+    std::fs::write(&path, to_esri_ascii(&ground)).unwrap();
+    let file = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
+    file.set_len(3 << 30).unwrap();
+    drop(file);
+    let start = Instant::now();
+    let mut result = None;
+    let memory = allocation_counter::measure(|| result = Some(read_esri_ascii(&path)));
+    let message = grid_format_message(result.unwrap(), &path);
+    let limit = MAX_HEADER_BYTES as u64 + 12 * MAX_BYTES_PER_VALUE;
+    assert!(
+        message.contains(&format!("has 3221225472 bytes, more than the {limit}")),
+        "{message}"
+    );
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    assert!(
+        memory.bytes_max < 4 * MAX_HEADER_BYTES as u64,
+        "{}",
+        memory.bytes_max
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn grid_reader_reads_a_file_longer_than_the_header_window_as_the_text_parser() {
+    // 120 × 150 values (about 0.3 MB): past MAX_HEADER_BYTES, read whole
+    // and parsed to the same raster as from its text.
+    let dir = scratch("long");
+    let path = dir.join("ground.asc");
+    let raster = Raster::from_fn(120, 150, 1.0, 2.0, 5.0, |x, y| {
+        (x > 7.0).then_some(100.0 + 0.1234567 * x - 0.7654321 * y)
+    })
+    .unwrap();
+    let text = to_esri_ascii(&raster);
+    assert!(text.len() > 2 * MAX_HEADER_BYTES);
+    std::fs::write(&path, &text).unwrap();
+    let read = read_esri_ascii(&path).unwrap();
+    assert_eq!(read, dismech::grid::parse_esri_ascii(&text, "mem").unwrap());
+    assert_eq!(read, raster);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+// ---- 3. Silent wrong answers ----------------------------------------------
+
+#[test]
+fn slope_grids_of_one_row_or_one_column_are_refused_naming_their_size() {
+    // A 2 × 1 grid (one row) lost its slope along y: Hovland's Fs was
+    // infinite (or −1.24e16, of rounding) and the Fs along the sliding
+    // direction 1.6e14; a 1 × 1 grid gave a stress ratio of 12.5 and an
+    // along-slope Fs of NaN, all returned without error.
+    for (rows, columns) in [(1, 2), (2, 1), (1, 1), (1, 30)] {
+        match grids(rows, columns, 20.0, 5.0) {
+            Err(DismechError::GridTooSmall {
+                file,
+                rows: r,
+                columns: c,
+            }) => assert_eq!((file.as_str(), r, c), ("ground.asc", rows, columns)),
+            other => panic!("{rows} × {columns}: {other:?}"),
+        }
+    }
+    // Two of each is enough: the slab's exact Fs follows.
+    let m = model(2, 2, 20.0, 5.0);
+    let fs = hovland(&m, &Seismic::none(), 270.0).unwrap().safety_factor;
+    let material = HpmMaterial::paper();
+    let beta = 20f64.to_radians();
+    let (w, a) = (material.unit_weight * 5.0 * 400.0, 400.0 / beta.cos());
+    let exact = (material.cohesion * a + w * beta.cos() * material.friction()) / (w * beta.sin());
+    assert!((fs / exact - 1.0).abs() < 1e-9, "{fs} against {exact}");
+}
+
+/// The `NothingDrivesSliding` of a result, with its driving force and
+/// weight, or a panic.
+fn nothing_drives(result: dismech::error::Result<f64>, model: &HpmModel) -> f64 {
+    match result {
+        Err(DismechError::NothingDrivesSliding {
+            driving,
+            weight,
+            ratio,
+            ..
+        }) => {
+            assert_eq!(weight, model.total_weight());
+            assert_eq!(ratio, MIN_DRIVING_RATIO);
+            assert!(driving <= ratio * weight, "{driving}");
+            driving
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
+    // A slab on level ground: the elastic stress ratio was 9.07, the Fs
+    // along the sliding direction 2.6e14 and Hovland's infinite. Nothing
+    // drives it: every Fs is refused.
+    let m = model(3, 4, 0.0, 6.0);
+    let mut solver = HpmSolver::new(&m).unwrap();
+    let elastic = solver.elastic(&m, &Seismic::none()).unwrap();
+    let nonlinear = solver
+        .nonlinear(&m, &Seismic::none(), 1.0, &NonlinearSettings::default())
+        .unwrap();
+    for r in [&elastic, &nonlinear] {
+        assert!(r.convergence.converged());
+        let driving = nothing_drives(r.safety_factor(&m), &m);
+        assert!(driving.abs() < 1e-9 * m.total_weight(), "{driving}");
+        nothing_drives(r.sliding_safety_factor(&m), &m);
+        nothing_drives(r.safety_factor_along(&m, (0.0, -1.0)), &m);
+        assert_eq!(r.sliding_direction(&m), None);
+    }
+    let hov = hovland(&m, &Seismic::none(), 270.0);
+    let driving = match &hov {
+        Err(DismechError::NothingDrivesSliding { driving, .. }) => *driving,
+        other => panic!("{other:?}"),
+    };
+    assert!(driving.abs() < 1e-9 * m.total_weight(), "{driving}");
+    let text = hov.unwrap_err().to_string();
+    assert!(text.contains("nothing drives sliding"), "{text}");
+    assert!(text.contains("270°"), "{text}");
+}
+
+#[test]
+fn hpm_fs_on_level_ground_under_a_seismic_load_is_the_exact_ratio() {
+    // The seismic force drives the slab along the level slip surface:
+    // Fs = (cA + W tan φ) / (k_h W), by Hovland and along the sliding
+    // direction; the refusal is for no driving force, not for level ground.
+    let m = model(3, 4, 0.0, 6.0);
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction_deg: 0.0,
+    };
+    let material = HpmMaterial::paper();
+    let (w, a) = (m.total_weight(), 1200.0);
+    let exact = (material.cohesion * a + w * material.friction()) / (0.15 * w);
+    let hov = hovland(&m, &seismic, 0.0).unwrap().safety_factor;
+    assert!((hov / exact - 1.0).abs() < 1e-9, "{hov} against {exact}");
+    let elastic = HpmSolver::new(&m).unwrap().elastic(&m, &seismic).unwrap();
+    let (hx, hy) = elastic.sliding_direction(&m).unwrap();
+    assert!((hx - 1.0).abs() < 1e-9 && hy.abs() < 1e-9, "{hx}, {hy}");
+    let along = elastic.sliding_safety_factor(&m).unwrap();
+    assert!(
+        (along / exact - 1.0).abs() < 1e-6,
+        "{along} against {exact}"
+    );
+}
+
+#[test]
+fn hovland_towards_up_the_slope_says_nothing_drives_sliding() {
+    // The slab dips towards 270°: towards 90° (up the slope) Σ T is
+    // negative and the Fs was −1.27; towards 0° (along the contours) Σ T
+    // is rounding and the Fs was −4.6e17.
+    let m = model(3, 4, 20.0, 5.0);
+    assert!(hovland(&m, &Seismic::none(), 270.0).unwrap().safety_factor > 0.0);
+    for towards in [90.0, 0.0] {
+        match hovland(&m, &Seismic::none(), towards) {
+            Err(DismechError::NothingDrivesSliding {
+                driving, weight, ..
+            }) => {
+                assert_eq!(weight, m.total_weight());
+                if towards == 90.0 {
+                    // −W sin β of the slab.
+                    let expected = -weight * 20f64.to_radians().sin();
+                    assert!((driving / expected - 1.0).abs() < 1e-9, "{driving}");
+                } else {
+                    assert!(driving.abs() < 1e-9 * weight, "{driving}");
+                }
+            }
+            other => panic!("towards {towards}°: {other:?}"),
+        }
+    }
+    let r = HpmSolver::new(&m)
+        .unwrap()
+        .elastic(&m, &Seismic::none())
+        .unwrap();
+    let driving = nothing_drives(r.safety_factor_along(&m, (0.0, 1.0)), &m);
+    assert!(driving < 0.0, "{driving}");
+    for plan in [(0.0, 0.0), (f64::NAN, 1.0), (f64::INFINITY, 0.0)] {
+        match r.safety_factor_along(&m, plan) {
+            Err(DismechError::InvalidParameter { name, .. }) => {
+                assert!(name.starts_with("plan sliding direction"), "{name}")
+            }
+            other => panic!("{plan:?}: {other:?}"),
+        }
+    }
+}
+
+// ---- 4. Settings -------------------------------------------------------------
+
+#[test]
+fn nonlinear_settings_out_of_range_are_refused_naming_the_field() {
+    // tolerance = NaN was accepted (the iteration then ran to its limit).
+    let m = model(3, 4, 20.0, 5.0);
+    let mut solver = HpmSolver::new(&m).unwrap();
+    let default = NonlinearSettings::default();
+    let cases = [
+        (
+            NonlinearSettings {
+                tolerance: f64::NAN,
+                ..default
+            },
+            "NonlinearSettings::tolerance",
+            f64::NAN,
+        ),
+        (
+            NonlinearSettings {
+                tolerance: -1e-6,
+                ..default
+            },
+            "NonlinearSettings::tolerance",
+            -1e-6,
+        ),
+        (
+            NonlinearSettings {
+                tolerance: 0.0,
+                ..default
+            },
+            "NonlinearSettings::tolerance",
+            0.0,
+        ),
+        (
+            NonlinearSettings {
+                tolerance: 1.0,
+                ..default
+            },
+            "NonlinearSettings::tolerance",
+            1.0,
+        ),
+        (
+            NonlinearSettings {
+                tolerance: f64::INFINITY,
+                ..default
+            },
+            "NonlinearSettings::tolerance",
+            f64::INFINITY,
+        ),
+        (
+            NonlinearSettings {
+                max_iterations: 0,
+                ..default
+            },
+            "NonlinearSettings::max_iterations",
+            0.0,
+        ),
+    ];
+    for (settings, field, given) in cases {
+        let check = |result: DismechError| match result {
+            DismechError::InvalidParameter { name, value, .. } => {
+                assert!(name.starts_with(field), "{name}");
+                assert!(
+                    value == given || (value.is_nan() && given.is_nan()),
+                    "{value}"
+                );
+            }
+            other => panic!("{settings:?}: {other:?}"),
+        };
+        check(settings.validate().unwrap_err());
+        check(
+            solver
+                .nonlinear(&m, &Seismic::none(), 1.0, &settings)
+                .unwrap_err(),
+        );
+        check(strength_reduction(&mut solver, &m, &Seismic::none(), &settings, 0.02).unwrap_err());
+    }
+    assert_eq!(default.validate(), Ok(()));
+}
+
+#[test]
+fn hpm_solver_settings_out_of_range_are_refused_naming_the_value() {
+    let m = model(3, 4, 20.0, 5.0);
+    let mut solver = HpmSolver::new(&m).unwrap();
+    let settings = NonlinearSettings::default();
+    for reduction in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        match solver.nonlinear(&m, &Seismic::none(), reduction, &settings) {
+            Err(DismechError::InvalidParameter { name, .. }) => {
+                assert_eq!(name, "strength reduction factor")
+            }
+            other => panic!("{reduction}: {other:?}"),
+        }
+    }
+    for resolution in [0.0, f64::NAN] {
+        match strength_reduction(&mut solver, &m, &Seismic::none(), &settings, resolution) {
+            Err(DismechError::InvalidParameter { name, .. }) => {
+                assert_eq!(name, "strength-reduction resolution")
+            }
+            other => panic!("{resolution}: {other:?}"),
+        }
+    }
+    for (cg, field) in [
+        (
+            CgSettings {
+                relative_tolerance: f64::NAN,
+                ..CgSettings::default()
+            },
+            "CgSettings::relative_tolerance",
+        ),
+        (
+            CgSettings {
+                relative_tolerance: 0.0,
+                ..CgSettings::default()
+            },
+            "CgSettings::relative_tolerance",
+        ),
+        (
+            CgSettings {
+                max_iterations: 0,
+                ..CgSettings::default()
+            },
+            "CgSettings::max_iterations",
+        ),
+    ] {
+        match HpmSolver::iterative(&m, cg) {
+            Err(DismechError::Solve(SolveError::InvalidSetting { name, .. })) => {
+                assert_eq!(name, field)
+            }
+            other => panic!("{cg:?}: {other:?}"),
+        }
+    }
+    // A penalty whose spring modulus p × E overflows.
+    let grids = grids(3, 4, 20.0, 5.0).unwrap();
+    for penalty in [1e300, f64::NAN, 0.0, -100.0] {
+        let settings = HpmSettings {
+            penalty,
+            ..HpmSettings::default()
+        };
+        match HpmModel::new(&grids, &HpmMaterial::paper(), &settings) {
+            Err(DismechError::InvalidParameter { name, .. }) => {
+                assert_eq!(name, "penalty factor p")
+            }
+            other => panic!("p = {penalty}: {other:?}"),
+        }
+    }
+}
