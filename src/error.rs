@@ -477,6 +477,22 @@ pub enum DismechError {
         /// What needed the load.
         what: &'static str,
     },
+    /// An LP solver reported an optimum that fails the LP's own optimality
+    /// conditions at the tolerance a certified limit load needs (see
+    /// [`crate::limit::CERTIFICATE_TOLERANCE`]).
+    #[error("the LP solver reported an optimum ({solver_status}) that fails the optimality conditions of its LP: primal residual {primal_residual:.1e}, dual residual {dual_residual:.1e}, duality gap {gap:.1e}, where a certified limit load needs each at most {tolerance:.0e}; solve more tightly (LinearProgramSolver.tolerance 1e-9, the default, or lower)")]
+    UncertifiedOptimum {
+        /// The solver's own termination status.
+        solver_status: String,
+        /// Relative violation of the LP's rows by its solution.
+        primal_residual: f64,
+        /// Relative violation of stationarity and of the multipliers' signs.
+        dual_residual: f64,
+        /// Relative gap between the primal and dual objectives.
+        gap: f64,
+        /// The largest residual a certified optimum may have.
+        tolerance: f64,
+    },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),

@@ -20,7 +20,7 @@ pub enum Exit {
     /// The model cannot collapse: no finite load moves it (`Locked`).
     Locked,
     /// The model collapses under its own loads, before any plate load
-    /// (`Unbounded`).
+    /// (`Unbounded`), or at zero load (`ZeroLoad`): no positive limit load.
     Unbounded,
     /// A solver or a simulation could not go on: an LP without a certified
     /// optimum, a failed factorization, a DDA step that failed at the
@@ -62,7 +62,7 @@ impl Exit {
             Exit::CheckFailed => "a study ran and wrote its results, but a check failed",
             Exit::BadInput => "bad command line or input (value out of range, unknown study)",
             Exit::Locked => "the lattice is locked: no finite load makes it collapse",
-            Exit::Unbounded => "the model collapses under its own loads (no limit load)",
+            Exit::Unbounded => "the model collapses under its own loads or at zero load (no positive limit load)",
             Exit::SolverFailure => "a solver or simulation could not go on (no certified optimum, failed step, blow-up)",
             Exit::OutputFailed => "an output could not be written",
         }
@@ -86,7 +86,8 @@ impl Exit {
         match status {
             LimitStatus::Collapse => Exit::Success,
             LimitStatus::Locked => Exit::Locked,
-            LimitStatus::Unbounded => Exit::Unbounded,
+            // No positive limit load: the driver meets nothing to overcome.
+            LimitStatus::Unbounded | LimitStatus::ZeroLoad => Exit::Unbounded,
             LimitStatus::SolverTrouble(_) => Exit::SolverFailure,
         }
     }
@@ -103,7 +104,8 @@ impl Exit {
             | E::EnergyBlowUp { .. }
             | E::StepFailed { .. }
             | E::IllConditioned { .. }
-            | E::NoLimitLoad { .. } => Exit::SolverFailure,
+            | E::NoLimitLoad { .. }
+            | E::UncertifiedOptimum { .. } => Exit::SolverFailure,
             // Strength reduction: no factor fails the slope (it cannot
             // collapse), or none holds it (it collapses under its weight).
             E::StrengthReductionNoFailure { .. } => Exit::Locked,
@@ -200,5 +202,11 @@ mod tests {
             columns: 2,
         };
         assert_eq!(Exit::of_error(&small), Exit::BadInput);
+    }
+
+    #[test]
+    fn a_zero_limit_load_exits_as_no_positive_limit_load() {
+        assert_eq!(Exit::of_limit(&LimitStatus::ZeroLoad), Exit::Unbounded);
+        assert_ne!(Exit::of_limit(&LimitStatus::ZeroLoad), Exit::Success);
     }
 }

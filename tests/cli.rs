@@ -79,6 +79,18 @@ fn odd_lattice_size_exits_with_bad_input_code() {
     assert_eq!(run.status.code(), Some(2));
 }
 
+/// The rolling L-model with one element per column has a zero limit load
+/// (its loaded element rolls away); it was reported as a collapse at
+/// P = −9.8e-25 with exit 0.
+#[test]
+fn rolling_l_lattice_of_one_row_exits_with_bad_input_code() {
+    let run = dismech(&["lattice-limit-load", "--model", "l", "--m", "2", "--n", "1"]);
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("n (elements per column)"), "{stderr}");
+    assert!(run.stdout.is_empty());
+}
+
 #[test]
 fn unknown_study_exits_with_bad_input_code() {
     let out = scratch("unknown");

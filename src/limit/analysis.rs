@@ -1,6 +1,7 @@
 //! Assembly of the kinematic LP and its solution.
 
 use super::model::{LimitModel, LiveLoad, Partner};
+use super::verdict::{certify, status_of_load};
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -8,15 +9,29 @@ use crate::math::{cross, Vec2};
 /// How a limit analysis ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LimitStatus {
-    /// A collapse mechanism was found; the limit load is certified by equal
-    /// primal and dual optima.
+    /// A collapse mechanism was found at a load that is not zero; the
+    /// limit load is certified: the LP's solution meets its optimality
+    /// conditions (primal and dual feasibility, zero gap) at
+    /// [`super::CERTIFICATE_TOLERANCE`].
     Collapse,
     /// No kinematically admissible mechanism exists: the assembly is locked
-    /// and no finite load moves the plate (the LP is infeasible).
+    /// and no finite load moves the plate (the LP is infeasible), while
+    /// the dead loads alone are carried.
     Locked,
-    /// A mechanism dissipates less than the known loads supply: the
-    /// assembly collapses under its own loads (the LP is unbounded).
+    /// The assembly collapses under its own (dead) loads, before any plate
+    /// load or live load: a mechanism dissipates less than the dead loads
+    /// supply (the kinematic LP is unbounded, the static LP infeasible),
+    /// or a live load's multiplier at collapse is negative (the live load
+    /// would have to act backwards to hold the dead loads). A body under a
+    /// load that touches nothing is the simplest case.
     Unbounded,
+    /// The driver moves the assembly with nothing to overcome: the limit
+    /// load is zero to the resolution of the data (a certified optimum
+    /// below [`super::CERTIFICATE_TOLERANCE`] times the objective's scale),
+    /// e.g. an element that rolls away along its neighbour, or contacts
+    /// without strength. There is no positive limit load; `load` is
+    /// `Some(0.0)` and the two bounds are kept as solved.
+    ZeroLoad,
     /// The LP solver stopped without a certified optimum.
     SolverTrouble(LpStatus),
 }
@@ -27,16 +42,18 @@ pub struct LimitResult {
     /// Outcome.
     pub status: LimitStatus,
     /// Limit load on the plate, along its velocity (N per m), or the
-    /// multiplier λ of the live load; `None` unless the status is
-    /// [`LimitStatus::Collapse`].
+    /// multiplier λ of the live load; `Some(0.0)` for
+    /// [`LimitStatus::ZeroLoad`], `None` unless the status is
+    /// [`LimitStatus::Collapse`] or [`LimitStatus::ZeroLoad`].
     pub load: Option<f64>,
     /// Upper bound: the minimum of the kinematic LP (dissipation minus the
     /// power of known loads, divided by the plate speed); `None` unless the
-    /// status is [`LimitStatus::Collapse`] (a solve that stopped without an
-    /// optimum has no bound to report).
+    /// status is [`LimitStatus::Collapse`] or [`LimitStatus::ZeroLoad`] (a
+    /// solve that stopped without an optimum has no bound to report).
     pub kinematic_load: Option<f64>,
     /// Lower bound: the load in equilibrium with the dual contact forces;
-    /// `None` unless the status is [`LimitStatus::Collapse`].
+    /// `None` unless the status is [`LimitStatus::Collapse`] or
+    /// [`LimitStatus::ZeroLoad`].
     pub static_load: Option<f64>,
     /// Velocity of each element `(velocity, angular velocity)` in the
     /// mechanism (plate at unit speed).
@@ -193,10 +210,23 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
 
 /// Build and solve the kinematic LP of `model` with any LP solver.
 ///
+/// An optimum is certified before it is reported: the solution must meet
+/// the LP's optimality conditions at [`super::CERTIFICATE_TOLERANCE`],
+/// whatever tolerance the solver was given. A zero optimum is reported as
+/// [`LimitStatus::ZeroLoad`], a negative live-load multiplier as
+/// [`LimitStatus::Unbounded`], and an infeasible LP as
+/// [`LimitStatus::Locked`] only when the dead loads alone are carried
+/// (else [`LimitStatus::Unbounded`], as the static LP says); see the
+/// module documentation of `verdict`.
+///
 /// # Errors
-/// A model without exactly one driver (one moving support, or a live load
-/// and no moving support), a plate touching nothing, or a solver that
-/// refuses the LP.
+/// [`DismechError::DrivingSupportCount`] for a model without exactly one
+/// driver (one moving support, or a live load and no moving support);
+/// [`DismechError::PlateTouchesNothing`] for a plate touching nothing;
+/// [`DismechError::Solve`] for a solver that refuses the LP;
+/// [`DismechError::UncertifiedOptimum`] when the solver reports an
+/// optimum that fails the LP's optimality conditions (e.g. a loose
+/// `LinearProgramSolver.tolerance`).
 pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitResult> {
     let KinematicLp {
         lp,
@@ -206,13 +236,12 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
         live_row,
     } = build_kinematic_lp(model)?;
     let speed = driver.speed();
-    let n = lp.num_variables;
     let lp_size = lp.size();
     let solution = solver.solve(&lp)?;
 
     let status = match solution.status {
         LpStatus::Optimal | LpStatus::AlmostOptimal => LimitStatus::Collapse,
-        LpStatus::PrimalInfeasible => LimitStatus::Locked,
+        LpStatus::PrimalInfeasible => dead_load_status(model, lp.clone(), live_row, solver)?,
         LpStatus::DualInfeasible => LimitStatus::Unbounded,
         other => LimitStatus::SolverTrouble(other),
     };
@@ -231,9 +260,10 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
         solver_status: solution.solver_status.clone(),
         lp_size,
     };
-    if status != LimitStatus::Collapse || solution.x.len() != n {
+    if status != LimitStatus::Collapse {
         return Ok(result);
     }
+    let optimality = certify(&lp, &solution)?;
     read_mechanism(model, &dof, &columns, &solution.x, &mut result);
     let mut plate_force = Vec2::zeros();
     for (c, contact) in contacts.iter().enumerate() {
@@ -251,7 +281,7 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
             }
         }
     }
-    result.static_load = match (driver, live_row) {
+    let static_load = match (driver, live_row) {
         // The load that drives the plate balances the elements' push on it.
         (Driver::Plate { plate, speed }, _) => {
             Some(-plate_force.dot(&(model.supports()[plate].velocity / speed)))
@@ -261,9 +291,58 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
         (Driver::Live(_), None) => None,
     };
     let kinematic = solution.objective / speed;
-    result.kinematic_load = Some(kinematic);
-    result.load = Some(kinematic);
+    result.status = status_of_load(&driver, solution.objective, kinematic, &optimality);
+    match result.status {
+        LimitStatus::Collapse => {
+            result.static_load = static_load;
+            result.kinematic_load = Some(kinematic);
+            result.load = Some(kinematic);
+        }
+        LimitStatus::ZeroLoad => {
+            result.static_load = static_load;
+            result.kinematic_load = Some(kinematic);
+            result.load = Some(0.0);
+        }
+        _ => {}
+    }
     Ok(result)
+}
+
+/// The status of a model whose kinematic LP is infeasible: no mechanism
+/// moves the driver, so it is [`LimitStatus::Locked`], unless the dead
+/// loads alone make it collapse ([`LimitStatus::Unbounded`]): the
+/// kinematic LP with the driver at rest (every right-hand side zero, no
+/// live load's normalisation) is homogeneous, so its optimum is zero
+/// unless a mechanism dissipates less than the dead loads supply.
+///
+/// # Errors
+/// A solver that refuses the LP.
+fn dead_load_status<S: LpSolver>(
+    model: &LimitModel,
+    mut lp: LinearProgram,
+    live_row: Option<usize>,
+    solver: &mut S,
+) -> Result<LimitStatus> {
+    if model.bodies().iter().all(|b| b.load == Vec2::zeros()) {
+        return Ok(LimitStatus::Locked);
+    }
+    if let Some(row) = live_row {
+        lp.equalities.retain(|t| t.0 != row);
+        for t in &mut lp.equalities {
+            if t.0 > row {
+                t.0 -= 1;
+            }
+        }
+        lp.equality_rhs.remove(row);
+    }
+    lp.equality_rhs.iter_mut().for_each(|b| *b = 0.0);
+    Ok(match solver.solve(&lp)?.status {
+        LpStatus::DualInfeasible => LimitStatus::Unbounded,
+        LpStatus::Optimal | LpStatus::AlmostOptimal | LpStatus::PrimalInfeasible => {
+            LimitStatus::Locked
+        }
+        other => LimitStatus::SolverTrouble(other),
+    })
 }
 
 /// What drives the collapse of `model`: its live load (then no support

@@ -106,9 +106,11 @@ impl Lattice {
     /// Build the model.
     ///
     /// # Errors
-    /// m odd or below 2, n below 1, n' outside `1..=n`, a radius that is not
-    /// positive, or more than [`MAX_LATTICE_ELEMENTS`] elements
-    /// ([`DismechError::LatticeTooLarge`]).
+    /// [`DismechError::InvalidParameter`] for m odd or below 2, n below 1,
+    /// n below 2 in the rolling L-model (its one loaded element rolls away
+    /// at no load), n' outside `1..=n`, a radius that is not positive or a
+    /// negative strength; [`DismechError::LatticeTooLarge`] for more than
+    /// [`MAX_LATTICE_ELEMENTS`] elements.
     pub fn build(&self) -> Result<LimitModel> {
         if self.m < 2 || self.m % 2 != 0 {
             return Err(DismechError::InvalidParameter {
@@ -122,6 +124,16 @@ impl Lattice {
                 name: "n (elements per column)",
                 value: self.n as f64,
                 requirement: "must be >= 1",
+            });
+        }
+        if self.kind == LatticeKind::L && self.rolling && self.n < 2 {
+            // Element (0, 0) touches only the smooth plate and element
+            // (1, 0), at 45°: it rolls down along it without slip or
+            // opening, and nothing dissipates (limit load zero).
+            return Err(DismechError::InvalidParameter {
+                name: "n (elements per column) of the rolling L-model",
+                value: self.n as f64,
+                requirement: "must be >= 2: a column of one element rolls off its neighbour at no load, so the limit load is zero; use n >= 2, fix the rotations (no rolling) or take the U-model",
             });
         }
         if self

@@ -30,7 +30,12 @@
 //! its multiplier. The dual of this
 //! LP is the static (lower-bound) problem: its multipliers are the contact
 //! forces `N`, `T`, in equilibrium with `P` (eq. 4) and within strength;
-//! equal primal and dual optima certify the limit load.
+//! equal primal and dual optima certify the limit load. The solution is
+//! checked against the LP's own optimality conditions (primal and dual
+//! feasibility, zero gap) at [`CERTIFICATE_TOLERANCE`], whatever tolerance
+//! the solver was given, before a load is reported; a zero load is
+//! [`LimitStatus::ZeroLoad`], a model that cannot carry its dead loads
+//! [`LimitStatus::Unbounded`] (see `verdict.rs`).
 
 mod analysis;
 mod equilibrium;
@@ -38,9 +43,11 @@ mod from_dem;
 pub mod lattice;
 mod model;
 mod static_lp;
+mod verdict;
 
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
 pub use equilibrium::{admissibility, Admissibility};
 pub use from_dem::{model_from_packing, PackingLimitSettings};
 pub use model::{LimitBody, LimitContact, LimitModel, LiveLoad, Partner, PlasticContact, Support};
 pub use static_lp::analyse_static;
+pub use verdict::CERTIFICATE_TOLERANCE;

@@ -79,11 +79,34 @@ pub struct PlasticContact {
 
 impl PlasticContact {
     /// The strength of any law that has one.
-    pub fn of(law: &impl StrengthLaw) -> Self {
-        Self {
-            strength: law.strength(),
-            unilateral: law.may_open(),
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] when the law's cohesion or its
+    /// friction coefficient tan φ is negative or not finite: a negative
+    /// strength has no admissible stress (a negative friction makes the
+    /// shear a contact carries fall as it is pressed harder), and the LP
+    /// would read it as a dissipation that pays for motion.
+    pub fn of(law: &impl StrengthLaw) -> Result<Self> {
+        let strength = law.strength();
+        for (name, value) in [
+            ("contact law cohesion c", strength.cohesion),
+            (
+                "contact law friction coefficient tan(phi)",
+                strength.friction,
+            ),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(DismechError::InvalidParameter {
+                    name,
+                    value,
+                    requirement: "must be finite and >= 0 (a StrengthLaw's strength |T| <= c + N tan(phi)); give the law a cohesion and a friction angle in [0, 90°)",
+                });
+            }
         }
+        Ok(Self {
+            strength,
+            unilateral: law.may_open(),
+        })
     }
 
     /// Cohesion c.
@@ -367,7 +390,9 @@ impl LimitModel {
     /// normal with [`LimitModel::add_contact_at`].
     ///
     /// # Errors
-    /// An unknown element or support, a shape that is not a circle, surfaces
+    /// A law whose strength is negative or not finite
+    /// ([`DismechError::InvalidParameter`], see [`PlasticContact::of`]), an
+    /// unknown element or support, a shape that is not a circle, surfaces
     /// that do not touch within the tolerance
     /// ([`DismechError::ContactNotTouching`]), or a contact of the same pair
     /// already declared ([`DismechError::DuplicateContact`]: two circles,
@@ -378,6 +403,7 @@ impl LimitModel {
         partner: Partner,
         law: impl StrengthLaw,
     ) -> Result<usize> {
+        let law = PlasticContact::of(&law)?;
         let index = self.contacts.len();
         let count = self.bodies.len();
         let a = self
@@ -440,7 +466,7 @@ impl LimitModel {
             LimitContact {
                 body,
                 partner,
-                law: PlasticContact::of(&law),
+                law,
                 point,
                 normal,
             },
@@ -457,7 +483,9 @@ impl LimitModel {
     /// the support.
     ///
     /// # Errors
-    /// An unknown element or support, non-finite data, a support contact off
+    /// A law whose strength is negative or not finite
+    /// ([`DismechError::InvalidParameter`], see [`PlasticContact::of`]), an
+    /// unknown element or support, non-finite data, a support contact off
     /// its line ([`DismechError::ContactNotTouching`]), or a contact of the
     /// same pair already declared at this point
     /// ([`DismechError::DuplicateContact`]; see the module documentation).
@@ -469,6 +497,7 @@ impl LimitModel {
         point: Point,
         normal: Vec2,
     ) -> Result<usize> {
+        let law = PlasticContact::of(&law)?;
         let index = self.contacts.len();
         let count = self.bodies.len();
         if body >= count {
@@ -513,7 +542,7 @@ impl LimitModel {
             LimitContact {
                 body,
                 partner,
-                law: PlasticContact::of(&law),
+                law,
                 point,
                 normal,
             },

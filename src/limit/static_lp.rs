@@ -7,6 +7,7 @@
 
 use super::analysis::{driver, Driver, LimitResult, LimitStatus};
 use super::model::{LimitModel, Partner};
+use super::verdict::{certify, status_of_load};
 use crate::error::Result;
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -14,6 +15,15 @@ use crate::math::{cross, Vec2};
 /// Solve the static LP of `model` with any LP solver. The mechanism comes
 /// from the multipliers of the equilibrium rows (element velocities);
 /// slips and openings are left at zero.
+///
+/// The optimum is certified and classified as [`super::analyse`]'s:
+/// checked against the LP's optimality conditions at
+/// [`super::CERTIFICATE_TOLERANCE`], a zero load reported as
+/// [`LimitStatus::ZeroLoad`], a negative live-load multiplier as
+/// [`LimitStatus::Unbounded`]. An infeasible static LP (no field carries
+/// the dead loads, whatever the driver's load) is
+/// [`LimitStatus::Unbounded`]; an unbounded one (the dead loads are
+/// carried and the load can grow without end) is [`LimitStatus::Locked`].
 ///
 /// # Errors
 /// As [`super::analyse`].
@@ -123,9 +133,10 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
         solver_status: solution.solver_status.clone(),
         lp_size,
     };
-    if status != LimitStatus::Collapse || solution.x.len() != n {
+    if status != LimitStatus::Collapse {
         return Ok(result);
     }
+    let optimality = certify(&lp, &solution)?;
     for (c, &(col_n, col_t)) in columns.iter().enumerate() {
         result.normal_force[c] = solution.x[col_n];
         result.shear_force[c] = col_t.map_or(0.0, |k| solution.x[k]);
@@ -145,8 +156,20 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
             .velocities
             .push((Vec2::new(y(0), y(1)) * scale, y(2) * scale));
     }
-    result.kinematic_load = Some(-solution.dual_objective);
-    result.static_load = Some(-solution.objective);
-    result.load = result.static_load;
+    let load = -solution.objective;
+    result.status = status_of_load(&driver, solution.objective, load, &optimality);
+    match result.status {
+        LimitStatus::Collapse => {
+            result.kinematic_load = Some(-solution.dual_objective);
+            result.static_load = Some(load);
+            result.load = Some(load);
+        }
+        LimitStatus::ZeroLoad => {
+            result.kinematic_load = Some(-solution.dual_objective);
+            result.static_load = Some(load);
+            result.load = Some(0.0);
+        }
+        _ => {}
+    }
     Ok(result)
 }

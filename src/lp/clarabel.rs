@@ -12,7 +12,10 @@ use crate::error::SolveError;
 #[derive(Debug, Clone)]
 pub struct LinearProgramSolver {
     /// Used as Clarabel's `tol_gap_abs`, `tol_gap_rel` and `tol_feas`; must be
-    /// finite and positive. Default `1e-9`.
+    /// finite and positive. Default `1e-9`. A loose tolerance gives a
+    /// loose solution: check it with
+    /// [`super::LinearProgramSolution::optimality`] (the limit analysis
+    /// does, at its own [`crate::limit::CERTIFICATE_TOLERANCE`]).
     pub tolerance: f64,
     /// Maximum number of interior-point iterations. Default `200`.
     pub max_iterations: u32,

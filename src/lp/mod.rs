@@ -56,10 +56,12 @@
 //! assert!((sol.objective + 2.8).abs() < 1e-6);
 //! ```
 
+mod certificate;
 mod clarabel;
 mod program;
 mod solution;
 
+pub use certificate::Optimality;
 pub use clarabel::LinearProgramSolver;
 pub use program::LinearProgram;
 pub use solution::{LinearProgramSolution, LpStatus};
