@@ -332,6 +332,12 @@ pub enum DismechError {
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),
+    /// A contact declared between a body and itself.
+    #[error("a contact of element {body} with itself: a contact joins two elements, or an element and a support")]
+    SelfContact {
+        /// The element.
+        body: usize,
+    },
     /// A body index does not exist.
     #[error("no body with index {index} (the scene has {count})")]
     NoSuchBody {

@@ -146,6 +146,7 @@ impl Exit {
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
+            | E::SelfContact { .. }
             | E::UnknownStudy(..) => Exit::BadInput,
         }
     }

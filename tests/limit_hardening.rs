@@ -251,3 +251,31 @@ fn weighted_body_without_contacts_is_unbounded_in_both_analyses() {
         assert!((load.unwrap() - 10.0).abs() < 1e-8);
     }
 }
+
+/// A contact of an element with itself was refused as "no body with index
+/// 0 (the scene has 1)"; it is refused as what it is, by both ways of
+/// declaring a contact.
+#[test]
+fn contact_of_an_element_with_itself_is_refused_as_such() {
+    let mut m = LimitModel::new(1e-9).unwrap();
+    let e = m.add_body(Point::new(0.0, 1.0), 1.0, false).unwrap();
+    let law = UserLaw(Strength {
+        cohesion: 1.0,
+        friction: 0.5,
+    });
+    for outcome in [
+        m.add_contact(e, Partner::Body(e), UserLaw(law.0)),
+        m.add_contact_at(
+            e,
+            Partner::Body(e),
+            law,
+            Point::new(0.0, 0.0),
+            Vec2::new(0.0, -1.0),
+        ),
+    ] {
+        let err = outcome.unwrap_err();
+        assert_eq!(err, DismechError::SelfContact { body: e });
+        assert!(err.to_string().contains("with itself"), "{err}");
+    }
+    assert!(m.contacts().is_empty());
+}

@@ -392,7 +392,8 @@ impl LimitModel {
     /// # Errors
     /// A law whose strength is negative or not finite
     /// ([`DismechError::InvalidParameter`], see [`PlasticContact::of`]), an
-    /// unknown element or support, a shape that is not a circle, surfaces
+    /// unknown element or support, an element paired with itself
+    /// ([`DismechError::SelfContact`]), a shape that is not a circle, surfaces
     /// that do not touch within the tolerance
     /// ([`DismechError::ContactNotTouching`]), or a contact of the same pair
     /// already declared ([`DismechError::DuplicateContact`]: two circles,
@@ -419,6 +420,7 @@ impl LimitModel {
         };
         let radius_a = circle_of(a)?;
         let (point, normal, gap, name) = match partner {
+            Partner::Body(j) if j == body => return Err(DismechError::SelfContact { body }),
             Partner::Body(j) => {
                 let b = self
                     .bodies
@@ -514,7 +516,10 @@ impl LimitModel {
         let length = require_positive("contact normal length", normal.norm())?;
         let normal = normal / length;
         let name = match partner {
-            Partner::Body(j) if j >= count || j == body => {
+            Partner::Body(j) if j == body => {
+                return Err(DismechError::SelfContact { body });
+            }
+            Partner::Body(j) if j >= count => {
                 return Err(DismechError::NoSuchBody { index: j, count });
             }
             Partner::Body(j) => format!("element {j}"),
