@@ -285,3 +285,27 @@ fn edge_traction_on_a_disc_is_refused() {
     );
     assert!(err.to_string().contains("not a polygon"), "{err}");
 }
+
+/// A weight that overflows (ρ = 1e308 kg/m³ on a 1 × 0.5 m block) was
+/// refused as a numerically singular matrix; it is refused naming the
+/// block and its load.
+#[test]
+fn load_that_overflows_is_refused_naming_the_block() {
+    let heavy = dismech::dda::BlockMaterial {
+        density: 1e308,
+        ..material()
+    };
+    let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), heavy, 1).unwrap();
+    let err = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DismechError::InvalidBlock {
+                block: 1,
+                name: "load (weight and edge tractions)",
+                ..
+            }
+        ),
+        "{err}"
+    );
+}

@@ -114,6 +114,15 @@ where
         settings.validate()?;
         for (index, body) in bodies.iter().enumerate() {
             body.validate_edge_tractions(index)?;
+            let load = super::step::external_force(&kinematics, body, &settings.gravity);
+            if let Some(value) = load.iter().copied().find(|v| !v.is_finite()) {
+                return Err(DismechError::InvalidBlock {
+                    block: index,
+                    name: "load (weight and edge tractions)",
+                    value,
+                    requirement: "must be finite: lower the density, the gravity or the tractions",
+                });
+            }
         }
         let settings_search = settings.search_distance;
         let assembly = BlockAssembly::new(bodies.len(), N, &[])?;
