@@ -1,5 +1,5 @@
-//! A fuzzer of the DEM's and the DDA's public constructors and first
-//! steps: every value drawn from a mix of ordinary, extreme (subnormal,
+//! A fuzzer of the DEM's, the DDA's and the limit analysis' public
+//! constructors and first steps or analyses: every value drawn from a mix of ordinary, extreme (subnormal,
 //! 1e±300, ±0) and invalid (negative, NaN, ±∞) numbers. Whatever is drawn,
 //! nothing panics, every call returns within its bounds, an accepted model
 //! steps to finite states or stops with a typed error, and an error's
@@ -16,7 +16,9 @@ use dismech::dda::{
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
 use dismech::integrate::ExplicitEuler;
-use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
+use dismech::law::{Damping, NormalStiffness, RigidPlastic, SpringDashpotCoulomb};
+use dismech::limit::{analyse, analyse_static, LimitModel, LimitStatus, Partner};
+use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Scene};
 use proptest::prelude::*;
@@ -311,6 +313,95 @@ fn run_dda(case: &DdaCase) -> Result<bool, DismechError> {
     Ok(true)
 }
 
+#[derive(Debug, Clone)]
+struct LimitCase {
+    tolerance: f64,
+    radius: f64,
+    /// Per element above the first: its offset from touching the one below.
+    offsets: Vec<f64>,
+    weight: f64,
+    cohesion: f64,
+    friction_angle: f64,
+    unilateral: bool,
+    plate_speed: f64,
+    solver_tolerance: f64,
+}
+
+fn limit_case() -> impl Strategy<Value = LimitCase> {
+    (
+        wild(1e-9),
+        wild(0.5),
+        prop::collection::vec(prop_oneof![4 => Just(0.0), 1 => wild(1e-10)], 0..4),
+        wild(10.0),
+        wild(1.0),
+        wild(0.5),
+        any::<bool>(),
+        wild(1.0),
+        prop_oneof![4 => Just(1e-9), 1 => wild(1e-6)],
+    )
+        .prop_map(
+            |(tolerance, radius, offsets, weight, cohesion, phi, unilateral, speed, solver)| {
+                LimitCase {
+                    tolerance,
+                    radius,
+                    offsets,
+                    weight,
+                    cohesion,
+                    friction_angle: phi,
+                    unilateral,
+                    plate_speed: speed,
+                    solver_tolerance: solver,
+                }
+            },
+        )
+}
+
+/// Build and analyse a column of circular elements on a floor under a
+/// plate, both ways: `Err` is a typed refusal. Where both analyses report a
+/// collapse, the kinematic (upper) and static (lower) loads agree: the
+/// certificate the library checks.
+fn run_limit(case: &LimitCase) -> Result<bool, DismechError> {
+    let mut m = LimitModel::new(case.tolerance)?;
+    let r = case.radius;
+    let law = RigidPlastic::new(case.cohesion, case.friction_angle, case.unilateral)?;
+    let floor = m.add_support("floor", Point::origin(), Vec2::new(0.0, 1.0), Vec2::zeros())?;
+    let mut y = r;
+    let first = m.add_body(Point::new(0.0, y), r, true)?;
+    m.set_load(first, Vec2::new(0.0, -case.weight))?;
+    m.add_contact(first, Partner::Support(floor), law)?;
+    let mut below = first;
+    for offset in &case.offsets {
+        y += 2.0 * r + offset;
+        let e = m.add_body(Point::new(0.0, y), r, true)?;
+        m.set_load(e, Vec2::new(0.0, -case.weight))?;
+        m.add_contact(e, Partner::Body(below), law)?;
+        below = e;
+    }
+    let plate = m.add_support(
+        "plate",
+        Point::new(0.0, y + r),
+        Vec2::new(0.0, -1.0),
+        Vec2::new(0.0, -case.plate_speed),
+    )?;
+    m.add_contact(below, Partner::Support(plate), law)?;
+    let mut solver = LinearProgramSolver {
+        tolerance: case.solver_tolerance,
+        ..Default::default()
+    };
+    let upper = analyse(&m, &mut solver)?;
+    let lower = analyse_static(&m, &mut solver)?;
+    if let (LimitStatus::Collapse, LimitStatus::Collapse, Some(p), Some(q)) =
+        (&upper.status, &lower.status, upper.load, lower.load)
+    {
+        assert!(p.is_finite() && q.is_finite(), "{p} {q}");
+        assert!(
+            (p - q).abs() <= 1e-6 * p.abs().max(q.abs()).max(1.0),
+            "a certified collapse whose bounds differ: kinematic {p}, static {q}"
+        );
+    }
+    Ok(true)
+}
+
 /// Counts of how far the cases went.
 #[derive(Debug, Default)]
 struct Reach {
@@ -370,6 +461,15 @@ fn dem_constructors_and_steps_never_panic() {
     let reach = fuzz(dem_case(), run_dem);
     eprintln!("{reach:?}");
     // The cases reach the stepping, not only the refusals.
+    assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
+}
+
+/// Any limit model of a column of elements is analysed both ways, or
+/// refused with a message; where both collapse, their loads agree.
+#[test]
+fn limit_constructors_and_analyses_never_panic() {
+    let reach = fuzz(limit_case(), run_limit);
+    eprintln!("{reach:?}");
     assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
 }
 
