@@ -176,16 +176,7 @@ mod tests {
     use super::*;
     use crate::lp::{LinearProgramSolver, LpSolver, LpStatus};
 
-    /// max x + y s.t. x + 2y ≤ 4, 3x + y ≤ 6, x, y ≥ 0.
-    fn textbook_lp() -> LinearProgram {
-        let mut lp = LinearProgram::new(2);
-        lp.objective = vec![-1.0, -1.0];
-        lp.add_inequality(&[(0, 1.0), (1, 2.0)], 4.0);
-        lp.add_inequality(&[(0, 3.0), (1, 1.0)], 6.0);
-        lp.add_bounds(0, Some(0.0), None);
-        lp.add_bounds(1, Some(0.0), None);
-        lp
-    }
+    use crate::lp::clarabel::tests::textbook_lp;
 
     /// The exact optimum x = (1.6, 1.2), z = (0.4, 0.2, 0, 0).
     fn exact_solution() -> LinearProgramSolution {

@@ -209,7 +209,7 @@ impl LpSolver for LinearProgramSolver {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
@@ -220,7 +220,7 @@ mod tests {
     }
 
     /// max x + y s.t. x + 2y ≤ 4, 3x + y ≤ 6, x, y ≥ 0.
-    fn textbook_lp() -> LinearProgram {
+    pub(in crate::lp) fn textbook_lp() -> LinearProgram {
         let mut lp = LinearProgram::new(2);
         lp.objective = vec![-1.0, -1.0];
         lp.add_inequality(&[(0, 1.0), (1, 2.0)], 4.0);
