@@ -1,4 +1,4 @@
-//! A fuzzer of the DEM's, the DDA's and the limit analysis' public
+//! A fuzzer of the DEM's, the DDA's, the limit analysis' and HPM's public
 //! constructors and first steps or analyses: every value drawn from a mix of ordinary, extreme (subnormal,
 //! 1e±300, ±0) and invalid (negative, NaN, ±∞) numbers. Whatever is drawn,
 //! nothing panics, every call returns within its bounds, an accepted model
@@ -15,6 +15,10 @@ use dismech::dda::{
 };
 use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
 use dismech::error::DismechError;
+use dismech::grid::Raster;
+use dismech::hpm::{
+    hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
+};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, RigidPlastic, SpringDashpotCoulomb};
 use dismech::limit::{analyse, analyse_static, LimitModel, LimitStatus, Partner};
@@ -402,6 +406,99 @@ fn run_limit(case: &LimitCase) -> Result<bool, DismechError> {
     Ok(true)
 }
 
+#[derive(Debug, Clone)]
+struct SlopeCase {
+    rows: usize,
+    columns: usize,
+    cell: f64,
+    dip_deg: f64,
+    thickness: f64,
+    material: HpmMaterial,
+    layers: usize,
+    penalty: f64,
+    seismic: f64,
+    direction_deg: f64,
+}
+
+fn slope_case() -> impl Strategy<Value = SlopeCase> {
+    (
+        (1usize..6, 1usize..6, wild(10.0)),
+        (wild(20.0), wild(5.0)),
+        (wild(1e7), wild(0.3), wild(1e4), wild(30.0), wild(2e4)),
+        prop::sample::select(vec![0usize, 2, 3, 3, 3, 4, 6, 1_000_000]),
+        wild(100.0),
+        prop_oneof![3 => Just(0.0), 1 => wild(0.1)],
+        wild(270.0),
+    )
+        .prop_map(
+            |(
+                (rows, columns, cell),
+                (dip, thickness),
+                (e, nu, c, phi, gamma),
+                layers,
+                penalty,
+                kh,
+                dir,
+            )| {
+                let mut material = HpmMaterial::paper();
+                material.youngs_modulus = e;
+                material.poisson_ratio = nu;
+                material.cohesion = c;
+                material.friction_angle_deg = phi;
+                material.unit_weight = gamma;
+                SlopeCase {
+                    rows,
+                    columns,
+                    cell,
+                    dip_deg: dip,
+                    thickness,
+                    material,
+                    layers,
+                    penalty,
+                    seismic: kh,
+                    direction_deg: dir,
+                }
+            },
+        )
+}
+
+/// Build a slab on a dipping plane and analyse it (elastic HPM and
+/// Hovland): `Err` is a typed refusal; a safety factor returned is finite.
+/// (It may be negative: a seismic load that puts the slip surface in
+/// tension beyond `c / tan φ` leaves a negative strength, the formula's
+/// sign of a surface already failed.)
+fn run_slope(case: &SlopeCase) -> Result<bool, DismechError> {
+    let slope = case.dip_deg.to_radians().tan();
+    let raster = |offset: f64| {
+        Raster::from_fn(case.columns, case.rows, 0.0, 0.0, case.cell, move |_, y| {
+            Some(100.0 + slope * y + offset)
+        })
+    };
+    let grids = SlopeGrids::new(
+        NamedRaster::new("ground.asc", raster(case.thickness)?),
+        NamedRaster::new("slip.asc", raster(0.0)?),
+        None,
+    )?;
+    let settings = HpmSettings {
+        layers: case.layers,
+        penalty: case.penalty,
+    };
+    let model = HpmModel::new(&grids, &case.material, &settings)?;
+    let seismic = Seismic {
+        coefficient: case.seismic,
+        direction_deg: case.direction_deg,
+    };
+    let elastic = HpmSolver::new(&model)?.elastic(&model, &seismic)?;
+    if let Ok(fs) = elastic.safety_factor(&model) {
+        assert!(fs.is_finite(), "HPM Fs {fs}");
+    }
+    if let Ok(h) = hovland(&model, &seismic, case.direction_deg) {
+        let fs = h.safety_factor;
+        assert!(fs.is_finite(), "Hovland Fs {fs}");
+    }
+    Ok(true)
+}
+
 /// Counts of how far the cases went.
 #[derive(Debug, Default)]
 struct Reach {
@@ -469,6 +566,15 @@ fn dem_constructors_and_steps_never_panic() {
 #[test]
 fn limit_constructors_and_analyses_never_panic() {
     let reach = fuzz(limit_case(), run_limit);
+    eprintln!("{reach:?}");
+    assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
+}
+
+/// Any slab over a dipping plane is analysed (HPM, Hovland) or refused
+/// with a message; every safety factor returned is finite.
+#[test]
+fn slope_constructors_and_analyses_never_panic() {
+    let reach = fuzz(slope_case(), run_slope);
     eprintln!("{reach:?}");
     assert!(reach.stepped * 10 >= reach.cases, "{reach:?}");
 }

@@ -597,3 +597,59 @@ fn hpm_solver_settings_out_of_range_are_refused_naming_the_value() {
         }
     }
 }
+
+/// A unit weight of 1e-308 left shear stresses that underflow: the stress
+/// ratio came out infinite, returned as a safety factor. A ratio that
+/// overflows is no safety factor: nothing drives sliding.
+#[test]
+fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
+    let mut material = HpmMaterial::paper();
+    material.unit_weight = f64::MIN_POSITIVE;
+    let m = HpmModel::new(
+        &grids(2, 2, 20.0, 5.0).unwrap(),
+        &material,
+        &HpmSettings::default(),
+    )
+    .unwrap();
+    let result = HpmSolver::new(&m)
+        .unwrap()
+        .elastic(&m, &Seismic::none())
+        .unwrap();
+    match result.safety_factor(&m) {
+        Err(DismechError::NothingDrivesSliding { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    match hovland(&m, &Seismic::none(), 270.0) {
+        Err(DismechError::NothingDrivesSliding { .. }) => {}
+        Ok(h) => assert!(h.safety_factor.is_finite(), "{}", h.safety_factor),
+        Err(other) => panic!("{other:?}"),
+    }
+}
+
+/// k_h = 1e300 made the loads overflow; above 10 it is refused.
+#[test]
+fn seismic_coefficient_above_ten_is_refused() {
+    let m = model(3, 3, 20.0, 5.0);
+    for kh in [10.5, 1e300] {
+        let seismic = Seismic {
+            coefficient: kh,
+            direction_deg: 270.0,
+        };
+        let err = hovland(&m, &seismic, 270.0).map(|_| ()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                DismechError::InvalidParameter {
+                    name: "seismic coefficient k_h",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+    }
+    let ten = Seismic {
+        coefficient: MAX_SEISMIC_COEFFICIENT,
+        direction_deg: 270.0,
+    };
+    assert!(hovland(&m, &ten, 270.0).is_ok());
+}

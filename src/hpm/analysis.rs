@@ -592,9 +592,21 @@ impl HpmResult {
     /// springs' `|τ|` are then the squeeze of the soil on the surface, not
     /// a push that strength resists, and Hovland's Fs is infinite.
     pub fn safety_factor(&self, model: &HpmModel) -> Result<f64> {
-        self.driven(model, "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A")?;
+        let what = "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A";
+        self.driven(model, what)?;
         let (num, den) = self.strength_and_shear(model);
-        Ok(num.iter().sum::<f64>() / den.iter().sum::<f64>())
+        let (num, den) = (num.iter().sum::<f64>(), den.iter().sum::<f64>());
+        if (num / den).is_finite() {
+            Ok(num / den)
+        } else {
+            // A shear so small that the ratio overflows drives nothing.
+            Err(DismechError::NothingDrivesSliding {
+                what: format!("{what}: the slip springs' shear, Σ|τ|A"),
+                driving: den,
+                weight: model.total_weight(),
+                ratio: MIN_DRIVING_RATIO,
+            })
+        }
     }
 
     /// The resultant shear force `Σ (τ_s s + τ_t t) A` of the slip springs.
@@ -690,7 +702,7 @@ impl HpmResult {
             den += shear_vector(s, t).dot(&along) * a;
         }
         let weight = model.total_weight();
-        if den > MIN_DRIVING_RATIO * weight {
+        if den > MIN_DRIVING_RATIO * weight && (num / den).is_finite() {
             Ok(num / den)
         } else {
             Err(DismechError::NothingDrivesSliding {

@@ -94,8 +94,10 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Resul
     let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
     let driving: f64 = columns.iter().map(|k| k.driving).sum();
     let weight = model.total_weight();
-    // `>` is false for NaN: a NaN driving force drives nothing.
-    if driving > MIN_DRIVING_RATIO * weight {
+    // `>` is false for NaN: a NaN driving force drives nothing; a driving
+    // force so small that the ratio overflows (a unit weight of 1e-308)
+    // drives nothing either.
+    if driving > MIN_DRIVING_RATIO * weight && (resisting / driving).is_finite() {
         Ok(Hovland {
             safety_factor: resisting / driving,
             columns,

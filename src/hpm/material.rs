@@ -100,11 +100,16 @@ impl HpmMaterial {
     }
 }
 
+/// The largest seismic coefficient k_h accepted: 10 g of horizontal
+/// acceleration, ten times the largest design value (1e300 made the loads
+/// overflow).
+pub const MAX_SEISMIC_COEFFICIENT: f64 = 10.0;
+
 /// The static seismic load of eqs. (11)–(13): `H = k_h W` in the horizontal
 /// direction at `direction_deg` counter-clockwise from +x.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seismic {
-    /// Design horizontal seismic coefficient k_h.
+    /// Design horizontal seismic coefficient k_h, in `[0, MAX_SEISMIC_COEFFICIENT]`.
     pub coefficient: f64,
     /// Direction θ of the force (degrees from +x, counter-clockwise).
     pub direction_deg: f64,
@@ -120,8 +125,20 @@ impl Seismic {
     }
 
     /// Check the values.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a coefficient that is negative,
+    /// not finite or above [`MAX_SEISMIC_COEFFICIENT`], or a direction that
+    /// is not finite.
     pub fn validate(&self) -> Result<()> {
         require_non_negative("seismic coefficient k_h", self.coefficient)?;
+        if self.coefficient > MAX_SEISMIC_COEFFICIENT {
+            return Err(DismechError::InvalidParameter {
+                name: "seismic coefficient k_h",
+                value: self.coefficient,
+                requirement: "must be at most 10 (a horizontal acceleration of 10 g; design values lie below 1)",
+            });
+        }
         crate::error::require_finite("seismic direction (degrees)", self.direction_deg)?;
         Ok(())
     }

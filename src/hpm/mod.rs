@@ -73,7 +73,7 @@ pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, TH
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
-pub use material::{HpmMaterial, HpmSettings, Seismic};
+pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, MAX_HPM_MODEL_BYTES};
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
