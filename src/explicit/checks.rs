@@ -100,8 +100,10 @@ pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
         for (name, value, may_be_zero) in values {
             let requirement = if !value.is_finite() {
                 "must be finite"
-            } else if !may_be_zero && value <= 0.0 {
+            } else if !may_be_zero && value == 0.0 {
                 "must be > 0 (a particle this small or this light has a mass that rounds to zero: scale the model's units)"
+            } else if !may_be_zero && value < 0.0 {
+                "must be > 0"
             } else {
                 continue;
             };

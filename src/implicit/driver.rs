@@ -630,8 +630,9 @@ where
     /// [`DismechError::InvalidParameter`] for a time step that is not
     /// finite and positive; [`DismechError::TimeStepTooSmall`] for one
     /// whose smallest sub-step (`dt × min_dt_ratio`) is not a normal
-    /// number or does not move the clock on from the time reached (the
-    /// halving would never end).
+    /// number (the halving would never end), or which does not move the
+    /// clock on from the time reached. A step is halved only while its half
+    /// still moves the clock.
     pub fn advance(&mut self, dt: f64) -> Result<StepReport> {
         require_positive("time step dt", dt)?;
         let smallest = dt * self.settings.min_dt_ratio;
@@ -645,10 +646,10 @@ where
                 "its smallest sub-step dt × min_dt_ratio = {smallest:e} s is not a normal number; take a larger dt or min_dt_ratio"
             )));
         }
-        if self.time + smallest == self.time {
-            return Err(too_small(format!(
-                "its smallest sub-step dt × min_dt_ratio = {smallest:e} s added to the time reached leaves it unchanged in double precision; take a larger dt or min_dt_ratio"
-            )));
+        if self.time + dt == self.time {
+            return Err(too_small(
+                "added to the time reached it leaves it unchanged in double precision; take a larger dt".into(),
+            ));
         }
         if self.requested_dt != Some(dt) {
             self.requested_dt = Some(dt);
@@ -710,7 +711,9 @@ where
                     self.current_dt = (2.0 * self.current_dt).min(dt);
                 }
                 Err(reason) => {
-                    if h / 2.0 >= smallest * (1.0 - 1e-12) {
+                    // Halved down to the smallest sub-step, or to the
+                    // smallest that still moves the clock on.
+                    if h / 2.0 >= smallest * (1.0 - 1e-12) && self.time + h / 2.0 > self.time {
                         self.current_dt = h / 2.0;
                         report.reductions += 1;
                         report.halvings.count(&reason);

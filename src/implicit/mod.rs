@@ -78,9 +78,10 @@
 //!   ([`StepReport::halvings`] counts the causes). Past that bound
 //!   [`ImplicitDynamics::advance`] returns a [`StepStatus::Failed`] saying
 //!   what failed and what to change. The halving is bounded: `min_dt_ratio`
-//!   is at least [`MIN_DT_RATIO_FLOOR`] (52 halvings), and a step whose
-//!   smallest sub-step underflows or does not move the clock on from the
-//!   time reached is refused ([`crate::error::DismechError::TimeStepTooSmall`]).
+//!   is at least [`MIN_DT_RATIO_FLOOR`] (52 halvings), a step is halved
+//!   only while its half moves the clock on, and a step whose smallest
+//!   sub-step underflows, or which itself does not move the clock, is
+//!   refused ([`crate::error::DismechError::TimeStepTooSmall`]).
 //!
 //! Conventions: the first two unknowns of every kinematics translate the
 //! body's reference point (its centroid); within a step every point moves
