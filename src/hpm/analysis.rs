@@ -145,6 +145,31 @@ impl NonlinearSettings {
 /// solve's residual, at most its tolerance, 1e-6 by default) alone.
 pub const MIN_DRIVING_RATIO: f64 = 1e-6;
 
+/// The safety factor `resisting / driving` of a slide of weight `weight`,
+/// or [`DismechError::NothingDrivesSliding`] (naming the forces as
+/// `what()` says) where the driving force is not above
+/// [`MIN_DRIVING_RATIO`] of the weight (`>` is false for NaN: a NaN driving
+/// force drives nothing) or so small beside the resisting one that the
+/// ratio overflows (a unit weight of 1e-308).
+pub(super) fn resisting_over_driving(
+    resisting: f64,
+    driving: f64,
+    weight: f64,
+    what: impl FnOnce() -> String,
+) -> Result<f64> {
+    let ratio = resisting / driving;
+    if driving > MIN_DRIVING_RATIO * weight && ratio.is_finite() {
+        Ok(ratio)
+    } else {
+        Err(DismechError::NothingDrivesSliding {
+            what: what(),
+            driving,
+            weight,
+            ratio: MIN_DRIVING_RATIO,
+        })
+    }
+}
+
 /// Whether a solve reached equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Convergence {
@@ -595,18 +620,12 @@ impl HpmResult {
         let what = "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A";
         self.driven(model, what)?;
         let (num, den) = self.strength_and_shear(model);
-        let (num, den) = (num.iter().sum::<f64>(), den.iter().sum::<f64>());
-        if (num / den).is_finite() {
-            Ok(num / den)
-        } else {
-            // A shear so small that the ratio overflows drives nothing.
-            Err(DismechError::NothingDrivesSliding {
-                what: format!("{what}: the slip springs' shear, Σ|τ|A"),
-                driving: den,
-                weight: model.total_weight(),
-                ratio: MIN_DRIVING_RATIO,
-            })
-        }
+        resisting_over_driving(
+            num.iter().sum(),
+            den.iter().sum(),
+            model.total_weight(),
+            || format!("{what}: the slip springs' shear, Σ|τ|A"),
+        )
     }
 
     /// The resultant shear force `Σ (τ_s s + τ_t t) A` of the slip springs.
@@ -701,21 +720,13 @@ impl HpmResult {
             num += (c + t.normal * mu) * a;
             den += shear_vector(s, t).dot(&along) * a;
         }
-        let weight = model.total_weight();
-        if den > MIN_DRIVING_RATIO * weight && (num / den).is_finite() {
-            Ok(num / den)
-        } else {
-            Err(DismechError::NothingDrivesSliding {
-                what: format!(
-                    "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
-                    plan.0 / length,
-                    plan.1 / length
-                ),
-                driving: den,
-                weight,
-                ratio: MIN_DRIVING_RATIO,
-            })
-        }
+        resisting_over_driving(num, den, model.total_weight(), || {
+            format!(
+                "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
+                plan.0 / length,
+                plan.1 / length
+            )
+        })
     }
 
     /// Local safety factor of each column (same ratio over its springs);

@@ -13,18 +13,18 @@
 //!
 //! The Fs is a ratio of resisting to driving forces: it is given only where
 //! the columns' loads drive the slide along the direction asked,
-//! `Σ T > `[`MIN_DRIVING_RATIO`]` × Σ W`. On a level slip surface without
+//! `Σ T > `[`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO)` × Σ W`. On a level slip surface without
 //! seismic load `Σ T` is zero (the Fs would be infinite, or a huge number
 //! of either sign from rounding), and towards a direction up the slope it
 //! is negative (a negative Fs means nothing): both are refused with
-//! [`DismechError::NothingDrivesSliding`], naming `Σ T` and `Σ W`.
+//! [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding), naming `Σ T` and `Σ W`.
 
 use nalgebra::Vector3;
 
-use super::analysis::MIN_DRIVING_RATIO;
+use super::analysis::resisting_over_driving;
 use super::material::Seismic;
 use super::model::HpmModel;
-use crate::error::{require_finite, DismechError, Result};
+use crate::error::{require_finite, Result};
 
 /// One column's terms in Hovland's sums.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,9 +51,9 @@ pub struct Hovland {
 ///
 /// # Errors
 /// An invalid seismic load ([`Seismic::validate`]) or a direction that is
-/// not finite ([`DismechError::InvalidParameter`]);
-/// [`DismechError::NothingDrivesSliding`] when the driving force `Σ T` is
-/// not above [`MIN_DRIVING_RATIO`] of the columns' weight `Σ W`: level
+/// not finite ([`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter));
+/// [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding) when the driving force `Σ T` is
+/// not above [`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO) of the columns' weight `Σ W`: level
 /// ground, or a direction up the slope.
 pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Result<Hovland> {
     seismic.validate()?;
@@ -93,21 +93,11 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Resul
         .collect();
     let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
     let driving: f64 = columns.iter().map(|k| k.driving).sum();
-    let weight = model.total_weight();
-    // `>` is false for NaN: a NaN driving force drives nothing; a driving
-    // force so small that the ratio overflows (a unit weight of 1e-308)
-    // drives nothing either.
-    if driving > MIN_DRIVING_RATIO * weight && (resisting / driving).is_finite() {
-        Ok(Hovland {
-            safety_factor: resisting / driving,
-            columns,
-        })
-    } else {
-        Err(DismechError::NothingDrivesSliding {
-            what: format!("Hovland's method sliding towards {direction_deg}°: Σ T"),
-            driving,
-            weight,
-            ratio: MIN_DRIVING_RATIO,
-        })
-    }
+    let safety_factor = resisting_over_driving(resisting, driving, model.total_weight(), || {
+        format!("Hovland's method sliding towards {direction_deg}°: Σ T")
+    })?;
+    Ok(Hovland {
+        safety_factor,
+        columns,
+    })
 }
