@@ -118,6 +118,16 @@ pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
     Ok(())
 }
 
+/// The smallest bounding radius of the scene's particles (infinite for a
+/// scene without particles).
+pub(crate) fn smallest_bounding_radius(scene: &Scene) -> f64 {
+    scene
+        .particles
+        .iter()
+        .map(|p| p.shape.as_shape().bounding_radius())
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// The most pairs a neighbour list may hold per particle (and 10 000 in
 /// all for a small scene): a packed disc has about 6 neighbours and a skin
 /// of a few radii lists some tens; a list of hundreds per particle is a
@@ -157,11 +167,7 @@ pub(crate) fn check_neighbour_budget(
     }
     // Every pair, where the skin spans the scene; at least the budget.
     let all = (n as u128) * (n as u128 - 1) / 2;
-    let smallest = scene
-        .particles
-        .iter()
-        .map(|p| p.shape.as_shape().bounding_radius())
-        .fold(f64::INFINITY, f64::min);
+    let smallest = smallest_bounding_radius(scene);
     Err(DismechError::OutOfMemory {
         what: format!(
             "a neighbour list at a skin of {skin:e} m over {n} particles (more than {budget} pairs, up to {all})"

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use super::checks::{
     check_initial_overlaps, check_law_for_polygons, check_neighbour_budget, check_particles,
-    finite_bound,
+    finite_bound, smallest_bounding_radius,
 };
 use super::keys::pack_limits;
 use super::motion::{BlockMotion, StepCheck};
@@ -110,12 +110,7 @@ impl DemSettings {
         match self.neighbour_skin {
             Some(skin) => require_non_negative("neighbour_skin", skin).map(Skin::fixed),
             None => Ok(Skin::tuned(
-                0.15 * scene
-                    .particles
-                    .iter()
-                    .map(|p| p.shape.as_shape().bounding_radius())
-                    .fold(f64::INFINITY, f64::min)
-                    .min(f64::MAX),
+                0.15 * smallest_bounding_radius(scene).min(f64::MAX),
             )),
         }
     }
