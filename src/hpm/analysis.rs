@@ -74,7 +74,7 @@ use nalgebra::Vector3;
 
 use super::conditioning::IllConditioning;
 use super::material::Seismic;
-use super::model::{HpmModel, SlipSpring, MAX_HPM_MODEL_BYTES};
+use super::model::{HpmModel, SlipSpring};
 use super::stiffness::BlockMatrix;
 use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
@@ -292,24 +292,15 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
     /// Settings out of range ([`CgSettings::validate`]);
     /// [`DismechError::HpmModelTooLarge`] when the model and the dense
     /// column blocks, `(12 × layers)²` numbers a column, would take more
-    /// than [`MAX_HPM_MODEL_BYTES`], refused before they are made; a failed
+    /// than [`MAX_HPM_MODEL_BYTES`](super::MAX_HPM_MODEL_BYTES), refused before they are made; a failed
     /// factorization of a block, as for [`HpmSolver::new`].
     pub fn iterative(model: &HpmModel, settings: CgSettings) -> Result<Self> {
         settings.validate()?;
         let layers = model.settings.layers;
         let block =
             (ELEMENT_DOF as u128 * layers as u128).pow(2) * std::mem::size_of::<f64>() as u128;
-        let bytes = HpmModel::memory_estimate(model.columns.len(), layers)
-            .saturating_add(block.saturating_mul(model.columns.len() as u128));
-        if bytes > u128::from(MAX_HPM_MODEL_BYTES) {
-            return Err(DismechError::HpmModelTooLarge {
-                columns: model.columns.len(),
-                layers,
-                elements: model.elements.len() as u128,
-                bytes,
-                budget: MAX_HPM_MODEL_BYTES,
-            });
-        }
+        let columns = model.columns.len();
+        HpmModel::check_budget(columns, layers, block.saturating_mul(columns as u128))?;
         let groups = model
             .columns
             .iter()

@@ -185,9 +185,10 @@ impl HpmModel {
     }
 
     /// Refuse a model of `columns` columns and `layers` layers whose
-    /// [`HpmModel::memory_estimate`] is over [`MAX_HPM_MODEL_BYTES`].
-    fn check_budget(columns: usize, layers: usize) -> Result<()> {
-        let bytes = Self::memory_estimate(columns, layers);
+    /// [`HpmModel::memory_estimate`], plus `extra` bytes a solver would
+    /// add, is over [`MAX_HPM_MODEL_BYTES`].
+    pub(super) fn check_budget(columns: usize, layers: usize, extra: u128) -> Result<()> {
+        let bytes = Self::memory_estimate(columns, layers).saturating_add(extra);
         if bytes > u128::from(MAX_HPM_MODEL_BYTES) {
             return Err(DismechError::HpmModelTooLarge {
                 columns,
@@ -231,7 +232,7 @@ impl HpmModel {
         }
 
         let valid = grids.valid_cells();
-        Self::check_budget(valid.len(), layers)?;
+        Self::check_budget(valid.len(), layers, 0)?;
         // Within the budget, so these products are far below usize::MAX.
         let mut columns = Vec::with_capacity(valid.len());
         let mut elements = Vec::with_capacity(valid.len() * layers);
