@@ -158,9 +158,12 @@ pub enum DismechError {
     #[error("the moving support `{0}` touches no element")]
     PlateTouchesNothing(String),
     /// A limit analysis needs exactly one driver: one moving support, or a
-    /// live load and no moving support.
-    #[error("a limit analysis needs exactly one driver: one moving support (plate), or a live load and no moving support; found {0} moving supports")]
+    /// live load or the dead loads' multiplier and no moving support.
+    #[error("a limit analysis needs exactly one driver: one moving support (plate), or a live load (set_live_load) or the dead loads' multiplier (multiply_dead_loads) and no moving support; found {0} moving supports")]
     DrivingSupportCount(usize),
+    /// The dead loads' multiplier is sought, but every dead load is zero.
+    #[error("the dead loads' multiplier is sought (multiply_dead_loads), but every body's load is zero: set the bodies' weights with set_load")]
+    NoDeadLoads,
     /// A grid file (ESRI ASCII raster) is malformed.
     #[error("{file}, line {line}, column {column}: {message}")]
     GridFormat {

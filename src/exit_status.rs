@@ -122,6 +122,7 @@ impl Exit {
             | E::ContactNotTouching { .. }
             | E::PlateTouchesNothing(_)
             | E::DrivingSupportCount(_)
+            | E::NoDeadLoads
             | E::GridFormat { .. }
             | E::GridCell { .. }
             | E::GridMismatch { .. }

@@ -1,6 +1,6 @@
 //! Assembly of the kinematic LP and its solution.
 
-use super::model::{LimitModel, LiveLoad, Partner};
+use super::model::{LimitModel, LiveLoad, LoadDriver, Partner};
 use super::verdict::{certify, status_of_load};
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
@@ -96,6 +96,8 @@ pub(super) enum Driver {
     },
     /// The live load's power is normalised to 1.
     Live(LiveLoad),
+    /// The dead loads' power is normalised to 1; they leave the objective.
+    DeadLoads,
 }
 
 impl Driver {
@@ -103,7 +105,7 @@ impl Driver {
     fn speed(&self) -> f64 {
         match self {
             Driver::Plate { speed, .. } => *speed,
-            Driver::Live(_) => 1.0,
+            Driver::Live(_) | Driver::DeadLoads => 1.0,
         }
     }
 }
@@ -142,9 +144,11 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
         }
     }
     let mut lp = LinearProgram::new(n);
-    for (i, b) in model.bodies().iter().enumerate() {
-        lp.objective[dof[i]] = -b.load.x;
-        lp.objective[dof[i] + 1] = -b.load.y;
+    if driver != Driver::DeadLoads {
+        for (i, b) in model.bodies().iter().enumerate() {
+            lp.objective[dof[i]] = -b.load.x;
+            lp.objective[dof[i] + 1] = -b.load.y;
+        }
     }
 
     let mut row = Vec::with_capacity(8);
@@ -197,6 +201,17 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
             }
             Some(lp.add_equality(&row, 1.0))
         }
+        // The dead loads act at the reference points: no moment.
+        Driver::DeadLoads => {
+            let row: Vec<(usize, f64)> = model
+                .bodies()
+                .iter()
+                .enumerate()
+                .flat_map(|(i, b)| [(dof[i], b.load.x), (dof[i] + 1, b.load.y)])
+                .filter(|&(_, f)| f != 0.0)
+                .collect();
+            Some(lp.add_equality(&row, 1.0))
+        }
         Driver::Plate { .. } => None,
     };
     Ok(KinematicLp {
@@ -219,9 +234,15 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
 /// (else [`LimitStatus::Unbounded`], as the static LP says); see the
 /// module documentation of `verdict`.
 ///
+/// With the dead loads as the driver ([`LimitModel::multiply_dead_loads`])
+/// the load is their multiplier λ at collapse; an infeasible LP (no
+/// mechanism on which they do work) is [`LimitStatus::Locked`].
+///
 /// # Errors
 /// [`DismechError::DrivingSupportCount`] for a model without exactly one
-/// driver (one moving support, or a live load and no moving support);
+/// driver (one moving support, or a live load or the dead loads' multiplier
+/// and no moving support); [`DismechError::NoDeadLoads`] for the dead
+/// loads' multiplier where every dead load is zero;
 /// [`DismechError::PlateTouchesNothing`] for a plate touching nothing;
 /// [`DismechError::Solve`] for a solver that refuses the LP;
 /// [`DismechError::UncertifiedOptimum`] when the solver reports an
@@ -287,8 +308,8 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
             Some(-plate_force.dot(&(model.supports()[plate].velocity / speed)))
         }
         // The multiplier of the normalisation row (dual objective −y·1).
-        (Driver::Live(_), Some(row)) => Some(-solution.equality_duals[row]),
-        (Driver::Live(_), None) => None,
+        (Driver::Live(_) | Driver::DeadLoads, Some(row)) => Some(-solution.equality_duals[row]),
+        (Driver::Live(_) | Driver::DeadLoads, None) => None,
     };
     let kinematic = solution.objective / speed;
     result.status = status_of_load(&driver, solution.objective, kinematic, &optimality);
@@ -323,7 +344,11 @@ fn dead_load_status<S: LpSolver>(
     live_row: Option<usize>,
     solver: &mut S,
 ) -> Result<LimitStatus> {
-    if model.bodies().iter().all(|b| b.load == Vec2::zeros()) {
+    // Multiplied dead loads that do no work on any mechanism are carried
+    // at every multiple.
+    if model.bodies().iter().all(|b| b.load == Vec2::zeros())
+        || model.load_driver() == Some(&LoadDriver::DeadLoads)
+    {
         return Ok(LimitStatus::Locked);
     }
     if let Some(row) = live_row {
@@ -345,8 +370,9 @@ fn dead_load_status<S: LpSolver>(
     })
 }
 
-/// What drives the collapse of `model`: its live load (then no support
-/// may move), or its one moving support (which must touch something).
+/// What drives the collapse of `model`: its live load or its dead loads
+/// (then no support may move; dead loads must not all be zero), or its
+/// one moving support (which must touch something).
 pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
     let drivers: Vec<usize> = model
         .supports()
@@ -355,11 +381,20 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
         .filter(|(_, s)| s.velocity.norm() > 0.0)
         .map(|(i, _)| i)
         .collect();
-    if let Some(live) = model.live_load() {
+    if let Some(load) = model.load_driver() {
         if !drivers.is_empty() {
             return Err(DismechError::DrivingSupportCount(drivers.len()));
         }
-        return Ok(Driver::Live(*live));
+        return match load {
+            LoadDriver::Live(live) => Ok(Driver::Live(*live)),
+            LoadDriver::DeadLoads => {
+                if model.bodies().iter().all(|b| b.load == Vec2::zeros()) {
+                    Err(DismechError::NoDeadLoads)
+                } else {
+                    Ok(Driver::DeadLoads)
+                }
+            }
+        };
     }
     if drivers.len() != 1 {
         return Err(DismechError::DrivingSupportCount(drivers.len()));

@@ -3,7 +3,7 @@
 //! within strength.
 
 use super::analysis::LimitResult;
-use super::model::{LimitModel, Partner};
+use super::model::{LimitModel, LoadDriver, Partner};
 use crate::math::{cross, Vec2};
 
 /// How far the dual contact forces of a result are from a statically
@@ -22,8 +22,9 @@ pub struct Admissibility {
 }
 
 /// Check the dual of `result` (normal and shear forces) against `model`:
-/// equilibrium of every body with its dead load, the live load at the
-/// found multiplier (if the model has one) and the contact forces.
+/// equilibrium of every body with its dead load (times the found
+/// multiplier where the dead loads drive the analysis), the live load at
+/// the found multiplier (if the model has one) and the contact forces.
 pub fn admissibility(model: &LimitModel, result: &LimitResult) -> Admissibility {
     let n = model.bodies().len();
     let mut force = vec![Vec2::zeros(); n];
@@ -44,9 +45,14 @@ pub fn admissibility(model: &LimitModel, result: &LimitResult) -> Admissibility 
         let law = contact.law;
         excess = excess.max(shear.abs() - (law.cohesion() + law.friction() * normal.max(0.0)));
     }
+    // The dead loads, at their multiplier where it is the one sought.
+    let factor = match (model.load_driver(), result.load) {
+        (Some(LoadDriver::DeadLoads), Some(lambda)) => lambda,
+        _ => 1.0,
+    };
     for (i, b) in model.bodies().iter().enumerate() {
-        force[i] += b.load;
-        scale = scale.max(b.load.norm());
+        force[i] += b.load * factor;
+        scale = scale.max((b.load * factor).norm());
     }
     if let (Some(live), Some(lambda)) = (model.live_load(), result.load) {
         let f = live.force * lambda;

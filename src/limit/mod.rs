@@ -11,10 +11,11 @@
 //! | integrator | none: the limit state |
 //! | LP solver | any [`crate::lp::LpSolver`], e.g. [`crate::lp::LinearProgramSolver`] (Clarabel) |
 //!
-//! The collapse is driven either by one support moving at a given velocity
-//! (a loading plate: the limit load is the force on it) or by a live load
-//! on a body ([`LimitModel::set_live_load`]: the limit is its multiplier
-//! λ). [`admissibility`] checks the dual contact forces for equilibrium and
+//! The collapse is driven by one support moving at a given velocity (a
+//! loading plate: the limit load is the force on it), by a live load on a
+//! body ([`LimitModel::set_live_load`]: the limit is its multiplier λ), or
+//! by the dead loads themselves ([`LimitModel::multiply_dead_loads`]: the
+//! limit is the factor λ on the self-weight; see [`LoadDriver`]). [`admissibility`] checks the dual contact forces for equilibrium and
 //! strength.
 //!
 //! The kinematic (upper-bound) LP: the unknowns are the element
@@ -48,6 +49,8 @@ mod verdict;
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
 pub use equilibrium::{admissibility, Admissibility};
 pub use from_dem::{model_from_packing, PackingLimitSettings};
-pub use model::{LimitBody, LimitContact, LimitModel, LiveLoad, Partner, PlasticContact, Support};
+pub use model::{
+    LimitBody, LimitContact, LimitModel, LiveLoad, LoadDriver, Partner, PlasticContact, Support,
+};
 pub use static_lp::analyse_static;
 pub use verdict::CERTIFICATE_TOLERANCE;

@@ -1,6 +1,7 @@
 //! The data of a limit analysis: rigid bodies of any shape, straight
 //! supports, contacts with a strength, and what drives the collapse (a
-//! moving support, or a live load whose multiplier is sought).
+//! moving support, a live load whose multiplier is sought, or the dead
+//! loads themselves, whose multiplier is sought: [`LoadDriver`]).
 //!
 //! Nothing may be declared twice, since the LP would count it twice (a
 //! body's load and its contacts' strength, a contact's strength). Two
@@ -30,6 +31,8 @@ use std::collections::HashMap;
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::law::{Strength, StrengthLaw};
 use crate::math::{perp, Point, Pose2, Vec2};
+use crate::query::manifold::contact_manifold_2d;
+use crate::query::manifold::polygon::contact_polygon_polygon_within;
 use crate::shape::{AnyShape2, Circle};
 
 /// A rigid element: its outline placed at its pose (the pose's position is
@@ -142,6 +145,26 @@ pub struct LiveLoad {
     pub point: Point,
 }
 
+/// A load whose multiplier λ at collapse a limit analysis seeks (the
+/// alternative is a moving support, whose limit load is the force on it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LoadDriver {
+    /// A reference live load on one body, added to the dead loads
+    /// ([`LimitModel::set_live_load`]): λ is its multiplier at collapse.
+    Live(LiveLoad),
+    /// The dead loads themselves, every body's load multiplied by λ
+    /// ([`LimitModel::multiply_dead_loads`]): λ is the factor on the
+    /// self-weight at collapse, so `λ < 1` means that the assembly does
+    /// not stand under its own weight. Contacts without cohesion make λ
+    /// either zero ([`super::LimitStatus::ZeroLoad`]: a mechanism on which
+    /// the weight does work, the assembly falls at any weight) or absent
+    /// ([`super::LimitStatus::Locked`]: no such mechanism, it stands under
+    /// any multiple of its weight), since scaling every load scales the
+    /// forces that carry them; a geometric factor (the least thickness of
+    /// an arch) is then found by varying the geometry.
+    DeadLoads,
+}
+
 /// A straight rigid support (wall or loading plate): the line through
 /// `point` with unit `normal` pointing into the material, moving at
 /// `velocity` (zero for a wall).
@@ -194,7 +217,7 @@ pub struct LimitModel {
     bodies: Vec<LimitBody>,
     supports: Vec<Support>,
     contacts: Vec<LimitContact>,
-    live_load: Option<LiveLoad>,
+    load_driver: Option<LoadDriver>,
     tolerance: f64,
     /// Bodies by the tolerance-sized cell of their reference point.
     body_cells: HashMap<(i64, i64), Vec<usize>>,
@@ -321,7 +344,13 @@ impl LimitModel {
 
     /// Apply the reference live load `force` at `point` of `body`: the
     /// analysis then finds the multiplier λ of this load at collapse, and no
-    /// support may move.
+    /// support may move. It replaces a live load set before, or the
+    /// multiplication of the dead loads.
+    ///
+    /// # Errors
+    /// An unknown body ([`DismechError::NoSuchBody`]); a force or point
+    /// that is not finite, or a force of zero magnitude
+    /// ([`DismechError::InvalidParameter`]).
     pub fn set_live_load(&mut self, body: usize, force: Vec2, point: Point) -> Result<()> {
         let count = self.bodies.len();
         if body >= count {
@@ -336,16 +365,43 @@ impl LimitModel {
             require_finite(n, v)?;
         }
         require_positive("live load magnitude", force.norm())?;
-        self.live_load = Some(LiveLoad { body, force, point });
+        self.load_driver = Some(LoadDriver::Live(LiveLoad { body, force, point }));
         Ok(())
+    }
+
+    /// Seek the multiplier λ of the dead loads (every body's load, see
+    /// [`LimitModel::set_load`]) at collapse, e.g. the factor on the
+    /// self-weight of an arch ([`LoadDriver::DeadLoads`]); no support may
+    /// move. It replaces a live load set before.
+    pub fn multiply_dead_loads(&mut self) {
+        self.load_driver = Some(LoadDriver::DeadLoads);
+    }
+
+    /// Remove the live load or the multiplication of the dead loads, so
+    /// that a moving support drives the analysis again.
+    pub fn clear_load_driver(&mut self) {
+        self.load_driver = None;
+    }
+
+    /// The load whose multiplier is sought, if one is set.
+    pub fn load_driver(&self) -> Option<&LoadDriver> {
+        self.load_driver.as_ref()
     }
 
     /// The live load, if one is set.
     pub fn live_load(&self) -> Option<&LiveLoad> {
-        self.live_load.as_ref()
+        match &self.load_driver {
+            Some(LoadDriver::Live(live)) => Some(live),
+            _ => None,
+        }
     }
 
-    /// Set the known load (e.g. weight) of element `body`.
+    /// Set the known (dead) load of element `body` at its reference point,
+    /// e.g. its weight, replacing the one set before.
+    ///
+    /// # Errors
+    /// An unknown body ([`DismechError::NoSuchBody`]); a load that is not
+    /// finite ([`DismechError::InvalidParameter`]).
     pub fn set_load(&mut self, body: usize, load: Vec2) -> Result<()> {
         require_finite("load x", load.x)?;
         require_finite("load y", load.y)?;
@@ -554,6 +610,159 @@ impl LimitModel {
             name,
             false,
         )
+    }
+
+    /// Declare every contact of `body` with `partner` that their outlines
+    /// give, each with `law`; returns the indices of the new contacts.
+    ///
+    /// The points come from the pair query
+    /// ([`crate::query::manifold`]), with the model's tolerance as the
+    /// distance within which surfaces touch:
+    /// * two circles, or a circle and a support: the one point of
+    ///   [`LimitModel::add_contact`];
+    /// * two polygons: the polygon manifold counted within the tolerance
+    ///   ([`crate::query::manifold::polygon::contact_polygon_polygon_within`]):
+    ///   a face on a face gives its two ends, so blocks cut to fit (the
+    ///   voussoirs of an arch, whose corners coincide to rounding) touch
+    ///   at both ends of each joint;
+    /// * a polygon and a support: every vertex within the tolerance of the
+    ///   support's line;
+    /// * an ellipse and a support: the ellipse's lowest point towards the
+    ///   support, where it lies within the tolerance of the line;
+    /// * other pairs of elements: the points of
+    ///   [`crate::query::manifold::contact_manifold_2d`], which need the
+    ///   outlines to overlap.
+    ///
+    /// Points of the pair that coincide (see the module documentation) are
+    /// declared once.
+    ///
+    /// # Errors
+    /// As [`LimitModel::add_contact_at`] for each point;
+    /// [`DismechError::ContactNotTouching`] when the outlines give no
+    /// point (they do not touch within the tolerance), with the distance
+    /// between their reference points as the gap where no better one is
+    /// known; [`DismechError::UnsupportedPair`] for a shape the pair query
+    /// does not pair (a segment element).
+    pub fn add_contacts(
+        &mut self,
+        body: usize,
+        partner: Partner,
+        law: impl StrengthLaw + Copy,
+    ) -> Result<Vec<usize>> {
+        let count = self.bodies.len();
+        let a = self
+            .bodies
+            .get(body)
+            .ok_or(DismechError::NoSuchBody { index: body, count })?
+            .clone();
+        let circle = |b: &LimitBody| matches!(b.shape, AnyShape2::Circle(_));
+        // The contact points and normals, or how far apart the outlines are
+        // when they give none (the support's nearest vertex, else the
+        // distance of the reference points).
+        let mut points: Vec<(Point, Vec2)> = Vec::new();
+        let mut heights: Vec<(Point, f64)> = Vec::new();
+        let mut apart: Option<f64> = None;
+        let name = match partner {
+            Partner::Body(j) if j == body => return Err(DismechError::SelfContact { body }),
+            Partner::Body(j) => {
+                let b = self
+                    .bodies
+                    .get(j)
+                    .ok_or(DismechError::NoSuchBody { index: j, count })?
+                    .clone();
+                if circle(&a) && circle(&b) {
+                    return Ok(vec![self.add_contact(body, partner, law)?]);
+                }
+                let mut manifold = Vec::new();
+                match (&a.shape, &b.shape) {
+                    (AnyShape2::Polygon(pa), AnyShape2::Polygon(pb)) => {
+                        contact_polygon_polygon_within(
+                            pa,
+                            &a.pose(),
+                            pb,
+                            &b.pose(),
+                            self.tolerance,
+                            &mut manifold,
+                        );
+                    }
+                    (sa, sb) => contact_manifold_2d(sa, &a.pose(), sb, &b.pose(), &mut manifold)?,
+                }
+                points.extend(manifold.iter().map(|g| (g.point, g.normal)));
+                if points.is_empty() {
+                    apart = Some((b.centre - a.centre).norm());
+                }
+                format!("element {j}")
+            }
+            Partner::Support(s) => {
+                let support = self
+                    .supports
+                    .get(s)
+                    .ok_or(DismechError::NoSuchBody {
+                        index: s,
+                        count: self.supports.len(),
+                    })?
+                    .clone();
+                let height = |p: &Point| (p - support.point).dot(&support.normal);
+                match &a.shape {
+                    AnyShape2::Circle(_) => {
+                        return Ok(vec![self.add_contact(body, partner, law)?]);
+                    }
+                    AnyShape2::Polygon(polygon) => {
+                        heights.extend(polygon.world_vertices(&a.pose()).map(|v| (v, height(&v))));
+                    }
+                    AnyShape2::Ellipse(ellipse) => {
+                        // The support point of the ellipse along −n: in the
+                        // body frame p = D² u / |D u|, D = diag(a, b).
+                        let u = a.pose().inverse_transform_vector(&(-support.normal));
+                        let (ea, eb) = (ellipse.a(), ellipse.b());
+                        let scale = (ea * ea * u.x * u.x + eb * eb * u.y * u.y).sqrt();
+                        let local = Point::new(ea * ea * u.x / scale, eb * eb * u.y / scale);
+                        let lowest = a.pose().transform_point(&local);
+                        heights.push((lowest, height(&lowest)));
+                    }
+                    other => {
+                        return Err(DismechError::UnsupportedPair(
+                            other.as_shape().kind().name(),
+                            "support",
+                        ))
+                    }
+                }
+                points.extend(
+                    heights
+                        .iter()
+                        .filter(|(_, h)| h.abs() <= self.tolerance)
+                        .map(|&(p, _)| (p, -support.normal)),
+                );
+                if points.is_empty() {
+                    apart = heights.iter().map(|p| p.1).reduce(f64::min);
+                }
+                format!("support `{}`", support.name)
+            }
+        };
+        if let Some(gap) = apart {
+            return Err(DismechError::ContactNotTouching {
+                contact: self.contacts.len(),
+                body,
+                partner: name,
+                gap,
+                tolerance: self.tolerance,
+            });
+        }
+        let mut added = Vec::with_capacity(points.len());
+        let mut radius = a.radius();
+        if let Partner::Body(j) = partner {
+            radius = radius.min(self.bodies[j].radius());
+        }
+        let within = self.coincidence(radius);
+        let mut taken: Vec<Point> = Vec::with_capacity(points.len());
+        for (point, normal) in points {
+            if taken.iter().any(|t| (t - point).norm() <= within) {
+                continue;
+            }
+            taken.push(point);
+            added.push(self.add_contact_at(body, partner, law, point, normal)?);
+        }
+        Ok(added)
     }
 
     /// The elements.

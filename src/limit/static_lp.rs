@@ -31,7 +31,7 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
     let driver = driver(model)?;
     let (plate, speed) = match driver {
         Driver::Plate { plate, speed } => (Some(plate), speed),
-        Driver::Live(_) => (None, 1.0),
+        Driver::Live(_) | Driver::DeadLoads => (None, 1.0),
     };
     let direction = plate.map_or(Vec2::zeros(), |p| model.supports()[p].velocity / speed);
 
@@ -96,13 +96,23 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
         rows_of[1].push((0, live.force.y));
         rows_of[2].push((0, cross(&r, &live.force)));
     }
+    // Multiplied dead loads λ w enter every body's equilibrium through λ;
+    // otherwise they are the right-hand side.
+    let multiplied = driver == Driver::DeadLoads;
     let mut equilibrium_rows = Vec::with_capacity(model.bodies().len());
     for (i, b) in model.bodies().iter().enumerate() {
         let load: [f64; 3] = [b.load.x, b.load.y, 0.0];
         let count = if b.rotates { 3 } else { 2 };
         let mut ids = [usize::MAX; 3];
         for k in 0..count {
-            ids[k] = lp.add_equality(&rows[i][k], -load[k]);
+            if multiplied {
+                if load[k] != 0.0 {
+                    rows[i][k].push((0, load[k]));
+                }
+                ids[k] = lp.add_equality(&rows[i][k], 0.0);
+            } else {
+                ids[k] = lp.add_equality(&rows[i][k], -load[k]);
+            }
         }
         equilibrium_rows.push(ids);
     }

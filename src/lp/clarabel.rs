@@ -151,7 +151,7 @@ impl LinearProgramSolver {
         let mut z = sol.z.clone();
         z.resize(m_eq + m_ineq, 0.0);
         let inequality_duals = z.split_off(m_eq);
-        Ok(LinearProgramSolution {
+        let mut solution = LinearProgramSolution {
             status: sol.status.into(),
             x: sol.x.clone(),
             objective: sol.obj_val,
@@ -160,7 +160,39 @@ impl LinearProgramSolver {
             inequality_duals,
             iterations: sol.iterations,
             solver_status: format!("{:?}", sol.status),
-        })
+        };
+        if matches!(solution.status, LpStatus::Optimal | LpStatus::AlmostOptimal) {
+            exact_degenerate_optimum(lp, &mut solution);
+        }
+        Ok(solution)
+    }
+}
+
+/// Replace the interior-point answer of two degenerate kinds of LP by
+/// their exact optimum, which the interior point only approaches (its
+/// iterates shrink towards zero, and their residuals relative to their own
+/// size do not):
+/// * a zero objective (a feasibility problem, e.g. whether any mechanism
+///   lets the dead loads do work): every feasible point is optimal and
+///   `y = 0`, `z = 0` is an exact dual optimum;
+/// * a homogeneous LP (every right-hand side zero, e.g. the static LP of
+///   multiplied dead loads): a bounded optimum is zero, attained at
+///   `x = 0`.
+fn exact_degenerate_optimum(lp: &LinearProgram, solution: &mut LinearProgramSolution) {
+    if lp.objective.iter().all(|&c| c == 0.0) {
+        solution.equality_duals.iter_mut().for_each(|y| *y = 0.0);
+        solution.inequality_duals.iter_mut().for_each(|z| *z = 0.0);
+        solution.objective = 0.0;
+        solution.dual_objective = 0.0;
+    } else if lp
+        .equality_rhs
+        .iter()
+        .chain(&lp.inequality_rhs)
+        .all(|&b| b == 0.0)
+    {
+        solution.x.iter_mut().for_each(|x| *x = 0.0);
+        solution.objective = 0.0;
+        solution.dual_objective = 0.0;
     }
 }
 

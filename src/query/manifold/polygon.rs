@@ -54,10 +54,12 @@ pub const WEDGE_TOLERANCE: f64 = 0.1;
 pub const CONTAINMENT_TOLERANCE: f64 = 1e-9;
 
 /// Whether the body-frame point `p` lies in `q` or within
-/// [`CONTAINMENT_TOLERANCE`] of its boundary.
-fn inside_or_on(q: &Polygon, p: &Point) -> bool {
+/// [`CONTAINMENT_TOLERANCE`] of its boundary, or within `margin` of it.
+fn inside_or_on(q: &Polygon, p: &Point, margin: f64) -> bool {
     let reach = q.bounding_radius();
-    if p.coords.norm_squared() > (reach * (1.0 + CONTAINMENT_TOLERANCE)).powi(2) {
+    let tolerance = (CONTAINMENT_TOLERANCE * reach).max(margin);
+    let outer = (reach * (1.0 + CONTAINMENT_TOLERANCE)).max(reach + margin);
+    if p.coords.norm_squared() > outer.powi(2) {
         return false;
     }
     if q.contains(p) {
@@ -65,7 +67,6 @@ fn inside_or_on(q: &Polygon, p: &Point) -> bool {
     }
     let v = q.vertices();
     let n = v.len();
-    let tolerance = CONTAINMENT_TOLERANCE * reach;
     (0..n).any(|e| {
         let ab = v[(e + 1) % n] - v[e];
         let t = ((p - v[e]).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
@@ -85,11 +86,12 @@ pub(crate) struct Corner {
 /// with the corner's depth behind each edge's line: none when the corner is
 /// outside (a corner on the boundary, within [`CONTAINMENT_TOLERANCE`],
 /// counts as inside), one as a rule, two when the corner presses into a reflex vertex
-/// of `q` (see the module docs).
-pub(crate) fn penetrated_edges(q: &Polygon, c: &Corner) -> [Option<(usize, f64)>; 2] {
+/// of `q` (see the module docs). With a `margin` above zero, a corner
+/// outside `q` by at most `margin` counts too, with its (negative) depth.
+pub(crate) fn penetrated_edges(q: &Polygon, c: &Corner, margin: f64) -> [Option<(usize, f64)>; 2] {
     let mut found = [None, None];
     let p = c.point;
-    if !inside_or_on(q, &p) {
+    if !inside_or_on(q, &p, margin) {
         return found;
     }
     let vertices = q.vertices();
@@ -124,14 +126,14 @@ pub(crate) fn penetrated_edges(q: &Polygon, c: &Corner) -> [Option<(usize, f64)>
         return found;
     };
     let d = depth(e);
-    if d > 0.0 {
+    if d > -margin {
         found[0] = Some((e, d));
     }
     if let Some(w) = end.filter(|&w| q.is_reflex(w)) {
         // The other edge meeting at the reflex vertex w.
         let other = if w == e { (e + n - 1) % n } else { w };
         let d = depth(other);
-        if faces(other) && d > 0.0 {
+        if faces(other) && d > -margin {
             found[1] = Some((other, d));
         }
     }
@@ -178,6 +180,7 @@ fn vertices_in_polygon(
     q: &Polygon,
     pose_q: &Pose2,
     flip: bool,
+    margin: f64,
     out: &mut Vec<ContactGeometry>,
 ) {
     let turn = pose_p.angle - pose_q.angle;
@@ -191,7 +194,7 @@ fn vertices_in_polygon(
             point: pose_q.inverse_transform_point(&world),
             sides: [rotate(&sides[0], turn), rotate(&sides[1], turn)],
         };
-        for (e, depth) in penetrated_edges(q, &corner).into_iter().flatten() {
+        for (e, depth) in penetrated_edges(q, &corner, margin).into_iter().flatten() {
             let m = pose_q.transform_vector(&q.edge_normal(e));
             let features = ContactFeatures {
                 a: Feature::Vertex(i),
@@ -213,21 +216,46 @@ pub fn contact_polygon_polygon(
     pose_b: &Pose2,
     out: &mut Vec<ContactGeometry>,
 ) {
-    let reach = a.bounding_radius() + b.bounding_radius();
+    contact_polygon_polygon_within(a, pose_a, b, pose_b, 0.0, out);
+}
+
+/// [`contact_polygon_polygon`] with the polygons counted as touching where
+/// they are apart by at most `margin` (m): a vertex outside the other
+/// polygon by up to `margin` gives a point with a negative overlap (its
+/// gap), and points of a coincident vertex pair closer than `margin` are
+/// merged. With `margin` = 0 it is [`contact_polygon_polygon`]. A limit
+/// analysis takes the faces of blocks cut to fit (an arch's voussoirs,
+/// whose corners coincide to rounding) as touching this way.
+pub fn contact_polygon_polygon_within(
+    a: &Polygon,
+    pose_a: &Pose2,
+    b: &Polygon,
+    pose_b: &Pose2,
+    margin: f64,
+    out: &mut Vec<ContactGeometry>,
+) {
+    let reach = a.bounding_radius() + b.bounding_radius() + margin;
     if (pose_b.position - pose_a.position).norm_squared() > reach * reach {
         return;
     }
     let start = out.len();
-    vertices_in_polygon(a, pose_a, b, pose_b, false, out);
-    vertices_in_polygon(b, pose_b, a, pose_a, true, out);
-    merge_coincident(out, start, a.vertices().len(), b.vertices().len());
+    vertices_in_polygon(a, pose_a, b, pose_b, false, margin, out);
+    vertices_in_polygon(b, pose_b, a, pose_a, true, margin, out);
+    merge_coincident(out, start, a.vertices().len(), b.vertices().len(), margin);
 }
 
 /// Merges, among the points from `out[start..]`, each vertex of A on an
 /// edge of B with a vertex of B on an edge of A when each vertex ends the
 /// other's edge and the points are closer than the larger overlap (see the
-/// module docs). `na`, `nb`: vertex counts of A and B (2 for a wall).
-pub(crate) fn merge_coincident(out: &mut Vec<ContactGeometry>, start: usize, na: usize, nb: usize) {
+/// module docs), or than `margin`. `na`, `nb`: vertex counts of A and B (2
+/// for a wall).
+pub(crate) fn merge_coincident(
+    out: &mut Vec<ContactGeometry>,
+    start: usize,
+    na: usize,
+    nb: usize,
+    margin: f64,
+) {
     let ends = |edge: usize, n: usize, vertex: usize| vertex == edge || vertex == (edge + 1) % n;
     let mut x = start;
     while x < out.len() {
@@ -242,7 +270,8 @@ pub(crate) fn merge_coincident(out: &mut Vec<ContactGeometry>, start: usize, na:
             };
             ends(e, nb, k)
                 && ends(f, na, i)
-                && (out[x].point - out[y].point).norm() <= out[x].overlap.max(out[y].overlap)
+                && (out[x].point - out[y].point).norm()
+                    <= out[x].overlap.max(out[y].overlap).max(margin)
         });
         if let Some(y) = partner {
             let (gx, gy) = (out[x], out[y]);
@@ -289,7 +318,7 @@ mod tests {
             point: Point::new(-0.499, 0.49),
             sides: [Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
         };
-        let [first, second] = penetrated_edges(&q, &c);
+        let [first, second] = penetrated_edges(&q, &c, 0.0);
         let (e, depth) = first.unwrap();
         assert_eq!(e, 2, "top edge");
         assert_relative_eq!(depth, 0.01, epsilon = 1e-12);
@@ -302,6 +331,6 @@ mod tests {
             point: Point::new(0.6, 0.0),
             sides: [Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
         };
-        assert_eq!(penetrated_edges(&square(1.0), &c), [None, None]);
+        assert_eq!(penetrated_edges(&square(1.0), &c, 0.0), [None, None]);
     }
 }

@@ -65,7 +65,7 @@ pub fn contact_polygon_segment(
             point: pose_a.inverse_transform_point(&end),
             sides: [side, side],
         };
-        for (e, depth) in penetrated_edges(a, &corner).into_iter().flatten() {
+        for (e, depth) in penetrated_edges(a, &corner, 0.0).into_iter().flatten() {
             let m = pose_a.transform_vector(&a.edge_normal(e));
             let features = ContactFeatures {
                 a: Feature::Vertex(k),
@@ -74,5 +74,5 @@ pub fn contact_polygon_segment(
             out.push(vertex_on_edge(end, m, depth, features).flipped());
         }
     }
-    merge_coincident(out, start, a.vertices().len(), 2);
+    merge_coincident(out, start, a.vertices().len(), 2, 0.0);
 }
