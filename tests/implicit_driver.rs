@@ -239,6 +239,14 @@ fn a_disc_at_rest_on_a_wall_carries_its_weight() {
     assert_eq!(model.contacts().len(), 1);
     let c = &model.contacts()[0];
     assert!((c.normal - Vec2::new(0.0, 1.0)).norm() < 1e-12);
+    // The report gives the penetration: the gap is −t_n / p and the sink.
+    assert!(
+        (c.gap * p / c.force.0 + 1.0).abs() < 1e-9,
+        "gap {:e}",
+        c.gap
+    );
+    assert!((c.gap + sink).abs() < 1e-9 * sink, "gap {:e}", c.gap);
+    assert!(c.shear.abs() < 1e-12, "shear {:e}", c.shear);
 }
 
 /// Two discs stacked on a wall: the floor carries both weights, the

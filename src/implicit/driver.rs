@@ -579,6 +579,8 @@ where
                 force_on_a: grad_n * t_n - grad_s * t_s,
                 normal: grad_n.try_normalize(0.0).unwrap_or_else(Vec2::zeros),
                 point,
+                gap: variation.gap,
+                shear: variation.shear,
             });
         }
         self.bodies = moved;

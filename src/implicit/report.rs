@@ -193,6 +193,15 @@ pub struct ContactReport<S> {
     pub normal: Vec2,
     /// A's material point of the contact at the end of the step (world).
     pub point: Point,
+    /// The normal gap at the end of the step (m): positive apart (a
+    /// contact within the search distance that is open), negative where
+    /// the bodies overlap (the penetration of a penalty contact, `t_n / k_n`
+    /// for a linear one).
+    pub gap: f64,
+    /// The shear displacement of the step at the contact (m), along the
+    /// contact's tangent: the relative slide of the two material points
+    /// since the start of the step.
+    pub shear: f64,
 }
 
 #[cfg(test)]
