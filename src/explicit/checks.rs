@@ -29,6 +29,11 @@ pub(crate) fn check_initial_overlaps(
     let mut largest = 0.0f64;
     grid.try_for_each_pair(boxes, 0.0, |a, b| {
         let (pa, pb) = (&scene.particles[a], &scene.particles[b]);
+        // Prescribed particles may overlap each other (a rough base of
+        // fixed discs): they make no pair.
+        if pa.is_prescribed() && pb.is_prescribed() {
+            return Ok(());
+        }
         manifold.clear();
         contact_manifold_2d(&pa.shape, &pa.pose, &pb.shape, &pb.pose, manifold)?;
         let mut overlap = deepest(manifold);
@@ -57,7 +62,12 @@ pub(crate) fn check_initial_overlaps(
         }
         Ok(())
     })?;
-    for (i, p) in scene.particles.iter().enumerate() {
+    for (i, p) in scene
+        .particles
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| !p.is_prescribed())
+    {
         for (w, wall) in scene.frame.walls().iter().enumerate() {
             let shape = AnyShape2::Segment(*wall);
             manifold.clear();
@@ -82,7 +92,8 @@ pub(crate) fn check_initial_overlaps(
 /// a pose, velocity or external force that is not finite (a NaN written
 /// into a public field would otherwise surface as an energy blow-up), or a
 /// mass or moment of inertia that is not finite and positive (a radius of
-/// 1e-200 m has a mass that underflows to zero).
+/// 1e-200 m has a mass that underflows to zero), unless both are `+∞` (a
+/// prescribed particle).
 pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
     for (i, p) in scene.particles.iter().enumerate() {
         let values = [
@@ -97,8 +108,14 @@ pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
             ("mass", p.mass, false),
             ("moment of inertia", p.inertia, false),
         ];
+        // A prescribed particle has infinite mass and inertia, both.
+        let prescribed = p.mass == f64::INFINITY && p.inertia == f64::INFINITY;
         for (name, value, may_be_zero) in values {
-            let requirement = if !value.is_finite() {
+            let requirement = if value == f64::INFINITY && !may_be_zero && !prescribed {
+                "must be finite (or infinite together with the moment of inertia or the mass, for a prescribed particle: see Particle::prescribed)"
+            } else if value == f64::INFINITY && !may_be_zero {
+                continue;
+            } else if !value.is_finite() {
                 "must be finite"
             } else if !may_be_zero && value == 0.0 {
                 "must be > 0 (a particle this small or this light has a mass that rounds to zero: scale the model's units)"
@@ -191,6 +208,14 @@ fn vertex_on_flat(mass: f64) -> PairProperties {
     }
 }
 
+/// Whether the stiffness bound of `law` at `pair` is finite.
+pub(crate) fn finite_bound<L: BoundedStiffness<2>>(law: &L, pair: &PairProperties) -> bool {
+    let b = law.stiffness_bound(pair);
+    [b.normal, b.shear, b.normal_damping, b.shear_damping]
+        .iter()
+        .all(|v| v.is_finite())
+}
+
 /// Refuses a law that gives no finite force or stiffness at a polygon's
 /// vertex-on-edge contact.
 ///
@@ -203,25 +228,34 @@ fn vertex_on_flat(mass: f64) -> PairProperties {
 /// a small first loading of such a contact, and its stiffness bound with the
 /// same geometry when the law has one (`bound_finite` says whether the
 /// bound at a pair is finite; pass `|_| true` for a law without a bound).
-/// Whether the stiffness bound of `law` at `pair` is finite.
-pub(crate) fn finite_bound<L: BoundedStiffness<2>>(law: &L, pair: &PairProperties) -> bool {
-    let b = law.stiffness_bound(pair);
-    [b.normal, b.shear, b.normal_damping, b.shear_damping]
-        .iter()
-        .all(|v| v.is_finite())
-}
-
+/// A prescribed polygon is probed with the mass of the lightest free
+/// particle, the body its vertices will meet.
 pub(crate) fn check_law_for_polygons<L: ContactLaw<2>>(
     scene: &Scene,
     law: &L,
     dt: f64,
     bound_finite: impl Fn(&PairProperties) -> bool,
 ) -> Result<()> {
+    let lightest_free = scene
+        .particles
+        .iter()
+        .filter(|p| !p.is_prescribed())
+        .map(|p| p.mass)
+        .fold(f64::INFINITY, f64::min);
     for (body, p) in scene.particles.iter().enumerate() {
         let AnyShape2::Polygon(polygon) = &p.shape else {
             continue;
         };
-        let pair = vertex_on_flat(p.mass);
+        let mass = if p.is_prescribed() {
+            if lightest_free.is_finite() {
+                lightest_free
+            } else {
+                continue;
+            }
+        } else {
+            p.mass
+        };
+        let pair = vertex_on_flat(mass);
         let bound_finite = bound_finite(&pair);
         let overlap = 1e-6 * crate::shape::Shape2::bounding_radius(polygon);
         let response = law.evaluate(

@@ -473,10 +473,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .particles
                 .iter()
                 .map(|p| {
-                    Vec2::new(
-                        p.mass * scene.gravity.x + p.external_force.x,
-                        p.mass * scene.gravity.y + p.external_force.y,
-                    )
+                    if p.is_prescribed() {
+                        // Nothing moves a prescribed particle.
+                        Vec2::zeros()
+                    } else {
+                        Vec2::new(
+                            p.mass * scene.gravity.x + p.external_force.x,
+                            p.mass * scene.gravity.y + p.external_force.y,
+                        )
+                    }
                 })
                 .collect(),
             frame_reach: frame_reach(&scene),
@@ -583,12 +588,14 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     /// Potential energy of gravity and the constant external forces,
-    /// `−Σ (m g + f_ext)·x` (J/m).
+    /// `−Σ (m g + f_ext)·x` (J/m), over the free (not prescribed)
+    /// particles.
     pub fn potential_energy(&self) -> f64 {
         let g = self.scene.gravity;
         self.scene
             .particles
             .iter()
+            .filter(|p| !p.is_prescribed())
             .map(|p| -(p.mass * g + p.external_force).dot(&p.pose.position.coords))
             .sum()
     }
@@ -604,14 +611,16 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             .sum()
     }
 
-    /// Mean over particles of the unbalanced force `|Σ f|` (contacts plus
-    /// gravity, from the last step), divided by the mean weight.
+    /// Mean over the free particles of the unbalanced force `|Σ f|`
+    /// (contacts plus gravity, from the last step), divided by the mean
+    /// weight.
     pub fn unbalanced_force_ratio(&self) -> f64 {
         let n = self.scene.particles.len();
         if n == 0 {
             return 0.0;
         }
         let net: f64 = (0..n)
+            .filter(|&i| !self.scene.particles[i].is_prescribed())
             .map(|i| Vec2::new(self.system.force[3 * i], self.system.force[3 * i + 1]).norm())
             .sum();
         let weight = self.scene.total_weight();

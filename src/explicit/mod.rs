@@ -66,6 +66,17 @@
 //! [`RestCriterion::max_time`], after [`RestCriterion::max_steps`] steps or
 //! after [`RestCriterion::max_wall_time`].
 //!
+//! A particle of infinite mass and moment of inertia is prescribed
+//! ([`crate::scene::Particle::prescribed`], [`crate::scene::Particle::fixed`]):
+//! a wall of any shape (a fixed polygon incline, a rough base of fixed
+//! discs) or a body driven at a constant velocity (a plate). Its
+//! acceleration is `f / ∞ = 0`, so it keeps its velocity; gravity and
+//! external forces do not act on it; its pairs with free particles take
+//! the free particle's mass as the pair's (as a wall's do); two prescribed
+//! particles, or one and a wall, make no pair (they may overlap); and the
+//! energies, the total weight and the unbalanced force count the free
+//! particles only.
+//!
 //! Polygons are rigid bodies (3 DOF) here. Their contact points are vertices
 //! on edges, where paper 000's eq. (19) has no value (radius of curvature 0
 //! at the vertex, contact width 0): [`ExplicitDynamics::new`] refuses a law

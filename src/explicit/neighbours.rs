@@ -198,6 +198,9 @@ pub(super) struct NeighbourList<S> {
     travel: ListTravel,
     /// Bounding radius of each particle.
     radius: Vec<f64>,
+    /// Per particle: whether its motion is prescribed (two prescribed
+    /// particles, or one and a wall, make no pair).
+    prescribed: Vec<bool>,
     /// The wall pairs of the last build, `(particle, wall)`, in the list's
     /// order.
     wall_pairs: Vec<(usize, usize)>,
@@ -235,6 +238,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
                 .iter()
                 .map(|p| p.shape.as_shape().bounding_radius())
                 .collect(),
+            prescribed: particles.iter().map(Particle::is_prescribed).collect(),
             stale: true,
             builds: 0,
             boxes: Vec::new(),
@@ -359,18 +363,19 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         let boxes = &self.boxes;
         self.travel
             .built(skin, particles, boxes, &self.wall_boxes, |a, w| {
-                wall_listed(&boxes[a], &self.wall_boxes[w])
+                // A prescribed particle meets no wall: none to watch.
+                self.prescribed[a] || wall_listed(&boxes[a], &self.wall_boxes[w])
             });
         // Of the pairs whose boxes are closer than the skin, those whose
         // bounding circles are too (a circle's box corner is far from the
         // circle: a square packing's diagonal neighbours have touching
         // boxes); a pair dropped here only when clearly beyond, against
         // rounding.
-        let (radius, travel) = (&self.radius, &self.travel);
+        let (radius, travel, prescribed) = (&self.radius, &self.travel, &self.prescribed);
         let circles_near = |a: usize, b: usize| {
             let reach = radius[a] + radius[b] + skin;
             let apart = (travel.centre_at_build(b) - travel.centre_at_build(a)).norm_squared();
-            apart <= reach * reach * (1.0 + 1e-12)
+            apart <= reach * reach * (1.0 + 1e-12) && !(prescribed[a] && prescribed[b])
         };
         grid.candidate_pairs_filtered(&self.boxes, skin, circles_near, parallel, &mut self.pairs);
         let wall_boxes = &self.wall_boxes;
@@ -379,7 +384,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
             wall_boxes
                 .iter()
                 .enumerate()
-                .filter(move |(_, wall)| wall_listed(&boxes[a], wall))
+                .filter(move |(_, wall)| !prescribed[a] && wall_listed(&boxes[a], wall))
                 .map(move |(w, _)| (a, w))
         };
         self.wall_pairs.clear();

@@ -50,6 +50,11 @@ pub fn critical_time_step<L: BoundedStiffness<2>>(scene: &Scene, law: &L) -> Sta
         governing: "no contact mode".into(),
     };
     for (i, p) in scene.particles.iter().enumerate() {
+        // A prescribed particle does not respond: to a free one it is a
+        // wall, whose mode that particle's own bound covers.
+        if p.is_prescribed() {
+            continue;
+        }
         if let AnyShape2::Polygon(polygon) = &p.shape {
             polygon_limit(
                 i,

@@ -9,7 +9,9 @@ use super::{LinearSolver, LinearSolverInfo, SolveError, SolveStats};
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LumpedSystem {
     /// Diagonal of the mass matrix (mass for translations, moment of inertia
-    /// for rotations); each entry must be positive.
+    /// for rotations); each entry must be positive. An infinite entry is a
+    /// prescribed degree of freedom: it does not accelerate, whatever its
+    /// (finite) force.
     pub mass: Vec<f64>,
     /// Right-hand side (force or moment).
     pub force: Vec<f64>,
@@ -30,13 +32,13 @@ impl LumpedMassSolver {
 }
 
 impl LinearSolver<[f64]> for LumpedMassSolver {
-    /// Check that every diagonal entry is positive and finite, and keep
-    /// the diagonal.
+    /// Check that every diagonal entry is positive (or `+∞`, a prescribed
+    /// degree of freedom), and keep the diagonal.
     fn factor(&mut self, diagonal: &[f64]) -> Result<(), SolveError> {
         if let Some((index, &value)) = diagonal
             .iter()
             .enumerate()
-            .find(|(_, m)| m.is_nan() || **m <= 0.0 || !m.is_finite())
+            .find(|(_, m)| m.is_nan() || **m <= 0.0)
         {
             return Err(SolveError::NonPositive {
                 what: "lumped mass",
@@ -82,7 +84,7 @@ pub fn solve_lumped_into(system: &LumpedSystem, out: &mut Vec<f64>) -> Result<()
     }
     out.resize(system.mass.len(), 0.0);
     for (i, (&m, &f)) in system.mass.iter().zip(&system.force).enumerate() {
-        if m.is_nan() || m <= 0.0 || !m.is_finite() {
+        if m.is_nan() || m <= 0.0 {
             return Err(SolveError::NonPositive {
                 what: "lumped mass",
                 index: i,

@@ -146,8 +146,14 @@ impl Scene {
         Ok(())
     }
 
-    /// Total weight `Σ m |g|` (N per m of thickness).
+    /// Total weight `Σ m |g|` of the free (not prescribed) particles (N per
+    /// m of thickness).
     pub fn total_weight(&self) -> f64 {
-        self.particles.iter().map(|p| p.mass).sum::<f64>() * self.gravity.norm()
+        self.particles
+            .iter()
+            .filter(|p| !p.is_prescribed())
+            .map(|p| p.mass)
+            .sum::<f64>()
+            * self.gravity.norm()
     }
 }
