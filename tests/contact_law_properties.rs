@@ -464,3 +464,62 @@ fn the_contact_shape_check_catches_a_law_that_reads_it_unannounced() {
     assert!(!ContactLaw::<2>::uses_contact_shape(&constant));
     assert!(conformance::contact_shape_unused(&constant, &input, &history).is_ok());
 }
+
+/// A Hertzian normal force with no history, no tangent and no linear
+/// strength: a law for the explicit driver alone.
+struct Hertz {
+    stiffness: f64,
+    pulls_when_apart: bool,
+}
+
+impl ContactLaw<2> for Hertz {
+    type State = ();
+    fn evaluate(&self, input: &ContactInput<2>, _: &()) -> dismech::law::ContactResponse<2, ()> {
+        let normal = if input.overlap > 0.0 {
+            self.stiffness * input.overlap.powf(1.5)
+        } else if self.pulls_when_apart {
+            -self.stiffness * 1e-9
+        } else {
+            0.0
+        };
+        dismech::law::ContactResponse {
+            force: Vector2::new(normal, 0.0),
+            spring_force: Vector2::new(normal, 0.0),
+            state: (),
+            regime: if input.overlap > 0.0 || self.pulls_when_apart {
+                Regime::Stick
+            } else {
+                Regime::Open
+            },
+        }
+    }
+    fn uses_contact_shape(&self) -> bool {
+        false
+    }
+}
+
+/// A force-only law runs the checks of what it declares: a Hertzian force
+/// passes them; the same law pulling at a distance fails
+/// `open_without_overlap`, which the force checks include.
+#[test]
+fn a_force_only_law_runs_the_force_checks() {
+    let input = ContactInput {
+        overlap: 1e-4,
+        increment: Vector2::new(1e-5, 2e-5),
+        dt: 1e-4,
+        is_new: false,
+        pair: pair(0.01),
+    };
+    let hertz = Hertz {
+        stiffness: 1e10,
+        pulls_when_apart: false,
+    };
+    assert!(conformance::check_force_law(&hertz, &input, &()).is_empty());
+    let sticky = Hertz {
+        stiffness: 1e10,
+        pulls_when_apart: true,
+    };
+    let found = conformance::check_force_law(&sticky, &input, &());
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].check, "open_without_overlap");
+}

@@ -3,7 +3,11 @@
 //!
 //! Each check takes a law, one input and one history state and returns
 //! `Err(Violation)` saying what failed; drive them with random inputs (the
-//! crate's own tests use `proptest`):
+//! crate's own tests use `proptest`). The checks are grouped by what a law
+//! declares: [`check_force_law`] for any [`ContactLaw`] (a law for the
+//! explicit driver alone), [`check_strength_law`] for a [`StrengthLaw`],
+//! [`check_tangent_law`] for a [`TangentLaw`], and [`check_all`] for a law
+//! that is all three:
 //!
 //! ```
 //! use dismech::law::{conformance, ContactInput, PairProperties, PenaltyCoulomb,
@@ -14,17 +18,17 @@
 //!                            is_new: false, pair: PairProperties::rigid() };
 //! let state = PenaltyState { normal: 9e3, shear: 2e3, regime: None };
 //! assert!(conformance::check_all(&law, &input, &state).is_empty());
-//! assert!(conformance::open_without_overlap(&law, &input, &state).is_ok());
 //! ```
 //!
-//! | check | property |
-//! |---|---|
-//! | [`no_tension`] | a law that may open never pulls: `t_n ≥ 0` |
-//! | [`open_without_overlap`] | no overlap, no force, regime `Open` |
-//! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip |
-//! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force |
-//! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s |
-//! | [`contact_shape_unused`] | a law that says it reads neither the contact's width nor its radii of curvature gives the same response without them |
+//! | check | property | run by |
+//! |---|---|---|
+//! | [`deterministic`] | `evaluate` twice gives the same response | [`check_force_law`] |
+//! | [`contact_shape_unused`] | a law that says it reads neither the contact's width nor its radii of curvature gives the same response without them | [`check_force_law`] |
+//! | [`open_without_overlap`] | no overlap, no force, regime `Open` (for a law that [`ContactLaw::opens_without_overlap`]) | [`check_force_law`] |
+//! | [`no_tension`] | a law that may open never pulls: `t_n ≥ 0` | [`check_strength_law`] |
+//! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip | [`check_strength_law`] |
+//! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force | [`check_tangent_law`] |
+//! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s | [`check_tangent_law`] |
 
 use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
 
@@ -232,14 +236,101 @@ where
     Ok(())
 }
 
-/// The checks every law must pass on one input: [`no_tension`] (when the
-/// law [`StrengthLaw::may_open`]), [`within_strength`],
-/// [`tangent_matches_finite_differences`] (`h = 1e-7 · (|increment| +
-/// |overlap|)`, relative tolerance `1e-6`), [`pure`] and
-/// [`contact_shape_unused`]. Returns the
-/// violations (empty when the law passes). [`open_without_overlap`] is
-/// separate: it holds for laws that detect contact by the overlap, not for
-/// springs that follow their own displacement history.
+/// `evaluate` is a pure function: two calls with the same input and state
+/// give the same response (the check of a law that has no tangent; a
+/// [`TangentLaw`] runs [`pure`], which also compares the tangent's
+/// response).
+pub fn deterministic<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation>
+where
+    L: ContactLaw<D>,
+    L::State: PartialEq,
+{
+    let (first, second) = (law.evaluate(input, state), law.evaluate(input, state));
+    if first != second {
+        return fail(
+            "deterministic",
+            format!("two evaluations differ: {first:?} / {second:?}"),
+        );
+    }
+    Ok(())
+}
+
+/// Collects the violations of `checks`.
+fn violations(checks: impl IntoIterator<Item = Result<(), Violation>>) -> Vec<Violation> {
+    checks.into_iter().filter_map(Result::err).collect()
+}
+
+/// The checks of what every [`ContactLaw`] declares, on one input:
+/// [`deterministic`], [`contact_shape_unused`] and, for a law that
+/// [`ContactLaw::opens_without_overlap`], [`open_without_overlap`]. A law
+/// meant only for the explicit driver (a force, no tangent, no linear
+/// strength) is checked by this alone.
+pub fn check_force_law<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Vec<Violation>
+where
+    L: ContactLaw<D>,
+    L::State: PartialEq,
+{
+    let mut checks = vec![
+        deterministic(law, input, state),
+        contact_shape_unused(law, input, state),
+    ];
+    if law.opens_without_overlap() {
+        checks.push(open_without_overlap(law, input, state));
+    }
+    violations(checks)
+}
+
+/// The checks of a [`StrengthLaw`]: [`no_tension`] (when the law
+/// [`StrengthLaw::may_open`]) and [`within_strength`].
+pub fn check_strength_law<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Vec<Violation>
+where
+    L: ContactLaw<D> + StrengthLaw,
+{
+    let mut checks = Vec::new();
+    if law.may_open() {
+        checks.push(no_tension(law, input, state));
+    }
+    checks.push(within_strength(law, input, state));
+    violations(checks)
+}
+
+/// The checks of a [`TangentLaw`]: [`tangent_matches_finite_differences`]
+/// (`h = 1e-7 · (|increment| + |overlap|)`, relative tolerance `1e-6`) and
+/// [`pure`].
+pub fn check_tangent_law<L, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Vec<Violation>
+where
+    L: TangentLaw<D>,
+    L::State: PartialEq,
+{
+    let size = input.increment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let h = 1e-7 * (size + input.overlap.abs()).max(f64::MIN_POSITIVE);
+    violations([
+        tangent_matches_finite_differences(law, input, state, h, 1e-6),
+        pure(law, input, state),
+    ])
+}
+
+/// Every check, on one input, of a law with a tangent and a linear
+/// strength (the laws of this crate): [`check_force_law`],
+/// [`check_strength_law`] and [`check_tangent_law`]. Returns the
+/// violations (empty when the law passes). A law that has no tangent or
+/// no linear strength runs the parts it has.
 pub fn check_all<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -249,22 +340,8 @@ where
     L: TangentLaw<D> + StrengthLaw,
     L::State: PartialEq,
 {
-    let size = input.increment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let h = 1e-7 * (size + input.overlap.abs()).max(f64::MIN_POSITIVE);
-    let mut out = Vec::new();
-    let mut record = |r: Result<(), Violation>| {
-        if let Err(v) = r {
-            out.push(v);
-        }
-    };
-    if law.may_open() {
-        record(no_tension(law, input, state));
-    }
-    record(within_strength(law, input, state));
-    record(tangent_matches_finite_differences(
-        law, input, state, h, 1e-6,
-    ));
-    record(pure(law, input, state));
-    record(contact_shape_unused(law, input, state));
+    let mut out = check_force_law(law, input, state);
+    out.extend(check_strength_law(law, input, state));
+    out.extend(check_tangent_law(law, input, state));
     out
 }

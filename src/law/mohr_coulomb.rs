@@ -126,6 +126,13 @@ impl ContactLaw<3> for MohrCoulombSpring {
     ) -> ContactResponse<3, Self::State> {
         self.respond(input, state).0
     }
+
+    /// The slip spring follows its own displacement history (its normal
+    /// spring is `k_n` times the accumulated normal displacement), not the
+    /// overlap given.
+    fn opens_without_overlap(&self) -> bool {
+        false
+    }
 }
 
 impl TangentLaw<3> for MohrCoulombSpring {

@@ -359,6 +359,11 @@ impl ContactLaw<2> for PenaltyCoulomb {
     fn uses_contact_shape(&self) -> bool {
         false
     }
+
+    /// A bonded contact pulls when apart.
+    fn opens_without_overlap(&self) -> bool {
+        !self.bonded
+    }
 }
 
 impl TangentLaw<2> for PenaltyCoulomb {

@@ -167,6 +167,15 @@ pub trait ContactLaw<const D: usize>: Sync {
     fn uses_contact_shape(&self) -> bool {
         true
     }
+
+    /// Whether contact is found by the overlap: without overlap the law
+    /// gives no force and the regime `Open` (checked by
+    /// [`super::conformance::open_without_overlap`]). A bonded contact,
+    /// which pulls when apart, or a spring that follows its own
+    /// displacement history rather than the overlap answers `false`.
+    fn opens_without_overlap(&self) -> bool {
+        true
+    }
 }
 
 /// A law with a consistent tangent, as implicit (Newton) drivers need.
