@@ -442,8 +442,8 @@ where
             .collect();
         let pairs = BlockAssembly::normalised(&pairs);
         if !self.assembly.has_layout(self.bodies.len(), N, &pairs) {
-            self.assembly = BlockAssembly::new(self.bodies.len(), N, &pairs)
-                .map_err(|e| StepFailure::Solve(e.to_string()))?;
+            self.assembly =
+                BlockAssembly::new(self.bodies.len(), N, &pairs).map_err(StepFailure::Solve)?;
         }
         Ok(())
     }
@@ -515,7 +515,7 @@ where
             let di = body_dofs::<N>(&trial.d, i);
             let geometry = self
                 .advanced(i, &di)
-                .map_err(|e| StepFailure::Geometry(e.to_string()))?;
+                .map_err(|e| StepFailure::Geometry(Box::new(e)))?;
             b.set_geometry(geometry);
             b.stress += b.material().elastic_matrix() * self.kinematics.strain(&di);
             b.displacement += di;
@@ -545,7 +545,7 @@ where
             let variation = c
                 .geometry
                 .map_variation(&dp_a, &dp_b)
-                .map_err(|e| StepFailure::Variation(e.to_string()))?;
+                .map_err(StepFailure::Variation)?;
             let (t_n, t_s) = trial.forces[k];
             // ∂g/∂t_A: the change of the gap with a translation of A.
             let grad_n = Vec2::new(variation.grad_gap[0], variation.grad_gap[1]);
@@ -682,7 +682,7 @@ where
             let outcome = loop {
                 self.find_pairs();
                 let outcome = detect(&self.bodies, &self.pairs, self.search, &self.previous)
-                    .map_err(|e| StepFailure::Variation(e.to_string()))
+                    .map_err(StepFailure::Variation)
                     .and_then(|contacts| {
                         let trial = self.trial(h, &contacts)?;
                         let (block, motion) = self.fastest_point(&trial.d);

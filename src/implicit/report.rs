@@ -1,7 +1,9 @@
 //! What a step of the implicit driver reports: its status, why a step
 //! failed, its iterations, and the contacts of the accepted state.
 
+use crate::error::{DismechError, SolveError};
 use crate::math::{Point, Vec2};
+use crate::query::variation::VariationError;
 use crate::query::ContactFeatures;
 
 /// What made a step fail.
@@ -22,8 +24,12 @@ pub enum StepFailure {
         /// residual's round-off where that was larger).
         tolerance: f64,
     },
-    /// The linear solve failed (singular tangent).
-    Solve(String),
+    /// The linear solve failed (a singular tangent), or its pattern could
+    /// not be laid out.
+    Solve(SolveError),
+    /// The residual of the step's equations is not finite (a body's motion
+    /// or a contact force overflowed).
+    NonFiniteResidual,
     /// A point of a body moved further than the search distance relative
     /// to a neighbouring body.
     TooFast {
@@ -34,9 +40,9 @@ pub enum StepFailure {
     },
     /// A body became invalid (a polygon turned inside out, an ellipse
     /// degenerated).
-    Geometry(String),
+    Geometry(Box<DismechError>),
     /// The contact normal of a smooth pair could not be found.
-    Variation(String),
+    Variation(VariationError),
     /// A law without a consistent tangent settled its contact states, but
     /// the step's equations hold only to a residual no step of classic DDA
     /// should leave (a penalty too stiff for double precision).
@@ -74,6 +80,7 @@ impl std::fmt::Display for StepFailure {
                 }
             }
             Self::Solve(m) => write!(f, "linear solve failed: {m}"),
+            Self::NonFiniteResidual => write!(f, "the residual is not finite (a motion or a force overflowed); take a smaller time step or a softer penalty"),
             Self::TooFast { block, motion } => write!(f, "a point of body {block} moved {motion:.3e} m relative to a neighbour in one step, beyond the search distance"),
             Self::Geometry(m) => write!(f, "{m}"),
             Self::Variation(m) => write!(f, "contact geometry: {m}"),
@@ -106,6 +113,7 @@ impl Halvings {
             StepFailure::NewtonNotConverged { .. } => self.newton += 1,
             StepFailure::TooFast { .. } => self.too_fast += 1,
             StepFailure::Solve(_)
+            | StepFailure::NonFiniteResidual
             | StepFailure::Geometry(_)
             | StepFailure::Variation(_)
             | StepFailure::Imprecise { .. }
@@ -230,5 +238,23 @@ mod tests {
         assert!(far.contains("smaller time step"), "{far}");
         let cycling = StepFailure::OpenCloseNotSettled { iterations: 20 }.to_string();
         assert!(cycling.contains("max_open_close"), "{cycling}");
+    }
+
+    /// The failures of the pieces a step calls keep their typed errors, so
+    /// that a caller can match on them, and their messages.
+    #[test]
+    fn failures_of_the_pieces_keep_their_types() {
+        use crate::error::{DismechError, SolveError};
+        let singular = SolveError::Factorization("zero pivot in column 3".into());
+        let failure = StepFailure::Solve(singular.clone());
+        assert!(matches!(&failure, StepFailure::Solve(e) if *e == singular));
+        assert!(failure.to_string().contains("zero pivot in column 3"));
+        let body = DismechError::InvalidPolygon {
+            block: 4,
+            reason: "it turned inside out",
+        };
+        let failure = StepFailure::Geometry(Box::new(body.clone()));
+        assert!(matches!(&failure, StepFailure::Geometry(e) if **e == body));
+        assert_eq!(failure.to_string(), body.to_string());
     }
 }

@@ -207,15 +207,13 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let (d_a, d_b) = (body_dofs::<N>(d, c.a), body_dofs::<N>(d, c.b));
         let kin = self.kinematics;
         let (z, ca, cb) = g.dof_local_variables(kin, &d_a, kin, &d_b);
-        let variation =
-            |e: crate::query::variation::VariationError| StepFailure::Variation(e.to_string());
         // A kind whose values cost as much as its variations computes them
         // once.
         let mut known = None;
         let (gap, shear) = if G::VALUES_ALONE {
-            g.values(&z).map_err(variation)?
+            g.values(&z).map_err(StepFailure::Variation)?
         } else {
-            let local = g.local(&z).map_err(variation)?;
+            let local = g.local(&z).map_err(StepFailure::Variation)?;
             let values = (local.gap, local.shear);
             known = Some(local);
             values
@@ -233,7 +231,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         }
         let local = match known {
             Some(local) => local,
-            None => g.local(&z).map_err(variation)?,
+            None => g.local(&z).map_err(StepFailure::Variation)?,
         };
         let (t_n, t_s) = (response.force[0], response.force[1]);
         let f = local.grad_shear * t_s - local.grad_gap * t_n;
@@ -284,7 +282,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
         let (gap, shear) = c
             .geometry
             .dof_values(self.kinematics, &d_a, self.kinematics, &d_b)
-            .map_err(|e| StepFailure::Variation(e.to_string()))?;
+            .map_err(StepFailure::Variation)?;
         Ok(regime_code(&self.respond(k, c, gap, shear).0))
     }
 
@@ -492,7 +490,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             let (rel, floor) = (eval.norm / scale, eval.floor / scale);
             residuals.push(rel);
             if !rel.is_finite() {
-                return Err(StepFailure::Solve("non-finite residual".into()));
+                return Err(StepFailure::NonFiniteResidual);
             }
             if floor > SETTLED_RESIDUAL_LIMIT {
                 // The round-off of the residual alone is above what a step
@@ -567,7 +565,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             solver
                 .factor(matrix)
                 .and_then(|()| solver.solve_in_place(matrix, &mut delta))
-                .map_err(|e| StepFailure::Solve(e.to_string()))?;
+                .map_err(StepFailure::Solve)?;
             self.limit_update(&d, &mut delta, self.search);
             // A contact whose slip would reverse stops the update where it
             // sticks; then backtracking on ‖R‖ (consistent laws only): a
