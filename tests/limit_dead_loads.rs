@@ -14,7 +14,7 @@ use dismech::limit::{
 };
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Pose2, Vec2};
-use dismech::shape::Polygon;
+use dismech::shape::{Ellipse, Polygon};
 
 /// The least thickness of a semicircular arch, `t/R = 0.1075` for the
 /// continuous arch (Ochsendorf 2002; Heyman's 0.106 used an approximate
@@ -187,4 +187,71 @@ fn outlines_apart_are_refused_with_their_gap() {
         assert!((contact.normal - Vec2::y()).norm() < 1e-12);
         assert!((contact.point.x.abs() - 0.5).abs() < 1e-9);
     }
+}
+
+/// An ellipse on a support touches it at its lowest point towards it;
+/// declaring a pair again is refused and leaves the model as it was.
+#[test]
+fn ellipse_on_a_floor_touches_at_its_lowest_point_and_pairs_are_all_or_none() {
+    let mut model = LimitModel::new(1e-9).unwrap();
+    let floor = model
+        .add_support("floor", Point::origin(), Vec2::y(), Vec2::zeros())
+        .unwrap();
+    let (a, b, angle) = (0.2f64, 0.1f64, 0.4f64);
+    let height = ((a * angle.sin()).powi(2) + (b * angle.cos()).powi(2)).sqrt();
+    let ellipse = model
+        .add_shape(
+            Ellipse::new(a, b).unwrap().into(),
+            Pose2::new(0.3, height, angle),
+            true,
+        )
+        .unwrap();
+    let joint = RigidPlastic::new(0.0, 0.5, true).unwrap();
+    let found = model
+        .add_contacts(ellipse, Partner::Support(floor), joint)
+        .unwrap();
+    assert_eq!(found.len(), 1);
+    let contact = model.contacts()[found[0]];
+    assert!(contact.point.y.abs() < 1e-12, "{:?}", contact.point);
+    assert!((contact.normal + Vec2::y()).norm() < 1e-12);
+    // The lowest point of the tilted ellipse lies off its centre's
+    // vertical: found here by sampling its boundary.
+    let (sin, cos) = angle.sin_cos();
+    let lowest = (0..200_000)
+        .map(|k| k as f64 * std::f64::consts::TAU / 200_000.0)
+        .map(|t| {
+            let (x, y) = (a * t.cos(), b * t.sin());
+            (0.3 + x * cos - y * sin, height + x * sin + y * cos)
+        })
+        .fold((0.0, f64::INFINITY), |m, p| if p.1 < m.1 { p } else { m });
+    assert!(lowest.1.abs() < 1e-9, "{lowest:?}");
+    assert!(
+        (contact.point.x - lowest.0).abs() < 1e-4,
+        "{} vs {}",
+        contact.point.x,
+        lowest.0
+    );
+    assert!((contact.point.x - 0.3).abs() > 0.05);
+    // A block with two corners on the floor, declared twice: the second
+    // declaration is refused and adds nothing.
+    let block = model
+        .add_shape(
+            Polygon::rectangle(1.0, 1.0).unwrap().into(),
+            Pose2::new(3.0, 0.5, 0.0),
+            true,
+        )
+        .unwrap();
+    assert_eq!(
+        model
+            .add_contacts(block, Partner::Support(floor), joint)
+            .unwrap()
+            .len(),
+        2
+    );
+    let before = model.contacts().len();
+    assert!(matches!(
+        model.add_contacts(block, Partner::Support(floor), joint),
+        Err(DismechError::DuplicateContact { .. })
+    ));
+    assert_eq!(model.contacts().len(), before);
 }

@@ -634,10 +634,13 @@ impl LimitModel {
     ///   outlines to overlap.
     ///
     /// Points of the pair that coincide (see the module documentation) are
-    /// declared once.
+    /// declared once. The pair's points are declared all or none: after an
+    /// error the model is as it was.
     ///
     /// # Errors
-    /// As [`LimitModel::add_contact_at`] for each point;
+    /// As [`LimitModel::add_contact_at`] for each point (e.g.
+    /// [`DismechError::DuplicateContact`] where the pair already has a
+    /// contact at one of them);
     /// [`DismechError::ContactNotTouching`] when the outlines give no
     /// point (they do not touch within the tolerance), with the distance
     /// between their reference points as the gap where no better one is
@@ -760,7 +763,20 @@ impl LimitModel {
                 continue;
             }
             taken.push(point);
-            added.push(self.add_contact_at(body, partner, law, point, normal)?);
+            match self.add_contact_at(body, partner, law, point, normal) {
+                Ok(index) => added.push(index),
+                Err(e) => {
+                    // All the pair's points or none: take back those added.
+                    let key = pair_key(body, partner);
+                    if let Some(listed) = self.pairs.get_mut(&key) {
+                        listed.retain(|c| !added.contains(c));
+                    }
+                    if let Some(&first) = added.first() {
+                        self.contacts.truncate(first);
+                    }
+                    return Err(e);
+                }
+            }
         }
         Ok(added)
     }
