@@ -551,6 +551,10 @@ impl std::fmt::Display for Bytes {
 pub type Result<T> = std::result::Result<T, DismechError>;
 
 /// Check that `value` is finite and strictly positive.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] naming `name` and `value` (requirement
+/// "must be finite and > 0") when `value` is zero, negative, NaN or infinite.
 pub fn require_positive(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
@@ -564,6 +568,10 @@ pub fn require_positive(name: &'static str, value: f64) -> Result<f64> {
 }
 
 /// Check that `value` is finite and not negative.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] naming `name` and `value` (requirement
+/// "must be finite and >= 0") when `value` is negative, NaN or infinite.
 pub fn require_non_negative(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
@@ -577,6 +585,10 @@ pub fn require_non_negative(name: &'static str, value: f64) -> Result<f64> {
 }
 
 /// Check that `value` is finite.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] naming `name` and `value` (requirement
+/// "must be finite") when `value` is NaN or infinite.
 pub fn require_finite(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)

@@ -75,7 +75,21 @@ impl DdaModel {
     /// error names both blocks).
     ///
     /// # Errors
-    /// As described.
+    /// As [`ImplicitDynamics::compose`]:
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// for a setting out of its range ([`ImplicitSettings::validate`]) or an
+    /// elliptical block near another at the start whose aspect ratio is
+    /// above [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO);
+    /// [`DismechError::InvalidEdgeTraction`](crate::error::DismechError::InvalidEdgeTraction)
+    /// for an edge traction on an edge the block does not have or that is
+    /// not finite;
+    /// [`DismechError::InvalidBlock`](crate::error::DismechError::InvalidBlock)
+    /// for a block whose load (weight and edge tractions) is not finite;
+    /// [`DismechError::BlocksOverlap`](crate::error::DismechError::BlocksOverlap)
+    /// naming the vertex and both blocks when a vertex lies inside another
+    /// block by more than `settings.overlap_tolerance`, and
+    /// [`DismechError::BlocksCross`](crate::error::DismechError::BlocksCross)
+    /// when two blocks' edges cross by more than it.
     pub fn new(blocks: Vec<Block>, law: PenaltyCoulomb, settings: DdaSettings) -> Result<Self> {
         Self::with_integrator(blocks, law, Newmark::dda(), settings)
     }
@@ -87,7 +101,9 @@ impl<I: ImplicitIntegrator> DdaModel<I> {
     /// (`Restarting(Newmark::dda())`), or quasi-static steps.
     ///
     /// # Errors
-    /// As [`DdaModel::new`].
+    /// The errors of [`DdaModel::new`] (those of
+    /// [`ImplicitDynamics::compose`]); the integrator is not checked here
+    /// ([`Newmark::new`] checks β and γ).
     pub fn with_integrator(
         blocks: Vec<Block>,
         law: PenaltyCoulomb,

@@ -372,6 +372,29 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// Set up a run: validates the settings, the initial overlaps and (when
     /// `settings.check_stability`) the time step against the stable limit
     /// estimated from the law's stiffness bound.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a time step `settings.dt` that
+    /// is not finite and positive, or not a normal number;
+    /// [`DismechError::LawUndefinedForShape`] for a scene with a polygon
+    /// where the law (or its stiffness bound) gives no finite value at a
+    /// vertex-on-edge contact; [`DismechError::UnstableTimeStep`] when
+    /// `settings.check_stability` is set and `settings.dt` exceeds the
+    /// estimated stable limit;
+    /// [`DismechError::InvalidParticle`] for a particle whose pose,
+    /// velocity or external force is not finite, or whose mass or moment of
+    /// inertia is not finite and positive (both `+∞`, a prescribed
+    /// particle, is accepted); [`DismechError::InvalidParameter`] for a
+    /// negative or non-finite `initial_overlap_tolerance` or
+    /// `neighbour_skin`, or a scene with 2³¹ particles or walls or more, or
+    /// a polygon of 2²⁹ vertices or more; [`DismechError::OutOfMemory`] for
+    /// a fixed `neighbour_skin` that would list more pairs than the budget
+    /// ([`MAX_LISTED_PAIRS_PER_PARTICLE`](crate::explicit::MAX_LISTED_PAIRS_PER_PARTICLE)
+    /// per particle), or a scene whose run the allocator refuses;
+    /// [`DismechError::InitialOverlap`] for two particles (not both
+    /// prescribed) that overlap, and [`DismechError::StartsInsideWall`] for
+    /// a free particle that penetrates a wall, by more than
+    /// `initial_overlap_tolerance`.
     pub fn new(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self>
     where
         L: BoundedStiffness<2>,
@@ -395,6 +418,27 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// check cannot be made, and the caller takes responsibility for
     /// `settings.dt` (the run still stops if the energy blows up).
     /// `settings.check_stability` must be `false`, to say so explicitly.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] when `settings.check_stability`
+    /// is `true`, or for a time step `settings.dt` that is not finite and
+    /// positive, or not a normal number;
+    /// [`DismechError::LawUndefinedForShape`] for a scene with a polygon
+    /// where the law gives no finite force at a vertex-on-edge contact;
+    /// [`DismechError::InvalidParticle`] for a particle whose pose,
+    /// velocity or external force is not finite, or whose mass or moment of
+    /// inertia is not finite and positive (both `+∞`, a prescribed
+    /// particle, is accepted); [`DismechError::InvalidParameter`] for a
+    /// negative or non-finite `initial_overlap_tolerance` or
+    /// `neighbour_skin`, or a scene with 2³¹ particles or walls or more, or
+    /// a polygon of 2²⁹ vertices or more; [`DismechError::OutOfMemory`] for
+    /// a fixed `neighbour_skin` that would list more pairs than the budget
+    /// ([`MAX_LISTED_PAIRS_PER_PARTICLE`](crate::explicit::MAX_LISTED_PAIRS_PER_PARTICLE)
+    /// per particle), or a scene whose run the allocator refuses;
+    /// [`DismechError::InitialOverlap`] for two particles (not both
+    /// prescribed) that overlap, and [`DismechError::StartsInsideWall`] for
+    /// a free particle that penetrates a wall, by more than
+    /// `initial_overlap_tolerance`.
     pub fn with_unchecked_time_step(
         scene: Scene,
         law: L,
@@ -643,6 +687,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// earlier block of particles, then those; each pair's points in the
     /// manifold's order), whatever the number of threads, so a run is the
     /// same to the last bit on one thread or many.
+    ///
+    /// # Errors
+    /// [`DismechError::NonFinite`] naming the particle and the step when a
+    /// force, position or velocity is NaN or infinite;
+    /// [`DismechError::EnergyBlowUp`] when a particle leaves the frame while
+    /// the kinetic energy exceeds twice what the loads and the initial
+    /// motion can supply (an unstable step), and
+    /// [`DismechError::ParticleLeftFrame`] when it leaves otherwise;
+    /// [`DismechError::UnsupportedPair`] for a pair of shapes with no
+    /// contact routine (two segments, which a scene the constructors
+    /// accepted does not hold).
     pub fn step(&mut self) -> Result<()> {
         let n = self.scene.particles.len();
         let dt = self.settings.dt;
@@ -825,6 +880,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// current time and the ratio the rest test reads (kinetic to released
     /// energy, see [`RestCriterion::kinetic_to_released_ratio`]; for
     /// progress reporting).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a
+    /// `kinetic_to_released_ratio` or `max_time` that is not finite and
+    /// positive, a `min_time` or `unbalanced_force_ratio` that is negative
+    /// or not finite, or `max_steps` of 0 (checked before any step);
+    /// [`DismechError::EnergyBlowUp`] at a check where the kinetic energy
+    /// exceeds twice the energy supplied; any error of [`Self::step`]
+    /// (after which the run should not be continued).
     pub fn run_to_rest(
         &mut self,
         criterion: &RestCriterion,

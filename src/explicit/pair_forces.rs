@@ -93,7 +93,9 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// later block keeps its summary for B instead.
     ///
     /// # Errors
-    /// The geometry's, for a pair it does not support.
+    /// [`DismechError::UnsupportedPair`](crate::error::DismechError::UnsupportedPair)
+    /// from the first pair whose shapes have no contact routine (two
+    /// segments), as [`Self::evaluate`].
     pub fn evaluate_block(
         &self,
         applied: &[Vec2],
@@ -173,7 +175,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
     /// about its last contact point first.
     ///
     /// # Errors
-    /// The geometry's, for a pair it does not support.
+    /// [`DismechError::UnsupportedPair`](crate::error::DismechError::UnsupportedPair)
+    /// from the pair dispatch ([`contact_2d_near`], or the manifold of a
+    /// pair with a polygon) for shapes it has no routine for (two
+    /// segments).
     #[inline(always)]
     pub fn evaluate(
         &self,

@@ -56,10 +56,13 @@ fn cell_centre(x0: f64, y0: f64, rows: usize, cell: f64, row: usize, column: usi
 impl Raster {
     /// A raster from its values, row-major with row 0 at the top.
     ///
-    /// Errors ([`DismechError::InvalidParameter`]): no column or row, more
-    /// than [`MAX_GRID_CELLS`] cells, a corner, cell size or far edge that
-    /// is not finite (or a cell size not positive), a number of values other
-    /// than `columns × rows`, a value that is not finite.
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for no column or
+    /// no row, more than [`MAX_GRID_CELLS`] cells, a lower-left corner that
+    /// is not finite, a cell size that is not finite and positive, a right
+    /// or top edge that overflows to infinity, a number of values other
+    /// than `columns × rows`, or a value that is not finite (`None` marks a
+    /// cell without data).
     pub fn new(
         columns: usize,
         rows: usize,
@@ -104,8 +107,13 @@ impl Raster {
         })
     }
 
-    /// A raster whose value at each cell is `f(x, y)` at the cell centre;
-    /// errors as [`Raster::new`], the size checked before `f` is called.
+    /// A raster whose value at each cell is `f(x, y)` at the cell centre.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] as [`Raster::new`]: no column or
+    /// no row, or more than [`MAX_GRID_CELLS`] cells, checked before `f` is
+    /// called; a corner, cell size or edge that is not finite (or a cell
+    /// size not positive), or a value `f` returns that is not finite.
     pub fn from_fn(
         columns: usize,
         rows: usize,

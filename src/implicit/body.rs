@@ -73,7 +73,9 @@ impl BodyGeometry {
     /// with equal semi-axes is a circle).
     ///
     /// # Errors
-    /// An ellipse beyond the aspect ratio the contact routines support.
+    /// [`DismechError::InvalidParameter`] for an ellipse whose aspect ratio
+    /// is above [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO), the
+    /// largest the explicit contact routines support ([`Ellipse::new`]).
     pub fn shape_and_pose(&self) -> Result<(AnyShape2, Pose2)> {
         Ok(match self {
             BodyGeometry::Polygon(p) => (
@@ -139,8 +141,9 @@ impl BodyMaterial {
     /// Check every value; `body` names the body in the error.
     ///
     /// # Errors
-    /// [`DismechError::InvalidBlock`] for `ρ ≤ 0`, `E ≤ 0` or ν outside
-    /// (−1, 0.5).
+    /// [`DismechError::InvalidBlock`] naming `body` for a density `ρ` or a
+    /// Young's modulus `E` that is not finite and positive, or a Poisson's
+    /// ratio ν that is not finite or outside (−1, 0.5).
     pub fn validate(&self, body: usize) -> Result<()> {
         let bad = |name: &'static str, value: f64, requirement: &'static str| {
             DismechError::InvalidBlock {
@@ -291,7 +294,14 @@ impl<const N: usize> Body<N> {
     /// `ρ ≤ 0`, `E ≤ 0` or ν outside (−1, 0.5), are refused.
     ///
     /// # Errors
-    /// As described.
+    /// [`DismechError::InvalidBlock`] naming `index` for a density or
+    /// Young's modulus that is not finite and positive, or a Poisson's
+    /// ratio outside (−1, 0.5) ([`BodyMaterial::validate`]);
+    /// [`DismechError::InvalidPolygon`] naming `index` for fewer than
+    /// three vertices, a vertex that is not finite, two consecutive
+    /// vertices that coincide, crossing edges, moments of area that
+    /// overflow, or vertices that run clockwise or enclose no area
+    /// ([`PlacedPolygon::from_world`]).
     pub fn new(vertices: &[Point], material: BodyMaterial, index: usize) -> Result<Self> {
         material.validate(index)?;
         let polygon = PlacedPolygon::from_world(vertices, index)?;
@@ -302,7 +312,11 @@ impl<const N: usize> Body<N> {
     /// (rad), centred at `centre`.
     ///
     /// # Errors
-    /// A bad material (naming `index`) or non-finite or non-positive sizes.
+    /// [`DismechError::InvalidBlock`] naming `index` for a bad material (as
+    /// [`Body::new`]); [`DismechError::InvalidParameter`] for a semi-axis
+    /// that is not finite and positive, an angle or centre that is not
+    /// finite, or semi-axes so far apart that the shape matrix is singular
+    /// ([`PlacedEllipse::new`]).
     pub fn ellipse(
         centre: Point,
         a: f64,
@@ -326,7 +340,9 @@ impl<const N: usize> Body<N> {
     /// A disc of `radius` centred at `centre`.
     ///
     /// # Errors
-    /// As [`Body::ellipse`].
+    /// [`DismechError::InvalidBlock`] naming `index` for a bad material (as
+    /// [`Body::new`]); [`DismechError::InvalidParameter`] for a radius that
+    /// is not finite and positive or a centre that is not finite.
     pub fn circle(
         centre: Point,
         radius: f64,
@@ -340,7 +356,8 @@ impl<const N: usize> Body<N> {
     /// runs in +x).
     ///
     /// # Errors
-    /// A wall of zero length or with non-finite end points.
+    /// [`DismechError::DegenerateWall`] naming `index` for a wall of zero
+    /// length or with an end point that is not finite.
     pub fn wall(segment: Segment, index: usize) -> Result<Self> {
         let finite = [segment.start, segment.end]
             .iter()
@@ -411,7 +428,9 @@ impl<const N: usize> Body<N> {
     /// ellipse, a circle or a wall has no edge to act on) and is finite.
     ///
     /// # Errors
-    /// [`DismechError::InvalidEdgeTraction`] naming the body and the edge.
+    /// [`DismechError::InvalidEdgeTraction`] naming the body and the edge
+    /// for a traction on a body that is not a polygon, on an edge index at
+    /// or beyond the vertex count, or with a component that is not finite.
     pub fn validate_edge_tractions(&self, index: usize) -> Result<()> {
         let edges = self.vertex_count();
         for &(edge, traction) in &self.edge_tractions {

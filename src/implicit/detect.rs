@@ -71,8 +71,10 @@ fn smooth_side(geometry: &BodyGeometry) -> Option<SmoothSide> {
 /// module docs).
 ///
 /// # Errors
-/// A [`VariationError`] when the normal of a smooth pair cannot be found
-/// (e.g. two concentric circles).
+/// [`VariationError::NormalNotFound`] when the normal search of a smooth
+/// pair (two ellipses or circles, or one and a polygon's vertex) does not
+/// settle, [`VariationError::NotAMaximum`] when the normal found is not a
+/// strict maximiser of the separation (e.g. two concentric circles).
 pub fn detect<const N: usize>(
     bodies: &[Body<N>],
     pairs: &[(usize, usize)],

@@ -102,7 +102,21 @@ where
     /// both bodies).
     ///
     /// # Errors
-    /// As described.
+    /// [`DismechError::InvalidParameter`] for a setting out of its range
+    /// ([`ImplicitSettings::validate`]), or an ellipse near another body at
+    /// the start whose aspect ratio is above
+    /// [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO) (the overlap
+    /// check at the start runs the explicit pair queries,
+    /// [`BodyGeometry::shape_and_pose`]);
+    /// [`DismechError::InvalidEdgeTraction`] for an edge traction on an
+    /// edge the body does not have, on a body that is not a polygon, or
+    /// that is not finite; [`DismechError::InvalidBlock`] for a body whose
+    /// load (weight and edge tractions) is not finite;
+    /// [`DismechError::BlocksOverlap`] naming the vertex and both bodies
+    /// when a vertex (or a smooth boundary) lies inside another body by
+    /// more than `settings.overlap_tolerance`, and
+    /// [`DismechError::BlocksCross`] when two polygons' edges cross by more
+    /// than it.
     pub fn compose(
         bodies: Vec<Body<N>>,
         kinematics: K,
@@ -213,7 +227,9 @@ where
     /// its present position by a spring of `stiffness`.
     ///
     /// # Errors
-    /// A stiffness that is not finite and positive, or no such body.
+    /// [`DismechError::InvalidParameter`] naming `fixed-point stiffness`
+    /// when `stiffness` is not finite and positive;
+    /// [`DismechError::NoSuchBody`] when the model has no body `body`.
     pub fn add_fixed_point(&mut self, body: usize, point: Point, stiffness: f64) -> Result<()> {
         require_positive("fixed-point stiffness", stiffness)?;
         if body >= self.bodies.len() {
@@ -593,7 +609,11 @@ where
     /// which says what failed.
     ///
     /// # Errors
-    /// As described, and as [`Self::advance`].
+    /// [`DismechError::StepFailed`] with the time reached, the smallest
+    /// sub-step tried and the reason, when a sub-step cannot be completed
+    /// even at the smallest step; [`DismechError::InvalidParameter`] and
+    /// [`DismechError::TimeStepTooSmall`] for a `dt` that [`Self::advance`]
+    /// refuses.
     pub fn advance_or_stop(&mut self, dt: f64) -> Result<StepReport> {
         let report = self.advance(dt)?;
         match report.status {

@@ -115,7 +115,12 @@ impl ImplicitSettings {
     /// Check every value.
     ///
     /// # Errors
-    /// A typed error naming the value.
+    /// [`DismechError::InvalidParameter`] naming the value for a
+    /// `search_distance`, `overlap_tolerance` or `residual_tolerance` that
+    /// is not finite and positive, a `max_search_distance` that is not
+    /// finite or below `search_distance`, a `slip_regularization` or
+    /// `mass_damping` that is negative or not finite, a `min_dt_ratio`
+    /// outside `[2⁻⁵², 1]`, or a `gravity` that is not finite.
     pub fn validate(&self) -> Result<()> {
         require_positive("search distance d0", self.search_distance)?;
         require_positive("overlap tolerance", self.overlap_tolerance)?;

@@ -18,6 +18,11 @@ pub struct Newmark {
 impl Newmark {
     /// A Newmark scheme; requires `β > 0` and `γ ≥ ½` (unconditional
     /// stability needs `2β ≥ γ ≥ ½`).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `Newmark beta` for a β
+    /// that is not finite and positive, or `Newmark gamma` for a γ that is
+    /// not finite or below ½.
     pub fn new(beta: f64, gamma: f64) -> Result<Self> {
         if !(beta.is_finite() && beta > 0.0) {
             return Err(DismechError::InvalidParameter {

@@ -22,8 +22,9 @@ impl PlacedPolygon {
     ///
     /// # Errors
     /// [`DismechError::InvalidPolygon`] naming `body` for fewer than three
-    /// vertices, non-finite coordinates, a clockwise or zero area, or
-    /// self-intersection.
+    /// vertices, non-finite coordinates, two consecutive vertices that
+    /// coincide, a clockwise or zero area, self-intersection or moments of
+    /// area that overflow (as [`Polygon::from_world`]).
     pub fn from_world(vertices: &[Point], body: usize) -> Result<Self> {
         let (polygon, centroid) = Polygon::from_world(vertices, body)?;
         Ok(Self { polygon, centroid })

@@ -52,6 +52,10 @@ fn fail(check: &'static str, detail: String) -> Result<(), Violation> {
 }
 
 /// A law that may open never pulls: `force[0] ≥ 0` and `spring_force[0] ≥ 0`.
+///
+/// # Errors
+/// A [`Violation`] of check `no_tension`, with both normal forces, when
+/// either is negative.
 pub fn no_tension<L: ContactLaw<D>, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -73,6 +77,12 @@ pub fn no_tension<L: ContactLaw<D>, const D: usize>(
 /// Without overlap there is no force and the regime is `Open`. (What an
 /// open contact keeps as history is the law's business: the DDA law
 /// records that it opened.)
+///
+/// # Errors
+/// A [`Violation`] of check `open_without_overlap`, with the overlap, the
+/// force and the regime, when the input moved apart (its overlap made
+/// negative) gives a force other than zero or a regime other than
+/// [`Regime::Open`].
 pub fn open_without_overlap<L: ContactLaw<D>, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -97,6 +107,11 @@ pub fn open_without_overlap<L: ContactLaw<D>, const D: usize>(
 
 /// The spring part of the shear stays within the strength,
 /// `‖t_s‖ ≤ c + μ t_n` (relative round-off `1e-12`), and lies on it in slip.
+///
+/// # Errors
+/// A [`Violation`] of check `within_strength` when the shear of the spring
+/// part exceeds `c + μ t_n`, or when in [`Regime::Slip`] it lies off that
+/// limit by more than `1e-9 (1 + limit)`; an open contact passes.
 pub fn within_strength<L: ContactLaw<D> + StrengthLaw, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -133,6 +148,12 @@ pub fn within_strength<L: ContactLaw<D> + StrengthLaw, const D: usize>(
 /// overlap with it (`∂overlap/∂Δu_n = 1`), as it does in a driver. The
 /// tolerance is `relative · (1 + |analytic| + |fd|)` plus the round-off
 /// `1e-15 |f| / h`.
+///
+/// # Errors
+/// A [`Violation`] of check `tangent_matches_finite_differences` naming
+/// the first entry `(i, j)` of the tangent, with its analytic value and
+/// the difference, that is off by more than the tolerance; an open
+/// contact, and a component whose difference straddles a kink, pass.
 pub fn tangent_matches_finite_differences<L: TangentLaw<D>, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -181,6 +202,11 @@ pub fn tangent_matches_finite_differences<L: TangentLaw<D>, const D: usize>(
 
 /// `evaluate` is a pure function: two calls agree, and agree with
 /// `evaluate_with_tangent`.
+///
+/// # Errors
+/// A [`Violation`] of check `pure`, with the three responses, when two
+/// calls of `evaluate`, or `evaluate` and `evaluate_with_tangent`, give
+/// different responses.
 pub fn pure<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -208,6 +234,12 @@ where
 /// It compares [`ContactLaw::evaluate`] only (the explicit driver, which
 /// acts on the answer, calls nothing else), exactly: a law whose response
 /// is NaN of itself fails it.
+///
+/// # Errors
+/// A [`Violation`] of check `contact_shape_unused`, with both responses,
+/// when a law that does not [`ContactLaw::uses_contact_shape`] responds
+/// differently with the width and radii of curvature set to NaN; a law
+/// that uses them passes.
 pub fn contact_shape_unused<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -240,6 +272,10 @@ where
 /// give the same response (the check of a law that has no tangent; a
 /// [`TangentLaw`] runs [`pure`], which also compares the tangent's
 /// response).
+///
+/// # Errors
+/// A [`Violation`] of check `deterministic`, with both responses, when two
+/// calls of `evaluate` differ.
 pub fn deterministic<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,

@@ -37,6 +37,12 @@ pub struct MohrCoulombSpring {
 impl MohrCoulombSpring {
     /// A spring with stiffnesses `k_n`, `k_s = k_t` (Pa/m), cohesion `c`
     /// (Pa) and friction coefficient `tan φ`.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// naming the value for a `k_n` or `k_s` that is not finite and
+    /// positive, or a cohesion or friction coefficient that is negative or
+    /// not finite.
     pub fn new(
         normal_stiffness: f64,
         shear_stiffness: f64,

@@ -91,6 +91,11 @@ pub struct PenaltyCoulomb {
 impl PenaltyCoulomb {
     /// A law with penalty `p_c` (N/m per m, > 0), friction coefficient
     /// `μ = tan φ` (≥ 0) and the chosen integration.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// naming the value for a penalty that is not finite and positive, or a
+    /// friction coefficient that is negative or not finite.
     pub fn new(penalty: f64, friction: f64, integration: FrictionIntegration) -> Result<Self> {
         require_positive("contact penalty p_c", penalty)?;
         require_non_negative("friction coefficient mu", friction)?;
@@ -110,8 +115,9 @@ impl PenaltyCoulomb {
     /// 002's contact of strength `C_p`.
     ///
     /// # Errors
-    /// A penalty that is not finite and positive, or a cohesion that is not
-    /// finite and non-negative.
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// naming the value for a penalty that is not finite and positive, or a
+    /// cohesion that is negative or not finite.
     pub fn bonded(penalty: f64, cohesion: f64) -> Result<Self> {
         Self::bonded_with_friction(penalty, cohesion, 0.0)
     }
@@ -121,8 +127,9 @@ impl PenaltyCoulomb {
     /// the line) for `μ > 0`.
     ///
     /// # Errors
-    /// As [`Self::bonded`], and a friction coefficient that is not finite
-    /// and non-negative.
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// naming the value for a penalty that is not finite and positive, or a
+    /// cohesion or friction coefficient that is negative or not finite.
     pub fn bonded_with_friction(penalty: f64, cohesion: f64, friction: f64) -> Result<Self> {
         let law = Self::new(penalty, friction, FrictionIntegration::ReturnMapping)?;
         Ok(Self {

@@ -22,12 +22,21 @@ pub struct RigidPlastic {
 impl RigidPlastic {
     /// A bilateral (never opening) cohesive contact of strength `C ≥ 0`,
     /// the contact of paper 002.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `contact cohesion C` for a
+    /// cohesion that is negative or not finite.
     pub fn cohesive(cohesion: f64) -> Result<Self> {
         Self::new(cohesion, 0.0, false)
     }
 
     /// A contact with cohesion `C ≥ 0`, friction angle `φ ∈ [0, π/2)` (rad)
     /// and, if `unilateral`, no tension: the contact may open.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a cohesion
+    /// that is negative or not finite, or a friction angle that is not
+    /// finite or outside `[0, π/2)`.
     pub fn new(cohesion: f64, friction_angle: f64, unilateral: bool) -> Result<Self> {
         require_non_negative("contact cohesion C", cohesion)?;
         if !(friction_angle.is_finite()

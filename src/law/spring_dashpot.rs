@@ -123,6 +123,14 @@ impl<const D: usize> Default for SpringVector<D> {
 impl SpringDashpotCoulomb {
     /// A law with the given normal stiffness, ratio `s = k_s / k_n`,
     /// friction coefficient `μ` and dashpots. Validates every value.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a constant
+    /// `k_n`, a Young's modulus or a stiffness ratio that is not finite and
+    /// positive, a Poisson's ratio that is not finite or outside
+    /// `[−1, 0.5)`, a `min_width_ratio` outside `(0, 1)`, or a friction
+    /// coefficient or (per-mass) damping rate that is negative or not
+    /// finite.
     pub fn new(
         normal: NormalStiffness,
         stiffness_ratio: f64,
@@ -171,6 +179,12 @@ impl SpringDashpotCoulomb {
     }
 
     /// Paper 000's law: eq. (19) stiffness, critical dashpots.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a Young's
+    /// modulus or stiffness ratio that is not finite and positive, a
+    /// Poisson's ratio that is not finite or outside `[−1, 0.5)`, or a
+    /// friction coefficient that is negative or not finite.
     pub fn katsuki(
         youngs_modulus: f64,
         poisson_ratio: f64,

@@ -35,6 +35,23 @@ pub struct PackingLimitSettings {
 /// their geometry from the circles and must touch within the largest DEM
 /// overlap; contacts of other shapes take the DEM's contact point and
 /// normal.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] when `settings.plate_wall` names no
+/// wall of the frame, or a contact record has a point that is not finite
+/// or a normal of zero length; [`DismechError::NoSuchBody`] for a record
+/// naming a particle the scene does not have, and
+/// [`DismechError::DegenerateWall`] for one naming a wall the frame does
+/// not have; [`DismechError::DuplicateBody`] for two particles whose
+/// centres coincide ([`LimitModel::add_shape`]);
+/// [`DismechError::SelfContact`] for a record of a particle with itself;
+/// [`DismechError::ContactNotTouching`] for two circles, or a circle and a
+/// wall, farther apart than the tolerance (1.01 times the largest overlap
+/// of the records), or a record of another shape with a wall whose normal
+/// does not point into the wall; [`DismechError::DuplicateContact`] for a
+/// record that repeats one of its pair (a second record of two circles, or
+/// of a circle and a wall, or one at a point of the pair already taken),
+/// as [`LimitModel::add_contact`] and [`LimitModel::add_contact_at`].
 pub fn model_from_packing(
     scene: &Scene,
     contacts: &[ContactRecord],

@@ -235,6 +235,10 @@ fn pair_key(body: usize, partner: Partner) -> (usize, Partner) {
 
 impl LimitModel {
     /// An empty model; contacts must touch within `tolerance` (m).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `contact tolerance` when
+    /// `tolerance` is not finite and positive.
     pub fn new(tolerance: f64) -> Result<Self> {
         Ok(Self {
             tolerance: require_positive("contact tolerance", tolerance)?,
@@ -243,6 +247,12 @@ impl LimitModel {
     }
 
     /// Add a circular element; returns its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a radius
+    /// that is not finite and positive or a centre that is not finite;
+    /// [`DismechError::DuplicateBody`] when an element already has its
+    /// reference point at `centre` (as [`LimitModel::add_shape`]).
     pub fn add_body(&mut self, centre: Point, radius: f64, rotates: bool) -> Result<usize> {
         require_positive("element radius", radius)?;
         let circle = Circle::new(radius)?;
@@ -253,7 +263,8 @@ impl LimitModel {
     /// point of velocities, loads and moments); returns its index.
     ///
     /// # Errors
-    /// A non-finite pose; [`DismechError::DuplicateBody`] when an element
+    /// [`DismechError::InvalidParameter`] for a pose that is not finite;
+    /// [`DismechError::DuplicateBody`] when an element
     /// already has its reference point where this one has (see the module
     /// documentation).
     pub fn add_shape(&mut self, shape: AnyShape2, pose: Pose2, rotates: bool) -> Result<usize> {
@@ -415,6 +426,11 @@ impl LimitModel {
     }
 
     /// Add a support; `normal` is normalised. Returns its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a point or
+    /// velocity that is not finite, or a normal whose length is zero or not
+    /// finite.
     pub fn add_support(
         &mut self,
         name: &str,

@@ -20,8 +20,9 @@ pub trait DiagonalBlocks {
     /// from 0).
     ///
     /// # Errors
-    /// Ranges the matrix cannot cut its blocks at (a range inside one of
-    /// its own blocks, or beyond its dimension).
+    /// Implementations return [`SolveError::DimensionMismatch`] for ranges
+    /// the matrix cannot cut its blocks at (for [`SparseMatrix`], a range
+    /// that ends beyond its dimension).
     fn diagonal_blocks(&self, ranges: &[Range<usize>]) -> Result<Vec<DMatrix<f64>>, SolveError>;
 }
 
@@ -86,8 +87,9 @@ impl BlockJacobi {
     /// previous ends).
     ///
     /// # Errors
-    /// A block that is not square, or not positive definite (naming its
-    /// index).
+    /// [`SolveError::DimensionMismatch`] for a block that is not square;
+    /// [`SolveError::Factorization`] naming the index of a block that is
+    /// not positive definite (its Cholesky factorization fails).
     pub fn from_blocks(blocks: Vec<DMatrix<f64>>) -> Result<Self, SolveError> {
         let mut ranges = Vec::with_capacity(blocks.len());
         let mut start = 0;

@@ -31,7 +31,12 @@ pub trait Preconditioner<A: ?Sized> {
     /// Build the approximation for `matrix`.
     ///
     /// # Errors
-    /// When it cannot be built (e.g. a block that is not positive definite).
+    /// Implementations return a [`SolveError`] when the approximation
+    /// cannot be built; [`BlockJacobi`](super::BlockJacobi) returns
+    /// [`SolveError::DimensionMismatch`] for ranges that are not
+    /// consecutive from 0 or that the matrix cannot cut its blocks at, and
+    /// [`SolveError::Factorization`] naming a block that is not positive
+    /// definite.
     fn setup(&mut self, matrix: &A) -> Result<(), SolveError>;
     /// `z = M⁻¹ r` (`z` is overwritten).
     fn apply(&self, r: &[f64], z: &mut [f64]);
@@ -196,8 +201,13 @@ struct Outcome {
 /// Solve `K x = b` by PCG (see the module documentation).
 ///
 /// # Errors
-/// A right-hand side of the wrong length or with non-finite entries, or a
-/// non-positive curvature `pᵀKp` (the matrix is not positive definite).
+/// [`SolveError::DimensionMismatch`] for a right-hand side whose length is
+/// not the operator's dimension; [`SolveError::NonFinite`] for a
+/// right-hand side entry that is not finite; [`SolveError::NonPositive`]
+/// (with the iteration as its index) for a curvature `pᵀKp` that is not
+/// positive (the matrix is not positive definite). A run that stops at
+/// `settings.max_iterations` is not an error: see
+/// [`CgSolution::converged`].
 pub fn conjugate_gradient<A: LinearOperator + ?Sized, M: Preconditioner<A> + ?Sized>(
     operator: &A,
     preconditioner: &M,

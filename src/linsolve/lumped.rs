@@ -74,6 +74,13 @@ impl LinearSolverInfo for LumpedMassSolver {
 
 /// Solve `M a = f` into `out` without allocating when `out` already has the
 /// right length; used in explicit hot loops.
+///
+/// # Errors
+/// [`SolveError::DimensionMismatch`] when `force` and `mass` differ in
+/// length; [`SolveError::NonPositive`] naming the index of a mass that is
+/// zero, negative or NaN (`+∞`, a prescribed degree of freedom, is
+/// accepted); [`SolveError::NonFinite`] naming the index of a force that
+/// is not finite. `out` may be partly written on an error.
 pub fn solve_lumped_into(system: &LumpedSystem, out: &mut Vec<f64>) -> Result<(), SolveError> {
     if system.force.len() != system.mass.len() {
         return Err(SolveError::DimensionMismatch {

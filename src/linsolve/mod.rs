@@ -131,17 +131,30 @@ pub trait LinearSolver<M: ?Sized>: LinearSolverInfo {
     /// (iterative ones).
     ///
     /// # Errors
-    /// Misuse (sizes, non-finite values) or a failed factorization
-    /// (singular, or not positive definite where that is required).
+    /// Implementations return [`SolveError::NonFinite`] for a matrix entry
+    /// that is not finite, [`SolveError::NonPositive`] for a diagonal that
+    /// must be positive and is not ([`LumpedMassSolver`]), and
+    /// [`SolveError::Factorization`] when the factorization or its analysis
+    /// fails (a singular matrix, one not positive definite for
+    /// [`SparseCholesky`], a workspace that cannot be allocated); an
+    /// iterative solver returns its preconditioner's error
+    /// ([`Preconditioner::setup`]).
     fn factor(&mut self, matrix: &M) -> Result<(), SolveError>;
 
     /// Overwrite `rhs`, holding `b`, with the solution `x` of
     /// `matrix · x = b`; `matrix` is the one last factored.
     ///
     /// # Errors
-    /// A solve before any factorization, a right-hand side of the wrong
-    /// length or with non-finite entries, or a solution that is not finite
-    /// (a numerically singular matrix).
+    /// Implementations return [`SolveError::DimensionMismatch`] for a
+    /// right-hand side whose length is not the matrix's dimension (for an
+    /// iterative solver, also a matrix of another size than the one last
+    /// factored, or none factored), [`SolveError::NonFinite`] for a
+    /// right-hand side entry that is not finite, and
+    /// [`SolveError::Factorization`] for a direct solve before any
+    /// factorization or a solution that is not finite (a numerically
+    /// singular matrix); [`ConjugateGradient`] returns
+    /// [`SolveError::NonPositive`] for a curvature `pᵀKp` that is not
+    /// positive (the matrix is not positive definite).
     fn solve_in_place(&mut self, matrix: &M, rhs: &mut [f64]) -> Result<SolveStats, SolveError>;
 }
 

@@ -75,5 +75,16 @@ pub trait LpSolver {
     /// Solve `lp`. Misuse (bad sizes, non-finite data) is an error;
     /// infeasibility, unboundedness and iteration limits are reported in
     /// the solution's [`LpStatus`].
+    ///
+    /// # Errors
+    /// Implementations return [`SolveError::DimensionMismatch`] for an
+    /// objective whose length is not `lp.num_variables` or a triplet whose
+    /// row or column index is out of range, [`SolveError::NonFinite`] for a
+    /// coefficient or right-hand side that is not finite, an error of their
+    /// own settings (for [`LinearProgramSolver`]: [`SolveError::NonFinite`]
+    /// or [`SolveError::NonPositive`] for its tolerance), and
+    /// [`SolveError::LinearProgram`] when the underlying solver refuses the
+    /// problem or fails internally. An infeasible or unbounded LP, or one
+    /// stopped at the iteration limit, is not an error.
     fn solve(&mut self, lp: &LinearProgram) -> Result<LinearProgramSolution, SolveError>;
 }

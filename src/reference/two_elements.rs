@@ -10,6 +10,11 @@ use crate::math::{Point, Vec2};
 /// by a left wall and a floor (so that it can only rotate), element 2 at
 /// α = 45° pushed in −x by a plate; every contact, plate included, has
 /// strength `cohesion`; R = 1. The paper's limit load is (1 + √2)C.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+/// naming `contact cohesion C` when `cohesion` is negative or not finite
+/// ([`RigidPlastic::cohesive`]); the fixed geometry itself is valid.
 pub fn two_elements(cohesion: f64) -> Result<LimitModel> {
     let law = RigidPlastic::cohesive(cohesion)?;
     let d = std::f64::consts::SQRT_2;

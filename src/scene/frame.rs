@@ -21,6 +21,13 @@ impl Frame {
     /// A frame from named walls; each wall must start where the previous one
     /// ends (within [`JOINT_TOLERANCE`]), have finite end points and a
     /// positive length.
+    ///
+    /// # Errors
+    /// [`DismechError::DegenerateWall`] naming the wall for an end point
+    /// that is not finite or a length of at most [`JOINT_TOLERANCE`];
+    /// [`DismechError::FrameNotClosed`] naming both walls and the gap when
+    /// a wall does not start within [`JOINT_TOLERANCE`] of where the
+    /// previous one ends.
     pub fn from_walls(walls: Vec<(String, Segment)>) -> Result<Self> {
         for (i, (_, w)) in walls.iter().enumerate() {
             let finite = [w.start.x, w.start.y, w.end.x, w.end.y]
@@ -61,6 +68,12 @@ impl Frame {
     /// An open box `width × height` with its bottom-left corner at the
     /// origin: walls `left` (top to bottom), `bottom`, `right` (bottom to
     /// top).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `frame width` or
+    /// `frame height` when either is not finite and positive;
+    /// [`DismechError::DegenerateWall`] when one is no longer than
+    /// [`JOINT_TOLERANCE`].
     pub fn open_box(width: f64, height: f64) -> Result<Self> {
         require_positive("frame width", width)?;
         require_positive("frame height", height)?;

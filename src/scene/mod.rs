@@ -27,6 +27,10 @@ pub struct Scene {
 
 impl Scene {
     /// An empty scene in `frame` under `gravity`.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `gravity x` or `gravity y`
+    /// when a component of `gravity` is not finite.
     pub fn new(frame: Frame, gravity: Vec2) -> Result<Self> {
         require_finite("gravity x", gravity.x)?;
         require_finite("gravity y", gravity.y)?;
@@ -39,6 +43,11 @@ impl Scene {
 
     /// Add a circle of `radius` (m) and `density` (kg/m³) at rest at
     /// `centre`; returns its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a radius or
+    /// density that is not finite and positive, or a centre that is not
+    /// finite.
     pub fn add_circle(&mut self, centre: Point, radius: f64, density: f64) -> Result<usize> {
         self.add_shape(
             Circle::new(radius)?,
@@ -49,6 +58,13 @@ impl Scene {
 
     /// Add an ellipse with semi-axes `a ≥ b` (m), major axis at `angle`
     /// (rad), `density` (kg/m³), at rest at `centre`; returns its index.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for semi-axes
+    /// that are not finite and positive, `a < b`, an aspect ratio `a/b`
+    /// above [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO), a centre
+    /// or angle that is not finite, or a density that is not finite and
+    /// positive (see [`Ellipse::new`]).
     pub fn add_ellipse(
         &mut self,
         centre: Point,
@@ -71,9 +87,11 @@ impl Scene {
     ///
     /// # Errors
     /// [`DismechError::InvalidPolygon`] (naming the particle's index as the
-    /// block) for fewer than three vertices, a non-finite vertex, clockwise
-    /// order, zero area or crossing edges; [`DismechError::InvalidParameter`]
-    /// for a density that is not finite and positive.
+    /// block) for fewer than three vertices, a non-finite vertex, two
+    /// consecutive vertices that coincide, clockwise order, zero area,
+    /// crossing edges or moments of area that overflow
+    /// ([`Polygon::from_world`]); [`DismechError::InvalidParameter`] for a
+    /// density that is not finite and positive.
     pub fn add_polygon(&mut self, vertices: &[Point], density: f64) -> Result<usize> {
         let (polygon, centroid) = Polygon::from_world(vertices, self.particles.len())?;
         self.add_shape(polygon, Pose2::new(centroid.x, centroid.y, 0.0), density)
@@ -125,6 +143,10 @@ impl Scene {
     }
 
     /// The particle with index `index`.
+    ///
+    /// # Errors
+    /// [`DismechError::NoSuchBody`] with the index and the particle count
+    /// when the scene has no particle `index`.
     pub fn particle(&self, index: usize) -> Result<&Particle> {
         self.particles.get(index).ok_or(DismechError::NoSuchBody {
             index,
@@ -134,6 +156,11 @@ impl Scene {
 
     /// Apply the constant external force `force` (N/m) to the centre of
     /// particle `index`, replacing any force set before.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `external force x` or
+    /// `external force y` for a component that is not finite;
+    /// [`DismechError::NoSuchBody`] when the scene has no particle `index`.
     pub fn set_external_force(&mut self, index: usize, force: Vec2) -> Result<()> {
         require_finite("external force x", force.x)?;
         require_finite("external force y", force.y)?;

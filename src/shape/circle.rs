@@ -12,6 +12,10 @@ pub struct Circle {
 
 impl Circle {
     /// A circle; the radius must be finite and positive.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter)
+    /// naming `radius` when it is not finite and positive.
     pub fn new(radius: f64) -> Result<Self> {
         Ok(Self {
             radius: require_positive("radius", radius)?,

@@ -27,6 +27,11 @@ const GAUSS: [(f64, f64); 2] = [
 
 impl Column {
     /// A column; the top must not lie below the bottom at any corner.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for an origin or
+    /// corner height that is not finite, a cell size that is not finite and
+    /// positive, or a top height below the bottom height at a corner.
     pub fn new(x0: f64, y0: f64, size: f64, bottom: [f64; 4], top: [f64; 4]) -> Result<Self> {
         require_finite("column x0", x0)?;
         require_finite("column y0", y0)?;
@@ -118,6 +123,10 @@ impl Column {
 
     /// The column cut into `count` layers of equal thickness (bottom first),
     /// as HPM splits a column into bottom, middle and top elements (§3).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming `layer count` when `count`
+    /// is 0.
     pub fn layers(&self, count: usize) -> Result<Vec<Column>> {
         require_positive("layer count", count as f64)?;
         let at = |k: usize| {

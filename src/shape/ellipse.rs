@@ -23,6 +23,11 @@ pub struct Ellipse {
 
 impl Ellipse {
     /// An ellipse with semi-major axis `a` and semi-minor axis `b`.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a semi-axis
+    /// that is not finite and positive, `a < b`, or an aspect ratio `a/b`
+    /// above [`MAX_ASPECT_RATIO`].
     pub fn new(a: f64, b: f64) -> Result<Self> {
         require_positive("semi-axis a", a)?;
         require_positive("semi-axis b", b)?;

@@ -140,6 +140,13 @@ impl Polygon {
     /// of area that overflow, and self-intersection (every pair of edges,
     /// found by a quadtree in about `n log n`: `simple.rs`); `block` names the
     /// block in the error.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidPolygon`] naming `block` and the reason for
+    /// fewer than three vertices, a vertex that is not finite, two
+    /// consecutive vertices that coincide, edges that intersect, moments of
+    /// area that overflow, or vertices that run clockwise or enclose no
+    /// area.
     pub fn from_world(vertices: &[Point], block: usize) -> Result<(Self, Point)> {
         let bad = |reason: &'static str| DismechError::InvalidPolygon { block, reason };
         if vertices.len() < 3 {
@@ -221,7 +228,9 @@ impl Polygon {
     ///
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a width or height that is not
-    /// finite and positive.
+    /// finite and positive; [`DismechError::InvalidPolygon`] (block 0) for
+    /// sizes so far apart that the area vanishes against the rectangle's
+    /// size, or so large that its moments of area overflow.
     pub fn rectangle(width: f64, height: f64) -> Result<Self> {
         let (hw, hh) = (
             0.5 * require_positive("rectangle width", width)?,

@@ -153,8 +153,13 @@ pub trait GapVariation<const M: usize> {
     /// `g_n`, `g_s` and their closed-form variations at `z`.
     ///
     /// # Errors
-    /// A [`VariationError`] when the kind has no smooth gap at `z` (only
-    /// smooth–smooth pairs, whose normal is found iteratively).
+    /// Implementations return a [`VariationError`] when the kind has no
+    /// smooth gap at `z`: only smooth–smooth pairs, whose normal is found
+    /// iteratively, fail, with [`VariationError::NormalNotFound`] when the
+    /// search does not settle and [`VariationError::NotAMaximum`] when the
+    /// normal found is not a strict maximiser of the separation (e.g.
+    /// concentric circles); vertex–edge and smooth–edge contacts never
+    /// fail.
     fn local(&self, z: &SVector<f64, M>) -> Result<LocalVariation<M>, VariationError>;
 
     /// `g_n`, `g_s` and their variations in the 12 map parameters.

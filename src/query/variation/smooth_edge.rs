@@ -188,7 +188,9 @@ impl GapVariation<10> for SmoothEdgeContact {
 /// `search` is missed.
 ///
 /// # Errors
-/// A [`VariationError`] if the normal search of a vertex contact fails.
+/// [`VariationError::NormalNotFound`] or [`VariationError::NotAMaximum`]
+/// when the normal search of a vertex contact fails
+/// ([`SmoothSmoothContact::detect`]); edge contacts do not fail.
 pub fn smooth_polygon_contacts(
     side: &SmoothSide,
     polygon: &PlacedPolygon,

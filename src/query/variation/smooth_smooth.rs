@@ -149,8 +149,10 @@ impl SmoothSmoothContact {
     /// one, from the best of a scan of 128 directions.
     ///
     /// # Errors
-    /// A [`VariationError`] if the normal search fails (e.g. concentric
-    /// circles, whose normal is undefined).
+    /// [`VariationError::NormalNotFound`] when the normal search does not
+    /// settle; [`VariationError::NotAMaximum`] when the normal found is not
+    /// a strict maximiser of the separation (e.g. concentric circles, whose
+    /// normal is undefined).
     pub fn detect(
         a: &SmoothSide,
         b: &SmoothSide,
@@ -203,7 +205,9 @@ impl SmoothSmoothContact {
     /// e.g. to start the next step's search from the committed state.
     ///
     /// # Errors
-    /// As [`GapVariation::local`].
+    /// [`VariationError::NormalNotFound`] or
+    /// [`VariationError::NotAMaximum`] when the normal search from θ₀ at
+    /// the moved state fails, as in [`Self::detect`].
     pub fn normal_angle(&self, dp_a: &MapVector, dp_b: &MapVector) -> Result<f64, VariationError> {
         let (la, lb) = self.chain();
         maximise(&(self.start() + la * dp_a + lb * dp_b), self.angle)
