@@ -205,6 +205,13 @@
 
 #![deny(missing_docs)]
 
+/// The linear algebra of the public API ([`math::Vec2`], [`math::Point`],
+/// the `SVector` and `SMatrix` of a contact law's input, force and
+/// tangent), re-exported so that a model or a law of one's own names these
+/// types as `dismech::nalgebra::…` without a second dependency pinned to
+/// the same version.
+pub use nalgebra;
+
 pub mod broad_phase;
 pub mod compositions;
 pub mod dda;
