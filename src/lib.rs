@@ -45,7 +45,8 @@
 //!
 //! ```no_run
 //! # fn main() -> dismech::error::Result<()> {
-//! use dismech::dem::{DemSettings, DemSimulation};
+//! use dismech::dem::DemSimulation;
+//! use dismech::explicit::DemSettings;
 //! use dismech::integrate::ExplicitEuler;
 //! use dismech::law::SpringDashpotCoulomb;
 //! use dismech::math::{Point, Vec2};

@@ -3,8 +3,9 @@
 use dismech::compositions::polygon_incline::{
     incline_slide_ratio, incline_stick_displacement, run_block_on_incline, BlockOnIncline,
 };
-use dismech::dem::{critical_time_step, ContactTarget, DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{critical_time_step, ContactTarget, DemSettings};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
@@ -265,9 +266,9 @@ fn pile_of_random_polygons_and_discs_settles_with_the_walls_carrying_its_weight(
     )
     .unwrap();
     let outcome = sim
-        .run_to_rest(&dismech::dem::RestCriterion::default(), |_, _| {})
+        .run_to_rest(&dismech::explicit::RestCriterion::default(), |_, _| {})
         .unwrap();
-    assert_eq!(outcome.status, dismech::dem::RunStatus::AtRest);
+    assert_eq!(outcome.status, dismech::explicit::RunStatus::AtRest);
     let weight = sim.scene().total_weight();
     let walls: Vec2 = (0..3).map(|w| sim.wall_load(w)).sum();
     approx::assert_relative_eq!(-walls.y, weight, max_relative = 1e-3);

@@ -39,10 +39,9 @@
 //! with [`Block`], [`BlockMaterial`], [`DdaSettings`] and [`Prescribed`].
 
 use crate::dda::{Block, BlockMaterial, DdaModel, DdaSettings, PlaneState, Prescribed};
-use crate::dem::{
-    critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunStatus,
-};
+use crate::dem::DemSimulation;
 use crate::error::{require_positive, DismechError, Result};
+use crate::explicit::{critical_time_step, ContactTarget, DemSettings, RestCriterion, RunStatus};
 use crate::integrate::{ExplicitEuler, Newmark, Restarting};
 use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::law::{FrictionIntegration, PenaltyCoulomb};

@@ -13,8 +13,9 @@
 //! floor and right wall; the left wall a smooth plate pushed into the
 //! packing at unit speed; no weight (a c-material, as in paper 002).
 
-use crate::dem::{DemSettings, DemSimulation, RestCriterion, RunOutcome};
+use crate::dem::DemSimulation;
 use crate::error::Result;
+use crate::explicit::{DemSettings, RestCriterion, RunOutcome};
 use crate::integrate::ExplicitEuler;
 use crate::law::{RigidPlastic, SpringDashpotCoulomb};
 use crate::limit::{

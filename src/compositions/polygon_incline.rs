@@ -11,8 +11,9 @@
 //! at rest otherwise; the DEM should reproduce both up to the elastic
 //! compliance of its contacts.
 
-use crate::dem::{DemSettings, DemSimulation};
+use crate::dem::DemSimulation;
 use crate::error::{require_positive, Result};
+use crate::explicit::DemSettings;
 use crate::integrate::ExplicitEuler;
 use crate::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use crate::math::{perp, Point, Vec2};

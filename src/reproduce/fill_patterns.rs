@@ -11,8 +11,9 @@
 //! the top for `σ_v,max · h / H` to be a vertical stress, so it is read here
 //! as the depth.
 
-use dismech::dem::{ContactTarget, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
+use dismech::explicit::ContactTarget;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};

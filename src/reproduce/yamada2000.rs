@@ -13,8 +13,9 @@ use std::fmt::Write as _;
 
 use super::StudyOptions;
 use crate::reproduce::katsuki1990;
-use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
+use dismech::dem::DemSimulation;
 use dismech::error::Result;
+use dismech::explicit::{DemSettings, RunOutcome};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::RigidPlastic;
 use dismech::law::SpringDashpotCoulomb;

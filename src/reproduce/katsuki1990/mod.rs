@@ -34,10 +34,11 @@ pub use shape_anisotropy::{run_pattern, PatternRun};
 use std::path::Path;
 
 use super::StudyOptions;
-use dismech::dem::{
-    critical_time_step, ContactTarget, DemSettings, DemSimulation, RestCriterion, RunOutcome,
-};
+use dismech::dem::DemSimulation;
 use dismech::error::Result;
+use dismech::explicit::{
+    critical_time_step, ContactTarget, DemSettings, RestCriterion, RunOutcome,
+};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, Series};

@@ -34,8 +34,9 @@ use super::{equilibrium, settle_scene, FillEquilibrium};
 use crate::reproduce::fill_patterns::{
     particle_outlines, representative_k, same_mean_p_value, wall_pressures, WallPressure,
 };
-use dismech::dem::{DemSettings, DemSimulation, RunOutcome};
+use dismech::dem::DemSimulation;
 use dismech::error::Result;
+use dismech::explicit::{DemSettings, RunOutcome};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::output::plot::{line_chart, outline_picture, scatter_chart, ForceMark, Series};

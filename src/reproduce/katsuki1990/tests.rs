@@ -3,7 +3,7 @@
 //! equilibrium with their walls.
 
 use super::*;
-use dismech::dem::RunStatus;
+use dismech::explicit::RunStatus;
 
 #[test]
 fn filling_in_a_frame_carries_its_weight_on_the_walls() {
