@@ -8,8 +8,9 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dismech::broad_phase::CellGrid;
-use dismech::dem::{DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::DemSettings;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Aabb2, Point, SplitMix64, Vec2};

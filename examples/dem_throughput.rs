@@ -41,8 +41,9 @@
 use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use dismech::dem::{DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::DemSettings;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Pose2, Vec2};
 use dismech::scene::{Frame, Particle, Scene};

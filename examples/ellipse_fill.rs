@@ -5,7 +5,8 @@
 //!
 //! Run with `cargo run --release --example ellipse_fill`.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::dem::DemSimulation;
+use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};

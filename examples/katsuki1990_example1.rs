@@ -4,7 +4,8 @@
 //!
 //! Run with `cargo run --release --example katsuki1990_example1`.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::dem::DemSimulation;
+use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::SpringDashpotCoulomb;
 use dismech::math::{Point, Vec2};

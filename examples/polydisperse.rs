@@ -15,8 +15,9 @@
 use std::time::Instant;
 
 use clap::Parser;
-use dismech::dem::{DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::DemSettings;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Particle, Scene};

@@ -13,9 +13,10 @@
 //! | global solve | diagonal mass ([`crate::linsolve::LumpedSystem`]) | |
 //!
 //! The driver is generic: the same type runs polygons, a user's own law
-//! (with a stiffness bound) or a user's own explicit integrator.
-
-pub use crate::explicit::*;
+//! (with a stiffness bound) or a user's own explicit integrator. Its
+//! settings, rest criterion, outcomes and contact records are in
+//! [`crate::explicit`] ([`crate::explicit::DemSettings`],
+//! [`crate::explicit::RestCriterion`], [`crate::explicit::RunOutcome`], …).
 
 use crate::integrate::ExplicitEuler;
 

@@ -45,7 +45,8 @@
 //!
 //! ```no_run
 //! # fn main() -> dismech::error::Result<()> {
-//! use dismech::dem::{DemSettings, DemSimulation};
+//! use dismech::dem::DemSimulation;
+//! use dismech::explicit::DemSettings;
 //! use dismech::integrate::ExplicitEuler;
 //! use dismech::law::SpringDashpotCoulomb;
 //! use dismech::math::{Point, Vec2};
@@ -112,19 +113,21 @@
 //!
 //! ## Cross-compositions
 //!
-//! Combinations no single paper has, each a constructor in
-//! [`compositions`], checked in the tests and by `dismech reproduce
-//! compositions` against an exact solution or a second method:
+//! Combinations no single paper has, built from this library's pieces
+//! alone. Each is run as a fixed experiment (the `compositions` module of
+//! the `dismech-cli` package in `cli/`, no part of this library) by the
+//! tests and by `dismech reproduce compositions`, and checked against an
+//! exact solution or a second method:
 //!
-//! | composition | type or constructor | pieces | checked against |
-//! |---|---|---|---|
-//! | polygon DEM | [`compositions::polygon_incline::run_block_on_incline`] | [`shape::Polygon`] in the explicit driver, polygon–wall manifold (two points), [`law::SpringDashpotCoulomb`] with a constant `k_n`, rigid kinematics, [`integrate::ExplicitEuler`] | sliding at `g (sin β − μ cos β)`; sticking below `tan β = μ` |
-//! | polygon DEM vs DDA | [`compositions::block_wall::dem_vs_dda`] | the same running-bond wall by `ExplicitDynamics<SpringDashpotCoulomb, ExplicitEuler>` and by `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Restarting<Newmark>, SparseLu>` | base reaction = weight in both; the bottom course compared |
-//! | polygon LP | [`compositions::polygon_lp::block_limit`] | a [`shape::Polygon`] block in the limit driver, its corners as contact points, [`law::RigidPlastic`] unilateral friction, a live load, Clarabel | tipping `W w / 2h` or sliding `μ W` ([`reference::block_on_floor`]) |
-//! | packing LP | [`compositions::packing_lp::ellipse_packing_limit`] | ellipses settled by the explicit driver, then their bodies and manifolds in the limit driver ([`limit::model_from_packing`]) | equilibrium of the dual forces; primal = dual |
-//! | implicit ellipses | [`compositions::implicit_ellipses::settle`] | `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, Newmark, SparseLu>`: rigid ellipses and walls, smooth–smooth and smooth–edge gap variations, return-mapping Coulomb, Newmark β = 0.5625, γ = 1 with mass damping, at a requested step of 20 explicit limits (the search distance follows fast motion) | the walls carry the weight at rest |
-//! | affine disc | [`compositions::affine_disc::run_rolling_disc`] | a disc with DDA's six affine unknowns: `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>` on a smooth boundary | rolling at `(2/3) g sin β` ([`reference::incline::disc_acceleration`]) |
-//! | penalty vs LP | [`compositions::penalty_vs_lp::penalty_vs_lp`] | a [`limit::LimitModel`] of circles turned into `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, QuasiStatic, SparseLu>` with bonded contacts ([`law::PenaltyCoulomb::bonded_with_friction`]) and a prescribed plate | the plateau of the plate load against the LP's limit load |
+//! | composition | type or driver | pieces | checked against | experiment |
+//! |---|---|---|---|---|
+//! | polygon DEM | [`dem::DemSimulation`]`<SpringDashpotCoulomb>` | [`shape::Polygon`] in the explicit driver, polygon–wall manifold (two points), [`law::SpringDashpotCoulomb`] with a constant `k_n`, rigid kinematics, [`integrate::ExplicitEuler`] | sliding at `g (sin β − μ cos β)` ([`reference::incline`]); sticking below `tan β = μ` | `polygon_incline` |
+//! | polygon DEM vs DDA | `ExplicitDynamics<SpringDashpotCoulomb, ExplicitEuler>` and `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Restarting<Newmark>, SparseLu>` | the same running-bond wall of [`shape::Polygon`] blocks by both drivers | base reaction = weight in both; the bottom course compared | `block_wall` |
+//! | polygon LP | [`limit::analyse`] on a [`limit::LimitModel`] | a [`shape::Polygon`] block in the limit driver, its corners as contact points, [`law::RigidPlastic`] unilateral friction, a live load, Clarabel | tipping `W w / 2h` or sliding `μ W` ([`reference::block_on_floor`]) | `polygon_lp` |
+//! | packing LP | [`limit::model_from_packing`], then [`limit::analyse`] | ellipses settled by the explicit driver, then their bodies and manifolds in the limit driver | equilibrium of the dual forces; primal = dual | `packing_lp` |
+//! | implicit ellipses | `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, Newmark, SparseLu>` | rigid ellipses and walls, smooth–smooth and smooth–edge gap variations, return-mapping Coulomb, Newmark β = 0.5625, γ = 1 with mass damping, at a requested step of 20 explicit limits (the search distance follows fast motion) | the walls carry the weight at rest | `implicit_ellipses` |
+//! | affine disc | `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>` | a disc with DDA's six affine unknowns on a smooth boundary | rolling at `(2/3) g sin β` ([`reference::incline::disc_acceleration`]) | `affine_disc` |
+//! | penalty vs LP | `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, QuasiStatic, SparseLu>` against [`limit::analyse`] | a [`limit::LimitModel`] of circles turned into bodies with bonded contacts ([`law::PenaltyCoulomb::bonded_with_friction`]) and a prescribed plate | the plateau of the plate load against the LP's limit load | `penalty_vs_lp` |
 //!
 //! ```no_run
 //! # fn main() -> dismech::error::Result<()> {
@@ -183,8 +186,11 @@
 //! 5. **Assembly / solve**: force sums into `M a = f`, a sparse system on
 //!    a reused pattern ([`linsolve`]), or an LP ([`lp`]).
 //! 6. **Integrator**: advance the state ([`integrate`]).
-//! 7. **Outputs** ([`output`]): CSV, SVG plots, `summary.json`, all written
-//!    whole or not at all.
+//! 7. **Outputs**: files written whole or not at all
+//!    ([`io::write_atomically`]; the grids' writer in [`grid`]). The
+//!    reports of the reproductions (CSV tables, SVG plots,
+//!    `summary.json`) are the `dismech` command's, in the `dismech-cli`
+//!    package.
 //!
 //! ## Conventions
 //! SI units (m, kg, s, N, Pa); 2D quantities are per metre of thickness.
@@ -200,13 +206,20 @@
 //! closed forms, an independent ellipse contact, a block tipping or sliding
 //! on a floor) that tests, examples and the reproductions check the
 //! methods against. The reproductions of the papers are clients of this
-//! library, in the `dismech` binary (`dismech reproduce all`): they build
-//! their scenes from these pieces, run them and compare with each paper.
+//! library, in the `dismech` binary of the `dismech-cli` package
+//! (`dismech reproduce all`): they build their scenes from these pieces,
+//! run them and compare with each paper.
 
 #![deny(missing_docs)]
 
+/// The linear algebra of the public API ([`math::Vec2`], [`math::Point`],
+/// the `SVector` and `SMatrix` of a contact law's input, force and
+/// tangent), re-exported so that a model or a law of one's own names these
+/// types as `dismech::nalgebra::…` without a second dependency pinned to
+/// the same version.
+pub use nalgebra;
+
 pub mod broad_phase;
-pub mod compositions;
 pub mod dda;
 pub mod dem;
 pub mod error;
@@ -215,13 +228,13 @@ pub mod grid;
 pub mod hpm;
 pub mod implicit;
 pub mod integrate;
+pub mod io;
 pub mod kinematics;
 pub mod law;
 pub mod limit;
 pub mod linsolve;
 pub mod lp;
 pub mod math;
-pub mod output;
 pub mod query;
 pub mod reference;
 pub mod scene;

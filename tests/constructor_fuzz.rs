@@ -13,8 +13,9 @@ use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
     Prescribed, StepStatus,
 };
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::grid::Raster;
 use dismech::hpm::{
     hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,

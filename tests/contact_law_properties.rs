@@ -7,10 +7,10 @@ use dismech::law::{
     SpringState, StrengthLaw, TangentLaw,
 };
 use dismech::math::{rotate, Point, Pose2, Vec2};
+use dismech::nalgebra::Vector2;
 use dismech::query::manifold::dispatch::contact_2d;
 use dismech::query::relative_increment;
 use dismech::shape::{AnyShape2, Circle};
-use nalgebra::Vector2;
 use proptest::prelude::*;
 
 fn law(constant: bool, damping: bool, mu: f64) -> SpringDashpotCoulomb {

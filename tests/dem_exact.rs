@@ -1,7 +1,8 @@
 //! Exact two-body checks of the explicit DEM and bad-input handling.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
@@ -366,7 +367,8 @@ fn unstable_run_is_stopped_by_the_energy_watch() {
 /// and ran to the time limit.
 #[test]
 fn scenes_that_release_no_energy_can_be_at_rest() {
-    use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+    use dismech::dem::DemSimulation;
+    use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
     use dismech::integrate::ExplicitEuler;
     use dismech::law::SpringDashpotCoulomb;
     use dismech::math::{Point, Vec2};
@@ -459,7 +461,7 @@ fn run_not_at_rest_above_the_packed_stable_limit_names_the_time_step() {
     };
     let outcome = run(0.99).unwrap();
     println!("{outcome:?}");
-    assert_eq!(outcome.status, dismech::dem::RunStatus::TimeLimit);
+    assert_eq!(outcome.status, dismech::explicit::RunStatus::TimeLimit);
     assert!(outcome.most_contacts >= 2);
     assert!(outcome.dt_over_packed_estimate().unwrap() > 1.0);
     let hint = outcome.not_at_rest_hint().unwrap();
@@ -467,7 +469,7 @@ fn run_not_at_rest_above_the_packed_stable_limit_names_the_time_step() {
     assert!(hint.contains("time step is 0.99"), "{hint}");
     let settled = run(0.6).unwrap();
     println!("{settled:?}");
-    assert_eq!(settled.status, dismech::dem::RunStatus::AtRest);
+    assert_eq!(settled.status, dismech::explicit::RunStatus::AtRest);
     assert!(settled.not_at_rest_hint().is_none());
 }
 

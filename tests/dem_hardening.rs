@@ -1,8 +1,9 @@
 //! Hostile DEM inputs: time steps the clock cannot take, runs without an
 //! end, states written into public fields, a skin that lists every pair.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};

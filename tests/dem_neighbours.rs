@@ -4,7 +4,8 @@
 //! the last bit; the same scene renumbered for locality ends in the same
 //! state to round-off (the sums run in another order).
 
-use dismech::dem::{ContactRecord, ContactTarget, DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
+use dismech::explicit::{ContactRecord, ContactTarget, DemSettings};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};

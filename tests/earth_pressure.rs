@@ -3,8 +3,9 @@
 //! start overlapping is refused, and a particle pushed out of the frame
 //! stops the run.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};

@@ -1,7 +1,8 @@
 //! Ellipse contact: geometry properties, robustness against an
 //! independent reference, and exact resting states in the DEM.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+use dismech::dem::DemSimulation;
+use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{rotate, Point, Pose2, Vec2};

@@ -280,7 +280,8 @@ fn limit_model_bad_input_is_a_typed_error() {
 /// the DEM's mass and positions.
 #[test]
 fn settled_disc_converted_from_dem_needs_the_exact_push() {
-    use dismech::dem::{DemSettings, DemSimulation, RestCriterion};
+    use dismech::dem::DemSimulation;
+    use dismech::explicit::{DemSettings, RestCriterion};
     use dismech::integrate::ExplicitEuler;
     use dismech::limit::{model_from_packing, PackingLimitSettings};
     use dismech::scene::{Frame, Scene};

@@ -1,10 +1,8 @@
-//! Polygons in the explicit DEM: exact rests and the block on an incline.
+//! Polygons in the explicit DEM: exact rests, refusals, the stable step and a settled pile.
 
-use dismech::compositions::polygon_incline::{
-    incline_slide_ratio, incline_stick_displacement, run_block_on_incline, BlockOnIncline,
-};
-use dismech::dem::{critical_time_step, ContactTarget, DemSettings, DemSimulation};
+use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::{critical_time_step, ContactTarget, DemSettings};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
@@ -117,29 +115,6 @@ fn disc_and_ellipse_resting_on_a_rectangle_load_the_floor_with_both_weights() {
         let top = &sim.scene().particles[1];
         approx::assert_relative_eq!(carried, top.mass * G, max_relative = 1e-6);
     }
-}
-
-#[test]
-fn rectangle_on_a_40_degree_incline_slides_at_the_coulomb_acceleration() {
-    let ratio = incline_slide_ratio().unwrap();
-    eprintln!("measured / exact acceleration on 40°, mu = tan 30°: {ratio:.6}");
-    assert!((ratio - 1.0).abs() < 0.01, "ratio {ratio}");
-}
-
-#[test]
-fn rectangle_on_a_20_degree_incline_sticks() {
-    let moved = incline_stick_displacement().unwrap();
-    eprintln!("displacement in 1 s on 20°, mu = tan 30°: {moved:.3e} of the block length");
-    assert!(moved < 1e-4, "moved {moved} of its length");
-}
-
-#[test]
-fn sliding_block_keeps_its_two_contact_points_and_does_not_tip() {
-    let run = run_block_on_incline(&BlockOnIncline::default()).unwrap();
-    // v²/2 = a s from rest: the displacement agrees with the acceleration.
-    let expected = 0.5 * run.exact_acceleration * 1.0;
-    assert!((run.displacement - expected).abs() < 0.01 * expected + 1e-3);
-    assert!(run.rotation.abs() < 1e-4, "rotation {}", run.rotation);
 }
 
 #[test]
@@ -265,9 +240,9 @@ fn pile_of_random_polygons_and_discs_settles_with_the_walls_carrying_its_weight(
     )
     .unwrap();
     let outcome = sim
-        .run_to_rest(&dismech::dem::RestCriterion::default(), |_, _| {})
+        .run_to_rest(&dismech::explicit::RestCriterion::default(), |_, _| {})
         .unwrap();
-    assert_eq!(outcome.status, dismech::dem::RunStatus::AtRest);
+    assert_eq!(outcome.status, dismech::explicit::RunStatus::AtRest);
     let weight = sim.scene().total_weight();
     let walls: Vec2 = (0..3).map(|w| sim.wall_load(w)).sum();
     approx::assert_relative_eq!(-walls.y, weight, max_relative = 1e-3);

@@ -33,7 +33,7 @@ use std::path::Path;
 
 use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
-use crate::output::write_atomically;
+use crate::io::write_atomically;
 
 fn format_error(
     file: &str,

@@ -12,7 +12,7 @@
 //! ```
 //! use dismech::law::{conformance, ContactInput, PairProperties, PenaltyCoulomb,
 //!                    FrictionIntegration, PenaltyState};
-//! use nalgebra::Vector2;
+//! use dismech::nalgebra::Vector2;
 //! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping).unwrap();
 //! let input = ContactInput { overlap: 1e-4, increment: Vector2::new(1e-5, 2e-5), dt: 1e-3,
 //!                            is_new: false, pair: PairProperties::rigid() };

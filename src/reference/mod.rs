@@ -4,8 +4,8 @@
 //!
 //! | reference | answer | checks |
 //! |---|---|---|
-//! | [`incline`] | a rigid block sliding down a frictional slope, `g (sin β − μ cos β)`, or at rest; a disc rolling, `(2/3) g sin β` | the polygon DEM ([`crate::compositions::polygon_incline`]); the affine DDA disc ([`crate::compositions::affine_disc`]) |
-//! | [`block_on_floor`] | horizontal load that rocks or slides a rigid block on a frictional floor, `W min(μ, w/2h)` | the LP limit analysis of a polygon ([`crate::compositions::polygon_lp`]) |
+//! | [`incline`] | a rigid block sliding down a frictional slope, `g (sin β − μ cos β)`, or at rest; a disc rolling, `(2/3) g sin β` | the polygon DEM and the affine DDA disc (the `polygon_incline` and `affine_disc` cross-compositions) |
+//! | [`block_on_floor`] | horizontal load that rocks or slides a rigid block on a frictional floor, `W min(μ, w/2h)` | the LP limit analysis of a polygon (the `polygon_lp` cross-composition) |
 //! | [`sliding_block`] | rigid block on a shaken base, Coulomb friction (Newmark 1965), and the same block on an elastic–plastic shear spring | DDA (paper 003) |
 //! | [`planar_slab`] | Fs of a slab on a planar slip surface by global equilibrium, `(cA + W(cos β − k_h sin β) tan φ) / (W(sin β + k_h cos β))` | HPM and Hovland (paper 001) |
 //! | [`two_elements`](mod@two_elements) | limit load `(1 + √2) C` of paper 002's two-element example | the LP limit analysis |

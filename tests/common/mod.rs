@@ -1,6 +1,7 @@
 //! Helpers shared by the DEM test files.
 
-use dismech::dem::{DemSettings, DemSimulation, RestCriterion, RunStatus};
+use dismech::dem::DemSimulation;
+use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{BoundedStiffness, ContactLaw};
 use dismech::scene::Scene;
