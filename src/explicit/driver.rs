@@ -962,3 +962,36 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::check_memory;
+    use crate::error::DismechError;
+    use crate::law::SpringState;
+
+    /// The memory of a DEM is asked of the allocator before it is taken:
+    /// a scene whose bytes exceed the address space, or that the system
+    /// cannot give (10^15 particles, some 500 PB), is refused as
+    /// `OutOfMemory` naming its size; an ordinary one passes.
+    #[test]
+    fn memory_the_system_cannot_give_is_refused_before_it_is_taken() {
+        assert!(check_memory::<SpringState<2>>(1000).is_ok());
+        for (n, says) in [
+            (1_000_000_000_000_000usize, "the system refused the memory"),
+            (usize::MAX, "more than the address space"),
+        ] {
+            match check_memory::<SpringState<2>>(n) {
+                Err(DismechError::OutOfMemory {
+                    what,
+                    bytes,
+                    advice,
+                }) => {
+                    assert!(what.contains(&n.to_string()), "{what}");
+                    assert!(bytes >= n as u128 * 100, "{bytes}");
+                    assert!(advice.contains(says), "{advice}");
+                }
+                other => panic!("{n} particles: {other:?}"),
+            }
+        }
+    }
+}
