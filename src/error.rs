@@ -475,6 +475,33 @@ pub enum DismechError {
         /// counts ([`crate::hpm::MIN_DRIVING_RATIO`]).
         ratio: f64,
     },
+    /// A safety factor asked of a slide whose slip surface has no strength
+    /// left: its strength `Σ (c + σ tan φ) A` is not positive, because the
+    /// load puts the surface in tension beyond the apex of its
+    /// Mohr–Coulomb law (σ < −c / tan φ, where `c + σ tan φ` is negative)
+    /// over so much of it (a large seismic coefficient), or is so small
+    /// beside the driving force that their ratio is zero. A zero or
+    /// negative ratio of resisting to driving forces is no factor of
+    /// safety: the slide is lifted off the surface there, not sheared
+    /// along it.
+    #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
+    SlipSurfaceInTension {
+        /// Which safety factor, and along which direction.
+        what: String,
+        /// The slip surface's strength `Σ (c + σ tan φ) A` (N).
+        strength: f64,
+        /// The driving force it is set against (N).
+        driving: f64,
+        /// Grid cells `(row, column)` of the columns where the strength
+        /// `c + σ tan φ` is negative under some part of the base, in the
+        /// order of [`crate::hpm::HpmModel::columns`].
+        cells: Vec<(usize, usize)>,
+        /// Columns of the model.
+        columns: usize,
+        /// Share of the slip surface's area where the strength is negative,
+        /// in [0, 1].
+        area_share: f64,
+    },
     /// A limit analysis without a limit load was asked for one.
     #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
     NoLimitLoad {
@@ -542,6 +569,27 @@ impl std::fmt::Display for Bytes {
             write!(f, "{:.1} MiB", b / (1024.0 * 1024.0))
         }
     }
+}
+
+/// ` (grid cells (row, column) (r, c), …)` naming the first few of
+/// `cells`, or nothing.
+fn cell_list(cells: &[(usize, usize)]) -> String {
+    const SHOWN: usize = 6;
+    if cells.is_empty() {
+        return String::new();
+    }
+    let mut text = String::from(" (grid cells (row, column) ");
+    let shown: Vec<String> = cells
+        .iter()
+        .take(SHOWN)
+        .map(|(r, c)| format!("({r}, {c})"))
+        .collect();
+    text.push_str(&shown.join(", "));
+    if cells.len() > SHOWN {
+        text.push_str(&format!(" and {} more", cells.len() - SHOWN));
+    }
+    text.push(')');
+    text
 }
 
 /// Shorthand for results with [`DismechError`].

@@ -463,10 +463,12 @@ fn slope_case() -> impl Strategy<Value = SlopeCase> {
 }
 
 /// Build a slab on a dipping plane and analyse it (elastic HPM and
-/// Hovland): `Err` is a typed refusal; a safety factor returned is finite.
-/// (It may be negative: a seismic load that puts the slip surface in
-/// tension beyond `c / tan φ` leaves a negative strength, the formula's
-/// sign of a surface already failed.)
+/// Hovland): `Err` is a typed refusal; a safety factor returned is finite
+/// and positive, and one that is not given is refused because nothing
+/// drives the slide ([`DismechError::NothingDrivesSliding`]) or because
+/// the slip surface has no strength left
+/// ([`DismechError::SlipSurfaceInTension`]: a seismic load that puts it in
+/// tension beyond `c / tan φ`, where the ratio used to come out negative).
 fn run_slope(case: &SlopeCase) -> Result<bool, DismechError> {
     let slope = case.dip_deg.to_radians().tan();
     let raster = |offset: f64| {
@@ -489,13 +491,31 @@ fn run_slope(case: &SlopeCase) -> Result<bool, DismechError> {
         direction_deg: case.direction_deg,
     };
     let elastic = HpmSolver::new(&model)?.elastic(&model, &seismic)?;
-    if let Ok(fs) = elastic.safety_factor(&model) {
-        assert!(fs.is_finite(), "HPM Fs {fs}");
+    for (name, fs) in [
+        ("HPM stress ratio", elastic.safety_factor(&model)),
+        (
+            "HPM along the sliding direction",
+            elastic.sliding_safety_factor(&model),
+        ),
+        (
+            "Hovland",
+            hovland(&model, &seismic, case.direction_deg).map(|h| h.safety_factor),
+        ),
+    ] {
+        match fs {
+            Ok(fs) => assert!(fs.is_finite() && fs > 0.0, "{name} Fs {fs}"),
+            Err(
+                DismechError::NothingDrivesSliding { .. }
+                | DismechError::SlipSurfaceInTension { .. },
+            ) => {}
+            Err(other) => panic!("{name}: {other:?}"),
+        }
     }
-    if let Ok(h) = hovland(&model, &seismic, case.direction_deg) {
-        let fs = h.safety_factor;
-        assert!(fs.is_finite(), "Hovland Fs {fs}");
-    }
+    let local = elastic.local_safety_factors(&model);
+    assert!(
+        local.iter().all(|f| *f >= 0.0),
+        "a negative local Fs: {local:?}"
+    );
     Ok(true)
 }
 
@@ -571,7 +591,7 @@ fn limit_constructors_and_analyses_never_panic() {
 }
 
 /// Any slab over a dipping plane is analysed (HPM, Hovland) or refused
-/// with a message; every safety factor returned is finite.
+/// with a message; every safety factor returned is finite and positive.
 #[test]
 fn slope_constructors_and_analyses_never_panic() {
     let reach = fuzz(slope_case(), run_slope);

@@ -647,9 +647,98 @@ fn seismic_coefficient_above_ten_is_refused() {
             "{err}"
         );
     }
-    let ten = Seismic {
+    // k_h = 10 itself is accepted: up the slope the slab is pressed on
+    // its slip surface and Hovland's Fs is positive; towards the toe it is
+    // lifted off, and the refusal is for that, not for the coefficient.
+    let ten = |direction_deg| Seismic {
         coefficient: MAX_SEISMIC_COEFFICIENT,
+        direction_deg,
+    };
+    let up = hovland(&m, &ten(90.0), 90.0).unwrap().safety_factor;
+    assert!(up.is_finite() && up > 0.0, "{up}");
+    assert!(matches!(
+        hovland(&m, &ten(270.0), 270.0),
+        Err(DismechError::SlipSurfaceInTension { .. })
+    ));
+}
+
+/// A seismic load that lifts the slide off its slip surface, beyond the
+/// apex `σ = −c / tan φ` of its Mohr–Coulomb strength: k_h = 5 towards the
+/// toe of a slab on a plane dipping 20° gives every column a normal force
+/// `N = W (cos β − k_h sin β) = −0.77 W`, and the strength
+/// `c A + N tan φ` of each is negative. Hovland's Fs was −0.052 and the
+/// elastic HPM's stress ratio negative too, returned as safety factors;
+/// now each is refused naming the columns and their share of the area.
+#[test]
+fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
+    let m = model(3, 4, 20.0, 5.0);
+    let kh = 5.0;
+    let seismic = Seismic {
+        coefficient: kh,
         direction_deg: 270.0,
     };
-    assert!(hovland(&m, &ten, 270.0).is_ok());
+    let material = HpmMaterial::paper();
+    let beta = 20f64.to_radians();
+    let (w, a) = (m.total_weight(), 1200.0 / beta.cos());
+    let resisting =
+        material.cohesion * a + w * (beta.cos() - kh * beta.sin()) * material.friction();
+    let driving = w * (beta.sin() + kh * beta.cos());
+    assert!(resisting < 0.0, "{resisting}");
+    let every_cell: Vec<(usize, usize)> = m.columns.iter().map(|c| c.cell).collect();
+    assert_eq!(every_cell.len(), 12);
+    let tension = |result: Result<f64, DismechError>| match result {
+        Err(DismechError::SlipSurfaceInTension {
+            strength,
+            driving,
+            cells,
+            columns,
+            area_share,
+            ..
+        }) => (strength, driving, cells, columns, area_share),
+        other => panic!("{other:?}"),
+    };
+
+    // Hovland: the exact slab, every column lifted.
+    let (strength, hov_driving, cells, columns, share) =
+        tension(hovland(&m, &seismic, 270.0).map(|h| h.safety_factor));
+    assert!((strength / resisting - 1.0).abs() < 1e-9, "{strength}");
+    assert!((hov_driving / driving - 1.0).abs() < 1e-9, "{hov_driving}");
+    assert_eq!((cells, columns), (every_cell.clone(), 12));
+    assert!((share - 1.0).abs() < 1e-12, "{share}");
+    let text = hovland(&m, &seismic, 270.0).unwrap_err().to_string();
+    for words in [
+        "tension beyond c / tan φ",
+        "under 12 of 12 columns",
+        "over 100.0 % of its area",
+        "k_h",
+        "(0, 0)",
+    ] {
+        assert!(text.contains(words), "{words}: {text}");
+    }
+
+    // Elastic HPM: its springs carry the tension; both global ratios are
+    // refused, the local ones are 0 where the strength is not positive.
+    let elastic = HpmSolver::new(&m).unwrap().elastic(&m, &seismic).unwrap();
+    assert!(elastic.convergence.converged());
+    for result in [
+        elastic.safety_factor(&m),
+        elastic.sliding_safety_factor(&m),
+        elastic.safety_factor_along(&m, (0.0, -1.0)),
+    ] {
+        let (strength, driving, cells, columns, share) = tension(result);
+        assert!(strength <= 0.0 && driving > 0.0, "{strength} {driving}");
+        assert!(!cells.is_empty() && columns == 12, "{cells:?}");
+        assert!(share > 0.5 && share <= 1.0, "{share}");
+    }
+    let local = elastic.local_safety_factors(&m);
+    assert!(local.iter().all(|f| *f >= 0.0), "{local:?}");
+    assert!(local.contains(&0.0), "{local:?}");
+
+    // Below the apex the same slab has a positive Fs (k_h = 1: N > 0).
+    let one = Seismic {
+        coefficient: 1.0,
+        direction_deg: 270.0,
+    };
+    let fs = hovland(&m, &one, 270.0).unwrap().safety_factor;
+    assert!(fs > 0.0 && fs.is_finite(), "{fs}");
 }

@@ -69,6 +69,21 @@
 //! driving force and the weight. The local factors
 //! ([`HpmResult::local_safety_factors`]) stay the stress ratio of each
 //! column, a measure of the strength mobilised there.
+//!
+//! **Tension.** The strength `c + σ tan φ` of Mohr–Coulomb has its apex at
+//! `σ = −c / tan φ`; the elastic analysis' linear slip springs carry any
+//! tension, and beyond the apex their term in `Σ (c + σ tan φ) A` is
+//! negative. The sum is kept as the definition reads (the paper's slopes
+//! have such springs under the crest, statically too: 3 % of the
+//! representative slope's springs, whose Fs the reproduction compares
+//! with the paper's), but where it is not positive, as under a seismic
+//! coefficient that lifts the slide off the surface, the ratio would be
+//! zero or negative, which is no factor of safety: every Fs is refused
+//! there with [`DismechError::SlipSurfaceInTension`], naming the columns
+//! in tension beyond the apex and their share of the area (Hovland's Fs
+//! likewise, column by column). A local factor is 0 where the column's
+//! strength is not positive. The nonlinear analysis' springs carry no
+//! tension, so its strength is at least `c A`.
 
 use nalgebra::Vector3;
 
@@ -145,27 +160,89 @@ impl NonlinearSettings {
 /// solve's residual, at most its tolerance, 1e-6 by default) alone.
 pub const MIN_DRIVING_RATIO: f64 = 1e-6;
 
-/// The safety factor `resisting / driving` of a slide of weight `weight`,
-/// or [`DismechError::NothingDrivesSliding`] (naming the forces as
-/// `what()` says) where the driving force is not above
-/// [`MIN_DRIVING_RATIO`] of the weight (`>` is false for NaN: a NaN driving
-/// force drives nothing) or so small beside the resisting one that the
-/// ratio overflows (a unit weight of 1e-308).
+/// Where the slip surface is in tension beyond `c / tan φ`, the apex of
+/// its Mohr–Coulomb strength (`c + σ tan φ < 0`).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Tension {
+    /// Grid cells of the columns with a negative strength under some part
+    /// of the base.
+    pub cells: Vec<(usize, usize)>,
+    /// Columns of the model.
+    pub columns: usize,
+    /// Share of the slip surface's area with a negative strength.
+    pub area_share: f64,
+}
+
+impl Tension {
+    /// The columns (grid cells) and the share of the area where a part of
+    /// the base, `(column, area, strength)` for each part, has a negative
+    /// strength.
+    pub(super) fn of(model: &HpmModel, parts: impl Iterator<Item = (usize, f64, f64)>) -> Self {
+        let mut lifted = vec![false; model.columns.len()];
+        let (mut total, mut negative) = (0.0, 0.0);
+        for (column, area, strength) in parts {
+            total += area;
+            if strength < 0.0 {
+                negative += area;
+                lifted[column] = true;
+            }
+        }
+        Self {
+            cells: model
+                .columns
+                .iter()
+                .zip(&lifted)
+                .filter(|(_, l)| **l)
+                .map(|(c, _)| c.cell)
+                .collect(),
+            columns: model.columns.len(),
+            area_share: if total > 0.0 { negative / total } else { 0.0 },
+        }
+    }
+}
+
+/// The safety factor `resisting / driving` of a slide of weight `weight`.
+///
+/// # Errors
+/// [`DismechError::NothingDrivesSliding`] (naming the forces as `what()`
+/// says) where the driving force is not above [`MIN_DRIVING_RATIO`] of the
+/// weight (`>` is false for NaN: a NaN driving force drives nothing) or so
+/// small beside the resisting one that the ratio overflows (a unit weight
+/// of 1e-308); else [`DismechError::SlipSurfaceInTension`] (naming where,
+/// as `tension()` says) where the ratio is not positive: the resisting
+/// strength `Σ (c + σ tan φ) A` is zero or negative (the surface in
+/// tension beyond `c / tan φ`), or so small that the ratio underflows.
 pub(super) fn resisting_over_driving(
     resisting: f64,
     driving: f64,
     weight: f64,
     what: impl FnOnce() -> String,
+    tension: impl FnOnce() -> Tension,
 ) -> Result<f64> {
     let ratio = resisting / driving;
-    if driving > MIN_DRIVING_RATIO * weight && ratio.is_finite() {
-        Ok(ratio)
-    } else {
-        Err(DismechError::NothingDrivesSliding {
+    if !(driving > MIN_DRIVING_RATIO * weight && ratio.is_finite()) {
+        return Err(DismechError::NothingDrivesSliding {
             what: what(),
             driving,
             weight,
             ratio: MIN_DRIVING_RATIO,
+        });
+    }
+    if ratio > 0.0 {
+        Ok(ratio)
+    } else {
+        let Tension {
+            cells,
+            columns,
+            area_share,
+        } = tension();
+        Err(DismechError::SlipSurfaceInTension {
+            what: what(),
+            strength: resisting,
+            driving,
+            cells,
+            columns,
+            area_share,
         })
     }
 }
@@ -607,6 +684,10 @@ impl HpmResult {
     /// slide's weight (a level slip surface without seismic load): the
     /// springs' `|τ|` are then the squeeze of the soil on the surface, not
     /// a push that strength resists, and Hovland's Fs is infinite.
+    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength
+    /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
+    /// `c / tan φ`, as under a large seismic coefficient), so that the
+    /// ratio would be zero or negative.
     pub fn safety_factor(&self, model: &HpmModel) -> Result<f64> {
         let what = "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A";
         self.driven(model, what)?;
@@ -616,6 +697,21 @@ impl HpmResult {
             den.iter().sum(),
             model.total_weight(),
             || format!("{what}: the slip springs' shear, Σ|τ|A"),
+            || self.tension(model),
+        )
+    }
+
+    /// Where the slip springs' strength `c + σ tan φ` is negative: the
+    /// columns and the share of the slip surface's area.
+    fn tension(&self, model: &HpmModel) -> Tension {
+        let (c, mu) = (model.material.cohesion, model.material.friction());
+        Tension::of(
+            model,
+            model
+                .slip
+                .iter()
+                .zip(&self.tractions)
+                .map(|(s, t)| (s.column, s.point.point.area, c + t.normal * mu)),
         )
     }
 
@@ -670,8 +766,9 @@ impl HpmResult {
     /// [`DismechError::NothingDrivesSliding`] when there is no sliding
     /// direction (the springs' resultant shear force has no horizontal part
     /// above [`MIN_DRIVING_RATIO`] of the weight), or the shear along it is
-    /// not above that share of the weight (see
-    /// [`HpmResult::safety_factor_along`]).
+    /// not above that share of the weight;
+    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength is
+    /// not positive (see [`HpmResult::safety_factor_along`]).
     pub fn sliding_safety_factor(&self, model: &HpmModel) -> Result<f64> {
         let plan = self.driven(
             model,
@@ -689,7 +786,10 @@ impl HpmResult {
     /// is zero; [`DismechError::NothingDrivesSliding`] when the driving
     /// shear `Σ (τ · d_i) A` is not above [`MIN_DRIVING_RATIO`] of the
     /// slide's weight: nothing pushes the slide that way (a direction up
-    /// the slope gives a negative one).
+    /// the slope gives a negative one);
+    /// [`DismechError::SlipSurfaceInTension`] when the strength
+    /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
+    /// `c / tan φ`), naming the columns where it is negative.
     pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> Result<f64> {
         let length = plan.0.hypot(plan.1);
         if !(length.is_finite() && length > 0.0) {
@@ -711,22 +811,40 @@ impl HpmResult {
             num += (c + t.normal * mu) * a;
             den += shear_vector(s, t).dot(&along) * a;
         }
-        resisting_over_driving(num, den, model.total_weight(), || {
-            format!(
+        resisting_over_driving(
+            num,
+            den,
+            model.total_weight(),
+            || {
+                format!(
                 "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
                 plan.0 / length,
                 plan.1 / length
             )
-        })
+            },
+            || self.tension(model),
+        )
     }
 
     /// Local safety factor of each column (same ratio over its springs);
-    /// infinite where the springs carry no shear.
+    /// 0 where the column's strength `Σ (c + σ tan φ) A` is not positive
+    /// (its base in tension beyond `c / tan φ`, as the elastic analysis'
+    /// linear springs allow: nothing is left there to resist, and a
+    /// negative ratio is no factor of safety), infinite where the springs
+    /// carry no shear.
     pub fn local_safety_factors(&self, model: &HpmModel) -> Vec<f64> {
         let (num, den) = self.strength_and_shear(model);
         num.iter()
             .zip(&den)
-            .map(|(n, d)| if *d > 0.0 { n / d } else { f64::INFINITY })
+            .map(|(n, d)| {
+                if *n <= 0.0 {
+                    0.0
+                } else if *d > 0.0 {
+                    n / d
+                } else {
+                    f64::INFINITY
+                }
+            })
             .collect()
     }
 

@@ -48,8 +48,11 @@
 //! by default; the `(s, t, n)` frame made orthonormal; the global safety
 //! factor, as the stress ratio `Σ (c + σ tan φ) A / Σ |τ| A` and, after
 //! Hovland's assumption of one sliding direction, as
-//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`); corner heights
-//! interpolated from the cell-centre values of the rasters.
+//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`), each refused
+//! where nothing drives the slide or where its strength
+//! `Σ (c + σ tan φ) A` is not positive (the surface in tension beyond
+//! `c / tan φ`); corner heights interpolated from the cell-centre values
+//! of the rasters.
 
 mod analysis;
 mod conditioning;
