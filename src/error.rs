@@ -431,10 +431,11 @@ pub enum DismechError {
         /// The largest number of elements accepted.
         limit: usize,
     },
-    /// An HPM model whose elements, springs and stiffness would take more
-    /// memory than [`crate::hpm::MAX_HPM_MODEL_BYTES`]; refused before any
-    /// of it is allocated.
-    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes for its elements, springs, stiffness and solution vectors, more than the budget of {budget} bytes; use fewer layers, or crop or coarsen the grid")]
+    /// An HPM model that, with what its linear solver adds, would take
+    /// more memory than its budget ([`crate::hpm::HpmSettings::memory_budget`])
+    /// or, with no budget set, than the system's allocator gives; refused
+    /// before that memory is taken.
+    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes ({}) for {what}, {}", Bytes(*bytes), over_budget(*budget))]
     HpmModelTooLarge {
         /// Valid columns of the grid.
         columns: usize,
@@ -442,10 +443,17 @@ pub enum DismechError {
         layers: usize,
         /// Their exact product.
         elements: u128,
-        /// The memory the model would take ([`crate::hpm::HpmModel::memory_estimate`]).
+        /// What the bytes count: the model
+        /// ([`crate::hpm::HpmModel::memory_estimate`]) and the part of the
+        /// linear solver being made (for the sparse Cholesky, the entries
+        /// of its factor once the symbolic analysis has counted them).
+        what: String,
+        /// The memory counted.
         bytes: u128,
-        /// The largest memory accepted.
-        budget: u64,
+        /// The budget it is over ([`crate::hpm::HpmSettings::memory_budget`]);
+        /// `None` where no budget was set and the system's allocator
+        /// refused the memory.
+        budget: Option<u64>,
     },
     /// A grid too small for a grid-column slope analysis: the corner
     /// heights and the slopes of the surfaces are interpolated between cell
@@ -568,6 +576,17 @@ impl std::fmt::Display for Bytes {
         } else {
             write!(f, "{:.1} MiB", b / (1024.0 * 1024.0))
         }
+    }
+}
+
+/// Why the memory of an HPM model is refused and what to change.
+fn over_budget(budget: Option<u64>) -> String {
+    match budget {
+        Some(budget) => format!(
+            "more than its memory budget HpmSettings::memory_budget = {budget} bytes ({}); raise HpmSettings::memory_budget where the machine has the memory (None asks the system), or use fewer layers, or crop or coarsen the grid",
+            Bytes(u128::from(budget))
+        ),
+        None => "more than the system's allocator gives (HpmSettings::memory_budget is None, so the system was asked); use fewer layers, crop or coarsen the grid, or run on a machine with more memory".into(),
     }
 }
 

@@ -196,8 +196,9 @@ mod tests {
             columns: 1,
             layers: usize::MAX,
             elements: u128::from(u64::MAX),
+            what: "its elements".into(),
             bytes: u128::MAX,
-            budget: 1,
+            budget: Some(1),
         };
         assert_eq!(Exit::of_error(&large), Exit::BadInput);
         let small = DismechError::GridTooSmall {

@@ -333,25 +333,82 @@ pub struct HpmResult {
 pub struct HpmSolver<S = SparseCholesky> {
     stiffness: BlockMatrix,
     solver: S,
+    /// The bytes the model's memory budget was checked against.
+    memory_estimate: Option<u128>,
 }
 
 /// HPM analyses by preconditioned conjugate gradients.
 pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
 
+/// What the sparse Cholesky solver adds to the model, for a refusal.
+fn cholesky_parts(factor: Option<usize>) -> String {
+    let factor = match factor {
+        Some(entries) => format!("its factor of {entries} entries with faer's workspace"),
+        None => "the workspace of its ordering (its factor's fill comes on top)".into(),
+    };
+    format!(
+        "{}, and the sparse Cholesky solver's compressed lower triangle and {factor} (HpmSolver::iterative, conjugate gradients, needs no factor)",
+        super::model::MODEL_PARTS
+    )
+}
+
 impl HpmSolver<SparseCholesky> {
     /// Assemble the elastic stiffness of `model` and factorise it
-    /// (sparse Cholesky).
+    /// (sparse Cholesky). The model's memory budget
+    /// ([`HpmSettings::memory_budget`](super::HpmSettings::memory_budget))
+    /// is checked twice: before the compressed lower triangle is made
+    /// ([`HpmModel::memory_estimate`] and [`HpmModel::cholesky_estimate`]),
+    /// and after the symbolic analysis, which counts the factor's fill,
+    /// before the factor is allocated (the model, the compressed lower
+    /// triangle and [`SparseCholesky::factor_bytes`]).
     ///
     /// # Errors
-    /// A failed factorization: [`DismechError::IllConditioned`] naming
-    /// what to change when the model has a feature that makes it
+    /// [`DismechError::HpmModelTooLarge`] when the model and the solver
+    /// would take more memory than the budget (or, with none, than the
+    /// system's allocator gives), naming the bytes and the factor's
+    /// entries; a failed factorization: [`DismechError::IllConditioned`]
+    /// naming what to change when the model has a feature that makes it
     /// ill-conditioned ([`HpmModel::ill_conditioning`]), the solver's error
     /// otherwise.
     pub fn new(model: &HpmModel) -> Result<Self> {
-        Self::from_stiffness(model.stiffness()).map_err(|e| name_ill_conditioning(model, e))
+        let (columns, layers) = (model.columns.len(), model.settings.layers);
+        let budget = model.settings.memory_budget;
+        let own = HpmModel::memory_estimate(columns, layers);
+        let analysis = own.saturating_add(HpmModel::cholesky_estimate(columns, layers));
+        HpmModel::check_budget(budget, columns, layers, analysis, || cholesky_parts(None))?;
+        let stiffness = model.stiffness();
+        let start = std::time::Instant::now();
+        let lower = stiffness
+            .lower_triangle()
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        let convert = start.elapsed();
+        let mut solver = SparseCholesky::new();
+        solver
+            .analyse_pattern(lower.pattern())
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        let word = std::mem::size_of::<usize>() as u128;
+        let compressed = lower.values().len() as u128 * (std::mem::size_of::<f64>() as u128 + word)
+            + (lower.dimension() as u128 + 1) * word;
+        let factor = solver.factor_bytes().unwrap_or(0);
+        let factored = own.saturating_add(compressed).saturating_add(factor);
+        let entries = solver.factor_entries_analysed();
+        HpmModel::check_budget(budget, columns, layers, factored, || {
+            cholesky_parts(Some(entries))
+        })?;
+        // The analysis' workspace may outweigh a small factor.
+        let estimate = analysis.max(factored);
+        LinearSolver::<crate::linsolve::SparseMatrix>::factor(&mut solver, &lower)
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        solver.record_conversion(convert);
+        Ok(Self {
+            stiffness,
+            solver,
+            memory_estimate: Some(estimate),
+        })
     }
 
-    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
+    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]); no
+    /// memory budget is checked (there is no model to hold one).
     ///
     /// # Errors
     /// A failed factorization ([`DismechError::Solve`]).
@@ -364,27 +421,47 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
     /// Assemble the elastic stiffness of `model` for preconditioned
     /// conjugate gradients with the stopping rule `settings`, the
     /// preconditioner one dense block per grid column (all its layers).
+    /// The model's memory budget
+    /// ([`HpmSettings::memory_budget`](super::HpmSettings::memory_budget))
+    /// is checked for the model and the column blocks
+    /// ([`HpmModel::memory_estimate`] and
+    /// [`HpmModel::column_blocks_estimate`]; no compressed copy of the
+    /// stiffness, no factor's fill).
     ///
     /// # Errors
     /// Settings out of range ([`CgSettings::validate`]);
     /// [`DismechError::HpmModelTooLarge`] when the model and the dense
     /// column blocks, `(12 × layers)²` numbers a column, would take more
-    /// than [`MAX_HPM_MODEL_BYTES`](super::MAX_HPM_MODEL_BYTES), refused before they are made; a failed
-    /// factorization of a block, as for [`HpmSolver::new`].
+    /// memory than the budget (or, with none, than the system's allocator
+    /// gives), refused before they are made; a failed factorization of a
+    /// block, as for [`HpmSolver::new`].
     pub fn iterative(model: &HpmModel, settings: CgSettings) -> Result<Self> {
         settings.validate()?;
-        let layers = model.settings.layers;
-        let block =
-            (ELEMENT_DOF as u128 * layers as u128).pow(2) * std::mem::size_of::<f64>() as u128;
-        let columns = model.columns.len();
-        HpmModel::check_budget(columns, layers, block.saturating_mul(columns as u128))?;
+        let (columns, layers) = (model.columns.len(), model.settings.layers);
+        let estimate = HpmModel::memory_estimate(columns, layers)
+            .saturating_add(HpmModel::column_blocks_estimate(columns, layers));
+        HpmModel::check_budget(
+            model.settings.memory_budget,
+            columns,
+            layers,
+            estimate,
+            || {
+                format!(
+                    "{}, and the conjugate gradients' dense column blocks, (12 × layers)² numbers a column",
+                    super::model::MODEL_PARTS
+                )
+            },
+        )?;
         let groups = model
             .columns
             .iter()
             .map(|c| ELEMENT_DOF * c.elements.start..ELEMENT_DOF * c.elements.end)
             .collect();
         let solver = ConjugateGradient::new(settings, BlockJacobi::new(groups));
-        Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
+        let mut this = Self::with_solver(model.stiffness(), solver)
+            .map_err(|e| name_ill_conditioning(model, e))?;
+        this.memory_estimate = Some(estimate);
+        Ok(this)
     }
 }
 
@@ -395,7 +472,26 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
     /// The solver's error ([`DismechError::Solve`]).
     pub fn with_solver(stiffness: BlockMatrix, mut solver: S) -> Result<Self> {
         solver.factor(&stiffness)?;
-        Ok(Self { stiffness, solver })
+        Ok(Self {
+            stiffness,
+            solver,
+            memory_estimate: None,
+        })
+    }
+
+    /// The most bytes the model's memory budget was checked against: the
+    /// model's [`HpmModel::memory_estimate`] and what the solver adds (for
+    /// [`HpmSolver::new`] the larger of the compressed lower triangle with
+    /// the ordering's workspace and of the compressed lower triangle with
+    /// the factor and faer's workspace; the column blocks for
+    /// [`HpmSolver::iterative`]); `None` for a solver made from a bare
+    /// stiffness ([`HpmSolver::with_solver`],
+    /// [`HpmSolver::from_stiffness`]). Not counted: the packing buffer
+    /// faer's dense kernels keep in each thread that runs them, for the
+    /// life of the process (twice the L3 cache: 64 MiB a thread on a
+    /// machine with 32 MiB of L3), made once whatever the model.
+    pub fn memory_estimate(&self) -> Option<u128> {
+        self.memory_estimate
     }
 
     /// The linear solver, holding the factor (or preconditioner).

@@ -77,7 +77,7 @@ pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoi
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
-pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, MAX_HPM_MODEL_BYTES};
+pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY};
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
     strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,
