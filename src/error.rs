@@ -434,10 +434,11 @@ pub enum DismechError {
         /// The largest number of elements accepted.
         limit: usize,
     },
-    /// An HPM model whose elements, springs and stiffness would take more
-    /// memory than [`crate::hpm::MAX_HPM_MODEL_BYTES`]; refused before any
-    /// of it is allocated.
-    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes for its elements, springs, stiffness and solution vectors, more than the budget of {budget} bytes; use fewer layers, or crop or coarsen the grid")]
+    /// An HPM model that, with what its linear solver adds, would take
+    /// more memory than its budget ([`crate::hpm::HpmSettings::memory_budget`])
+    /// or, with no budget set, than the system's allocator gives; refused
+    /// before that memory is taken.
+    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes ({}) for {what}, {}", Bytes(*bytes), over_budget(*budget))]
     HpmModelTooLarge {
         /// Valid columns of the grid.
         columns: usize,
@@ -445,10 +446,17 @@ pub enum DismechError {
         layers: usize,
         /// Their exact product.
         elements: u128,
-        /// The memory the model would take ([`crate::hpm::HpmModel::memory_estimate`]).
+        /// What the bytes count: the model
+        /// ([`crate::hpm::HpmModel::memory_estimate`]) and the part of the
+        /// linear solver being made (for the sparse Cholesky, the entries
+        /// of its factor once the symbolic analysis has counted them).
+        what: String,
+        /// The memory counted.
         bytes: u128,
-        /// The largest memory accepted.
-        budget: u64,
+        /// The budget it is over ([`crate::hpm::HpmSettings::memory_budget`]);
+        /// `None` where no budget was set and the system's allocator
+        /// refused the memory.
+        budget: Option<u64>,
     },
     /// A grid too small for a grid-column slope analysis: the corner
     /// heights and the slopes of the surfaces are interpolated between cell
@@ -477,6 +485,33 @@ pub enum DismechError {
         /// The smallest driving force, as a share of the weight, that
         /// counts ([`crate::hpm::MIN_DRIVING_RATIO`]).
         ratio: f64,
+    },
+    /// A safety factor asked of a slide whose slip surface has no strength
+    /// left: its strength `Σ (c + σ tan φ) A` is not positive, because the
+    /// load puts the surface in tension beyond the apex of its
+    /// Mohr–Coulomb law (σ < −c / tan φ, where `c + σ tan φ` is negative)
+    /// over so much of it (a large seismic coefficient), or is so small
+    /// beside the driving force that their ratio is zero. A zero or
+    /// negative ratio of resisting to driving forces is no factor of
+    /// safety: the slide is lifted off the surface there, not sheared
+    /// along it.
+    #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
+    SlipSurfaceInTension {
+        /// Which safety factor, and along which direction.
+        what: String,
+        /// The slip surface's strength `Σ (c + σ tan φ) A` (N).
+        strength: f64,
+        /// The driving force it is set against (N).
+        driving: f64,
+        /// Grid cells `(row, column)` of the columns where the strength
+        /// `c + σ tan φ` is negative under some part of the base, in the
+        /// order of [`crate::hpm::HpmModel::columns`].
+        cells: Vec<(usize, usize)>,
+        /// Columns of the model.
+        columns: usize,
+        /// Share of the slip surface's area where the strength is negative,
+        /// in [0, 1].
+        area_share: f64,
     },
     /// A limit analysis without a limit load was asked for one.
     #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
@@ -545,6 +580,38 @@ impl std::fmt::Display for Bytes {
             write!(f, "{:.1} MiB", b / (1024.0 * 1024.0))
         }
     }
+}
+
+/// Why the memory of an HPM model is refused and what to change.
+fn over_budget(budget: Option<u64>) -> String {
+    match budget {
+        Some(budget) => format!(
+            "more than its memory budget HpmSettings::memory_budget = {budget} bytes ({}); raise HpmSettings::memory_budget where the machine has the memory (None asks the system), or use fewer layers, or crop or coarsen the grid",
+            Bytes(u128::from(budget))
+        ),
+        None => "more than the system's allocator gives (HpmSettings::memory_budget is None, so the system was asked); use fewer layers, crop or coarsen the grid, or run on a machine with more memory".into(),
+    }
+}
+
+/// ` (grid cells (row, column) (r, c), …)` naming the first few of
+/// `cells`, or nothing.
+fn cell_list(cells: &[(usize, usize)]) -> String {
+    const SHOWN: usize = 6;
+    if cells.is_empty() {
+        return String::new();
+    }
+    let mut text = String::from(" (grid cells (row, column) ");
+    let shown: Vec<String> = cells
+        .iter()
+        .take(SHOWN)
+        .map(|(r, c)| format!("({r}, {c})"))
+        .collect();
+    text.push_str(&shown.join(", "));
+    if cells.len() > SHOWN {
+        text.push_str(&format!(" and {} more", cells.len() - SHOWN));
+    }
+    text.push(')');
+    text
 }
 
 /// Shorthand for results with [`DismechError`].

@@ -286,6 +286,7 @@ fn patch_test_uniform_stress_gives_the_exact_uniform_strain_in_every_element() {
         &HpmSettings {
             layers: 4,
             penalty: 100.0,
+            ..HpmSettings::default()
         },
     )
     .unwrap();
@@ -377,6 +378,7 @@ fn layer_refinement_3_6_12_converges_in_fs_and_top_displacement() {
             &HpmSettings {
                 layers,
                 penalty: 100.0,
+                ..HpmSettings::default()
             },
         )
         .unwrap();
@@ -651,7 +653,8 @@ fn bad_material_values_are_refused_with_their_name_and_value() {
         &HpmMaterial::paper(),
         &HpmSettings {
             layers: 2,
-            penalty: 100.0
+            penalty: 100.0,
+            ..HpmSettings::default()
         }
     )
     .is_err());

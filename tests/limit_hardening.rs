@@ -5,7 +5,9 @@
 use dismech::error::DismechError;
 use dismech::law::{RigidPlastic, Strength, StrengthLaw};
 use dismech::limit::lattice::Lattice;
-use dismech::limit::{analyse, analyse_static, LimitModel, LimitStatus, Partner};
+use dismech::limit::{
+    analyse, analyse_static, mechanism_uniqueness, LimitModel, LimitStatus, Partner,
+};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
 
@@ -54,6 +56,38 @@ fn loose_solver_tolerance_is_not_certified() {
         message.contains("LinearProgramSolver.tolerance"),
         "{message}"
     );
+}
+
+/// The uniqueness test solves two more LPs over the optimal face; at a
+/// loose solver tolerance their optima fail the optimality conditions as
+/// the analysis' own do, and are refused rather than read as the extremes
+/// of the face (a wrong spread, a vertex that is no mechanism). At the
+/// default tolerance the same test is certified.
+#[test]
+fn uniqueness_test_at_a_loose_solver_tolerance_is_not_certified() {
+    let model = Lattice::u_model(8, 8, 2, true).build().unwrap();
+    let r = analyse(&model, &mut LinearProgramSolver::default()).unwrap();
+    assert_eq!(r.status, LimitStatus::Collapse);
+    for tolerance in [0.1, 1e-3] {
+        match mechanism_uniqueness(&model, &mut loose(tolerance), &r) {
+            Err(DismechError::UncertifiedOptimum {
+                primal_residual,
+                dual_residual,
+                gap,
+                tolerance: certificate,
+                ..
+            }) => {
+                assert_eq!(certificate, dismech::limit::CERTIFICATE_TOLERANCE);
+                assert!(
+                    primal_residual.max(dual_residual).max(gap) > certificate,
+                    "at {tolerance}"
+                );
+            }
+            other => panic!("uniqueness at solver tolerance {tolerance}: {other:?}"),
+        }
+    }
+    let u = mechanism_uniqueness(&model, &mut LinearProgramSolver::default(), &r).unwrap();
+    assert!(u.spread.is_finite(), "{}", u.spread);
 }
 
 /// A tolerance the certificate accepts gives the exact load, from above

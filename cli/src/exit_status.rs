@@ -113,6 +113,9 @@ impl Exit {
             // (infinite on level ground), as a slope that cannot fail.
             E::NothingDrivesSliding { .. } => Exit::Locked,
             E::StrengthReductionNoEquilibrium { .. } => Exit::Unbounded,
+            // The slip surface is lifted off beyond its tensile strength:
+            // the slide fails under its loads, with no factor of safety.
+            E::SlipSurfaceInTension { .. } => Exit::Unbounded,
             E::InvalidParameter { .. }
             | E::UnstableTimeStep { .. }
             | E::StartsInsideWall { .. }
@@ -194,8 +197,9 @@ mod tests {
             columns: 1,
             layers: usize::MAX,
             elements: u128::from(u64::MAX),
+            what: "its elements".into(),
             bytes: u128::MAX,
-            budget: 1,
+            budget: Some(1),
         };
         assert_eq!(Exit::of_error(&large), Exit::BadInput);
         let small = DismechError::GridTooSmall {
@@ -204,6 +208,26 @@ mod tests {
             columns: 2,
         };
         assert_eq!(Exit::of_error(&small), Exit::BadInput);
+    }
+
+    #[test]
+    fn a_slip_surface_in_tension_exits_as_unbounded() {
+        let lifted = DismechError::SlipSurfaceInTension {
+            what: "Hovland".into(),
+            strength: -1.0,
+            driving: 1.0,
+            cells: vec![(0, 0)],
+            columns: 1,
+            area_share: 1.0,
+        };
+        assert_eq!(Exit::of_error(&lifted), Exit::Unbounded);
+        let text = lifted.to_string();
+        assert!(
+            text.contains(
+                "over 100.0 % of its area, under 1 of 1 columns (grid cells (row, column) (0, 0))"
+            ),
+            "{text}"
+        );
     }
 
     #[test]

@@ -69,6 +69,21 @@
 //! driving force and the weight. The local factors
 //! ([`HpmResult::local_safety_factors`]) stay the stress ratio of each
 //! column, a measure of the strength mobilised there.
+//!
+//! **Tension.** The strength `c + σ tan φ` of Mohr–Coulomb has its apex at
+//! `σ = −c / tan φ`; the elastic analysis' linear slip springs carry any
+//! tension, and beyond the apex their term in `Σ (c + σ tan φ) A` is
+//! negative. The sum is kept as the definition reads (the paper's slopes
+//! have such springs under the crest, statically too: 3 % of the
+//! representative slope's springs, whose Fs the reproduction compares
+//! with the paper's), but where it is not positive, as under a seismic
+//! coefficient that lifts the slide off the surface, the ratio would be
+//! zero or negative, which is no factor of safety: every Fs is refused
+//! there with [`DismechError::SlipSurfaceInTension`], naming the columns
+//! in tension beyond the apex and their share of the area (Hovland's Fs
+//! likewise, column by column). A local factor is 0 where the column's
+//! strength is not positive. The nonlinear analysis' springs carry no
+//! tension, so its strength is at least `c A`.
 
 use nalgebra::Vector3;
 
@@ -145,27 +160,89 @@ impl NonlinearSettings {
 /// solve's residual, at most its tolerance, 1e-6 by default) alone.
 pub const MIN_DRIVING_RATIO: f64 = 1e-6;
 
-/// The safety factor `resisting / driving` of a slide of weight `weight`,
-/// or [`DismechError::NothingDrivesSliding`] (naming the forces as
-/// `what()` says) where the driving force is not above
-/// [`MIN_DRIVING_RATIO`] of the weight (`>` is false for NaN: a NaN driving
-/// force drives nothing) or so small beside the resisting one that the
-/// ratio overflows (a unit weight of 1e-308).
+/// Where the slip surface is in tension beyond `c / tan φ`, the apex of
+/// its Mohr–Coulomb strength (`c + σ tan φ < 0`).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Tension {
+    /// Grid cells of the columns with a negative strength under some part
+    /// of the base.
+    pub cells: Vec<(usize, usize)>,
+    /// Columns of the model.
+    pub columns: usize,
+    /// Share of the slip surface's area with a negative strength.
+    pub area_share: f64,
+}
+
+impl Tension {
+    /// The columns (grid cells) and the share of the area where a part of
+    /// the base, `(column, area, strength)` for each part, has a negative
+    /// strength.
+    pub(super) fn of(model: &HpmModel, parts: impl Iterator<Item = (usize, f64, f64)>) -> Self {
+        let mut lifted = vec![false; model.columns.len()];
+        let (mut total, mut negative) = (0.0, 0.0);
+        for (column, area, strength) in parts {
+            total += area;
+            if strength < 0.0 {
+                negative += area;
+                lifted[column] = true;
+            }
+        }
+        Self {
+            cells: model
+                .columns
+                .iter()
+                .zip(&lifted)
+                .filter(|(_, l)| **l)
+                .map(|(c, _)| c.cell)
+                .collect(),
+            columns: model.columns.len(),
+            area_share: if total > 0.0 { negative / total } else { 0.0 },
+        }
+    }
+}
+
+/// The safety factor `resisting / driving` of a slide of weight `weight`.
+///
+/// # Errors
+/// [`DismechError::NothingDrivesSliding`] (naming the forces as `what()`
+/// says) where the driving force is not above [`MIN_DRIVING_RATIO`] of the
+/// weight (`>` is false for NaN: a NaN driving force drives nothing) or so
+/// small beside the resisting one that the ratio overflows (a unit weight
+/// of 1e-308); else [`DismechError::SlipSurfaceInTension`] (naming where,
+/// as `tension()` says) where the ratio is not positive: the resisting
+/// strength `Σ (c + σ tan φ) A` is zero or negative (the surface in
+/// tension beyond `c / tan φ`), or so small that the ratio underflows.
 pub(super) fn resisting_over_driving(
     resisting: f64,
     driving: f64,
     weight: f64,
     what: impl FnOnce() -> String,
+    tension: impl FnOnce() -> Tension,
 ) -> Result<f64> {
     let ratio = resisting / driving;
-    if driving > MIN_DRIVING_RATIO * weight && ratio.is_finite() {
-        Ok(ratio)
-    } else {
-        Err(DismechError::NothingDrivesSliding {
+    if !(driving > MIN_DRIVING_RATIO * weight && ratio.is_finite()) {
+        return Err(DismechError::NothingDrivesSliding {
             what: what(),
             driving,
             weight,
             ratio: MIN_DRIVING_RATIO,
+        });
+    }
+    if ratio > 0.0 {
+        Ok(ratio)
+    } else {
+        let Tension {
+            cells,
+            columns,
+            area_share,
+        } = tension();
+        Err(DismechError::SlipSurfaceInTension {
+            what: what(),
+            strength: resisting,
+            driving,
+            cells,
+            columns,
+            area_share,
         })
     }
 }
@@ -256,25 +333,82 @@ pub struct HpmResult {
 pub struct HpmSolver<S = SparseCholesky> {
     stiffness: BlockMatrix,
     solver: S,
+    /// The bytes the model's memory budget was checked against.
+    memory_estimate: Option<u128>,
 }
 
 /// HPM analyses by preconditioned conjugate gradients.
 pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
 
+/// What the sparse Cholesky solver adds to the model, for a refusal.
+fn cholesky_parts(factor: Option<usize>) -> String {
+    let factor = match factor {
+        Some(entries) => format!("its factor of {entries} entries with faer's workspace"),
+        None => "the workspace of its ordering (its factor's fill comes on top)".into(),
+    };
+    format!(
+        "{}, and the sparse Cholesky solver's compressed lower triangle and {factor} (HpmSolver::iterative, conjugate gradients, needs no factor)",
+        super::model::MODEL_PARTS
+    )
+}
+
 impl HpmSolver<SparseCholesky> {
     /// Assemble the elastic stiffness of `model` and factorise it
-    /// (sparse Cholesky).
+    /// (sparse Cholesky). The model's memory budget
+    /// ([`HpmSettings::memory_budget`](super::HpmSettings::memory_budget))
+    /// is checked twice: before the compressed lower triangle is made
+    /// ([`HpmModel::memory_estimate`] and [`HpmModel::cholesky_estimate`]),
+    /// and after the symbolic analysis, which counts the factor's fill,
+    /// before the factor is allocated (the model, the compressed lower
+    /// triangle and [`SparseCholesky::factor_bytes`]).
     ///
     /// # Errors
-    /// A failed factorization: [`DismechError::IllConditioned`] naming
-    /// what to change when the model has a feature that makes it
+    /// [`DismechError::HpmModelTooLarge`] when the model and the solver
+    /// would take more memory than the budget (or, with none, than the
+    /// system's allocator gives), naming the bytes and the factor's
+    /// entries; a failed factorization: [`DismechError::IllConditioned`]
+    /// naming what to change when the model has a feature that makes it
     /// ill-conditioned ([`HpmModel::ill_conditioning`]), the solver's error
     /// otherwise.
     pub fn new(model: &HpmModel) -> Result<Self> {
-        Self::from_stiffness(model.stiffness()).map_err(|e| name_ill_conditioning(model, e))
+        let (columns, layers) = (model.columns.len(), model.settings.layers);
+        let budget = model.settings.memory_budget;
+        let own = HpmModel::memory_estimate(columns, layers);
+        let analysis = own.saturating_add(HpmModel::cholesky_estimate(columns, layers));
+        HpmModel::check_budget(budget, columns, layers, analysis, || cholesky_parts(None))?;
+        let stiffness = model.stiffness();
+        let start = std::time::Instant::now();
+        let lower = stiffness
+            .lower_triangle()
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        let convert = start.elapsed();
+        let mut solver = SparseCholesky::new();
+        solver
+            .analyse_pattern(lower.pattern())
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        let word = std::mem::size_of::<usize>() as u128;
+        let compressed = lower.values().len() as u128 * (std::mem::size_of::<f64>() as u128 + word)
+            + (lower.dimension() as u128 + 1) * word;
+        let factor = solver.factor_bytes().unwrap_or(0);
+        let factored = own.saturating_add(compressed).saturating_add(factor);
+        let entries = solver.factor_entries_analysed();
+        HpmModel::check_budget(budget, columns, layers, factored, || {
+            cholesky_parts(Some(entries))
+        })?;
+        // The analysis' workspace may outweigh a small factor.
+        let estimate = analysis.max(factored);
+        LinearSolver::<crate::linsolve::SparseMatrix>::factor(&mut solver, &lower)
+            .map_err(|e| name_ill_conditioning(model, e.into()))?;
+        solver.record_conversion(convert);
+        Ok(Self {
+            stiffness,
+            solver,
+            memory_estimate: Some(estimate),
+        })
     }
 
-    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]).
+    /// Factorise an assembled stiffness ([`HpmModel::stiffness`]); no
+    /// memory budget is checked (there is no model to hold one).
     ///
     /// # Errors
     /// A failed factorization ([`DismechError::Solve`]).
@@ -287,27 +421,47 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
     /// Assemble the elastic stiffness of `model` for preconditioned
     /// conjugate gradients with the stopping rule `settings`, the
     /// preconditioner one dense block per grid column (all its layers).
+    /// The model's memory budget
+    /// ([`HpmSettings::memory_budget`](super::HpmSettings::memory_budget))
+    /// is checked for the model and the column blocks
+    /// ([`HpmModel::memory_estimate`] and
+    /// [`HpmModel::column_blocks_estimate`]; no compressed copy of the
+    /// stiffness, no factor's fill).
     ///
     /// # Errors
     /// Settings out of range ([`CgSettings::validate`]);
     /// [`DismechError::HpmModelTooLarge`] when the model and the dense
     /// column blocks, `(12 × layers)²` numbers a column, would take more
-    /// than [`MAX_HPM_MODEL_BYTES`](super::MAX_HPM_MODEL_BYTES), refused before they are made; a failed
-    /// factorization of a block, as for [`HpmSolver::new`].
+    /// memory than the budget (or, with none, than the system's allocator
+    /// gives), refused before they are made; a failed factorization of a
+    /// block, as for [`HpmSolver::new`].
     pub fn iterative(model: &HpmModel, settings: CgSettings) -> Result<Self> {
         settings.validate()?;
-        let layers = model.settings.layers;
-        let block =
-            (ELEMENT_DOF as u128 * layers as u128).pow(2) * std::mem::size_of::<f64>() as u128;
-        let columns = model.columns.len();
-        HpmModel::check_budget(columns, layers, block.saturating_mul(columns as u128))?;
+        let (columns, layers) = (model.columns.len(), model.settings.layers);
+        let estimate = HpmModel::memory_estimate(columns, layers)
+            .saturating_add(HpmModel::column_blocks_estimate(columns, layers));
+        HpmModel::check_budget(
+            model.settings.memory_budget,
+            columns,
+            layers,
+            estimate,
+            || {
+                format!(
+                    "{}, and the conjugate gradients' dense column blocks, (12 × layers)² numbers a column",
+                    super::model::MODEL_PARTS
+                )
+            },
+        )?;
         let groups = model
             .columns
             .iter()
             .map(|c| ELEMENT_DOF * c.elements.start..ELEMENT_DOF * c.elements.end)
             .collect();
         let solver = ConjugateGradient::new(settings, BlockJacobi::new(groups));
-        Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
+        let mut this = Self::with_solver(model.stiffness(), solver)
+            .map_err(|e| name_ill_conditioning(model, e))?;
+        this.memory_estimate = Some(estimate);
+        Ok(this)
     }
 }
 
@@ -318,7 +472,26 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
     /// The solver's error ([`DismechError::Solve`]).
     pub fn with_solver(stiffness: BlockMatrix, mut solver: S) -> Result<Self> {
         solver.factor(&stiffness)?;
-        Ok(Self { stiffness, solver })
+        Ok(Self {
+            stiffness,
+            solver,
+            memory_estimate: None,
+        })
+    }
+
+    /// The most bytes the model's memory budget was checked against: the
+    /// model's [`HpmModel::memory_estimate`] and what the solver adds (for
+    /// [`HpmSolver::new`] the larger of the compressed lower triangle with
+    /// the ordering's workspace and of the compressed lower triangle with
+    /// the factor and faer's workspace; the column blocks for
+    /// [`HpmSolver::iterative`]); `None` for a solver made from a bare
+    /// stiffness ([`HpmSolver::with_solver`],
+    /// [`HpmSolver::from_stiffness`]). Not counted: the packing buffer
+    /// faer's dense kernels keep in each thread that runs them, for the
+    /// life of the process (twice the L3 cache: 64 MiB a thread on a
+    /// machine with 32 MiB of L3), made once whatever the model.
+    pub fn memory_estimate(&self) -> Option<u128> {
+        self.memory_estimate
     }
 
     /// The linear solver, holding the factor (or preconditioner).
@@ -607,6 +780,10 @@ impl HpmResult {
     /// slide's weight (a level slip surface without seismic load): the
     /// springs' `|τ|` are then the squeeze of the soil on the surface, not
     /// a push that strength resists, and Hovland's Fs is infinite.
+    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength
+    /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
+    /// `c / tan φ`, as under a large seismic coefficient), so that the
+    /// ratio would be zero or negative.
     pub fn safety_factor(&self, model: &HpmModel) -> Result<f64> {
         let what = "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A";
         self.driven(model, what)?;
@@ -616,6 +793,21 @@ impl HpmResult {
             den.iter().sum(),
             model.total_weight(),
             || format!("{what}: the slip springs' shear, Σ|τ|A"),
+            || self.tension(model),
+        )
+    }
+
+    /// Where the slip springs' strength `c + σ tan φ` is negative: the
+    /// columns and the share of the slip surface's area.
+    fn tension(&self, model: &HpmModel) -> Tension {
+        let (c, mu) = (model.material.cohesion, model.material.friction());
+        Tension::of(
+            model,
+            model
+                .slip
+                .iter()
+                .zip(&self.tractions)
+                .map(|(s, t)| (s.column, s.point.point.area, c + t.normal * mu)),
         )
     }
 
@@ -670,8 +862,9 @@ impl HpmResult {
     /// [`DismechError::NothingDrivesSliding`] when there is no sliding
     /// direction (the springs' resultant shear force has no horizontal part
     /// above [`MIN_DRIVING_RATIO`] of the weight), or the shear along it is
-    /// not above that share of the weight (see
-    /// [`HpmResult::safety_factor_along`]).
+    /// not above that share of the weight;
+    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength is
+    /// not positive (see [`HpmResult::safety_factor_along`]).
     pub fn sliding_safety_factor(&self, model: &HpmModel) -> Result<f64> {
         let plan = self.driven(
             model,
@@ -689,7 +882,10 @@ impl HpmResult {
     /// is zero; [`DismechError::NothingDrivesSliding`] when the driving
     /// shear `Σ (τ · d_i) A` is not above [`MIN_DRIVING_RATIO`] of the
     /// slide's weight: nothing pushes the slide that way (a direction up
-    /// the slope gives a negative one).
+    /// the slope gives a negative one);
+    /// [`DismechError::SlipSurfaceInTension`] when the strength
+    /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
+    /// `c / tan φ`), naming the columns where it is negative.
     pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> Result<f64> {
         let length = plan.0.hypot(plan.1);
         if !(length.is_finite() && length > 0.0) {
@@ -711,22 +907,40 @@ impl HpmResult {
             num += (c + t.normal * mu) * a;
             den += shear_vector(s, t).dot(&along) * a;
         }
-        resisting_over_driving(num, den, model.total_weight(), || {
-            format!(
+        resisting_over_driving(
+            num,
+            den,
+            model.total_weight(),
+            || {
+                format!(
                 "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
                 plan.0 / length,
                 plan.1 / length
             )
-        })
+            },
+            || self.tension(model),
+        )
     }
 
     /// Local safety factor of each column (same ratio over its springs);
-    /// infinite where the springs carry no shear.
+    /// 0 where the column's strength `Σ (c + σ tan φ) A` is not positive
+    /// (its base in tension beyond `c / tan φ`, as the elastic analysis'
+    /// linear springs allow: nothing is left there to resist, and a
+    /// negative ratio is no factor of safety), infinite where the springs
+    /// carry no shear.
     pub fn local_safety_factors(&self, model: &HpmModel) -> Vec<f64> {
         let (num, den) = self.strength_and_shear(model);
         num.iter()
             .zip(&den)
-            .map(|(n, d)| if *d > 0.0 { n / d } else { f64::INFINITY })
+            .map(|(n, d)| {
+                if *n <= 0.0 {
+                    0.0
+                } else if *d > 0.0 {
+                    n / d
+                } else {
+                    f64::INFINITY
+                }
+            })
             .collect()
     }
 

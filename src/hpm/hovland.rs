@@ -18,10 +18,18 @@
 //! of either sign from rounding), and towards a direction up the slope it
 //! is negative (a negative Fs means nothing): both are refused with
 //! [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding), naming `Σ T` and `Σ W`.
+//!
+//! A column whose load pulls it off its base (`N < 0`, a seismic force
+//! that outweighs the weight's normal part) has a strength `c A + N tan φ`
+//! that falls below zero beyond `N = −c A / tan φ`. Where the columns'
+//! strengths sum to zero or less, the Fs would be zero or negative, which
+//! is no factor of safety, and is refused with
+//! [`DismechError::SlipSurfaceInTension`](crate::error::DismechError::SlipSurfaceInTension), naming those columns and
+//! their share of the base area.
 
 use nalgebra::Vector3;
 
-use super::analysis::resisting_over_driving;
+use super::analysis::{resisting_over_driving, Tension};
 use super::material::Seismic;
 use super::model::HpmModel;
 use crate::error::{require_finite, Result};
@@ -54,7 +62,10 @@ pub struct Hovland {
 /// not finite ([`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter));
 /// [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding) when the driving force `Σ T` is
 /// not above [`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO) of the columns' weight `Σ W`: level
-/// ground, or a direction up the slope.
+/// ground, or a direction up the slope;
+/// [`DismechError::SlipSurfaceInTension`](crate::error::DismechError::SlipSurfaceInTension) when the strength
+/// `Σ (c A + N tan φ)` is not positive: columns pulled off their base
+/// beyond `c A / tan φ` (a large seismic coefficient).
 pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Result<Hovland> {
     seismic.validate()?;
     require_finite("sliding direction (degrees)", direction_deg)?;
@@ -93,9 +104,21 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Resul
         .collect();
     let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
     let driving: f64 = columns.iter().map(|k| k.driving).sum();
-    let safety_factor = resisting_over_driving(resisting, driving, model.total_weight(), || {
-        format!("Hovland's method sliding towards {direction_deg}°: Σ T")
-    })?;
+    let safety_factor = resisting_over_driving(
+        resisting,
+        driving,
+        model.total_weight(),
+        || format!("Hovland's method sliding towards {direction_deg}°: Σ T"),
+        || {
+            Tension::of(
+                model,
+                columns
+                    .iter()
+                    .enumerate()
+                    .map(|(k, t)| (k, t.area, c * t.area + t.normal * mu)),
+            )
+        },
+    )?;
     Ok(Hovland {
         safety_factor,
         columns,

@@ -150,7 +150,7 @@ impl Seismic {
     }
 }
 
-/// How the columns are discretised.
+/// How the columns are discretised, and the memory the model may take.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HpmSettings {
     /// Layers per column of equal thickness: bottom, middle and top, so at
@@ -159,20 +159,46 @@ pub struct HpmSettings {
     /// Penalty factor p of eq. (17), `E' = p E` for the springs between
     /// elements.
     pub penalty: f64,
+    /// The most memory (bytes) the model and its linear solver may take,
+    /// as [`HpmModel::memory_estimate`](super::HpmModel::memory_estimate)
+    /// and the solver's part count it (for the sparse Cholesky of
+    /// [`HpmSolver::new`](super::HpmSolver::new) the factor's fill, from
+    /// the symbolic analysis; for the conjugate gradients of
+    /// [`HpmSolver::iterative`](super::HpmSolver::iterative) the column
+    /// blocks). Checked before each part is allocated; a model over it is
+    /// refused with
+    /// [`DismechError::HpmModelTooLarge`](crate::error::DismechError::HpmModelTooLarge).
+    ///
+    /// `None` (the default) asks the system: the bytes are requested from
+    /// the allocator and given back at once, so that a model larger than
+    /// the machine can hold is refused rather than aborted. Linux, with its
+    /// default overcommit heuristic, refuses a request larger than its
+    /// memory and swap together, whatever is in use; a system that
+    /// overcommits without limit refuses only what the address space
+    /// cannot hold, so set a budget there (or wherever other work shares
+    /// the machine). A budget is compared with the estimate and nothing is
+    /// asked of the system.
+    pub memory_budget: Option<u64>,
 }
 
 impl Default for HpmSettings {
-    /// Three layers and p = 100.
+    /// Three layers, p = 100 and no memory budget (the system is asked).
     fn default() -> Self {
         Self {
             layers: 3,
             penalty: 100.0,
+            memory_budget: None,
         }
     }
 }
 
 impl HpmSettings {
-    /// Check the values.
+    /// Check the values (any memory budget is valid: one too small for the
+    /// model refuses it when it is built).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for fewer than 3 layers or a
+    /// penalty factor that is not finite and positive.
     pub fn validate(&self) -> Result<()> {
         if self.layers < 3 {
             return Err(DismechError::InvalidParameter {

@@ -48,8 +48,11 @@
 //! by default; the `(s, t, n)` frame made orthonormal; the global safety
 //! factor, as the stress ratio `Σ (c + σ tan φ) A / Σ |τ| A` and, after
 //! Hovland's assumption of one sliding direction, as
-//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`); corner heights
-//! interpolated from the cell-centre values of the rasters.
+//! `Σ (c + σ tan φ) A / Σ (τ · d_i) A` (see `analysis.rs`), each refused
+//! where nothing drives the slide or where its strength
+//! `Σ (c + σ tan φ) A` is not positive (the surface in tension beyond
+//! `c / tan φ`); corner heights interpolated from the cell-centre values
+//! of the rasters.
 
 mod analysis;
 mod conditioning;
@@ -74,7 +77,7 @@ pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoi
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
-pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, MAX_HPM_MODEL_BYTES};
+pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY};
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
     strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,

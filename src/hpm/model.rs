@@ -110,21 +110,38 @@ pub struct HpmModel {
     pub grid: (usize, usize, f64),
 }
 
-/// The most memory an HPM model may take for its elements, springs,
-/// elastic stiffness (blocks and the compressed copy a direct solver reads)
-/// and solution vectors, as [`HpmModel::memory_estimate`] counts it: 4 GiB,
-/// about 280 000 elements (the 100 × 100-column, 5-layer slope of the
-/// `hpm_elastic` bench, 50 000 elements, takes about 0.75 GB). A larger
-/// model is refused with [`DismechError::HpmModelTooLarge`] before any of it
-/// is allocated. The fill of a sparse Cholesky factor comes on top (the
-/// conjugate gradients of [`crate::hpm::HpmIterativeSolver`] need none).
-pub const MAX_HPM_MODEL_BYTES: u64 = 4 << 30;
-
 /// Faces of a column with `layers` elements, at most: between its layers,
 /// and each layer's east and north sides.
 fn faces_per_column(layers: u128) -> u128 {
     (layers.saturating_sub(1)).saturating_add(layers.saturating_mul(2))
 }
+
+/// Words (of 8 bytes) per entry of the compressed lower triangle that the
+/// ordering and symbolic analysis of the sparse Cholesky take at most
+/// while they run (faer's approximate minimum degree works on the whole
+/// symmetric pattern with elbow room): 6, where 4.3 to 4.4 were measured
+/// from 400 columns of 3 layers to the 10 000 columns of 5 layers of the
+/// `hpm_elastic` bench.
+pub const SYMBOLIC_WORDS_PER_ENTRY: u128 = 6;
+
+/// `columns` times the bytes of a column of `layers` elements and its
+/// faces, saturating.
+fn per_columns(
+    columns: usize,
+    layers: usize,
+    per_column: u128,
+    per_element: u128,
+    per_face: u128,
+) -> u128 {
+    let (columns, layers) = (columns as u128, layers as u128);
+    let column = per_column
+        .saturating_add(layers.saturating_mul(per_element))
+        .saturating_add(faces_per_column(layers).saturating_mul(per_face));
+    columns.saturating_mul(column)
+}
+
+/// What [`HpmModel::memory_estimate`] counts, for a refusal.
+pub(super) const MODEL_PARTS: &str = "its elements, springs, block stiffness and solution vectors";
 
 /// Mean of four corner heights (eqs. 5–7).
 fn mean(z: &[f64; 4]) -> f64 {
@@ -150,55 +167,96 @@ fn element_weight(
 }
 
 impl HpmModel {
-    /// Bytes a model of `columns` columns of `layers` layers takes, at most:
-    /// its elements, columns, slip springs and faces with their Gauss
-    /// points, its stiffness (a diagonal block per element, a coupling block
-    /// per face, their block rows and the compressed lower triangle a direct
-    /// solver reads) and the vectors of 12 unknowns per element the analyses
-    /// hold. Saturates rather than wraps for absurd sizes.
+    /// Bytes a model of `columns` columns of `layers` layers takes, at most,
+    /// whichever linear solver it is given: its elements, columns, slip
+    /// springs and faces with their Gauss points, its stiffness (a diagonal
+    /// block per element, a coupling block per face and their block rows)
+    /// and the vectors of 12 unknowns per element the analyses hold.
+    /// Saturates rather than wraps for absurd sizes. What a solver adds is
+    /// counted apart: [`HpmModel::cholesky_estimate`] and the factor's
+    /// [`SparseCholesky::factor_bytes`](crate::linsolve::SparseCholesky::factor_bytes)
+    /// for the sparse Cholesky of [`HpmSolver::new`](super::HpmSolver::new),
+    /// [`HpmModel::column_blocks_estimate`] for the conjugate gradients of
+    /// [`HpmSolver::iterative`](super::HpmSolver::iterative).
     pub fn memory_estimate(columns: usize, layers: usize) -> u128 {
         use std::mem::size_of;
         let block = size_of::<Block>() as u128;
         let dof = ELEMENT_DOF as u128;
-        // Values and row indices of the compressed lower triangle.
-        let compressed = (size_of::<f64>() + size_of::<usize>()) as u128;
         let per_element = size_of::<Element>() as u128
             + block
             + SOLUTION_VECTORS * dof * size_of::<f64>() as u128
-            + compressed * dof * (dof + 1) / 2
-            + size_of::<usize>() as u128 * (1 + dof);
+            + size_of::<usize>() as u128;
         let per_face = size_of::<Interface>() as u128
             + FACE_POINTS * size_of::<FacePoint>() as u128
             + size_of::<(usize, usize, Block)>() as u128
-            + 2 * size_of::<(usize, usize, bool)>() as u128
-            + compressed * dof * dof;
+            + 2 * size_of::<(usize, usize, bool)>() as u128;
         let per_column = size_of::<GridColumn>() as u128
             + FACE_POINTS
                 * (size_of::<SlipSpring>()
                     + size_of::<MohrCoulombSpring>()
                     + size_of::<super::analysis::SpringTraction>()) as u128;
-        let (columns, layers) = (columns as u128, layers as u128);
-        let column = per_column
-            .saturating_add(layers.saturating_mul(per_element))
-            .saturating_add(faces_per_column(layers).saturating_mul(per_face));
-        columns.saturating_mul(column)
+        per_columns(columns, layers, per_column, per_element, per_face)
     }
 
-    /// Refuse a model of `columns` columns and `layers` layers whose
-    /// [`HpmModel::memory_estimate`], plus `extra` bytes a solver would
-    /// add, is over [`MAX_HPM_MODEL_BYTES`].
-    pub(super) fn check_budget(columns: usize, layers: usize, extra: u128) -> Result<()> {
-        let bytes = Self::memory_estimate(columns, layers).saturating_add(extra);
-        if bytes > u128::from(MAX_HPM_MODEL_BYTES) {
-            return Err(DismechError::HpmModelTooLarge {
-                columns,
-                layers,
-                elements: columns as u128 * layers as u128,
-                bytes,
-                budget: MAX_HPM_MODEL_BYTES,
-            });
+    /// Bytes the sparse Cholesky solver of [`HpmSolver::new`](super::HpmSolver::new)
+    /// adds to [`HpmModel::memory_estimate`] before its factor, at most: the
+    /// compressed lower triangle of the stiffness (a value and a row index
+    /// per entry, 78 entries per element and 144 per face, and the column
+    /// pointers) and the workspace of its ordering and symbolic analysis
+    /// (at most [`SYMBOLIC_WORDS_PER_ENTRY`] words per entry). The factor's
+    /// fill, which the symbolic analysis counts, comes on top
+    /// ([`SparseCholesky::factor_bytes`](crate::linsolve::SparseCholesky::factor_bytes)).
+    pub fn cholesky_estimate(columns: usize, layers: usize) -> u128 {
+        let dof = ELEMENT_DOF as u128;
+        let word = std::mem::size_of::<usize>() as u128;
+        let entry = std::mem::size_of::<f64>() as u128 + (1 + SYMBOLIC_WORDS_PER_ENTRY) * word;
+        let per_element = entry * dof * (dof + 1) / 2 + word * dof;
+        let per_face = entry * dof * dof;
+        per_columns(columns, layers, 0, per_element, per_face)
+    }
+
+    /// Bytes the conjugate gradients of
+    /// [`HpmSolver::iterative`](super::HpmSolver::iterative) add to
+    /// [`HpmModel::memory_estimate`]: a dense block of `(12 × layers)²`
+    /// numbers per column, the block-Jacobi preconditioner (no factor's
+    /// fill, no compressed copy of the stiffness).
+    pub fn column_blocks_estimate(columns: usize, layers: usize) -> u128 {
+        (ELEMENT_DOF as u128)
+            .saturating_mul(layers as u128)
+            .saturating_pow(2)
+            .saturating_mul(std::mem::size_of::<f64>() as u128)
+            .saturating_mul(columns as u128)
+    }
+
+    /// Refuse `bytes` (the model's and what a solver adds, as `what()`
+    /// says) when they are over the model's memory budget `budget`
+    /// ([`HpmSettings::memory_budget`]), or, with no budget set, when the
+    /// system's allocator will not give them: they are asked for and given
+    /// back at once (nothing is written, so no page is touched). Bytes
+    /// beyond the address space are refused either way.
+    pub(super) fn check_budget(
+        budget: Option<u64>,
+        columns: usize,
+        layers: usize,
+        bytes: u128,
+        what: impl FnOnce() -> String,
+    ) -> Result<()> {
+        // Beyond the address space nothing fits, whatever the budget.
+        let fits = usize::try_from(bytes).is_ok_and(|len| match budget {
+            Some(budget) => bytes <= u128::from(budget),
+            None => Vec::<u8>::new().try_reserve_exact(len).is_ok(),
+        });
+        if fits {
+            return Ok(());
         }
-        Ok(())
+        Err(DismechError::HpmModelTooLarge {
+            columns,
+            layers,
+            elements: columns as u128 * layers as u128,
+            what: what(),
+            bytes,
+            budget,
+        })
     }
 
     /// Build the model; validates the material and settings.
@@ -207,8 +265,10 @@ impl HpmModel {
     /// An invalid material or setting ([`DismechError::InvalidParameter`],
     /// naming it: see [`HpmMaterial::validate`] and
     /// [`HpmSettings::validate`]); [`DismechError::HpmModelTooLarge`] when
-    /// the valid columns times the layers would take more memory than
-    /// [`MAX_HPM_MODEL_BYTES`], refused before any element is made;
+    /// the valid columns times the layers would take more memory
+    /// ([`HpmModel::memory_estimate`]) than the budget
+    /// [`HpmSettings::memory_budget`], or, with none set, than the system's
+    /// allocator gives, refused before any element is made;
     /// [`DismechError::EmptyHpmModel`]
     /// when every valid column has zero thickness at all four corners (its
     /// slip corners, lowered to the ground, leave no volume), so that there
@@ -232,7 +292,13 @@ impl HpmModel {
         }
 
         let valid = grids.valid_cells();
-        Self::check_budget(valid.len(), layers, 0)?;
+        Self::check_budget(
+            settings.memory_budget,
+            valid.len(),
+            layers,
+            Self::memory_estimate(valid.len(), layers),
+            || MODEL_PARTS.into(),
+        )?;
         // Within the budget, so these products are far below usize::MAX.
         let mut columns = Vec::with_capacity(valid.len());
         let mut elements = Vec::with_capacity(valid.len() * layers);

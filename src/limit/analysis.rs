@@ -493,9 +493,20 @@ pub struct Uniqueness {
 /// face, which may blend several optimal vertex mechanisms; a spread above
 /// `1e-4` (relative to the velocity scale) says the face is not a point.
 ///
+/// Each of the two optima is certified as [`analyse`] certifies its own:
+/// checked against the optimality conditions of its LP at
+/// [`super::CERTIFICATE_TOLERANCE`], whatever tolerance the solver was
+/// given, before its extreme or its vertex is used (a loosely solved
+/// extreme could make a unique mechanism look blended, or the reverse).
+///
 /// # Errors
 /// [`DismechError::NoLimitLoad`] when `result` has no kinematic load (it
-/// is not a collapse); as [`analyse`] otherwise.
+/// is not a collapse); [`DismechError::UncertifiedOptimum`] when the
+/// solver reports an optimum of either LP that fails its optimality
+/// conditions (e.g. a loose `LinearProgramSolver.tolerance`);
+/// [`DismechError::Solve`] when either LP ends without an optimum (other
+/// than an unbounded face, which is reported as not unique) or the solver
+/// refuses it; as [`analyse`] for the model's own checks.
 pub fn mechanism_uniqueness<S: LpSolver>(
     model: &LimitModel,
     solver: &mut S,
@@ -553,6 +564,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
                 )),
             ));
         }
+        certify(&lp, &solution)?;
         extreme[slot] = sign * solution.objective;
         if slot == 0 && solution.x.len() == lp.num_variables {
             read_mechanism(model, &dof, &columns, &solution.x, &mut vertex);

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::{MatMut, Side};
 
@@ -39,6 +39,9 @@ pub struct CholeskyTimings {
 struct Analysis {
     pattern: SparsePattern,
     symbolic: SymbolicCholesky<usize>,
+    /// Made by [`SparseCholesky::analyse_pattern`] and not yet used by a
+    /// factorization, which then reports its time as its own.
+    fresh: bool,
 }
 
 /// Sparse `L Lᵀ` as a [`LinearSolver`].
@@ -104,11 +107,66 @@ impl SparseCholesky {
         Ok(SolveStats::direct())
     }
 
+    /// Analyse `pattern` (the AMD ordering and the symbolic factorization)
+    /// without factoring, so that the memory of the factor
+    /// ([`SparseCholesky::factor_bytes`]) can be weighed before it is
+    /// taken; the next factorization of a matrix with this pattern reuses
+    /// the analysis (and reports its time).
+    ///
+    /// # Errors
+    /// [`SolveError::Factorization`] when faer's symbolic analysis fails.
+    pub fn analyse_pattern(&mut self, pattern: &SparsePattern) -> Result<(), SolveError> {
+        self.factored = false;
+        self.analyse(pattern)?;
+        if let Some(analysis) = &mut self.analysis {
+            analysis.fresh = true;
+        }
+        Ok(())
+    }
+
+    /// Bytes a numeric factorization of the analysed pattern takes beyond
+    /// the matrix and its pattern: the factor's values (8 bytes an entry),
+    /// its symbolic structure (row indices, supernodes, the row-major copy
+    /// of a supernodal structure, the ordering) and faer's workspace (a
+    /// permuted copy of the matrix and the supernodes' updates). `None`
+    /// before an analysis.
+    pub fn factor_bytes(&self) -> Option<u128> {
+        let symbolic = &self.analysis.as_ref()?.symbolic;
+        let word = std::mem::size_of::<usize>() as u128;
+        let n = symbolic.nrows() as u128;
+        let structure = match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => s.row_idx().len() as u128 + n + 1,
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                2 * s.row_idx().len() as u128 + 4 * (s.n_supernodes() as u128 + 1) + n + 1
+            }
+        };
+        let workspace = symbolic
+            .factorize_numeric_llt_scratch::<f64>(
+                faer::get_global_parallelism(),
+                Default::default(),
+            )
+            .size_bytes();
+        Some(
+            symbolic.len_val() as u128 * std::mem::size_of::<f64>() as u128
+                + (structure + 2 * n) * word
+                + workspace as u128,
+        )
+    }
+
+    /// Entries of the factor of the analysed pattern (0 before an
+    /// analysis), whether or not it has been factored.
+    pub fn factor_entries_analysed(&self) -> usize {
+        self.analysis.as_ref().map_or(0, |a| a.symbolic.len_val())
+    }
+
     fn analyse(&mut self, pattern: &SparsePattern) -> Result<(), SolveError> {
-        let reuse = matches!(&self.analysis, Some(a) if a.pattern.same_as(pattern));
-        if reuse {
-            self.timings.symbolic = Duration::ZERO;
-            return Ok(());
+        if let Some(a) = &mut self.analysis {
+            if a.pattern.same_as(pattern) {
+                if !std::mem::take(&mut a.fresh) {
+                    self.timings.symbolic = Duration::ZERO;
+                }
+                return Ok(());
+            }
         }
         self.analysis = None;
         let start = Instant::now();
@@ -124,6 +182,7 @@ impl SparseCholesky {
         self.analysis = Some(Analysis {
             pattern: pattern.clone(),
             symbolic,
+            fresh: false,
         });
         Ok(())
     }
@@ -259,6 +318,38 @@ mod tests {
         // Exact: det = 11, x = [(3 − 2) / 11, (8 − 1) / 11].
         assert_relative_eq!(x[0], 1.0 / 11.0, max_relative = 1e-12);
         assert_relative_eq!(x[1], 7.0 / 11.0, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn factor_bytes_are_known_after_the_analysis_before_the_factor() {
+        let n = 40;
+        let mut t = Vec::new();
+        for i in 0..n {
+            t.push((i, i, 4.0));
+            for j in [i + 1, i + 7] {
+                if j < n {
+                    t.push((j, i, -1.0));
+                }
+            }
+        }
+        let m = SparseMatrix::from_triplets(n, &t).unwrap();
+        let mut solver = SparseCholesky::new();
+        assert_eq!(solver.factor_bytes(), None);
+        solver.analyse_pattern(m.pattern()).unwrap();
+        let entries = solver.factor_entries_analysed();
+        let bytes = solver.factor_bytes().unwrap();
+        assert!(entries >= m.values().len(), "{entries}");
+        assert!(bytes >= 8 * entries as u128, "{bytes}");
+        // Nothing factored yet: the factor's values are not allocated.
+        assert_eq!(solver.factor_entries(), Some(0));
+        assert!(solver.solve_factored(&mut vec![1.0; n]).is_err());
+        // The factorization reuses the analysis and keeps its time.
+        let x = solve(&mut solver, &m, &vec![1.0; n]).unwrap();
+        assert!(x.iter().all(|v| v.is_finite() && *v > 0.0));
+        assert_eq!(solver.symbolic_analyses(), 1);
+        assert_eq!(solver.factor_entries(), Some(entries));
+        assert!(solver.timings().symbolic > Duration::ZERO);
+        assert_eq!(solver.factor_bytes(), Some(bytes));
     }
 
     #[test]
