@@ -211,6 +211,9 @@
 //! run them and compare with each paper.
 
 #![deny(missing_docs)]
+// Every public fallible function says what it returns (`# Errors`); CI runs
+// clippy with `-D warnings`, which makes this lint an error.
+#![warn(clippy::missing_errors_doc)]
 
 /// The linear algebra of the public API ([`math::Vec2`], [`math::Point`],
 /// the `SVector` and `SMatrix` of a contact law's input, force and

@@ -537,6 +537,11 @@ pub fn to_esri_ascii(raster: &Raster) -> String {
 }
 
 /// Write a raster as an ESRI ASCII grid file, atomically.
+///
+/// # Errors
+/// [`DismechError::Output`](crate::error::DismechError::Output) naming the
+/// path when its folder cannot be created or the file cannot be written
+/// (see [`crate::io::write_atomically`]); the file is then not there.
 pub fn write_esri_ascii(path: &Path, raster: &Raster) -> Result<()> {
     write_atomically(path, to_esri_ascii(raster).as_bytes())
 }

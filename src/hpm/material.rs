@@ -46,6 +46,15 @@ impl HpmMaterial {
 
     /// Check every value; errors name the offending one. c = φ = 0 is
     /// refused: the slip surface would have no strength.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the value for a Young's
+    /// modulus, unit weight, submerged unit weight or slip-surface modulus
+    /// that is not finite and positive, a Poisson's ratio outside
+    /// `[0, 0.5)`, a cohesion that is negative or not finite, a friction
+    /// angle outside `[0, 90)` degrees, cohesion and friction angle both
+    /// zero, or a slip shear stiffness given that is not finite and
+    /// positive.
     pub fn validate(&self) -> Result<()> {
         require_positive("Young's modulus E", self.youngs_modulus)?;
         let nu = self.poisson_ratio;
