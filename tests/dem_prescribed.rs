@@ -4,7 +4,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
-use dismech::explicit::DemSettings;
+use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{perp, Point, Pose2, Vec2};
@@ -216,5 +216,72 @@ fn half_prescribed_particle_is_refused() {
         }
         Err(other) => panic!("{other}"),
         Ok(_) => panic!("accepted"),
+    }
+}
+
+/// A plate driven into a disc supplies the energy the disc gains: a run to
+/// rest is not stopped as an energy blow-up, and ends at its time limit
+/// with the disc pushed along at the plate's speed.
+#[test]
+fn a_plate_pushing_a_disc_is_not_taken_for_an_energy_blow_up() {
+    let frame = Frame::from_walls(vec![(
+        "floor".into(),
+        Segment::new(Point::new(-10.0, 0.0), Point::new(10.0, 0.0)),
+    )])
+    .unwrap();
+    let mut scene = Scene::new(frame, Vec2::new(0.0, -G)).unwrap();
+    let r = 0.05;
+    let disc = scene.add_circle(Point::new(0.0, r), r, 2650.0).unwrap();
+    let speed = 0.1;
+    scene.particles.push(Particle::prescribed(
+        Polygon::rectangle(0.02, 0.3).unwrap().into(),
+        Pose2::new(-r - 0.01, 0.2, 0.0),
+        Vec2::new(speed, 0.0),
+        0.0,
+    ));
+    let mut sim = DemSimulation::new(scene, law(0.3), ExplicitEuler, settings(1e-5)).unwrap();
+    let criterion = RestCriterion {
+        max_time: 0.5,
+        ..RestCriterion::default()
+    };
+    let outcome = sim.run_to_rest(&criterion, |_, _| {}).unwrap();
+    assert_eq!(outcome.status, RunStatus::TimeLimit, "{outcome:?}");
+    let pushed = &sim.scene().particles[disc];
+    assert!(
+        (pushed.velocity.x - speed).abs() < 0.05 * speed,
+        "{:?}",
+        pushed.velocity
+    );
+    assert!(pushed.pose.position.x > 0.02, "{:?}", pushed.pose);
+}
+
+/// A packing with a prescribed particle has no limit model (its fixed
+/// boundaries are straight supports): refused, naming why.
+#[test]
+fn a_packing_with_a_prescribed_particle_is_refused_by_the_limit_model() {
+    use dismech::law::RigidPlastic;
+    use dismech::limit::{model_from_packing, PackingLimitSettings};
+    let mut scene = Scene::new(Frame::open_box(1.0, 1.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
+    scene
+        .add_circle(Point::new(0.5, 0.5), 0.05, 2650.0)
+        .unwrap();
+    scene.particles.push(Particle::fixed(
+        Circle::new(0.05).unwrap().into(),
+        Pose2::new(0.2, 0.05, 0.0),
+    ));
+    let law = RigidPlastic::new(0.0, 0.5, true).unwrap();
+    let settings = PackingLimitSettings {
+        rolling: true,
+        contact_law: law,
+        wall_law: law,
+        plate_law: law,
+        plate_wall: "left".into(),
+        self_weight: true,
+    };
+    match model_from_packing(&scene, &[], &settings) {
+        Err(DismechError::InvalidParameter { name, .. }) => {
+            assert!(name.contains("prescribed"), "{name}")
+        }
+        other => panic!("{other:?}"),
     }
 }

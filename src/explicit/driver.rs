@@ -281,6 +281,11 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     time: f64,
     initial_potential: f64,
     initial_kinetic: f64,
+    /// The prescribed particles (infinite mass), and the work they have
+    /// done on the free ones so far (J/m): energy the run is supplied
+    /// with besides gravity and the initial motion.
+    prescribed: Vec<usize>,
+    prescribed_work: f64,
     /// Largest overlap at the start (m).
     initial_overlap: f64,
     /// The stable time step estimated at the start, when the law bounds
@@ -489,6 +494,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             time: 0.0,
             initial_potential: 0.0,
             initial_kinetic: 0.0,
+            prescribed: (scene.particles.iter().enumerate())
+                .filter(|(_, p)| p.is_prescribed())
+                .map(|(i, _)| i)
+                .collect(),
+            prescribed_work: 0.0,
             initial_overlap: 0.0,
             stable_estimate: None,
             neighbours: NeighbourList::new(skin, settings.relative_travel, &scene.particles),
@@ -539,7 +549,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         Ok(sim)
     }
 
-    /// The most contact points of any particle in the last step.
+    /// The most contact points of any free particle in the last step.
     fn most_contacts(&self) -> usize {
         let mut count = vec![0usize; self.scene.particles.len()];
         for slot in &self.neighbours.slots {
@@ -547,6 +557,10 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             if let ContactTarget::Particle(j) = slot.target() {
                 count[j] += slot.points.len();
             }
+        }
+        // A prescribed particle's contacts do not set a free one's modes.
+        for &i in &self.prescribed {
+            count[i] = 0;
         }
         count.into_iter().max().unwrap_or(0)
     }
@@ -818,14 +832,23 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 y: p.pose.position.y,
             });
         }
+        // The power a prescribed particle supplies is minus that of the
+        // contact forces on it (it moves whatever they are).
+        for &i in &self.prescribed {
+            let p = &self.scene.particles[i];
+            let f = &self.system.force[3 * i..3 * i + 3];
+            self.prescribed_work -=
+                (f[0] * p.velocity.x + f[1] * p.velocity.y + f[2] * p.angular_velocity) * dt;
+        }
         self.step += 1;
         self.time += dt;
         Ok(())
     }
 
     /// [`DismechError::EnergyBlowUp`] when the kinetic energy exceeds
-    /// twice what gravity, the external forces and the initial motion can
-    /// supply (the sign of an unstable step).
+    /// twice what gravity, the external forces, the initial motion and
+    /// the work of the prescribed particles can supply (the sign of an
+    /// unstable step).
     fn energy_blow_up(&self) -> Option<DismechError> {
         self.blow_up_at(
             self.kinetic_energy(),
@@ -836,7 +859,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// [`Self::energy_blow_up`] for the kinetic energy and the released
     /// potential energy at hand.
     fn blow_up_at(&self, kinetic: f64, released: f64) -> Option<DismechError> {
-        let available = released.max(0.0) + self.initial_kinetic;
+        let available = released.max(0.0) + self.initial_kinetic + self.prescribed_work.max(0.0);
         (kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0)).then_some(
             DismechError::EnergyBlowUp {
                 step: self.step,
@@ -847,13 +870,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         )
     }
 
-    /// The kinetic energy against the potential energy released; with
-    /// none released (no gravity, nothing fell, or bodies rose), against
+    /// The kinetic energy against the potential energy released plus the
+    /// work of the prescribed particles; with neither (no gravity, nothing
+    /// fell, or bodies rose, and no driven body), against
     /// the initial kinetic energy; with neither, 0 when nothing moves and
     /// infinite otherwise.
     fn rest_ratio(&self, kinetic: f64, released: f64) -> f64 {
-        if released > 0.0 {
-            kinetic / released
+        let supplied = released.max(0.0) + self.prescribed_work.max(0.0);
+        if supplied > 0.0 {
+            kinetic / supplied
         } else if self.initial_kinetic > 0.0 {
             kinetic / self.initial_kinetic
         } else if kinetic == 0.0 {

@@ -1,7 +1,7 @@
 //! Assembly of the kinematic LP and its solution.
 
 use super::model::{LimitModel, LiveLoad, LoadDriver, Partner};
-use super::verdict::{certify, status_of_load};
+use super::verdict::{certify, dead_load_scales, status_of_load};
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -284,7 +284,7 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
     if status != LimitStatus::Collapse {
         return Ok(result);
     }
-    let optimality = certify(&lp, &solution)?;
+    let optimality = certify(&lp, &solution, dead_load_scales(model, &driver, false))?;
     read_mechanism(model, &dof, &columns, &solution.x, &mut result);
     let mut plate_force = Vec2::zeros();
     for (c, contact) in contacts.iter().enumerate() {
@@ -564,7 +564,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
                 )),
             ));
         }
-        certify(&lp, &solution)?;
+        certify(&lp, &solution, dead_load_scales(model, &driver, false))?;
         extreme[slot] = sign * solution.objective;
         if slot == 0 && solution.x.len() == lp.num_variables {
             read_mechanism(model, &dof, &columns, &solution.x, &mut vertex);

@@ -16,7 +16,8 @@ pub struct Admissibility {
     /// Largest excess `|T| − (c + μ max(N, 0))` over the same scale (zero or
     /// negative when every force is within strength).
     pub strength_excess: f64,
-    /// The force scale: the largest of the loads, the live load at its
+    /// The force scale: the largest of the loads (as given, and times the
+    /// multiplier where the dead loads drive), the live load at its
     /// multiplier and the contact forces (N per m).
     pub scale: f64,
 }
@@ -50,9 +51,11 @@ pub fn admissibility(model: &LimitModel, result: &LimitResult) -> Admissibility 
         (Some(LoadDriver::DeadLoads), Some(lambda)) => lambda,
         _ => 1.0,
     };
+    // The scale counts the real loads (λ = 1) too: a small multiplier of
+    // the dead loads is judged against the weight, as its certificate is.
     for (i, b) in model.bodies().iter().enumerate() {
         force[i] += b.load * factor;
-        scale = scale.max((b.load * factor).norm());
+        scale = scale.max((b.load * factor).norm()).max(b.load.norm());
     }
     if let (Some(live), Some(lambda)) = (model.live_load(), result.load) {
         let f = live.force * lambda;

@@ -38,7 +38,8 @@ pub struct PackingLimitSettings {
 ///
 /// # Errors
 /// [`DismechError::InvalidParameter`] when `settings.plate_wall` names no
-/// wall of the frame, or a contact record has a point that is not finite
+/// wall of the frame, when the scene has a prescribed particle (infinite
+/// mass: it has no counterpart here), or a contact record has a point that is not finite
 /// or a normal of zero length; [`DismechError::NoSuchBody`] for a record
 /// naming a particle the scene does not have, and
 /// [`DismechError::DegenerateWall`] for one naming a wall the frame does
@@ -99,6 +100,15 @@ pub fn model_from_packing(
             }
         };
         largest_overlap = largest_overlap.max(overlap);
+    }
+    // A prescribed particle has no counterpart here: the limit model's
+    // fixed boundaries are straight supports.
+    if let Some(i) = scene.particles.iter().position(|p| p.is_prescribed()) {
+        return Err(DismechError::InvalidParameter {
+            name: "mass of a packing particle (prescribed)",
+            value: scene.particles[i].mass,
+            requirement: "must be finite: a prescribed (fixed or driven) particle has no counterpart in the limit model, whose fixed boundaries are the frame's walls as supports",
+        });
     }
     let mut model = LimitModel::new(require_positive(
         "contact tolerance",

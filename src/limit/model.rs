@@ -33,7 +33,8 @@ use crate::law::{Strength, StrengthLaw};
 use crate::math::{perp, Point, Pose2, Vec2};
 use crate::query::manifold::contact_manifold_2d;
 use crate::query::manifold::polygon::contact_polygon_polygon_within;
-use crate::shape::{AnyShape2, Circle};
+use crate::query::Feature;
+use crate::shape::{AnyShape2, Circle, Polygon};
 
 /// A rigid element: its outline placed at its pose (the pose's position is
 /// the reference point of its velocity and of its moments).
@@ -223,6 +224,17 @@ pub struct LimitModel {
     body_cells: HashMap<(i64, i64), Vec<usize>>,
     /// Contacts by their pair (see [`pair_key`]).
     pairs: HashMap<(usize, Partner), Vec<usize>>,
+}
+
+/// Whether `normal` (world) is the outward normal of one of the two edges
+/// of `polygon` at `pose` that meet at vertex `k`, within 1e-6 in sine: a
+/// contact there is the end of a face on a face.
+fn on_a_face(polygon: &Polygon, pose: &Pose2, k: usize, normal: &Vec2) -> bool {
+    let n = polygon.vertices().len();
+    [(k + n - 1) % n, k].iter().any(|&e| {
+        let m = pose.transform_vector(&polygon.edge_normal(e));
+        m.dot(normal) > 0.0 && crate::math::cross(&m, normal).abs() <= 1e-6
+    })
 }
 
 /// The pair of a contact, the same whichever element of two is named first.
@@ -640,7 +652,10 @@ impl LimitModel {
     ///   ([`crate::query::manifold::polygon::contact_polygon_polygon_within`]):
     ///   a face on a face gives its two ends, so blocks cut to fit (the
     ///   voussoirs of an arch, whose corners coincide to rounding) touch
-    ///   at both ends of each joint;
+    ///   at both ends of each joint; two corners that meet at a point only
+    ///   make no contact (no face gives its normal; leaving it out errs
+    ///   on the safe side of the upper bound), and a pair that touches
+    ///   only so gives an empty list;
     /// * a polygon and a support: every vertex within the tolerance of the
     ///   support's line;
     /// * an ellipse and a support: the ellipse's lowest point towards the
@@ -703,6 +718,22 @@ impl LimitModel {
                             self.tolerance,
                             &mut manifold,
                         );
+                        // Two corners that meet at a point only (their
+                        // merged normal lies on no face of either) have
+                        // no contact normal: they are left out, the safe
+                        // side of an upper bound.
+                        let found = manifold.len();
+                        manifold.retain(|g| match (g.features.a, g.features.b) {
+                            (Feature::Vertex(i), Feature::Vertex(k)) => {
+                                on_a_face(pa, &a.pose(), i, &g.normal)
+                                    && on_a_face(pb, &b.pose(), k, &(-g.normal))
+                            }
+                            _ => true,
+                        });
+                        if manifold.is_empty() && found > 0 {
+                            // They touch, at corners only: no contact.
+                            return Ok(Vec::new());
+                        }
                     }
                     (sa, sb) => contact_manifold_2d(sa, &a.pose(), sb, &b.pose(), &mut manifold)?,
                 }

@@ -7,7 +7,7 @@
 
 use super::analysis::{driver, Driver, LimitResult, LimitStatus};
 use super::model::{LimitModel, Partner};
-use super::verdict::{certify, status_of_load};
+use super::verdict::{certify, dead_load_scales, status_of_load};
 use crate::error::Result;
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -146,7 +146,7 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
     if status != LimitStatus::Collapse {
         return Ok(result);
     }
-    let optimality = certify(&lp, &solution)?;
+    let optimality = certify(&lp, &solution, dead_load_scales(model, &driver, true))?;
     for (c, &(col_n, col_t)) in columns.iter().enumerate() {
         result.normal_force[c] = solution.x[col_n];
         result.shear_force[c] = col_t.map_or(0.0, |k| solution.x[k]);

@@ -26,8 +26,9 @@
 //! moves (a bilateral plate contact, dead loads driving towards it).
 
 use super::analysis::{Driver, LimitStatus};
+use super::model::LimitModel;
 use crate::error::{DismechError, Result};
-use crate::lp::{LinearProgram, LinearProgramSolution, Optimality};
+use crate::lp::{LinearProgram, LinearProgramSolution, Optimality, Scales};
 
 /// The largest relative residual of the LP's optimality conditions (primal
 /// feasibility, dual feasibility, duality gap) that a certified limit load
@@ -41,15 +42,47 @@ use crate::lp::{LinearProgram, LinearProgramSolution, Optimality};
 /// the residual is 1e-4 and the "bound" 14.53.
 pub const CERTIFICATE_TOLERANCE: f64 = 1e-8;
 
+/// The least scales of a limit LP's residuals where the dead loads are
+/// the driver: the optimum λ and the forces scale with λ, so a small
+/// multiplier (a little cohesion) would leave the solver's rounding large
+/// against them. The residuals are then measured against the problem at
+/// λ = 1, its real weight: forces of the largest dead load (in the
+/// kinematic LP's dual, the static LP's primal) and the dead loads' unit
+/// power (the objectives). Other drivers keep the solution's own scales.
+pub(super) fn dead_load_scales(
+    model: &LimitModel,
+    driver: &Driver,
+    forces_are_primal: bool,
+) -> Scales {
+    if *driver != Driver::DeadLoads {
+        return Scales::default();
+    }
+    let weight = model
+        .bodies()
+        .iter()
+        .map(|b| b.load.x.abs().max(b.load.y.abs()))
+        .fold(0.0, f64::max);
+    Scales {
+        primal: if forces_are_primal { weight } else { 0.0 },
+        dual: if forces_are_primal { 0.0 } else { weight },
+        gap: 1.0,
+    }
+}
+
 /// Check an optimal `solution` of `lp` against the LP's optimality
-/// conditions at [`CERTIFICATE_TOLERANCE`].
+/// conditions at [`CERTIFICATE_TOLERANCE`], each residual against at least
+/// `floors` (see [`dead_load_scales`]).
 ///
 /// # Errors
 /// [`DismechError::UncertifiedOptimum`] when a residual is above the
 /// tolerance; a [`crate::error::SolveError`] when the solution does not
 /// have the sizes of `lp`.
-pub(super) fn certify(lp: &LinearProgram, solution: &LinearProgramSolution) -> Result<Optimality> {
-    let optimality = solution.optimality(lp)?;
+pub(super) fn certify(
+    lp: &LinearProgram,
+    solution: &LinearProgramSolution,
+    floors: Scales,
+) -> Result<Optimality> {
+    let optimality = solution.optimality_at_scales(lp, floors)?;
     if optimality.holds(CERTIFICATE_TOLERANCE) {
         Ok(optimality)
     } else {

@@ -68,6 +68,18 @@ fn max_abs(values: &[f64]) -> f64 {
     values.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
+/// Least scales against which [`LinearProgramSolution::optimality_at_scales`]
+/// measures the three residuals (zero: the solution's own sizes alone).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Scales {
+    /// Least scale of the primal rows' terms.
+    pub primal: f64,
+    /// Least scale of the dual (stationarity) terms.
+    pub dual: f64,
+    /// Least scale of the objectives.
+    pub gap: f64,
+}
+
 impl LinearProgramSolution {
     /// The residuals of `lp`'s optimality conditions at this solution's
     /// `x`, `equality_duals` and `inequality_duals` (see [`Optimality`]).
@@ -79,6 +91,22 @@ impl LinearProgramSolution {
     /// sizes of `lp` (a solution of another LP); as the solver's
     /// validation for malformed `lp` data.
     pub fn optimality(&self, lp: &LinearProgram) -> Result<Optimality, SolveError> {
+        self.optimality_at_scales(lp, Scales::default())
+    }
+
+    /// [`Self::optimality`] with each residual measured against at least
+    /// the given `floors`: the sizes its terms would have at the
+    /// problem's natural scale where the solution's own are smaller (an
+    /// optimum that is a small multiple of its data, whose terms shrink
+    /// with it while the solver's rounding does not).
+    ///
+    /// # Errors
+    /// As [`Self::optimality`].
+    pub fn optimality_at_scales(
+        &self,
+        lp: &LinearProgram,
+        floors: Scales,
+    ) -> Result<Optimality, SolveError> {
         lp.validate()?;
         for (what, expected, found) in [
             ("solution x", lp.num_variables, self.x.len()),
@@ -130,7 +158,8 @@ impl LinearProgramSolution {
         let primal_scale = max_abs(&lp.equality_rhs)
             .max(max_abs(&lp.inequality_rhs))
             .max(max_abs(&eq_size))
-            .max(max_abs(&in_size));
+            .max(max_abs(&in_size))
+            .max(floors.primal);
 
         // Dual: c + A_eqᵀ y + A_ineqᵀ z per column, and z ≥ 0.
         let mut stationarity = lp.objective.clone();
@@ -145,7 +174,7 @@ impl LinearProgramSolution {
         }
         let negative_z = z.iter().fold(0.0f64, |m, &zi| m.max(-zi));
         let dual_violation = max_abs(&stationarity).max(negative_z);
-        let dual_scale = max_abs(&column_size).max(max_abs(z));
+        let dual_scale = max_abs(&column_size).max(max_abs(z)).max(floors.dual);
 
         // Gap between cᵀx and the dual objective recomputed from y, z.
         let primal_objective: f64 = lp.objective.iter().zip(x).map(|(c, x)| c * x).sum();
@@ -161,7 +190,8 @@ impl LinearProgramSolution {
             .abs()
             .max(dual_objective.abs())
             .max(max_abs(&lp.objective) * max_abs(x))
-            .max(b_norm * max_abs(y).max(max_abs(z)));
+            .max(b_norm * max_abs(y).max(max_abs(z)))
+            .max(floors.gap);
         Ok(Optimality {
             primal_residual: relative(violation, primal_scale),
             dual_residual: relative(dual_violation, dual_scale),

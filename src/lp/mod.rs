@@ -61,7 +61,7 @@ mod clarabel;
 mod program;
 mod solution;
 
-pub use certificate::Optimality;
+pub use certificate::{Optimality, Scales};
 pub use clarabel::LinearProgramSolver;
 pub use program::LinearProgram;
 pub use solution::{LinearProgramSolution, LpStatus};
