@@ -151,6 +151,12 @@ fn a_driven_plate_keeps_its_velocity_and_carries_a_block() {
     );
     let own = carried.kinetic_energy();
     assert!((sim.kinetic_energy() - own).abs() <= 1e-12 * own);
+    // Carried at the plate's speed, the block presses on the plate with
+    // its weight and no horizontal force.
+    let (on_plate, _) = sim.force_on(1).unwrap();
+    assert!((on_plate.y + weight).abs() < 1e-3 * weight, "{on_plate:?}");
+    assert!(on_plate.x.abs() < 1e-3 * weight, "{on_plate:?}");
+    assert!(sim.force_on(2).is_err());
 }
 
 /// Discs of a rough base may overlap each other when both are fixed; a

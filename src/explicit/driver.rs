@@ -669,6 +669,26 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             .sum()
     }
 
+    /// The force and moment summed on `particle` in the last step (N/m,
+    /// N·m/m; zero before the first): its contacts plus its weight and
+    /// external force. For a prescribed particle, which carries no weight,
+    /// it is the force of its contacts alone: what a driven plate or a
+    /// fixed base must exert is its negative.
+    ///
+    /// # Errors
+    /// [`DismechError::NoSuchBody`] for an index the scene does not have.
+    pub fn force_on(&self, particle: usize) -> Result<(Vec2, f64)> {
+        let count = self.scene.particles.len();
+        if particle >= count {
+            return Err(DismechError::NoSuchBody {
+                index: particle,
+                count,
+            });
+        }
+        let f = &self.system.force[3 * particle..3 * particle + 3];
+        Ok((Vec2::new(f[0], f[1]), f[2]))
+    }
+
     /// Mean over the free particles of the unbalanced force `|Σ f|`
     /// (contacts plus gravity, from the last step), divided by the mean
     /// weight.

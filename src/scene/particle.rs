@@ -10,9 +10,13 @@ use crate::shape::{AnyShape2, MassProperties};
 /// ([`Particle::prescribed`], [`Particle::fixed`]): it keeps its velocity
 /// and angular velocity whatever the contacts push, as a wall of any
 /// shape (a fixed polygon incline, a rough base of fixed discs, a plate
-/// driven at constant speed). Gravity and external forces do not act on it,
-/// and it is left out of the kinetic and potential energies, the total
-/// weight and the unbalanced force, which describe the free particles.
+/// driven at constant speed): its acceleration is zero, so an integrator
+/// that keeps a velocity at zero acceleration (every one of this crate)
+/// keeps its motion; one that damps velocities would slow it too. Gravity
+/// and external forces do not act on it, and it is left out of the kinetic
+/// and potential energies, the total weight and the unbalanced force,
+/// which describe the free particles; the force of its contacts is
+/// `ExplicitDynamics::force_on`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Particle {
     /// Geometry.
