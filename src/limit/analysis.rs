@@ -1,7 +1,7 @@
 //! Assembly of the kinematic LP and its solution.
 
 use super::model::{LimitModel, LiveLoad, LoadDriver, Partner};
-use super::verdict::{certify, dead_load_scales, status_of_load};
+use super::verdict::{certify, dead_load_scales, record_bounds, status_of_load};
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -262,7 +262,9 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
 
     let status = match solution.status {
         LpStatus::Optimal | LpStatus::AlmostOptimal => LimitStatus::Collapse,
-        LpStatus::PrimalInfeasible => dead_load_status(model, lp.clone(), live_row, solver)?,
+        LpStatus::PrimalInfeasible => {
+            dead_load_status(model, &driver, lp.clone(), live_row, solver)?
+        }
         LpStatus::DualInfeasible => LimitStatus::Unbounded,
         other => LimitStatus::SolverTrouble(other),
     };
@@ -313,19 +315,7 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
     };
     let kinematic = solution.objective / speed;
     result.status = status_of_load(&driver, solution.objective, kinematic, &optimality);
-    match result.status {
-        LimitStatus::Collapse => {
-            result.static_load = static_load;
-            result.kinematic_load = Some(kinematic);
-            result.load = Some(kinematic);
-        }
-        LimitStatus::ZeroLoad => {
-            result.static_load = static_load;
-            result.kinematic_load = Some(kinematic);
-            result.load = Some(0.0);
-        }
-        _ => {}
-    }
+    record_bounds(&mut result, kinematic, static_load, kinematic);
     Ok(result)
 }
 
@@ -340,15 +330,14 @@ pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitR
 /// A solver that refuses the LP.
 fn dead_load_status<S: LpSolver>(
     model: &LimitModel,
+    driver: &Driver,
     mut lp: LinearProgram,
     live_row: Option<usize>,
     solver: &mut S,
 ) -> Result<LimitStatus> {
     // Multiplied dead loads that do no work on any mechanism are carried
     // at every multiple.
-    if model.bodies().iter().all(|b| b.load == Vec2::zeros())
-        || model.load_driver() == Some(&LoadDriver::DeadLoads)
-    {
+    if !model.has_dead_loads() || *driver == Driver::DeadLoads {
         return Ok(LimitStatus::Locked);
     }
     if let Some(row) = live_row {
@@ -388,10 +377,10 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
         return match load {
             LoadDriver::Live(live) => Ok(Driver::Live(*live)),
             LoadDriver::DeadLoads => {
-                if model.bodies().iter().all(|b| b.load == Vec2::zeros()) {
-                    Err(DismechError::NoDeadLoads)
-                } else {
+                if model.has_dead_loads() {
                     Ok(Driver::DeadLoads)
+                } else {
+                    Err(DismechError::NoDeadLoads)
                 }
             }
         };

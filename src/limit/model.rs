@@ -411,6 +411,11 @@ impl LimitModel {
         self.load_driver.as_ref()
     }
 
+    /// Whether any body has a dead load (see [`LimitModel::set_load`]).
+    pub fn has_dead_loads(&self) -> bool {
+        self.bodies.iter().any(|b| b.load != Vec2::zeros())
+    }
+
     /// The live load, if one is set.
     pub fn live_load(&self) -> Option<&LiveLoad> {
         match &self.load_driver {

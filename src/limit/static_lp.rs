@@ -7,7 +7,7 @@
 
 use super::analysis::{driver, Driver, LimitResult, LimitStatus};
 use super::model::{LimitModel, Partner};
-use super::verdict::{certify, dead_load_scales, status_of_load};
+use super::verdict::{certify, dead_load_scales, record_bounds, status_of_load};
 use crate::error::Result;
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -168,18 +168,6 @@ pub fn analyse_static<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result
     }
     let load = -solution.objective;
     result.status = status_of_load(&driver, solution.objective, load, &optimality);
-    match result.status {
-        LimitStatus::Collapse => {
-            result.kinematic_load = Some(-solution.dual_objective);
-            result.static_load = Some(load);
-            result.load = Some(load);
-        }
-        LimitStatus::ZeroLoad => {
-            result.kinematic_load = Some(-solution.dual_objective);
-            result.static_load = Some(load);
-            result.load = Some(0.0);
-        }
-        _ => {}
-    }
+    record_bounds(&mut result, -solution.dual_objective, Some(load), load);
     Ok(result)
 }

@@ -25,7 +25,7 @@
 //! as a collapse: a plate may have to hold the assembly back while it
 //! moves (a bilateral plate contact, dead loads driving towards it).
 
-use super::analysis::{Driver, LimitStatus};
+use super::analysis::{Driver, LimitResult, LimitStatus};
 use super::model::LimitModel;
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LinearProgramSolution, Optimality, Scales};
@@ -41,6 +41,26 @@ use crate::lp::{LinearProgram, LinearProgramSolution, Optimality, Scales};
 /// falls 7e-7 below the exact load, which this tolerance refuses; at 1e-3
 /// the residual is 1e-4 and the "bound" 14.53.
 pub const CERTIFICATE_TOLERANCE: f64 = 1e-8;
+
+/// Record in `result`, whose status is set, the two bounds of its
+/// certified optimum and the limit load the status gives: `load` for a
+/// collapse, zero for [`LimitStatus::ZeroLoad`], none otherwise (the
+/// bounds too).
+pub(super) fn record_bounds(
+    result: &mut LimitResult,
+    kinematic: f64,
+    statical: Option<f64>,
+    load: f64,
+) {
+    let load = match result.status {
+        LimitStatus::Collapse => load,
+        LimitStatus::ZeroLoad => 0.0,
+        _ => return,
+    };
+    result.kinematic_load = Some(kinematic);
+    result.static_load = statical;
+    result.load = Some(load);
+}
 
 /// The least scales of a limit LP's residuals where the dead loads are
 /// the driver: the optimum λ and the forces scale with λ, so a small
