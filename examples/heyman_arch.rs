@@ -55,7 +55,7 @@ fn arch(voussoirs: usize, t: f64) -> dismech::error::Result<LimitModel> {
         model.set_load(body, Vec2::new(0.0, -area))?;
     }
     // No tension, no cohesion, ample friction (φ = 40°).
-    let joint = RigidPlastic::new(0.0, 40f64.to_radians(), true)?;
+    let joint = RigidPlastic::from_friction_angle_deg(0.0, 40.0, true)?;
     for k in 0..voussoirs - 1 {
         model.add_contacts(k, Partner::Body(k + 1), joint)?;
     }

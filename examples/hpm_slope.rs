@@ -39,13 +39,13 @@ fn main() -> Result<(), DismechError> {
             "seismic k_h = 0.15 towards -y",
             Seismic {
                 coefficient: 0.15,
-                direction_deg: 270.0,
+                direction: (0.0, -1.0),
             },
         ),
     ] {
         let elastic = solver.elastic(&model, &load)?;
         let nonlinear = solver.nonlinear(&model, &load, 1.0, &NonlinearSettings::default())?;
-        let hov = hovland(&model, &load, 270.0)?;
+        let hov = hovland(&model, &load, (0.0, -1.0))?;
         println!(
             "{case}: Fs elastic {:.4}, nonlinear {:.4} ({:?}), Hovland {:.4}",
             elastic.safety_factor(&model)?,

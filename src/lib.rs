@@ -142,7 +142,7 @@
 //! let block = model.add_shape(Polygon::rectangle(w, h)?.into(), Pose2::new(0.0, h / 2.0, 0.0), true)?;
 //! model.set_load(block, Vec2::new(0.0, -weight))?;
 //! let floor = model.add_support("floor", Point::origin(), Vec2::y(), Vec2::zeros())?;
-//! let law = RigidPlastic::new(0.0, 30f64.to_radians(), true)?;
+//! let law = RigidPlastic::from_friction_angle_deg(0.0, 30.0, true)?;
 //! for x in [-w / 2.0, w / 2.0] {
 //!     model.add_contact_at(block, Partner::Support(floor), law, Point::new(x, 0.0), -Vec2::y())?;
 //! }
@@ -195,8 +195,8 @@
 //! ## Conventions
 //! SI units (m, kg, s, N, Pa); 2D quantities are per metre of thickness.
 //! 2D methods work in the x–y plane, y up, angles counter-clockwise from +x.
-//! Friction is given as μ = tan φ to the laws (the rigid-plastic law and
-//! HPM's material take φ and convert once). Misuse is an `Err` of
+//! Angles are in radians. Friction is the coefficient μ = tan φ in every law
+//! and material ([`law::friction_from_degrees`] converts an angle). Misuse is an `Err` of
 //! [`error::DismechError`] naming the offending value; a run that goes
 //! unstable stops with an error saying what to change.
 //!

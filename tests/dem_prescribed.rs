@@ -275,7 +275,7 @@ fn a_packing_with_a_prescribed_particle_is_refused_by_the_limit_model() {
         Circle::new(0.05).unwrap().into(),
         Pose2::new(0.2, 0.05, 0.0),
     ));
-    let law = RigidPlastic::new(0.0, 0.5, true).unwrap();
+    let law = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     let settings = PackingLimitSettings {
         rolling: true,
         contact_law: law,

@@ -8,6 +8,11 @@ use dismech::hpm::*;
 use dismech::linsolve::{CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
 use nalgebra::{Matrix3, Point3, Vector3};
+/// The horizontal unit vector at `deg` degrees counter-clockwise from +x.
+fn towards_deg(deg: f64) -> (f64, f64) {
+    let t = deg.to_radians();
+    (t.cos(), t.sin())
+}
 
 /// A slab of vertical thickness `thickness` on the plane dipping at `dip`
 /// degrees towards the horizontal direction `towards` (degrees from +x),
@@ -95,14 +100,16 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
         assert!((model.total_weight() - exact_w.weight).abs() < 1e-9 * exact_w.weight);
         let seismic = Seismic {
             coefficient: kh,
-            direction_deg: towards,
+            direction: towards_deg(towards),
         };
         let exact = exact_fs(&exact_w, &m, dip, kh);
         let mut solver = HpmSolver::new(&model).unwrap();
         let elastic = solver.elastic(&model, &seismic).unwrap();
         let fs = elastic.safety_factor(&model).unwrap();
         let sliding = elastic.sliding_safety_factor(&model).unwrap();
-        let hov = hovland(&model, &seismic, towards).unwrap().safety_factor;
+        let hov = hovland(&model, &seismic, towards_deg(towards))
+            .unwrap()
+            .safety_factor;
         eprintln!("dip {dip} towards {towards} k_h {kh} water {hw:?}: exact {exact:.5}, HPM stress ratio {fs:.5}, HPM along the sliding direction {sliding:.5}, Hovland {hov:.5}");
         assert!((fs / exact - 1.0).abs() < 0.01, "HPM {fs} vs exact {exact}");
         // The resultant shear of the springs balances the load's component
@@ -134,7 +141,7 @@ fn planar_slab_slip_springs_balance_the_load_exactly() {
     let model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
     let seismic = Seismic {
         coefficient: 0.15,
-        direction_deg: 250.0,
+        direction: towards_deg(250.0),
     };
     let r = HpmSolver::new(&model)
         .unwrap()
@@ -198,7 +205,7 @@ fn planar_slab_nonlinear_fs_is_exact_and_strength_reduction_finds_it() {
 fn a_slab_that_cannot_stand_reports_non_convergence_with_its_residual() {
     let m = HpmMaterial {
         cohesion: 0.0,
-        friction_angle_deg: 15.0,
+        friction_coefficient: 15f64.to_radians().tan(),
         ..HpmMaterial::paper()
     };
     let grids = slab(3, 4, 25.0, 270.0, 5.0, None);
@@ -410,7 +417,7 @@ fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
     let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
     let seismic = Seismic {
         coefficient: 0.15,
-        direction_deg: 270.0,
+        direction: towards_deg(270.0),
     };
     let direct = HpmSolver::new(&model)
         .unwrap()
@@ -630,17 +637,17 @@ fn bad_material_values_are_refused_with_their_name_and_value() {
         ),
         (
             HpmMaterial {
-                friction_angle_deg: 90.0,
+                friction_coefficient: f64::INFINITY,
                 ..HpmMaterial::paper()
             },
-            "friction angle phi (degrees)",
+            "friction coefficient mu = tan(phi)",
         ),
         (
             HpmMaterial {
-                friction_angle_deg: -1.0,
+                friction_coefficient: -1.0,
                 ..HpmMaterial::paper()
             },
-            "friction angle phi (degrees)",
+            "friction coefficient mu = tan(phi)",
         ),
     ] {
         match HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap_err() {
@@ -648,6 +655,20 @@ fn bad_material_values_are_refused_with_their_name_and_value() {
             e => panic!("{e}"),
         }
     }
+    // An angle is converted once, and refused outside [0, 90) degrees.
+    for bad in [90.0, -1.0, f64::NAN] {
+        match HpmMaterial::paper()
+            .with_friction_angle_deg(bad)
+            .unwrap_err()
+        {
+            DismechError::InvalidParameter { name, .. } => {
+                assert_eq!(name, "friction angle phi (degrees)")
+            }
+            e => panic!("{e}"),
+        }
+    }
+    let m = HpmMaterial::paper().with_friction_angle_deg(22.0).unwrap();
+    assert_eq!(m, HpmMaterial::paper());
     assert!(HpmModel::new(
         &grids,
         &HpmMaterial::paper(),
@@ -804,7 +825,7 @@ fn cohesionless_frictionless_fs_is_not_nan_converged() {
     // On flat ground nothing drives: with c = φ = 0 the Fs would be 0 / 0.
     let m = HpmMaterial {
         cohesion: 0.0,
-        friction_angle_deg: 0.0,
+        friction_coefficient: 0.0,
         ..HpmMaterial::paper()
     };
     match HpmModel::new(&flat_slab(6.0), &m, &HpmSettings::default()) {
@@ -815,10 +836,10 @@ fn cohesionless_frictionless_fs_is_not_nan_converged() {
         other => panic!("c = φ = 0 was accepted: {other:?}"),
     }
     // Either alone is a strength.
-    for (cohesion, friction_angle_deg) in [(1.0e3, 0.0), (0.0, 20.0)] {
+    for (cohesion, friction_coefficient) in [(1.0e3, 0.0), (0.0, 20f64.to_radians().tan())] {
         let m = HpmMaterial {
             cohesion,
-            friction_angle_deg,
+            friction_coefficient,
             ..HpmMaterial::paper()
         };
         assert!(HpmModel::new(&flat_slab(6.0), &m, &HpmSettings::default()).is_ok());
@@ -831,7 +852,7 @@ fn strength_reduction_without_any_equilibrium_gives_no_factor() {
     // × 1000 = 0.017 < tan 25°) holds it.
     let m = HpmMaterial {
         cohesion: 0.0,
-        friction_angle_deg: 0.001,
+        friction_coefficient: 0.001f64.to_radians().tan(),
         ..HpmMaterial::paper()
     };
     let grids = slab(3, 4, 25.0, 270.0, 5.0, None);

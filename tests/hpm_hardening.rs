@@ -13,6 +13,11 @@ use dismech::grid::{
 };
 use dismech::hpm::*;
 use dismech::linsolve::CgSettings;
+/// The horizontal unit vector at `deg` degrees counter-clockwise from +x.
+fn towards_deg(deg: f64) -> (f64, f64) {
+    let t = deg.to_radians();
+    (t.cos(), t.sin())
+}
 
 /// A slab of vertical thickness `thickness` on a plane dipping `dip`
 /// degrees towards −y (the toe, 270°), over `rows × columns` cells of 10 m.
@@ -577,7 +582,9 @@ fn slope_grids_of_one_row_or_one_column_are_refused_naming_their_size() {
     }
     // Two of each is enough: the slab's exact Fs follows.
     let m = model(2, 2, 20.0, 5.0);
-    let fs = hovland(&m, &Seismic::none(), 270.0).unwrap().safety_factor;
+    let fs = hovland(&m, &Seismic::none(), towards_deg(270.0))
+        .unwrap()
+        .safety_factor;
     let material = HpmMaterial::paper();
     let beta = 20f64.to_radians();
     let (w, a) = (material.unit_weight * 5.0 * 400.0, 400.0 / beta.cos());
@@ -623,7 +630,7 @@ fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
         nothing_drives(r.safety_factor_along(&m, (0.0, -1.0)), &m);
         assert_eq!(r.sliding_direction(&m), None);
     }
-    let hov = hovland(&m, &Seismic::none(), 270.0);
+    let hov = hovland(&m, &Seismic::none(), towards_deg(270.0));
     let driving = match &hov {
         Err(DismechError::NothingDrivesSliding { driving, .. }) => *driving,
         other => panic!("{other:?}"),
@@ -631,7 +638,7 @@ fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
     assert!(driving.abs() < 1e-9 * m.total_weight(), "{driving}");
     let text = hov.unwrap_err().to_string();
     assert!(text.contains("nothing drives sliding"), "{text}");
-    assert!(text.contains("270°"), "{text}");
+    assert!(text.contains("270.0° from +x"), "{text}");
 }
 
 #[test]
@@ -642,12 +649,14 @@ fn hpm_fs_on_level_ground_under_a_seismic_load_is_the_exact_ratio() {
     let m = model(3, 4, 0.0, 6.0);
     let seismic = Seismic {
         coefficient: 0.15,
-        direction_deg: 0.0,
+        direction: towards_deg(0.0),
     };
     let material = HpmMaterial::paper();
     let (w, a) = (m.total_weight(), 1200.0);
     let exact = (material.cohesion * a + w * material.friction()) / (0.15 * w);
-    let hov = hovland(&m, &seismic, 0.0).unwrap().safety_factor;
+    let hov = hovland(&m, &seismic, towards_deg(0.0))
+        .unwrap()
+        .safety_factor;
     assert!((hov / exact - 1.0).abs() < 1e-9, "{hov} against {exact}");
     let elastic = HpmSolver::new(&m).unwrap().elastic(&m, &seismic).unwrap();
     let (hx, hy) = elastic.sliding_direction(&m).unwrap();
@@ -665,9 +674,14 @@ fn hovland_towards_up_the_slope_says_nothing_drives_sliding() {
     // negative and the Fs was −1.27; towards 0° (along the contours) Σ T
     // is rounding and the Fs was −4.6e17.
     let m = model(3, 4, 20.0, 5.0);
-    assert!(hovland(&m, &Seismic::none(), 270.0).unwrap().safety_factor > 0.0);
+    assert!(
+        hovland(&m, &Seismic::none(), towards_deg(270.0))
+            .unwrap()
+            .safety_factor
+            > 0.0
+    );
     for towards in [90.0, 0.0] {
-        match hovland(&m, &Seismic::none(), towards) {
+        match hovland(&m, &Seismic::none(), towards_deg(towards)) {
             Err(DismechError::NothingDrivesSliding {
                 driving, weight, ..
             }) => {
@@ -867,7 +881,7 @@ fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
         Err(DismechError::NothingDrivesSliding { .. }) => {}
         other => panic!("{other:?}"),
     }
-    match hovland(&m, &Seismic::none(), 270.0) {
+    match hovland(&m, &Seismic::none(), towards_deg(270.0)) {
         Err(DismechError::NothingDrivesSliding { .. }) => {}
         Ok(h) => assert!(h.safety_factor.is_finite(), "{}", h.safety_factor),
         Err(other) => panic!("{other:?}"),
@@ -881,9 +895,11 @@ fn seismic_coefficient_above_ten_is_refused() {
     for kh in [10.5, 1e300] {
         let seismic = Seismic {
             coefficient: kh,
-            direction_deg: 270.0,
+            direction: towards_deg(270.0),
         };
-        let err = hovland(&m, &seismic, 270.0).map(|_| ()).unwrap_err();
+        let err = hovland(&m, &seismic, towards_deg(270.0))
+            .map(|_| ())
+            .unwrap_err();
         assert!(
             matches!(
                 err,
@@ -898,14 +914,16 @@ fn seismic_coefficient_above_ten_is_refused() {
     // k_h = 10 itself is accepted: up the slope the slab is pressed on
     // its slip surface and Hovland's Fs is positive; towards the toe it is
     // lifted off, and the refusal is for that, not for the coefficient.
-    let ten = |direction_deg| Seismic {
+    let ten = |deg| Seismic {
         coefficient: MAX_SEISMIC_COEFFICIENT,
-        direction_deg,
+        direction: towards_deg(deg),
     };
-    let up = hovland(&m, &ten(90.0), 90.0).unwrap().safety_factor;
+    let up = hovland(&m, &ten(90.0), towards_deg(90.0))
+        .unwrap()
+        .safety_factor;
     assert!(up.is_finite() && up > 0.0, "{up}");
     assert!(matches!(
-        hovland(&m, &ten(270.0), 270.0),
+        hovland(&m, &ten(270.0), towards_deg(270.0)),
         Err(DismechError::SlipSurfaceInTension { .. })
     ));
 }
@@ -923,7 +941,7 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
     let kh = 5.0;
     let seismic = Seismic {
         coefficient: kh,
-        direction_deg: 270.0,
+        direction: towards_deg(270.0),
     };
     let material = HpmMaterial::paper();
     let beta = 20f64.to_radians();
@@ -948,12 +966,14 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
 
     // Hovland: the exact slab, every column lifted.
     let (strength, hov_driving, cells, columns, share) =
-        tension(hovland(&m, &seismic, 270.0).map(|h| h.safety_factor));
+        tension(hovland(&m, &seismic, towards_deg(270.0)).map(|h| h.safety_factor));
     assert!((strength / resisting - 1.0).abs() < 1e-9, "{strength}");
     assert!((hov_driving / driving - 1.0).abs() < 1e-9, "{hov_driving}");
     assert_eq!((cells, columns), (every_cell.clone(), 12));
     assert!((share - 1.0).abs() < 1e-12, "{share}");
-    let text = hovland(&m, &seismic, 270.0).unwrap_err().to_string();
+    let text = hovland(&m, &seismic, towards_deg(270.0))
+        .unwrap_err()
+        .to_string();
     for words in [
         "tension beyond c / tan φ",
         "under 12 of 12 columns",
@@ -985,8 +1005,8 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
     // Below the apex the same slab has a positive Fs (k_h = 1: N > 0).
     let one = Seismic {
         coefficient: 1.0,
-        direction_deg: 270.0,
+        direction: towards_deg(270.0),
     };
-    let fs = hovland(&m, &one, 270.0).unwrap().safety_factor;
+    let fs = hovland(&m, &one, towards_deg(270.0)).unwrap().safety_factor;
     assert!(fs > 0.0 && fs.is_finite(), "{fs}");
 }

@@ -180,7 +180,11 @@ fn unequal_lattices_solve_or_report_locked() {
 fn mohr_coulomb_block_needs_c_plus_w_tan_phi_and_rolls_for_free() {
     let (c, w, phi) = (3.0, 10.0, 30f64.to_radians());
     for rotates in [false, true] {
-        let m = pushed_element_on_floor(rotates, w, RigidPlastic::new(c, phi, true).unwrap());
+        let m = pushed_element_on_floor(
+            rotates,
+            w,
+            RigidPlastic::coulomb(c, phi.tan(), true).unwrap(),
+        );
         let r = solve(&m);
         let expected = if rotates { 0.0 } else { c + w * phi.tan() };
         assert!(
@@ -200,7 +204,7 @@ fn unilateral_contact_opens_without_dissipation() {
     let (c, w) = (5.0f64, 2.0f64);
     let n_plate = Vec2::new(-1.0, 1.0) / SQRT_2;
     for (unilateral, expected) in [(true, SQRT_2 * c.min(w)), (false, SQRT_2 * c)] {
-        let floor_law = RigidPlastic::new(c, 0.0, unilateral).unwrap();
+        let floor_law = RigidPlastic::coulomb(c, 0.0, unilateral).unwrap();
         let (mut m, e) = element_on_floor(false, w, floor_law);
         let contact_point = Point::new(0.0, 1.0) - n_plate;
         let plate = m
@@ -250,7 +254,15 @@ fn limit_model_bad_input_is_a_typed_error() {
         Err(DismechError::InvalidParameter { .. })
     ));
     assert!(matches!(
-        RigidPlastic::new(1.0, std::f64::consts::FRAC_PI_2, false),
+        RigidPlastic::from_friction_angle_deg(1.0, 90.0, false),
+        Err(DismechError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        RigidPlastic::coulomb(1.0, -0.1, false),
+        Err(DismechError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        RigidPlastic::coulomb(1.0, f64::INFINITY, false),
         Err(DismechError::InvalidParameter { .. })
     ));
     assert!(matches!(
@@ -308,8 +320,8 @@ fn settled_disc_converted_from_dem_needs_the_exact_push() {
     let settings = PackingLimitSettings {
         rolling: false,
         contact_law: RigidPlastic::cohesive(1.0).unwrap(),
-        wall_law: RigidPlastic::new(c, phi, true).unwrap(),
-        plate_law: RigidPlastic::new(0.0, 0.0, true).unwrap(),
+        wall_law: RigidPlastic::coulomb(c, phi.tan(), true).unwrap(),
+        plate_law: RigidPlastic::coulomb(0.0, 0.0, true).unwrap(),
         plate_wall: "left".into(),
         self_weight: true,
     };
@@ -392,7 +404,11 @@ fn static_lp_gives_the_kinematic_limit_load() {
     ] {
         models.push(Lattice::u_model(k, k, np, rolling).build().unwrap());
     }
-    let mc = pushed_element_on_floor(false, 10.0, RigidPlastic::new(3.0, 0.5, true).unwrap());
+    let mc = pushed_element_on_floor(
+        false,
+        10.0,
+        RigidPlastic::coulomb(3.0, 0.5f64.tan(), true).unwrap(),
+    );
     models.push(mc);
     for (m, model) in models.iter().enumerate() {
         let kinematic = analyse(model, &mut solver).unwrap();

@@ -123,7 +123,7 @@ fn load_drivers_are_replaced_and_cleared() {
             true,
         )
         .unwrap();
-    let joint = RigidPlastic::new(0.0, 0.5f64.atan(), true).unwrap();
+    let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     assert_eq!(
         model
             .add_contacts(block, Partner::Support(floor), joint)
@@ -175,7 +175,7 @@ fn outlines_apart_are_refused_with_their_gap() {
     let high = model
         .add_shape(square(), Pose2::new(0.0, 2.0, 0.0), true)
         .unwrap();
-    let joint = RigidPlastic::new(0.0, 0.5, true).unwrap();
+    let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     match model.add_contacts(low, Partner::Support(floor), joint) {
         Err(DismechError::ContactNotTouching { gap, .. }) => {
             assert!((gap - 1e-3).abs() < 1e-12, "gap {gap}");
@@ -220,7 +220,7 @@ fn ellipse_on_a_floor_touches_at_its_lowest_point_and_pairs_are_all_or_none() {
             true,
         )
         .unwrap();
-    let joint = RigidPlastic::new(0.0, 0.5, true).unwrap();
+    let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     let found = model
         .add_contacts(ellipse, Partner::Support(floor), joint)
         .unwrap();
@@ -295,7 +295,7 @@ fn corners_meeting_at_a_point_make_no_contact() {
     for body in [a, b, d] {
         model.set_load(body, Vec2::new(0.0, -10.0)).unwrap();
     }
-    let joint = RigidPlastic::new(0.0, 0.5f64.atan(), true).unwrap();
+    let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     for (body, partner) in [
         (a, Partner::Support(ground)),
         (b, Partner::Support(ground)),

@@ -30,9 +30,9 @@
 use nalgebra::Vector3;
 
 use super::analysis::{resisting_over_driving, Tension};
-use super::material::Seismic;
+use super::material::{horizontal_unit, Seismic};
 use super::model::HpmModel;
-use crate::error::{require_finite, Result};
+use crate::error::Result;
 
 /// One column's terms in Hovland's sums.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,24 +55,21 @@ pub struct Hovland {
 }
 
 /// Hovland's method for the columns of `model`, sliding horizontally
-/// towards `direction_deg` (degrees from +x, counter-clockwise).
+/// towards `towards`, a horizontal direction `(x, y)` of any non-zero
+/// length (e.g. `(0.0, -1.0)` towards −y), as every plan direction of HPM.
 ///
 /// # Errors
 /// An invalid seismic load ([`Seismic::validate`]) or a direction that is
-/// not finite ([`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter));
+/// not finite or has zero length ([`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter));
 /// [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding) when the driving force `Σ T` is
 /// not above [`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO) of the columns' weight `Σ W`: level
 /// ground, or a direction up the slope;
 /// [`DismechError::SlipSurfaceInTension`](crate::error::DismechError::SlipSurfaceInTension) when the strength
 /// `Σ (c A + N tan φ)` is not positive: columns pulled off their base
 /// beyond `c A / tan φ` (a large seismic coefficient).
-pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Result<Hovland> {
+pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Result<Hovland> {
     seismic.validate()?;
-    require_finite("sliding direction (degrees)", direction_deg)?;
-    let (dx, dy) = (
-        direction_deg.to_radians().cos(),
-        direction_deg.to_radians().sin(),
-    );
+    let (dx, dy) = horizontal_unit("sliding direction (length)", towards)?;
     let (sx, sy) = seismic.unit();
     let (c, mu) = (model.material.cohesion, model.material.friction());
     let d = model.grid.2;
@@ -108,7 +105,12 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, direction_deg: f64) -> Resul
         resisting,
         driving,
         model.total_weight(),
-        || format!("Hovland's method sliding towards {direction_deg}°: Σ T"),
+        || {
+            format!(
+                "Hovland's method sliding towards {:.1}° from +x: Σ T",
+                dy.atan2(dx).to_degrees().rem_euclid(360.0)
+            )
+        },
         || {
             Tension::of(
                 model,

@@ -11,10 +11,12 @@ pub struct HpmMaterial {
     pub youngs_modulus: f64,
     /// Poisson's ratio ν, in [0, 0.5).
     pub poisson_ratio: f64,
-    /// Cohesion c on the slip surface (Pa); c and φ may not both be 0.
+    /// Cohesion c on the slip surface (Pa); c and μ may not both be 0.
     pub cohesion: f64,
-    /// Friction angle φ on the slip surface (degrees, in [0, 90)).
-    pub friction_angle_deg: f64,
+    /// Friction coefficient `μ = tan φ` on the slip surface (≥ 0; the
+    /// crate's convention for friction: [`crate::law::friction_from_degrees`]
+    /// or [`Self::with_friction_angle_deg`] convert an angle).
+    pub friction_coefficient: f64,
     /// Unit weight γ_t above the water table (N/m³).
     pub unit_weight: f64,
     /// Submerged unit weight γ_sub below the water table (N/m³).
@@ -36,7 +38,7 @@ impl HpmMaterial {
             youngs_modulus: 1.0e9,
             poisson_ratio: 0.2,
             cohesion: 4.22e3,
-            friction_angle_deg: 22.0,
+            friction_coefficient: 22f64.to_radians().tan(),
             unit_weight: 18.0e3,
             submerged_unit_weight: 8.0e3,
             slip_modulus: 1.0e9,
@@ -44,16 +46,15 @@ impl HpmMaterial {
         }
     }
 
-    /// Check every value; errors name the offending one. c = φ = 0 is
+    /// Check every value; errors name the offending one. c = μ = 0 is
     /// refused: the slip surface would have no strength.
     ///
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for a Young's
     /// modulus, unit weight, submerged unit weight or slip-surface modulus
     /// that is not finite and positive, a Poisson's ratio outside
-    /// `[0, 0.5)`, a cohesion that is negative or not finite, a friction
-    /// angle outside `[0, 90)` degrees, cohesion and friction angle both
-    /// zero, or a slip shear stiffness given that is not finite and
+    /// `[0, 0.5)`, a cohesion or friction coefficient that is negative or
+    /// not finite, cohesion and friction both zero, or a slip shear stiffness given that is not finite and
     /// positive.
     pub fn validate(&self) -> Result<()> {
         require_positive("Young's modulus E", self.youngs_modulus)?;
@@ -66,17 +67,11 @@ impl HpmMaterial {
             });
         }
         require_non_negative("cohesion c", self.cohesion)?;
-        let phi = self.friction_angle_deg;
-        if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
+        let mu = self.friction_coefficient;
+        require_non_negative("friction coefficient mu = tan(phi)", mu)?;
+        if self.cohesion == 0.0 && mu == 0.0 {
             return Err(DismechError::InvalidParameter {
-                name: "friction angle phi (degrees)",
-                value: phi,
-                requirement: "must lie in [0, 90)",
-            });
-        }
-        if self.cohesion == 0.0 && phi == 0.0 {
-            return Err(DismechError::InvalidParameter {
-                name: "cohesion c (with friction angle phi = 0)",
+                name: "cohesion c (with friction coefficient mu = 0)",
                 value: self.cohesion,
                 requirement: "c or phi must be > 0: a slip surface with neither has no strength, and its safety factor is 0 or undefined",
             });
@@ -93,9 +88,22 @@ impl HpmMaterial {
         Ok(())
     }
 
-    /// tan φ.
+    /// The friction coefficient μ = tan φ.
     pub fn friction(&self) -> f64 {
-        self.friction_angle_deg.to_radians().tan()
+        self.friction_coefficient
+    }
+
+    /// This material with the friction angle φ given in degrees, in
+    /// `[0, 90)` (`μ = tan φ`).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] naming the angle when it is not
+    /// finite or outside `[0, 90)` degrees.
+    pub fn with_friction_angle_deg(self, friction_angle_deg: f64) -> Result<Self> {
+        Ok(Self {
+            friction_coefficient: crate::law::friction_from_degrees(friction_angle_deg)?,
+            ..self
+        })
     }
 
     /// `(1 − ν) / ((1 + ν)(1 − 2ν))` and `1 / (1 + ν)`: the factors of E'/h in
@@ -115,13 +123,15 @@ impl HpmMaterial {
 pub const MAX_SEISMIC_COEFFICIENT: f64 = 10.0;
 
 /// The static seismic load of eqs. (11)–(13): `H = k_h W` in the horizontal
-/// direction at `direction_deg` counter-clockwise from +x.
+/// direction `direction` (x, y).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seismic {
     /// Design horizontal seismic coefficient k_h, in `[0, MAX_SEISMIC_COEFFICIENT]`.
     pub coefficient: f64,
-    /// Direction θ of the force (degrees from +x, counter-clockwise).
-    pub direction_deg: f64,
+    /// Horizontal direction of the force `(x, y)`: any finite vector of
+    /// non-zero length (it is normalised), e.g. `(0.0, -1.0)` towards −y,
+    /// as every plan direction of HPM.
+    pub direction: (f64, f64),
 }
 
 impl Seismic {
@@ -129,7 +139,7 @@ impl Seismic {
     pub fn none() -> Self {
         Self {
             coefficient: 0.0,
-            direction_deg: 0.0,
+            direction: (1.0, 0.0),
         }
     }
 
@@ -138,7 +148,7 @@ impl Seismic {
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a coefficient that is negative,
     /// not finite or above [`MAX_SEISMIC_COEFFICIENT`], or a direction that
-    /// is not finite.
+    /// is not finite or has zero length.
     pub fn validate(&self) -> Result<()> {
         require_non_negative("seismic coefficient k_h", self.coefficient)?;
         if self.coefficient > MAX_SEISMIC_COEFFICIENT {
@@ -148,15 +158,35 @@ impl Seismic {
                 requirement: "must be at most 10 (a horizontal acceleration of 10 g; design values lie below 1)",
             });
         }
-        crate::error::require_finite("seismic direction (degrees)", self.direction_deg)?;
+        horizontal_unit("seismic direction (length)", self.direction)?;
         Ok(())
     }
 
-    /// Unit horizontal vector of the force, `(cos θ, sin θ)`.
+    /// Unit horizontal vector of the force (the direction normalised; a
+    /// direction that [`Self::validate`] refuses gives NaN).
     pub fn unit(&self) -> (f64, f64) {
-        let t = self.direction_deg.to_radians();
-        (t.cos(), t.sin())
+        let (x, y) = self.direction;
+        let n = x.hypot(y);
+        (x / n, y / n)
     }
+}
+
+/// `direction` normalised: the unit horizontal vector `(x, y)`.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] named `name`, with the length as its
+/// value, for a direction that is not finite or has zero length.
+pub(super) fn horizontal_unit(name: &'static str, direction: (f64, f64)) -> Result<(f64, f64)> {
+    let (x, y) = direction;
+    let n = x.hypot(y);
+    if !(n.is_finite() && n > 0.0) {
+        return Err(DismechError::InvalidParameter {
+            name,
+            value: n,
+            requirement: "must be a finite horizontal direction (x, y) of non-zero length",
+        });
+    }
+    Ok((x / n, y / n))
 }
 
 /// How the columns are discretised, and the memory the model may take.

@@ -21,6 +21,25 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::traits::{Regime, Strength};
+use crate::error::{DismechError, Result};
+
+/// The friction coefficient `μ = tan φ` of a friction angle φ given in
+/// degrees, in `[0, 90)`: every law and material of the crate takes
+/// friction as μ, and this is the one conversion from an angle.
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] naming the angle when it is not
+/// finite or lies outside `[0, 90)` degrees.
+pub fn friction_from_degrees(friction_angle_deg: f64) -> Result<f64> {
+    if !(friction_angle_deg.is_finite() && (0.0..90.0).contains(&friction_angle_deg)) {
+        return Err(DismechError::InvalidParameter {
+            name: "friction angle phi (degrees)",
+            value: friction_angle_deg,
+            requirement: "must lie in [0, 90)",
+        });
+    }
+    Ok(friction_angle_deg.to_radians().tan())
+}
 
 /// The outcome of one shear step: components `1..D` of `force` hold the
 /// shear force (component 0 is left at zero), `tangent` the shear rows of

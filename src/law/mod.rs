@@ -15,6 +15,10 @@
 //! | [`MohrCoulombSpring`] (3D, cohesive, no tension) | 001 §4(4) | ✓ | ✓ | ✓ | ✓ |
 //! | [`RigidPlastic`] | 002 eqs. 13–15 | – | – | ✓ | – |
 //!
+//! Friction is the coefficient `μ = tan φ` in every law (and in HPM's
+//! material); [`friction_from_degrees`] converts a friction angle, and
+//! [`RigidPlastic::from_friction_angle_deg`] takes one.
+//!
 //! The three frictional laws share one Coulomb core ([`coulomb`]): the
 //! elastic predictor of the shear force and its radial return onto
 //! `|t_s| ≤ c + μ t_n`, with the consistent tangent; they differ only in
@@ -33,6 +37,7 @@ mod rigid_plastic;
 mod spring_dashpot;
 mod traits;
 
+pub use coulomb::friction_from_degrees;
 pub use mohr_coulomb::MohrCoulombSpring;
 pub use penalty_coulomb::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 pub use rigid_plastic::RigidPlastic;

@@ -3,10 +3,10 @@
 //! and a shear force bounded by a strength, `|T| ≤ C + N tan φ`.
 
 use super::traits::{Strength, StrengthLaw};
-use crate::error::{require_non_negative, DismechError, Result};
+use crate::error::{require_non_negative, Result};
 
-/// A rigid-plastic contact: cohesion `C`, friction angle `φ`, and whether it
-/// may open.
+/// A rigid-plastic contact: cohesion `C`, friction coefficient `μ = tan φ`,
+/// and whether it may open.
 ///
 /// In a limit analysis the law gives the LP its admissible set
 /// ([`StrengthLaw::strength`]) and its flow rule: slip `Ṡ` dissipates
@@ -15,7 +15,7 @@ use crate::error::{require_non_negative, DismechError, Result};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidPlastic {
     cohesion: f64,
-    friction_angle: f64,
+    friction: f64,
     unilateral: bool,
 }
 
@@ -24,35 +24,47 @@ impl RigidPlastic {
     /// the contact of paper 002.
     ///
     /// # Errors
-    /// [`DismechError::InvalidParameter`] naming `contact cohesion C` for a
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter) naming `contact cohesion C` for a
     /// cohesion that is negative or not finite.
     pub fn cohesive(cohesion: f64) -> Result<Self> {
-        Self::new(cohesion, 0.0, false)
+        Self::coulomb(cohesion, 0.0, false)
     }
 
-    /// A contact with cohesion `C ≥ 0`, friction angle `φ ∈ [0, π/2)` (rad)
-    /// and, if `unilateral`, no tension: the contact may open.
+    /// A contact with cohesion `C ≥ 0`, friction coefficient `μ = tan φ ≥ 0`
+    /// (the crate's convention for friction; [`Self::from_friction_angle_deg`]
+    /// takes φ in degrees) and, if `unilateral`, no tension: the contact may
+    /// open.
     ///
     /// # Errors
-    /// [`DismechError::InvalidParameter`] naming the value for a cohesion
-    /// that is negative or not finite, or a friction angle that is not
-    /// finite or outside `[0, π/2)`.
-    pub fn new(cohesion: f64, friction_angle: f64, unilateral: bool) -> Result<Self> {
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter) naming the value for a cohesion
+    /// or a friction coefficient that is negative or not finite.
+    pub fn coulomb(cohesion: f64, friction: f64, unilateral: bool) -> Result<Self> {
         require_non_negative("contact cohesion C", cohesion)?;
-        if !(friction_angle.is_finite()
-            && (0.0..std::f64::consts::FRAC_PI_2).contains(&friction_angle))
-        {
-            return Err(DismechError::InvalidParameter {
-                name: "friction angle phi",
-                value: friction_angle,
-                requirement: "must lie in [0, 90°) (radians)",
-            });
-        }
+        require_non_negative("contact friction coefficient mu = tan(phi)", friction)?;
         Ok(Self {
             cohesion,
-            friction_angle,
+            friction,
             unilateral,
         })
+    }
+
+    /// [`Self::coulomb`] with the friction angle φ in degrees, in `[0, 90)`:
+    /// `μ = tan φ`.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter) naming the value for a cohesion
+    /// that is negative or not finite, or a friction angle that is not
+    /// finite or outside `[0, 90)` degrees.
+    pub fn from_friction_angle_deg(
+        cohesion: f64,
+        friction_angle_deg: f64,
+        unilateral: bool,
+    ) -> Result<Self> {
+        Self::coulomb(
+            cohesion,
+            super::friction_from_degrees(friction_angle_deg)?,
+            unilateral,
+        )
     }
 
     /// Cohesion C.
@@ -60,9 +72,9 @@ impl RigidPlastic {
         self.cohesion
     }
 
-    /// Friction coefficient tan φ.
+    /// Friction coefficient μ = tan φ.
     pub fn friction(&self) -> f64 {
-        self.friction_angle.tan()
+        self.friction
     }
 
     /// Whether the contact may open.
@@ -72,7 +84,7 @@ impl RigidPlastic {
 
     /// Whether the contact resists shear at all.
     pub fn resists_shear(&self) -> bool {
-        self.cohesion > 0.0 || self.friction_angle > 0.0
+        self.cohesion > 0.0 || self.friction > 0.0
     }
 }
 

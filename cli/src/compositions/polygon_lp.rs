@@ -6,7 +6,7 @@
 //! The block is a [`Polygon`] (a body of the limit driver like any other
 //! shape), its weight a known load at the centroid; the floor a fixed
 //! [`dismech::limit::Support`]; the contacts unilateral Coulomb contacts
-//! without cohesion ([`RigidPlastic::new`]`(0, φ, true)`, associated flow)
+//! without cohesion ([`RigidPlastic::coulomb`]`(0, μ, true)`, associated flow)
 //! at the two bottom corners; the live load a unit horizontal force at the
 //! middle of the top face. The LP's minimum is the multiplier of that load
 //! at collapse: `W w/(2h)` when the block rocks about its leading corner
@@ -61,7 +61,7 @@ pub fn block_limit_model(block: &BlockOnFloor) -> Result<LimitModel> {
             requirement: "must be finite and >= 0",
         });
     }
-    let law = RigidPlastic::new(0.0, block.friction.atan(), true)?;
+    let law = RigidPlastic::coulomb(0.0, block.friction, true)?;
     let mut model = LimitModel::new(1e-9 * w.max(h))?;
     let body = model.add_shape(
         Polygon::rectangle(w, h)?.into(),

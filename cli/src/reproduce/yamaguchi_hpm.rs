@@ -46,6 +46,12 @@ pub const SEISMIC_COEFFICIENT: f64 = 0.15;
 /// Direction of the toe: −y.
 pub const TOE_DIRECTION_DEG: f64 = 270.0;
 
+/// The horizontal unit vector towards the toe, `TOE_DIRECTION_DEG` from +x.
+fn toe_direction() -> (f64, f64) {
+    let t = TOE_DIRECTION_DEG.to_radians();
+    (t.cos(), t.sin())
+}
+
 /// The paper's Fs (Figs. 11 and 14): elastic and nonlinear, static and
 /// seismic.
 const PAPER_FS: [(&str, f64); 4] = [
@@ -347,7 +353,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     let static_load = Seismic::none();
     let seismic = Seismic {
         coefficient: SEISMIC_COEFFICIENT,
-        direction_deg: TOE_DIRECTION_DEG,
+        direction: toe_direction(),
     };
     let mut checks = Vec::new();
     let mut values = Vec::new();
@@ -369,7 +375,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
         let elastic = solver.elastic(&model, load)?;
         let fs = elastic.safety_factor(&model)?;
         let sliding = elastic.sliding_safety_factor(&model)?;
-        let hov = hovland(&model, load, TOE_DIRECTION_DEG)?.safety_factor;
+        let hov = hovland(&model, load, toe_direction())?.safety_factor;
         let _ = writeln!(
             report,
             "| {id} (k_h = {kh}) | {exact:.4} | {fs:.4} | {:.5} | {sliding:.4} | {:.5} | {hov:.4} | {:.5} |",
@@ -425,7 +431,7 @@ pub fn reproduce(options: &StudyOptions) -> Result<Summary> {
     for (case, load) in [("static", &static_load), ("seismic", &seismic)] {
         let elastic = solver.elastic(&model, load)?;
         let nl = solver.nonlinear(&model, load, 1.0, &nonlinear)?;
-        let hov = hovland(&model, load, TOE_DIRECTION_DEG)?;
+        let hov = hovland(&model, load, toe_direction())?;
         fs.insert(format!("elastic.{case}"), elastic.safety_factor(&model)?);
         fs.insert(format!("nonlinear.{case}"), nl.safety_factor(&model)?);
         fs.insert(
