@@ -129,7 +129,164 @@
 //! | affine disc | `ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu>` | a disc with DDA's six affine unknowns on a smooth boundary | rolling at `(2/3) g sin β` ([`reference::incline::disc_acceleration`]) | `affine_disc` |
 //! | penalty vs LP | `ImplicitDynamics<3, Rigid2, PenaltyCoulomb, QuasiStatic, SparseLu>` against [`limit::analyse`] | a [`limit::LimitModel`] of circles turned into bodies with bonded contacts ([`law::PenaltyCoulomb::bonded_with_friction`]) and a prescribed plate | the plateau of the plate load against the LP's limit load | `penalty_vs_lp` |
 //!
-//! ```no_run
+//! Each row, as its pieces are put together (the experiments run them at
+//! full size and check them):
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dem::DemSimulation;
+//! use dismech::explicit::DemSettings;
+//! use dismech::integrate::ExplicitEuler;
+//! use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
+//! use dismech::math::{Point, Vec2};
+//! use dismech::scene::{Frame, Scene};
+//! // Polygon DEM: a square block on the floor of a box, a constant k_n.
+//! let mut scene = Scene::new(Frame::open_box(2.0, 2.0)?, Vec2::new(0.0, -9.81))?;
+//! scene.add_rectangle(Point::new(1.0, 0.1), 0.2, 0.2, 0.0, 2600.0)?;
+//! let law = SpringDashpotCoulomb::new(NormalStiffness::Constant(1e8), 0.25, 0.5, Damping::Critical)?;
+//! let mut dem = DemSimulation::new(scene, law, ExplicitEuler, DemSettings { dt: 1e-5, ..DemSettings::default() })?;
+//! for _ in 0..100 {
+//!     dem.step()?;
+//! }
+//! assert_eq!(dem.steps(), 100);
+//! # Ok(()) }
+//! ```
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dda::{Block, BlockMaterial, DdaSettings, PlaneState, Prescribed};
+//! use dismech::implicit::ImplicitDynamics;
+//! use dismech::integrate::{Newmark, Restarting};
+//! use dismech::kinematics::Affine2;
+//! use dismech::law::{FrictionIntegration, PenaltyCoulomb};
+//! use dismech::linsolve::SparseLu;
+//! use dismech::math::Point;
+//! // Polygon DEM vs DDA, the DDA side: blocks under classic DDA's static
+//! // analysis (the velocities restarted at each step).
+//! let rock = BlockMaterial { density: 2600.0, youngs_modulus: 3e10, poisson_ratio: 0.2,
+//!                            plane: PlaneState::Strain };
+//! let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+//!     [Point::new(x0, y0), Point::new(x1, y0), Point::new(x1, y1), Point::new(x0, y1)]
+//! };
+//! let mut base = Block::new(&rect(-1.0, -0.5, 1.0, 0.0), rock, 0)?;
+//! base.prescribed = Some(Prescribed::fixed());
+//! let brick = Block::new(&rect(-0.2, 0.0, 0.2, 0.2), rock, 1)?;
+//! let law = PenaltyCoulomb::new(2e9, 0.6, FrictionIntegration::ReturnMapping)?;
+//! let mut dda: ImplicitDynamics<6, Affine2, PenaltyCoulomb, Restarting<Newmark>, SparseLu> =
+//!     ImplicitDynamics::compose(vec![base, brick], Affine2, law, Restarting(Newmark::dda()),
+//!                               SparseLu::default(), DdaSettings::default())?;
+//! dda.advance(1e-3)?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::law::RigidPlastic;
+//! use dismech::limit::{analyse, LimitModel, Partner};
+//! use dismech::lp::LinearProgramSolver;
+//! use dismech::math::{Point, Pose2, Vec2};
+//! use dismech::reference::block_on_floor::BlockOnFloor;
+//! use dismech::shape::Polygon;
+//! // Polygon LP: a block pushed at its top tips at W w / 2h.
+//! let (w, h, weight) = (0.4, 0.8, 1e3);
+//! let mut model = LimitModel::new(1e-9)?;
+//! let block = model.add_shape(Polygon::rectangle(w, h)?.into(), Pose2::new(0.0, h / 2.0, 0.0), true)?;
+//! model.set_load(block, Vec2::new(0.0, -weight))?;
+//! let floor = model.add_support("floor", Point::origin(), Vec2::y(), Vec2::zeros())?;
+//! model.add_contacts(block, Partner::Support(floor), RigidPlastic::coulomb(0.0, 1.0, true)?)?;
+//! model.set_live_load(block, Vec2::x(), Point::new(0.0, h))?;
+//! let limit = analyse(&model, &mut LinearProgramSolver::default())?;
+//! let exact = BlockOnFloor { width: w, height: h, weight, friction: 1.0 }.tipping_load();
+//! assert!((limit.load.unwrap() / exact - 1.0).abs() < 1e-6);
+//! # Ok(()) }
+//! ```
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dem::DemSimulation;
+//! use dismech::explicit::{DemSettings, RestCriterion};
+//! use dismech::integrate::ExplicitEuler;
+//! use dismech::law::{RigidPlastic, SpringDashpotCoulomb};
+//! use dismech::limit::{analyse, model_from_packing, PackingLimitSettings};
+//! use dismech::lp::LinearProgramSolver;
+//! use dismech::math::{Point, Vec2};
+//! use dismech::scene::{Frame, Scene};
+//! // Packing LP: ellipses settled by the explicit driver, then pushed by
+//! // the left wall in a limit analysis of their contacts.
+//! // Gravity leans a little to the left, so the ellipses bear on that wall.
+//! let mut scene = Scene::new(Frame::open_box(0.4, 1.0)?, Vec2::new(-1.0, -9.81))?;
+//! for x in [0.08, 0.24] {
+//!     scene.add_ellipse(Point::new(x, 0.05), 0.08, 0.05, 0.0, 2690.0)?;
+//! }
+//! let law = SpringDashpotCoulomb::katsuki(73.55e6, 0.3, 0.25, 0.577)?;
+//! let mut dem = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default())?;
+//! dem.run_to_rest(&RestCriterion::default(), |_, _| {})?;
+//! let friction = RigidPlastic::coulomb(0.0, 0.577, true)?;
+//! let settings = PackingLimitSettings {
+//!     rolling: true, contact_law: friction, wall_law: friction,
+//!     plate_law: RigidPlastic::coulomb(0.0, 0.0, true)?,
+//!     plate_wall: "left".into(), self_weight: true,
+//! };
+//! let model = model_from_packing(dem.scene(), dem.contacts(), &settings)?;
+//! let limit = analyse(&model, &mut LinearProgramSolver::default())?;
+//! assert!(limit.load.is_some_and(|p| p > 0.0));
+//! # Ok(()) }
+//! ```
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::implicit::{Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState};
+//! use dismech::integrate::Newmark;
+//! use dismech::kinematics::{Affine2, Rigid2};
+//! use dismech::law::{FrictionIntegration, PenaltyCoulomb};
+//! use dismech::linsolve::SparseLu;
+//! use dismech::math::Point;
+//! use dismech::shape::Segment;
+//! let rock = BodyMaterial { density: 2690.0, youngs_modulus: 1e9, poisson_ratio: 0.3,
+//!                           plane: PlaneState::Strain };
+//! let line = Segment::new(Point::new(-2.0, 0.0), Point::new(2.0, 0.0));
+//! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping)?;
+//! // Implicit ellipses: rigid ellipses on a wall, Newmark β = 0.5625, γ = 1.
+//! let ellipse = Body::ellipse(Point::new(0.0, 0.05), 0.1, 0.05, 0.0, rock, 1)?;
+//! let mut ellipses: ImplicitDynamics<3, Rigid2, PenaltyCoulomb, Newmark, SparseLu> =
+//!     ImplicitDynamics::compose(vec![Body::wall(line, 0)?, ellipse], Rigid2, law, Newmark::new(0.5625, 1.0)?,
+//!                               SparseLu::default(), ImplicitSettings::default())?;
+//! ellipses.advance(1e-3)?;
+//! // Affine disc: a disc with DDA's six unknowns rolling on the wall.
+//! let disc = Body::circle(Point::new(0.0, 0.1), 0.1, rock, 1)?;
+//! let mut rolling: ImplicitDynamics<6, Affine2, PenaltyCoulomb, Newmark, SparseLu> =
+//!     ImplicitDynamics::compose(vec![Body::wall(line, 0)?, disc], Affine2, law, Newmark::dda(),
+//!                               SparseLu::default(), ImplicitSettings::default())?;
+//! rolling.advance(1e-3)?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::implicit::{Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState, Prescribed};
+//! use dismech::integrate::QuasiStatic;
+//! use dismech::kinematics::Rigid2;
+//! use dismech::law::PenaltyCoulomb;
+//! use dismech::linsolve::SparseLu;
+//! use dismech::math::{Point, Vec2};
+//! use dismech::shape::Segment;
+//! // Penalty vs LP: circles with bonded contacts pushed quasi-statically by
+//! // a plate moving at a prescribed speed (the LP side is `limit::analyse`).
+//! let soil = BodyMaterial { density: 2000.0, youngs_modulus: 1e8, poisson_ratio: 0.3,
+//!                           plane: PlaneState::Strain };
+//! let floor = Body::wall(Segment::new(Point::new(-2.0, 0.0), Point::new(2.0, 0.0)), 0)?;
+//! let grain = Body::circle(Point::new(0.0, 0.1), 0.1, soil, 1)?;
+//! let mut plate = Body::circle(Point::new(-0.2, 0.1), 0.1, soil, 2)?;
+//! plate.prescribed = Some(Prescribed::translation(|t| Vec2::new(1e-3 * t, 0.0)));
+//! let law = PenaltyCoulomb::bonded_with_friction(1e9, 10.0, 0.5)?;
+//! let mut pushover: ImplicitDynamics<3, Rigid2, PenaltyCoulomb, QuasiStatic, SparseLu> =
+//!     ImplicitDynamics::compose(vec![floor, grain, plate], Rigid2, law, QuasiStatic,
+//!                               SparseLu::default(), ImplicitSettings::default())?;
+//! pushover.advance(1e-2)?;
+//! # Ok(()) }
+//! ```
+//!
+//! ```
 //! # fn main() -> dismech::error::Result<()> {
 //! use dismech::limit::{analyse, LimitModel, Partner};
 //! use dismech::law::RigidPlastic;
@@ -151,7 +308,7 @@
 //! # Ok(()) }
 //! ```
 //!
-//! ```no_run
+//! ```
 //! # fn main() -> dismech::error::Result<()> {
 //! use dismech::implicit::{Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState};
 //! use dismech::integrate::Newmark;
