@@ -523,3 +523,95 @@ fn a_force_only_law_runs_the_force_checks() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].check, "open_without_overlap");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Every law of the crate passes the conformance suite over histories
+    /// it made itself, along random loading paths of up to 12 steps (the
+    /// strategies a user's law runs with the `proptest` feature): the
+    /// spring–dashpot law in 2D and 3D, the DDA penalty law, the bonded
+    /// penalty law and the HPM slip spring.
+    #[test]
+    fn every_law_passes_the_conformance_suite_along_loading_paths(
+        (sd_state, sd_input) in conformance::strategies::history_then_input::<_, 2>(
+            law(false, true, 0.6), conformance::strategies::Scales::new(2e-3, 1e-3, pair(0.01)), 1..12),
+        (sd3_state, sd3_input) in conformance::strategies::history_then_input::<_, 3>(
+            law(true, true, 0.6), conformance::strategies::Scales::new(2e-3, 1e-3, pair(0.01)), 1..12),
+        (p_state, p_input) in conformance::strategies::history_then_input::<_, 2>(
+            PenaltyCoulomb::new(1e7, 0.6, FrictionIntegration::ReturnMapping).unwrap(),
+            conformance::strategies::Scales::new(2e-3, 1e-3, PairProperties::rigid()), 1..12),
+        (b_state, b_input) in conformance::strategies::history_then_input::<_, 2>(
+            PenaltyCoulomb::bonded_with_friction(1e7, 5e3, 0.6).unwrap(),
+            conformance::strategies::Scales::new(2e-3, 1e-3, PairProperties::rigid()), 1..12),
+        (mc_state, mc_input) in conformance::strategies::history_then_input::<_, 3>(
+            MohrCoulombSpring::new(1e7, 4e6, 2e3, 0.6).unwrap(),
+            conformance::strategies::Scales::new(2e-3, 1e-3, PairProperties::rigid()), 1..12),
+    ) {
+        let v = conformance::check_all(&law(false, true, 0.6), &sd_input, &sd_state);
+        prop_assert!(v.is_empty(), "spring-dashpot 2D: {:?}", v);
+        let v = conformance::check_all(&law(true, true, 0.6), &sd3_input, &sd3_state);
+        prop_assert!(v.is_empty(), "spring-dashpot 3D: {:?}", v);
+        let penalty = PenaltyCoulomb::new(1e7, 0.6, FrictionIntegration::ReturnMapping).unwrap();
+        let v = conformance::check_all(&penalty, &p_input, &p_state);
+        prop_assert!(v.is_empty(), "penalty Coulomb: {:?}", v);
+        let bonded = PenaltyCoulomb::bonded_with_friction(1e7, 5e3, 0.6).unwrap();
+        let v = conformance::check_all(&bonded, &b_input, &b_state);
+        prop_assert!(v.is_empty(), "bonded penalty: {:?}", v);
+        let mc = MohrCoulombSpring::new(1e7, 4e6, 2e3, 0.6).unwrap();
+        let v = conformance::check_all(&mc, &mc_input, &mc_state);
+        prop_assert!(v.is_empty(), "Mohr-Coulomb spring: {:?}", v);
+    }
+}
+
+/// The loading path's overlaps follow its normal increments, and only its
+/// first input is new.
+#[test]
+fn a_loading_path_moves_its_overlap_by_its_normal_increments() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let strategy = conformance::strategies::loading_path::<2>(
+        conformance::strategies::Scales::new(1e-3, 1e-4, PairProperties::rigid()),
+        2..20,
+    );
+    let mut runner = TestRunner::deterministic();
+    for _ in 0..100 {
+        let path = strategy.new_tree(&mut runner).unwrap().current();
+        assert!((2..20).contains(&path.len()));
+        assert!(path[0].is_new && path[1..].iter().all(|i| !i.is_new));
+        for w in path.windows(2) {
+            assert_eq!(w[1].overlap, w[0].overlap + w[1].increment[0]);
+        }
+        assert!(path
+            .iter()
+            .all(|i| i.increment.iter().all(|u| u.abs() <= 1e-4)));
+    }
+}
+
+/// The strategies find what is wrong: the conventional DDA friction
+/// overshoots the Coulomb limit within a step, and random loading paths
+/// catch it (a failing case, shrunk).
+#[test]
+fn loading_paths_catch_the_conventional_overshoot() {
+    use proptest::test_runner::{Config, TestRunner};
+    let law = PenaltyCoulomb::new(1e7, 0.6, FrictionIntegration::Conventional).unwrap();
+    let strategy = conformance::strategies::history_then_input::<_, 2>(
+        law,
+        conformance::strategies::Scales::new(2e-3, 1e-3, PairProperties::rigid()),
+        1..12,
+    );
+    let mut runner = TestRunner::new(Config {
+        cases: 500,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let outcome = runner.run(&strategy, |(state, input)| {
+        let v = conformance::check_strength_law(&law, &input, &state);
+        prop_assert!(v.is_empty(), "{:?}", v);
+        Ok(())
+    });
+    let failure = outcome
+        .expect_err("the overshoot was not found")
+        .to_string();
+    assert!(failure.contains("within_strength"), "{failure}");
+}

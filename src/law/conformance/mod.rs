@@ -2,8 +2,9 @@
 //! over the law, so that a law of one's own can be checked the same way.
 //!
 //! Each check takes a law, one input and one history state and returns
-//! `Err(Violation)` saying what failed; drive them with random inputs (the
-//! crate's own tests use `proptest`). The checks are grouped by what a law
+//! `Err(Violation)` saying what failed; drive them with random inputs and
+//! histories: with the `proptest` feature, the module `strategies` draws loading
+//! paths and the histories a law makes of them. The checks are grouped by what a law
 //! declares: [`check_force_law`] for any [`ContactLaw`] (a law for the
 //! explicit driver alone), [`check_strength_law`] for a [`StrengthLaw`],
 //! [`check_tangent_law`] for a [`TangentLaw`], and [`check_all`] for a law
@@ -31,6 +32,9 @@
 //! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s | [`check_tangent_law`] |
 
 use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
+
+#[cfg(feature = "proptest")]
+pub mod strategies;
 
 /// A failed check: which one, and what was seen.
 #[derive(Debug, Clone, PartialEq)]
