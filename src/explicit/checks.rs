@@ -208,9 +208,13 @@ fn vertex_on_flat(mass: f64) -> PairProperties {
     }
 }
 
-/// Whether the stiffness bound of `law` at `pair` is finite.
-pub(crate) fn finite_bound<L: BoundedStiffness<2>>(law: &L, pair: &PairProperties) -> bool {
-    let b = law.stiffness_bound(pair);
+/// Whether the stiffness bound of `law` at `pair` and `overlap` is finite.
+pub(crate) fn finite_bound<L: BoundedStiffness<2>>(
+    law: &L,
+    pair: &PairProperties,
+    overlap: f64,
+) -> bool {
+    let b = law.stiffness_bound(pair, overlap);
     [b.normal, b.shear, b.normal_damping, b.shear_damping]
         .iter()
         .all(|v| v.is_finite())
@@ -227,14 +231,15 @@ pub(crate) fn finite_bound<L: BoundedStiffness<2>>(law: &L, pair: &PairPropertie
 /// does not depend on them, such as a constant `k_n`. The law is probed with
 /// a small first loading of such a contact, and its stiffness bound with the
 /// same geometry when the law has one (`bound_finite` says whether the
-/// bound at a pair is finite; pass `|_| true` for a law without a bound).
+/// bound at a pair and overlap is finite; pass `|_, _| true` for a law
+/// without a bound).
 /// A prescribed polygon is probed with the mass of the lightest free
 /// particle, the body its vertices will meet.
 pub(crate) fn check_law_for_polygons<L: ContactLaw<2>>(
     scene: &Scene,
     law: &L,
     dt: f64,
-    bound_finite: impl Fn(&PairProperties) -> bool,
+    bound_finite: impl Fn(&PairProperties, f64) -> bool,
 ) -> Result<()> {
     let lightest_free = scene
         .particles
@@ -256,8 +261,8 @@ pub(crate) fn check_law_for_polygons<L: ContactLaw<2>>(
             p.mass
         };
         let pair = vertex_on_flat(mass);
-        let bound_finite = bound_finite(&pair);
         let overlap = 1e-6 * crate::shape::Shape2::bounding_radius(polygon);
+        let bound_finite = bound_finite(&pair, overlap);
         let response = law.evaluate(
             &ContactInput {
                 overlap,

@@ -14,7 +14,7 @@ use super::neighbours::{NeighbourList, PairSlot, BLOCK};
 use super::pair_bodies::PairBody;
 use super::pair_forces::PairContext;
 use super::skin::Skin;
-use super::stability::critical_time_step;
+use super::stability::{critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP};
 use crate::broad_phase::CellGrid;
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
@@ -50,6 +50,14 @@ pub struct DemSettings {
     /// Largest overlap (m) accepted between two particles, or a particle and
     /// a wall, at the start.
     pub initial_overlap_tolerance: f64,
+    /// The overlaps, as a share of a particle's bounding radius, up to which
+    /// the stable step is estimated ([`crate::law::BoundedStiffness`]:
+    /// a law whose stiffness grows with the overlap is bounded there), in
+    /// `(0, 1]`; [`ExplicitDynamics::check_overlap_stability`] (run at every
+    /// check of [`ExplicitDynamics::run_to_rest`]) stops a run whose
+    /// overlaps outgrow it at a time step the law no longer allows.
+    /// [`DEFAULT_STABILITY_OVERLAP`] by default.
+    pub stability_overlap: f64,
     /// Refuse a time step above the estimated stable limit (on by default).
     pub check_stability: bool,
     /// Skin of the neighbour list (m): pairs whose bounding boxes and
@@ -95,6 +103,7 @@ impl Default for DemSettings {
         Self {
             dt: 1e-4,
             initial_overlap_tolerance: 1e-6,
+            stability_overlap: DEFAULT_STABILITY_OVERLAP,
             check_stability: true,
             neighbour_skin: None,
             relative_travel: false,
@@ -267,7 +276,12 @@ pub struct ContactRecord {
     /// The features of A and B that make the point (several points of one
     /// pair differ by them).
     pub features: ContactFeatures,
+    /// The overlap at the point (m).
+    pub overlap: f64,
 }
+
+/// The stable step of a scene under a law at an overlap ratio.
+type StabilityAt<L> = fn(&Scene, &L, f64) -> StabilityLimit;
 
 /// An explicit DEM simulation: a scene, a contact law and an integrator,
 /// plus the workspaces of the loop.
@@ -291,6 +305,9 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     /// The stable time step estimated at the start, when the law bounds
     /// its stiffness.
     stable_estimate: Option<f64>,
+    /// The stable step at an overlap ratio, when the law bounds its
+    /// stiffness ([`critical_time_step_at`] for this law).
+    stability_at: Option<StabilityAt<L>>,
     /// The listed pairs with their contact points' history and last
     /// results.
     neighbours: NeighbourList<L::State>,
@@ -405,8 +422,18 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         L: BoundedStiffness<2>,
     {
         require_positive("time step dt", settings.dt)?;
-        check_law_for_polygons(&scene, &law, settings.dt, |pair| finite_bound(&law, pair))?;
-        let limit = critical_time_step(&scene, &law);
+        check_law_for_polygons(&scene, &law, settings.dt, |pair, overlap| {
+            finite_bound(&law, pair, overlap)
+        })?;
+        let overlap = settings.stability_overlap;
+        if !(overlap.is_finite() && overlap > 0.0 && overlap <= 1.0) {
+            return Err(DismechError::InvalidParameter {
+                name: "stability_overlap",
+                value: overlap,
+                requirement: "must lie in (0, 1] (a share of a particle's bounding radius)",
+            });
+        }
+        let limit = critical_time_step_at(&scene, &law, overlap);
         if settings.check_stability && settings.dt > limit.dt {
             return Err(DismechError::UnstableTimeStep {
                 dt: settings.dt,
@@ -416,6 +443,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         }
         let mut sim = Self::build(scene, law, integrator, settings)?;
         sim.stable_estimate = Some(limit.dt).filter(|dt| dt.is_finite() && *dt > 0.0);
+        sim.stability_at = Some(critical_time_step_at::<L>);
         Ok(sim)
     }
 
@@ -457,7 +485,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 requirement: "must be false: set it to false to take responsibility for dt",
             });
         }
-        check_law_for_polygons(&scene, &law, settings.dt, |_| true)?;
+        check_law_for_polygons(&scene, &law, settings.dt, |_, _| true)?;
         Self::build(scene, law, integrator, settings)
     }
 
@@ -501,6 +529,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             prescribed_work: 0.0,
             initial_overlap: 0.0,
             stable_estimate: None,
+            stability_at: None,
             neighbours: NeighbourList::new(skin, settings.relative_travel, &scene.particles),
             manifold: Vec::new(),
             bodies: scene.particles.iter().map(PairBody::of).collect(),
@@ -619,9 +648,68 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         normal: p.normal,
                         regime: p.key.regime(),
                         features: p.key.features(),
+                        overlap: p.overlap,
                     })
                 })
                 .collect()
+        })
+    }
+
+    /// The largest overlap of the last step's contacts as a share of the
+    /// smaller bounding radius of the pair (the particle's against a wall),
+    /// with the particle (A) and what it touches; `None` without contacts.
+    pub fn largest_overlap_ratio(&self) -> Option<(f64, usize, ContactTarget)> {
+        let radius = |i: usize| self.scene.particles[i].shape.as_shape().bounding_radius();
+        let mut largest: Option<(f64, usize, ContactTarget)> = None;
+        for slot in &self.neighbours.slots {
+            let r = match slot.target() {
+                ContactTarget::Particle(b) => radius(slot.a()).min(radius(b)),
+                ContactTarget::Wall(_) => radius(slot.a()),
+            };
+            for p in &slot.points {
+                let ratio = p.overlap / r;
+                if largest.is_none_or(|(l, _, _)| ratio > l) {
+                    largest = Some((ratio, slot.a(), slot.target()));
+                }
+            }
+        }
+        largest
+    }
+
+    /// Check that the time step is still stable at the overlaps the run has
+    /// reached: where the largest overlap ratio
+    /// ([`Self::largest_overlap_ratio`]) exceeds
+    /// [`DemSettings::stability_overlap`], the stable step is estimated
+    /// again at that ratio. A law whose stiffness does not grow with the
+    /// overlap always passes; so does a run whose stability check is off
+    /// (or whose law has no stiffness bound). [`Self::run_to_rest`] runs it
+    /// at every check; a caller of [`Self::step`] runs it when it likes.
+    ///
+    /// # Errors
+    /// [`DismechError::UnstableTimeStep`] when the time step exceeds the
+    /// stable step at the overlap reached, naming the pair, the overlap
+    /// and the setting to change.
+    pub fn check_overlap_stability(&self) -> Result<()> {
+        let (Some(at), true) = (self.stability_at, self.settings.check_stability) else {
+            return Ok(());
+        };
+        let Some((ratio, a, target)) = self.largest_overlap_ratio() else {
+            return Ok(());
+        };
+        if ratio <= self.settings.stability_overlap {
+            return Ok(());
+        }
+        let limit = at(&self.scene, &self.law, ratio);
+        if self.settings.dt <= limit.dt {
+            return Ok(());
+        }
+        Err(DismechError::UnstableTimeStep {
+            dt: self.settings.dt,
+            limit: limit.dt,
+            governing: format!(
+                "{} at the overlap reached at step {} by particle {a} against {target:?}, {ratio:.3e} of its bounding radius, above stability_overlap = {:e} (the law stiffens with the overlap: lower dt, or raise stability_overlap so that the step is checked there from the start)",
+                limit.governing, self.step, self.settings.stability_overlap
+            ),
         })
     }
 
@@ -962,6 +1050,9 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             }
             let kinetic = self.kinetic_energy();
             let released = self.initial_potential - self.potential_energy();
+            // An overlap beyond the one the step was checked at is the more
+            // specific cause of a growing energy: said first.
+            self.check_overlap_stability()?;
             if let Some(blow_up) = self.blow_up_at(kinetic, released) {
                 return Err(blow_up);
             }

@@ -99,4 +99,6 @@ pub use driver::{
     ContactRecord, ContactTarget, DemSettings, ExplicitDynamics, RestCriterion, RunOutcome,
     RunStatus,
 };
-pub use stability::{critical_time_step, StabilityLimit};
+pub use stability::{
+    critical_time_step, critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
+};

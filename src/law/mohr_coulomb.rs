@@ -158,7 +158,7 @@ impl StrengthLaw for MohrCoulombSpring {
 }
 
 impl BoundedStiffness<3> for MohrCoulombSpring {
-    fn stiffness_bound(&self, _pair: &PairProperties) -> StiffnessBound {
+    fn stiffness_bound(&self, _pair: &PairProperties, _overlap: f64) -> StiffnessBound {
         StiffnessBound {
             normal: self.normal_stiffness,
             shear: self.shear_stiffness,

@@ -401,7 +401,7 @@ impl StrengthLaw for PenaltyCoulomb {
 }
 
 impl BoundedStiffness<2> for PenaltyCoulomb {
-    fn stiffness_bound(&self, _pair: &PairProperties) -> StiffnessBound {
+    fn stiffness_bound(&self, _pair: &PairProperties, _overlap: f64) -> StiffnessBound {
         StiffnessBound {
             normal: self.penalty,
             shear: self.penalty,

@@ -373,8 +373,8 @@ impl StrengthLaw for SpringDashpotCoulomb {
 
 impl<const D: usize> BoundedStiffness<D> for SpringDashpotCoulomb {
     /// For eq. (19), the largest `k_n` is reached at the largest contact
-    /// width, `B = 2 min(r1, r2)`.
-    fn stiffness_bound(&self, pair: &PairProperties) -> StiffnessBound {
+    /// width, `B = 2 min(r1, r2)`, whatever the overlap.
+    fn stiffness_bound(&self, pair: &PairProperties, _overlap: f64) -> StiffnessBound {
         let widest = PairProperties {
             width: f64::INFINITY,
             ..*pair

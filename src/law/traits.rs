@@ -213,7 +213,14 @@ pub trait StrengthLaw {
 
 /// A law whose stiffness and damping are bounded for a pair, so that the
 /// explicit scheme's stable step can be estimated.
+///
+/// The bound may grow with the overlap (a Hertzian `k_n ∝ √δ`): the
+/// explicit driver asks for it at the largest overlap it assumes,
+/// [`crate::explicit::DemSettings::stability_overlap`] of a particle's
+/// bounding radius, and checks during a run that the overlaps stay
+/// within it ([`crate::explicit::ExplicitDynamics::check_overlap_stability`]).
 pub trait BoundedStiffness<const D: usize>: ContactLaw<D> {
-    /// Upper bounds of stiffness and damping for the pair.
-    fn stiffness_bound(&self, pair: &PairProperties) -> StiffnessBound;
+    /// Upper bounds of stiffness and damping for the pair at every
+    /// overlap up to `overlap` (m). A linear law ignores `overlap`.
+    fn stiffness_bound(&self, pair: &PairProperties, overlap: f64) -> StiffnessBound;
 }
