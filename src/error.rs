@@ -352,6 +352,14 @@ pub enum DismechError {
     /// A global solve failed.
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// A VTK dataset or frame cannot be made: an array that does not fit
+    /// its dataset, a result of another model, a limit result without a
+    /// mechanism ([`crate::vtk`]).
+    #[error("VTK output: {reason}")]
+    VtkData {
+        /// What does not fit, and what to change.
+        reason: String,
+    },
     /// Writing an output failed.
     #[error("cannot write {path}: {message}")]
     Output {

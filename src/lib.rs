@@ -344,7 +344,9 @@
 //!    a reused pattern ([`linsolve`]), or an LP ([`lp`]).
 //! 6. **Integrator**: advance the state ([`integrate`]).
 //! 7. **Outputs**: files written whole or not at all
-//!    ([`io::write_atomically`]; the grids' writer in [`grid`]). The
+//!    ([`io::write_atomically`]; the grids' writer in [`grid`]; every
+//!    driver's state as ParaView files, VTK XML with a `.pvd` time index,
+//!    in [`vtk`]). The
 //!    reports of the reproductions (CSV tables, SVG plots,
 //!    `summary.json`) are the `dismech` command's, in the `dismech-cli`
 //!    package.
@@ -399,6 +401,7 @@ pub mod query;
 pub mod reference;
 pub mod scene;
 pub mod shape;
+pub mod vtk;
 
 /// The README's code blocks, compiled as doctests so that they stay true.
 #[cfg(doctest)]

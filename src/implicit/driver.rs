@@ -272,6 +272,11 @@ where
         self.laws.default_law()
     }
 
+    /// The bodies' kinematics.
+    pub fn kinematics(&self) -> &K {
+        &self.kinematics
+    }
+
     /// The integrator.
     pub fn integrator(&self) -> &I {
         &self.integrator
