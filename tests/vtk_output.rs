@@ -356,6 +356,7 @@ fn dem_frames_read_back_with_the_particles_contacts_and_walls() {
         assert_eq!(data.cell_scalar("target", k), target as f64);
         assert_eq!(data.cell_scalar("target_is_wall", k), is_wall);
         assert_eq!(data.cell_scalar("regime", k), regime_code(c.regime));
+        assert_eq!(data.cell_scalar("overlap", k), c.overlap);
         assert_eq!(data.cell_vec2("point", k), c.point.coords);
         assert_eq!(data.cell_vec2("normal", k), c.normal);
         assert_eq!(data.cell_vec2("force", k), f);
@@ -563,7 +564,7 @@ fn limit_frame_reads_back_with_the_mechanism_and_the_dual_forces() {
     let floor = model
         .add_support("floor", Point::origin(), Vec2::y(), Vec2::zeros())
         .unwrap();
-    let law = RigidPlastic::new(0.0, 30f64.to_radians(), true).unwrap();
+    let law = RigidPlastic::from_friction_angle_deg(0.0, 30.0, true).unwrap();
     for x in [-w / 2.0, w / 2.0] {
         model
             .add_contact_at(

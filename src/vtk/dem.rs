@@ -137,6 +137,7 @@ pub fn dem_frame<L: ContactLaw<2>, I: ExplicitIntegrator>(
             "regime",
             records.iter().map(|c| regime_code(c.regime)).collect(),
         ),
+        DataArray::scalars("overlap", records.iter().map(|c| c.overlap).collect()),
     ]);
 
     let mut wall_lines = PolyData::default();

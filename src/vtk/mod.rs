@@ -88,7 +88,7 @@
 //!
 //! `contacts` (one per point of [`crate::explicit::ExplicitDynamics::contacts`]):
 //! the common arrays, and `particle` (A), `target` (B: a particle's or a
-//! wall's index), `target_is_wall`, `regime`.
+//! wall's index), `target_is_wall`, `regime`, `overlap` (m).
 //!
 //! `walls`: a line per wall of the frame; `id`, `load` (the force of the
 //! particles on the wall, N/m).
