@@ -397,6 +397,7 @@ pub mod limit;
 pub mod linsolve;
 pub mod lp;
 pub mod math;
+pub mod observe;
 pub mod query;
 pub mod reference;
 pub mod scene;

@@ -21,6 +21,7 @@ use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
 use crate::law::{BoundedStiffness, ContactLaw, Regime};
 use crate::linsolve::{solve_lumped_into, LumpedSystem};
 use crate::math::{Aabb2, Point, Vec2};
+use crate::observe::{Event, Observer};
 use crate::query::{ContactFeatures, ContactGeometry, ContactShape};
 use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
@@ -1027,6 +1028,27 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         criterion: &RestCriterion,
         mut on_check: impl FnMut(f64, f64),
     ) -> Result<RunOutcome> {
+        self.run_to_rest_observed(criterion, &mut |_: &Self, event: &Event| {
+            if let Event::Check { time, rest_ratio } = *event {
+                on_check(time, rest_ratio);
+            }
+            Ok(())
+        })
+    }
+
+    /// [`Self::run_to_rest`] with an [`Observer`]: called with the driver
+    /// after every step ([`Event::Step`]), at every rest check
+    /// ([`Event::Check`], with the ratio the rest test reads) and when the
+    /// run ends ([`Event::Finished`]).
+    ///
+    /// # Errors
+    /// As [`Self::run_to_rest`], and any error of the observer, which stops
+    /// the run at that event.
+    pub fn run_to_rest_observed(
+        &mut self,
+        criterion: &RestCriterion,
+        observer: &mut (impl Observer<Self> + ?Sized),
+    ) -> Result<RunOutcome> {
         require_positive("rest ratio", criterion.kinetic_to_released_ratio)?;
         require_positive("max_time", criterion.max_time)?;
         require_non_negative("min_time", criterion.min_time)?;
@@ -1044,6 +1066,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let mut calm_checks = 0u32;
         loop {
             self.step()?;
+            observer.observe(
+                self,
+                &Event::Step {
+                    step: self.step,
+                    time: self.time,
+                },
+            )?;
             let taken = self.step - start;
             if taken % every != 0 && taken < criterion.max_steps {
                 continue;
@@ -1057,7 +1086,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 return Err(blow_up);
             }
             let ratio = self.rest_ratio(kinetic, released);
-            on_check(self.time, ratio);
+            observer.observe(
+                self,
+                &Event::Check {
+                    time: self.time,
+                    rest_ratio: ratio,
+                },
+            )?;
             let unbalanced = self.unbalanced_force_ratio();
             if ratio < criterion.kinetic_to_released_ratio
                 && unbalanced < criterion.unbalanced_force_ratio
@@ -1083,6 +1118,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 None
             };
             if let Some(status) = status {
+                observer.observe(
+                    self,
+                    &Event::Finished {
+                        step: self.step,
+                        time: self.time,
+                    },
+                )?;
                 return Ok(RunOutcome {
                     status,
                     steps: self.step - start,
@@ -1096,6 +1138,36 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 });
             }
         }
+    }
+
+    /// Take `steps` steps, calling `observer` after each ([`Event::Step`])
+    /// and at the end ([`Event::Finished`]).
+    ///
+    /// # Errors
+    /// Any error of [`Self::step`], or of the observer, which stops the run
+    /// there.
+    pub fn run_steps_observed(
+        &mut self,
+        steps: u64,
+        observer: &mut (impl Observer<Self> + ?Sized),
+    ) -> Result<()> {
+        for _ in 0..steps {
+            self.step()?;
+            observer.observe(
+                self,
+                &Event::Step {
+                    step: self.step,
+                    time: self.time,
+                },
+            )?;
+        }
+        observer.observe(
+            self,
+            &Event::Finished {
+                step: self.step,
+                time: self.time,
+            },
+        )
     }
 }
 

@@ -42,6 +42,7 @@
 //! | implicit driver and DDA: [`implicit_frame`], [`bodies_frame`] | `implicit.rs` |
 //! | limit analysis: [`limit_frame`] | `limit.rs` |
 //! | HPM: [`hpm_frame`] | `hpm.rs` |
+//! | the frames of a DEM run written by an observer: [`DemFrames`] | `observe.rs` |
 //!
 //! ## The files
 //!
@@ -176,6 +177,7 @@ mod dem;
 mod hpm;
 mod implicit;
 mod limit;
+mod observe;
 mod outline;
 mod series;
 mod xml;
@@ -184,6 +186,7 @@ pub use dem::dem_frame;
 pub use hpm::hpm_frame;
 pub use implicit::{bodies_frame, implicit_frame};
 pub use limit::limit_frame;
+pub use observe::DemFrames;
 pub use outline::{kind, DEFAULT_SEGMENTS};
 pub use series::{pvd_text, write_dataset, Piece, PvdEntry, PvdSeries, VtkFrame};
 pub use xml::{cell_type, Cells, DataArray, Dataset, PolyData, UnstructuredGrid, Values};

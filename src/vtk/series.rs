@@ -123,6 +123,11 @@ impl PvdSeries {
         &self.folder
     }
 
+    /// The time of the last frame written, if any.
+    pub fn last_time(&self) -> Option<f64> {
+        self.last_time
+    }
+
     /// Frames written so far.
     pub fn frames(&self) -> usize {
         self.frames

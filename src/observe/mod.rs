@@ -1,0 +1,196 @@
+//! Observers: one interface through which a driver's run is watched —
+//! progress, output files, checkpoints, a user's own callback — instead
+//! of code inside the drivers.
+//!
+//! A driver's observed run takes the observer by `&mut` (so that it is
+//! the caller's again after the run) and calls [`Observer::observe`] with
+//! itself (read,
+//! not copied: every accessor of the driver is at hand) and an [`Event`]
+//! saying what just happened. An observer returns `Ok(())` to go on, or an
+//! error, which stops the run and is returned by it (an output that could
+//! not be written stops the run that would write it).
+//!
+//! Observers compose: a closure `FnMut(&W, &Event) -> Result<()>` is one;
+//! a pair `(A, B)` calls both in order; [`every`] calls its observer at
+//! every n-th step and at every other event. The frames of [`crate::vtk`]
+//! are written by an observer ([`crate::vtk::DemFrames`]):
+//!
+//! ```
+//! # fn main() -> dismech::error::Result<()> {
+//! use dismech::dem::DemSimulation;
+//! use dismech::explicit::{DemSettings, RestCriterion};
+//! use dismech::integrate::ExplicitEuler;
+//! use dismech::law::SpringDashpotCoulomb;
+//! use dismech::math::{Point, Vec2};
+//! use dismech::observe::{every, Event};
+//! use dismech::scene::{Frame, Scene};
+//! let mut scene = Scene::new(Frame::open_box(1.0, 1.0)?, Vec2::new(0.0, -9.81))?;
+//! scene.add_circle(Point::new(0.5, 0.06), 0.05, 2600.0)?;
+//! let law = SpringDashpotCoulomb::katsuki(73.55e6, 0.3, 0.25, 0.577)?;
+//! let mut dem = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default())?;
+//! let mut heights = Vec::new();
+//! let record = every(100, |dem: &DemSimulation<SpringDashpotCoulomb>, event: &Event| {
+//!     if let Event::Step { .. } = event {
+//!         heights.push(dem.scene().particles[0].pose.position.y);
+//!     }
+//!     Ok(())
+//! });
+//! let mut record = record;
+//! let outcome = dem.run_to_rest_observed(&RestCriterion::default(), &mut record)?;
+//! assert_eq!(heights.len() as u64, outcome.steps / 100);
+//! # Ok(()) }
+//! ```
+//!
+//! | driver | observed run | events |
+//! |---|---|---|
+//! | explicit ([`crate::explicit::ExplicitDynamics`]) | [`run_to_rest_observed`](crate::explicit::ExplicitDynamics::run_to_rest_observed), [`run_steps_observed`](crate::explicit::ExplicitDynamics::run_steps_observed) | [`Event::Step`] after every step, [`Event::Check`] at every rest check, [`Event::Finished`] |
+
+use crate::error::Result;
+
+/// What just happened in an observed run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Event {
+    /// A step was taken: the driver's step count and time after it.
+    Step {
+        /// Steps taken since the driver was built.
+        step: u64,
+        /// Time reached (s).
+        time: f64,
+    },
+    /// A check of a run to rest (every
+    /// [`crate::explicit::RestCriterion::check_every`] steps), with the
+    /// ratio its rest test reads (kinetic to supplied energy).
+    Check {
+        /// Time reached (s).
+        time: f64,
+        /// Kinetic energy over the energy supplied.
+        rest_ratio: f64,
+    },
+    /// The run ended (at rest, or at a limit); not sent when it stops with
+    /// an error.
+    Finished {
+        /// Steps taken since the driver was built.
+        step: u64,
+        /// Time reached (s).
+        time: f64,
+    },
+}
+
+/// Watches a run of a driver `W`.
+pub trait Observer<W: ?Sized> {
+    /// Called at each event with the driver as it is after it.
+    ///
+    /// # Errors
+    /// Whatever the observer cannot do (an output not written); the run
+    /// stops and returns it.
+    fn observe(&mut self, world: &W, event: &Event) -> Result<()>;
+}
+
+impl<W: ?Sized, F> Observer<W> for F
+where
+    F: FnMut(&W, &Event) -> Result<()>,
+{
+    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+        self(world, event)
+    }
+}
+
+impl<W: ?Sized, A: Observer<W>, B: Observer<W>> Observer<W> for (A, B) {
+    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+        self.0.observe(world, event)?;
+        self.1.observe(world, event)
+    }
+}
+
+/// No observer: an observed run without one.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Unobserved;
+
+impl<W: ?Sized> Observer<W> for Unobserved {
+    fn observe(&mut self, _: &W, _: &Event) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// An observer called at every `n`-th [`Event::Step`] (steps `n`, `2n`,
+/// … of the driver's count) and at every other event.
+#[derive(Debug, Clone)]
+pub struct Every<O> {
+    n: u64,
+    observer: O,
+}
+
+/// `observer` at every `n`-th step (every step for `n` = 0 or 1) and at
+/// every other event.
+pub fn every<O>(n: u64, observer: O) -> Every<O> {
+    Every {
+        n: n.max(1),
+        observer,
+    }
+}
+
+impl<O> Every<O> {
+    /// The observer, back from the run.
+    pub fn into_inner(self) -> O {
+        self.observer
+    }
+}
+
+impl<W: ?Sized, O: Observer<W>> Observer<W> for Every<O> {
+    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+        match event {
+            Event::Step { step, .. } if step % self.n != 0 => Ok(()),
+            _ => self.observer.observe(world, event),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_passes_every_nth_step_and_every_other_event() {
+        let mut seen = Vec::new();
+        let mut o = every(3, |_: &(), e: &Event| {
+            seen.push(*e);
+            Ok(())
+        });
+        for step in 1..=7 {
+            o.observe(&(), &Event::Step { step, time: 0.0 }).unwrap();
+        }
+        o.observe(&(), &Event::Finished { step: 7, time: 0.0 })
+            .unwrap();
+        let steps: Vec<u64> = seen
+            .iter()
+            .filter_map(|e| match e {
+                Event::Step { step, .. } => Some(*step),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(steps, [3, 6]);
+        assert!(matches!(seen.last(), Some(Event::Finished { .. })));
+    }
+
+    #[test]
+    fn a_pair_calls_both_and_stops_at_the_first_error() {
+        let mut calls = 0;
+        let mut failing = (
+            |_: &(), _: &Event| -> Result<()> {
+                Err(crate::error::DismechError::InvalidParameter {
+                    name: "test",
+                    value: 0.0,
+                    requirement: "none",
+                })
+            },
+            |_: &(), _: &Event| -> Result<()> {
+                calls += 1;
+                Ok(())
+            },
+        );
+        assert!(failing
+            .observe(&(), &Event::Step { step: 1, time: 0.0 })
+            .is_err());
+        assert_eq!(calls, 0);
+    }
+}
