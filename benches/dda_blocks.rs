@@ -26,8 +26,9 @@ use std::time::Instant;
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, Halvings, PenaltyCoulomb,
-    PlaneState, Prescribed, StepStatus,
+    PlaneState, Prescribed,
 };
+use dismech::error::DismechError;
 use dismech::math::Point;
 
 const E: f64 = 10e9;
@@ -131,8 +132,13 @@ fn run(
     let mut failure = None;
     for step in 0..steps {
         let start = Instant::now();
-        let report = model.advance(1e-3)?;
+        let outcome = model.advance(1e-3);
         times.push(start.elapsed().as_secs_f64() * 1e3);
+        let (report, failed) = match outcome {
+            Ok(report) => (report, None),
+            Err(DismechError::StepFailed { reason, report, .. }) => (*report, Some(reason)),
+            Err(e) => return Err(e.into()),
+        };
         solves += report.iterations;
         open_close += report.open_close_iterations;
         halvings += report.reductions;
@@ -140,7 +146,7 @@ fn run(
         if step >= 10 {
             late_halvings += report.reductions;
         }
-        if let StepStatus::Failed { reason, .. } = &report.status {
+        if let Some(reason) = failed {
             failure = Some(format!("step {step}: {reason}"));
             break;
         }

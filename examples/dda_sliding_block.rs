@@ -8,7 +8,7 @@
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
-    Prescribed, StepStatus,
+    Prescribed,
 };
 use dismech::math::{Point, Vec2};
 use dismech::reference::{rigid_sliding_block, Shaking};
@@ -61,9 +61,8 @@ fn main() -> Result<(), dismech::error::DismechError> {
     let dt = 0.001;
     println!("    t (s)   DDA s (mm)   exact s (mm)");
     for step in 1..=(shaking.duration / dt).round() as usize {
-        let report = model.advance(dt)?;
-        if let StepStatus::Failed { reason, .. } = report.status {
-            eprintln!("stopped: {reason}");
+        if let Err(e) = model.advance(dt) {
+            eprintln!("stopped: {e}");
             break;
         }
         if step % 100 == 0 {

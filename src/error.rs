@@ -319,15 +319,19 @@ pub enum DismechError {
         /// Largest overlap accepted at the start.
         tolerance: f64,
     },
-    /// A DDA step could not be completed even at the smallest time step.
-    #[error("DDA step failed at t = {time:.6} s with dt = {dt:.3e} s: {reason}; reduce the time step or the contact penalty")]
+    /// A step of the implicit driver could not be completed even at the
+    /// smallest time step; the model is left at the last accepted state.
+    #[error("implicit step failed at t = {time:.6} s with dt = {dt:.3e} s: {reason}; reduce the time step or the contact penalty")]
     StepFailed {
-        /// Time reached.
+        /// Time reached (s).
         time: f64,
-        /// The smallest step tried.
+        /// The smallest step tried (s).
         dt: f64,
         /// What failed.
-        reason: String,
+        reason: crate::implicit::StepFailure,
+        /// The record of the call up to the failure (its sub-steps,
+        /// halvings and iterations).
+        report: Box<crate::implicit::StepReport>,
     },
     /// A limit-analysis model that has no penalty counterpart.
     #[error("the limit model cannot be turned into a penalty model: {0}")]

@@ -327,7 +327,7 @@
 //! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping)?;
 //! let settings = ImplicitSettings { gravity: Vec2::new(0.0, -9.81), ..ImplicitSettings::default() };
 //! let mut model = ImplicitDynamics::compose(bodies, Affine2, law, Newmark::new(0.5625, 1.0)?, SparseLu::default(), settings)?;
-//! model.advance_or_stop(1e-3)?;
+//! model.advance(1e-3)?;
 //! # Ok(()) }
 //! ```
 //!

@@ -11,7 +11,7 @@
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,
-    Prescribed, StepStatus,
+    Prescribed,
 };
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
@@ -306,10 +306,14 @@ fn run_dda(case: &DdaCase) -> Result<bool, DismechError> {
     };
     let mut model = DdaModel::new(blocks, law, settings)?;
     for _ in 0..3 {
-        let report = model.advance(case.dt)?;
-        if let StepStatus::Failed { reason, .. } = &report.status {
-            assert!(!reason.to_string().is_empty());
-            break;
+        match model.advance(case.dt) {
+            Err(DismechError::StepFailed { reason, .. }) => {
+                assert!(!reason.to_string().is_empty());
+                break;
+            }
+            other => {
+                other?;
+            }
         }
         for block in model.blocks() {
             for v in 0..block.vertex_count() {

@@ -4,9 +4,7 @@
 mod dda_common;
 
 use dda_common::{material, rect};
-use dismech::dda::{
-    Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed, StepStatus,
-};
+use dismech::dda::{Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed};
 use dismech::error::DismechError;
 use dismech::math::{Point, Vec2};
 
@@ -35,9 +33,14 @@ fn drop_block(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
     let mut reductions = 0;
     let mut converged = true;
     for _ in 0..steps {
-        let report = model.advance(dt).unwrap();
-        reductions += report.reductions;
-        converged &= report.status == StepStatus::Converged;
+        match model.advance(dt) {
+            Ok(report) => reductions += report.reductions,
+            Err(DismechError::StepFailed { report, .. }) => {
+                reductions += report.reductions;
+                converged = false;
+            }
+            Err(e) => panic!("{e}"),
+        }
         deepest = deepest.min(bottom(&model));
         if !converged {
             break;
@@ -135,7 +138,7 @@ fn conventional_law_at_penalty_1e24_is_refused_as_imprecise() {
         let law = PenaltyCoulomb::new(penalty, 0.5, FrictionIntegration::Conventional).unwrap();
         let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap();
         let mut model = DdaModel::new(vec![base(), block], law, DdaSettings::default()).unwrap();
-        let report = model.advance_or_stop(1e-3);
+        let report = model.advance(1e-3);
         (report, model.blocks()[1].stress)
     };
     let (soft, stress) = run(1e9);
@@ -157,7 +160,7 @@ fn conventional_law_at_penalty_1e24_is_refused_as_imprecise() {
     match run(1e24).0 {
         Err(DismechError::StepFailed { reason, .. }) => {
             println!("{reason}");
-            assert!(reason.contains("lower the penalty"), "{reason}")
+            assert!(reason.to_string().contains("lower the penalty"), "{reason}")
         }
         other => panic!("expected a refused step, got {other:?}"),
     }
@@ -216,7 +219,7 @@ fn time_step_lost_in_the_clock_is_refused() {
         "{err}"
     );
     // A small step the clock can resolve is still taken.
-    assert_eq!(model.advance(1e-9).unwrap().status, StepStatus::Converged);
+    model.advance(1e-9).unwrap();
 }
 
 /// A ratio below 2⁻⁵² (1e-320 underflowed the bound on halvings).
@@ -248,7 +251,7 @@ fn min_dt_ratio_below_its_floor_is_refused() {
     // only reached by halving, which stops at the clock's resolution.
     let mut model = resting_block_model(floor).unwrap();
     for _ in 0..10 {
-        assert_eq!(model.advance(1e-3).unwrap().status, StepStatus::Converged);
+        model.advance(1e-3).unwrap();
     }
 }
 

@@ -5,7 +5,6 @@
 
 use dismech::implicit::{
     Body, BodyGeometry, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
-    StepStatus,
 };
 use dismech::integrate::Newmark;
 use dismech::kinematics::Rigid2;
@@ -89,7 +88,6 @@ fn a_fast_tilted_ellipse_does_not_cross_into_a_floor_in_one_step() {
     let mut deepest = f64::INFINITY;
     for _ in 0..20 {
         let report = model.advance(0.01).unwrap();
-        assert_eq!(report.status, StepStatus::Converged);
         reductions += report.reductions;
         deepest = deepest.min(lowest(&model.bodies()[0]));
     }
@@ -112,7 +110,6 @@ fn a_fast_ellipse_is_detected_again_rather_than_halved() {
     let mut deepest = f64::INFINITY;
     for _ in 0..20 {
         let report = model.advance(0.01).unwrap();
-        assert_eq!(report.status, StepStatus::Converged);
         reductions += report.reductions;
         redetections += report.redetections;
         deepest = deepest.min(lowest(&model.bodies()[0]));
@@ -160,7 +157,7 @@ fn mass_damping_decays_a_free_body_by_the_trapezoidal_factor() {
     .unwrap();
     let (dt, steps) = (1e-2, 100);
     for _ in 0..steps {
-        assert_eq!(model.advance(dt).unwrap().status, StepStatus::Converged);
+        model.advance(dt).unwrap();
     }
     let factor = ((1.0 - 0.5 * alpha * dt) / (1.0 + 0.5 * alpha * dt)).powi(steps);
     let v = model.bodies()[0].velocity;
@@ -212,8 +209,8 @@ fn run<const N: usize, K, I>(
     I: dismech::integrate::ImplicitIntegrator,
 {
     for _ in 0..steps {
-        let report = model.advance(dt).unwrap();
-        assert_eq!(report.status, StepStatus::Converged);
+        // A step that fails is an error: every step converges.
+        model.advance(dt).unwrap();
     }
 }
 
@@ -405,7 +402,6 @@ fn an_ellipse_rests_on_a_long_incline_without_halving() {
         let mut halvings = 0;
         for _ in 0..1000 {
             let report = model.advance(4e-3).unwrap();
-            assert_eq!(report.status, StepStatus::Converged);
             halvings += report.reductions;
         }
         let BodyGeometry::Ellipse(e) = model.bodies()[0].geometry() else {

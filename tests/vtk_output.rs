@@ -419,8 +419,8 @@ fn dda_frames_read_back_with_the_blocks_stresses_and_contacts() {
     let mut series = PvdSeries::new(&dir).unwrap();
     for _ in 0..2 {
         for _ in 0..5 {
-            let report = model.advance(1e-3).unwrap();
-            assert_eq!(report.status, dismech::dda::StepStatus::Converged);
+            // Every step converges (a failed one is an error).
+            model.advance(1e-3).unwrap();
         }
         series
             .write_frame(model.time(), &implicit_frame(&model, SEGMENTS).unwrap())

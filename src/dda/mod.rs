@@ -50,7 +50,7 @@ use crate::integrate::{ImplicitIntegrator, Newmark};
 use crate::kinematics::Affine2;
 use crate::linsolve::SparseLu;
 
-pub use crate::implicit::{FixedPoint, Halvings, PlaneState, StepFailure, StepReport, StepStatus};
+pub use crate::implicit::{FixedPoint, Halvings, PlaneState, StepFailure, StepReport};
 pub use crate::law::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 
 /// A DDA block: a polygon body with the six DDA unknowns.

@@ -9,7 +9,7 @@ use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
 use super::laws::ContactLaws;
 use super::motion;
-use super::report::{ContactReport, Halvings, StepFailure, StepReport, StepStatus};
+use super::report::{ContactReport, Halvings, StepFailure, StepReport};
 use super::settings::{ImplicitSettings, Predictor};
 use super::step::{body_dofs, Parts, StepData, Trial};
 use crate::broad_phase::CellGrid;
@@ -609,32 +609,6 @@ where
         Ok(())
     }
 
-    /// Like [`Self::advance`], for drivers that cannot go on after a failed
-    /// step: a [`StepStatus::Failed`] becomes [`DismechError::StepFailed`],
-    /// which says what failed.
-    ///
-    /// # Errors
-    /// [`DismechError::StepFailed`] with the time reached, the smallest
-    /// sub-step tried and the reason, when a sub-step cannot be completed
-    /// even at the smallest step; [`DismechError::InvalidParameter`] and
-    /// [`DismechError::TimeStepTooSmall`] for a `dt` that [`Self::advance`]
-    /// refuses.
-    pub fn advance_or_stop(&mut self, dt: f64) -> Result<StepReport> {
-        let report = self.advance(dt)?;
-        match report.status {
-            StepStatus::Failed {
-                time,
-                dt,
-                ref reason,
-            } => Err(DismechError::StepFailed {
-                time,
-                dt,
-                reason: reason.to_string(),
-            }),
-            StepStatus::Converged => Ok(report),
-        }
-    }
-
     /// Total contact force on `body` from the contacts of the last
     /// accepted step (N/m).
     pub fn contact_force_on(&self, body: usize) -> Vec2 {
@@ -650,11 +624,16 @@ where
     }
 
     /// Advance the model by `dt` (s), in sub-steps if a step has to be
-    /// reduced. Misuse (`dt ≤ 0`) is an error; a step that cannot be
-    /// completed within the reduction bound is a [`StepStatus::Failed`].
+    /// reduced, and report how ([`StepReport`]). A step that cannot be
+    /// completed within the reduction bound is an error, as an unstable
+    /// step of the explicit driver is: the model is left at the last
+    /// accepted state, and the error says what failed and what to change.
     ///
     /// # Errors
-    /// [`DismechError::InvalidParameter`] for a time step that is not
+    /// [`DismechError::StepFailed`] with the time reached, the smallest
+    /// sub-step tried, the reason ([`StepFailure`]) and the report of the
+    /// call so far, when a sub-step cannot be completed even at the
+    /// smallest step; [`DismechError::InvalidParameter`] for a time step that is not
     /// finite and positive; [`DismechError::TimeStepTooSmall`] for one
     /// whose smallest sub-step (`dt × min_dt_ratio`) is not a normal
     /// number (the halving would never end), or which does not move the
@@ -684,7 +663,6 @@ where
         }
         let end = self.time + dt;
         let mut report = StepReport {
-            status: StepStatus::Converged,
             substeps: 0,
             reductions: 0,
             halvings: Halvings::default(),
@@ -745,13 +723,13 @@ where
                         report.reductions += 1;
                         report.halvings.count(&reason);
                     } else {
-                        report.status = StepStatus::Failed {
+                        report.iterations = self.solves - solves;
+                        return Err(DismechError::StepFailed {
                             time: self.time,
                             dt: h,
                             reason,
-                        };
-                        report.iterations = self.solves - solves;
-                        return Ok(report);
+                            report: Box::new(report),
+                        });
                     }
                 }
             }

@@ -76,8 +76,10 @@
 //!   `min_dt_ratio` times the requested step; after a successful sub-step
 //!   the step doubles again up to the requested one
 //!   ([`StepReport::halvings`] counts the causes). Past that bound
-//!   [`ImplicitDynamics::advance`] returns a [`StepStatus::Failed`] saying
-//!   what failed and what to change. The halving is bounded: `min_dt_ratio`
+//!   [`ImplicitDynamics::advance`] returns
+//!   [`crate::error::DismechError::StepFailed`] saying what failed and what
+//!   to change (the explicit driver's answer to an unstable step is an
+//!   error too). The halving is bounded: `min_dt_ratio`
 //!   is at least [`MIN_DT_RATIO_FLOOR`] (52 halvings), a step is halved
 //!   only while its half moves the clock on, and a step whose smallest
 //!   sub-step underflows, or which itself does not move the clock, is
@@ -100,7 +102,7 @@ pub use body::{Body, BodyGeometry, BodyMaterial, Motion, PlaneState, Prescribed}
 pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
 pub use laws::ContactLaws;
-pub use report::{ContactReport, Halvings, StepFailure, StepReport, StepStatus};
+pub use report::{ContactReport, Halvings, StepFailure, StepReport};
 pub use settings::{ImplicitSettings, Predictor, MIN_DT_RATIO_FLOOR};
 
 #[cfg(test)]

@@ -1,5 +1,4 @@
-//! What a step of the implicit driver reports: its status, why a step
-//! failed, its iterations, and the contacts of the accepted state.
+//! What a step of the implicit driver reports: why a step failed, its iterations, and the contacts of the accepted state.
 
 use crate::error::{DismechError, SolveError};
 use crate::math::{Point, Vec2};
@@ -135,28 +134,11 @@ impl Halvings {
     }
 }
 
-/// Outcome of [`super::ImplicitDynamics::advance`].
-#[derive(Debug, Clone, PartialEq)]
-pub enum StepStatus {
-    /// The whole interval was integrated.
-    Converged,
-    /// A sub-step failed at the smallest admissible step; the model is left
-    /// at the last accepted state.
-    Failed {
-        /// Time reached (s).
-        time: f64,
-        /// Step that failed (s).
-        dt: f64,
-        /// What failed; reduce the time step or change the penalty.
-        reason: StepFailure,
-    },
-}
-
-/// Record of one [`super::ImplicitDynamics::advance`] call.
+/// Record of one [`super::ImplicitDynamics::advance`] call: of the whole
+/// interval when it returns it, of the call up to the failure in
+/// [`DismechError::StepFailed`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepReport {
-    /// Converged or failed.
-    pub status: StepStatus,
     /// Sub-steps taken.
     pub substeps: usize,
     /// How many times the step was halved.

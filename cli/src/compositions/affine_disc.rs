@@ -179,7 +179,7 @@ pub fn run_rolling_disc(setup: &RollingDisc) -> Result<RollingRun> {
     let (mut iterations, mut reductions) = (0, 0);
     let mut samples = Vec::with_capacity(steps);
     for _ in 0..steps {
-        let report = model.advance_or_stop(setup.dt)?;
+        let report = model.advance(setup.dt)?;
         iterations += report.iterations;
         reductions += report.reductions;
         let travel = (model.bodies()[0].centroid() - start).dot(&downhill);

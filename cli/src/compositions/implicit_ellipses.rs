@@ -391,7 +391,7 @@ pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
     let mut peak_spin = 0.0f64;
     let mut at_rest = false;
     while model.time() < setup.max_time {
-        let report = model.advance_or_stop(dt)?;
+        let report = model.advance(dt)?;
         steps += 1;
         substeps += report.substeps;
         reductions += report.reductions;

@@ -350,7 +350,7 @@ pub fn pushover(
         contacts_match: false,
     };
     for k in 0..steps {
-        let report: StepReport = run.model.advance_or_stop(step)?;
+        let report: StepReport = run.model.advance(step)?;
         if k == 0 {
             curve.contacts_match = run.contacts_match();
         }

@@ -154,7 +154,7 @@ pub fn run_sliding(
     let mut reductions = 0;
     let mut residuals = Vec::new();
     for _ in 0..steps {
-        let report = model.advance_or_stop(dt)?;
+        let report = model.advance(dt)?;
         reductions += report.reductions;
         residuals.push(report.residuals);
         let b = model.blocks();
@@ -292,7 +292,7 @@ pub fn run_direct_shear(steps: usize, integration: FrictionIntegration) -> Resul
         residuals: Vec::new(),
     };
     for _ in 0..steps {
-        let report = model.advance_or_stop(dt)?;
+        let report = model.advance(dt)?;
         run.residuals.push(report.residuals);
         // The shear stress resists the imposed motion over the 1 m length.
         let force = model.contact_force_on(1);
@@ -328,7 +328,7 @@ pub fn see_saw_residuals(steps: usize, dt: f64) -> Result<Vec<StepReport>> {
     let mut model = DdaModel::new(vec![base, plank], law, settings)?;
     let mut out = Vec::new();
     for _ in 0..steps {
-        out.push(model.advance_or_stop(dt)?);
+        out.push(model.advance(dt)?);
     }
     Ok(out)
 }
