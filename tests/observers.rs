@@ -53,47 +53,35 @@ fn an_observer_sees_every_step_and_check_and_changes_nothing() {
         .unwrap();
 
     let mut observed = dem();
-    let mut events = Vec::new();
+    let (mut steps, mut checks, mut finished) = (Vec::new(), Vec::new(), Vec::new());
+    let mut last = 'n';
     let seen = observed
-        .run_to_rest_observed(&criterion(), &mut |d: &Dem, e: &Event| {
-            if let Event::Step { step, time } = *e {
-                assert_eq!((step, time), (d.steps(), d.time()));
+        .run_to_rest_observed(&criterion(), &mut |d: &Dem, e: &Event<'_>| {
+            assert_ne!(last, 'f', "an event after the end");
+            match *e {
+                Event::Step { step, time } => {
+                    assert_eq!((step, time), (d.steps(), d.time()));
+                    steps.push(step);
+                    last = 's';
+                }
+                Event::Check { rest_ratio, .. } => {
+                    assert_eq!(last, 's', "a check follows a step");
+                    checks.push(rest_ratio);
+                    last = 'c';
+                }
+                Event::Finished { step, time } => {
+                    finished.push((step, time));
+                    last = 'f';
+                }
+                other => panic!("the explicit driver sent {other:?}"),
             }
-            events.push(*e);
             Ok(())
         })
         .unwrap();
     assert_eq!(seen, outcome);
-    let steps: Vec<u64> = events
-        .iter()
-        .filter_map(|e| match e {
-            Event::Step { step, .. } => Some(*step),
-            _ => None,
-        })
-        .collect();
     assert_eq!(steps, (1..=outcome.steps).collect::<Vec<_>>());
-    let checks: Vec<f64> = events
-        .iter()
-        .filter_map(|e| match e {
-            Event::Check { rest_ratio, .. } => Some(*rest_ratio),
-            _ => None,
-        })
-        .collect();
     assert_eq!(checks, ratios);
-    assert_eq!(
-        events.last(),
-        Some(&Event::Finished {
-            step: outcome.steps,
-            time: observed.time()
-        })
-    );
-    assert_eq!(
-        events
-            .iter()
-            .filter(|e| matches!(e, Event::Finished { .. }))
-            .count(),
-        1
-    );
+    assert_eq!(finished, [(outcome.steps, observed.time())]);
     for (a, b) in plain
         .scene()
         .particles
@@ -111,7 +99,7 @@ fn an_observer_sees_every_step_and_check_and_changes_nothing() {
 #[test]
 fn an_observer_error_stops_the_run() {
     let mut sim = dem();
-    let result = sim.run_to_rest_observed(&criterion(), &mut |d: &Dem, _: &Event| {
+    let result = sim.run_to_rest_observed(&criterion(), &mut |d: &Dem, _: &Event<'_>| {
         if d.steps() == 10 {
             return Err(DismechError::InvalidParameter {
                 name: "observer",
@@ -165,4 +153,75 @@ fn frames_are_written_by_an_observer_every_n_steps_and_at_the_end() {
         assert_eq!(pvd.matches("<DataSet").count(), expected.len(), "{name}");
     }
     std::fs::remove_dir_all(&folder).unwrap();
+}
+
+/// The implicit driver tells an observer every accepted sub-step, every
+/// halving with its cause, and the end of the interval: a block 2 cm above
+/// a base, one call of 0.1 s, lands in halved sub-steps; the events add up
+/// to the call's report, the sub-steps tile the interval, and the model
+/// ends where the unobserved one does, bit for bit.
+#[test]
+fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
+    use dismech::dda::{
+        Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, Halvings, PenaltyCoulomb,
+        PlaneState, Prescribed,
+    };
+    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+        [
+            Point::new(x0, y0),
+            Point::new(x1, y0),
+            Point::new(x1, y1),
+            Point::new(x0, y1),
+        ]
+    };
+    let rock = BlockMaterial {
+        density: 2200.0,
+        youngs_modulus: 1e9,
+        poisson_ratio: 0.2,
+        plane: PlaneState::Strain,
+    };
+    let model = || {
+        let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), rock, 0).unwrap();
+        base.prescribed = Some(Prescribed::fixed());
+        let block = Block::new(&rect(-0.5, 0.02, 0.5, 0.52), rock, 1).unwrap();
+        let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+        DdaModel::new(vec![base, block], law, DdaSettings::default()).unwrap()
+    };
+    let mut plain = model();
+    let expected = plain.advance(0.1).unwrap();
+    assert!(expected.reductions > 0, "the landing needs halvings");
+
+    let mut observed = model();
+    let (mut substeps, mut halvings, mut finished) = (Vec::new(), Halvings::default(), Vec::new());
+    let mut covered = 0.0;
+    let report = observed
+        .advance_observed(0.1, &mut |m: &DdaModel, e: &Event<'_>| {
+            assert!(finished.is_empty(), "an event after the end");
+            match *e {
+                Event::SubStep { substep, time, dt } => {
+                    assert_eq!(time, m.time());
+                    covered += dt;
+                    substeps.push(substep);
+                }
+                Event::Halved { time, reason, .. } => {
+                    assert_eq!(time, m.time());
+                    halvings.count(reason);
+                }
+                Event::Finished { step, time } => finished.push((step, time)),
+                other => panic!("the implicit driver sent {other:?}"),
+            }
+            Ok(())
+        })
+        .unwrap();
+    assert_eq!(report, expected);
+    assert_eq!(substeps, (1..=report.substeps).collect::<Vec<_>>());
+    assert_eq!(halvings, report.halvings);
+    assert!((covered - 0.1).abs() < 1e-12, "{covered}");
+    assert_eq!(finished, [(report.substeps as u64, observed.time())]);
+    for (a, b) in plain.blocks().iter().zip(observed.blocks()) {
+        for k in 0..6 {
+            assert_eq!(a.displacement[k].to_bits(), b.displacement[k].to_bits());
+            assert_eq!(a.velocity[k].to_bits(), b.velocity[k].to_bits());
+        }
+    }
 }

@@ -1028,7 +1028,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         criterion: &RestCriterion,
         mut on_check: impl FnMut(f64, f64),
     ) -> Result<RunOutcome> {
-        self.run_to_rest_observed(criterion, &mut |_: &Self, event: &Event| {
+        self.run_to_rest_observed(criterion, &mut |_: &Self, event: &Event<'_>| {
             if let Event::Check { time, rest_ratio } = *event {
                 on_check(time, rest_ratio);
             }

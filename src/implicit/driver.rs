@@ -19,6 +19,7 @@ use crate::kinematics::{Advance, Kinematics, PlacedEllipse, PlacedPolygon};
 use crate::law::TangentLaw;
 use crate::linsolve::{BlockAssembly, LinearSolver, SparseMatrix};
 use crate::math::{Aabb2, Point, Vec2};
+use crate::observe::{Event, Observer, Unobserved};
 use crate::query::manifold::dispatch::contact_manifold_2d;
 use crate::query::variation::PairContact;
 use crate::query::Feature;
@@ -640,6 +641,23 @@ where
     /// clock on from the time reached. A step is halved only while its half
     /// still moves the clock.
     pub fn advance(&mut self, dt: f64) -> Result<StepReport> {
+        self.advance_observed(dt, &mut Unobserved)
+    }
+
+    /// [`Self::advance`] with an [`Observer`]: called with the model after
+    /// every accepted sub-step ([`Event::SubStep`]), at every halving with
+    /// what failed ([`Event::Halved`]), and once the interval is integrated
+    /// ([`Event::Finished`]).
+    ///
+    /// # Errors
+    /// As [`Self::advance`], and any error of the observer, which stops the
+    /// call at that event (the model keeps the sub-steps accepted before
+    /// it).
+    pub fn advance_observed(
+        &mut self,
+        dt: f64,
+        observer: &mut (impl Observer<Self> + ?Sized),
+    ) -> Result<StepReport> {
         require_positive("time step dt", dt)?;
         let smallest = dt * self.settings.min_dt_ratio;
         let too_small = |reason: String| DismechError::TimeStepTooSmall {
@@ -714,6 +732,14 @@ where
                     report.step_lengths = trial.step_lengths;
                     report.open_close_iterations = trial.open_close;
                     self.current_dt = (2.0 * self.current_dt).min(dt);
+                    observer.observe(
+                        self,
+                        &Event::SubStep {
+                            substep: report.substeps,
+                            time: self.time,
+                            dt: h,
+                        },
+                    )?;
                 }
                 Err(reason) => {
                     // Halved down to the smallest sub-step, or to the
@@ -722,6 +748,14 @@ where
                         self.current_dt = h / 2.0;
                         report.reductions += 1;
                         report.halvings.count(&reason);
+                        observer.observe(
+                            self,
+                            &Event::Halved {
+                                time: self.time,
+                                dt: h,
+                                reason: &reason,
+                            },
+                        )?;
                     } else {
                         report.iterations = self.solves - solves;
                         return Err(DismechError::StepFailed {
@@ -735,6 +769,13 @@ where
             }
         }
         report.iterations = self.solves - solves;
+        observer.observe(
+            self,
+            &Event::Finished {
+                step: report.substeps as u64,
+                time: self.time,
+            },
+        )?;
         Ok(report)
     }
 }

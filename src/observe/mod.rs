@@ -29,7 +29,7 @@
 //! let law = SpringDashpotCoulomb::katsuki(73.55e6, 0.3, 0.25, 0.577)?;
 //! let mut dem = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default())?;
 //! let mut heights = Vec::new();
-//! let record = every(100, |dem: &DemSimulation<SpringDashpotCoulomb>, event: &Event| {
+//! let record = every(100, |dem: &DemSimulation<SpringDashpotCoulomb>, event: &Event<'_>| {
 //!     if let Event::Step { .. } = event {
 //!         heights.push(dem.scene().particles[0].pose.position.y);
 //!     }
@@ -44,12 +44,13 @@
 //! | driver | observed run | events |
 //! |---|---|---|
 //! | explicit ([`crate::explicit::ExplicitDynamics`]) | [`run_to_rest_observed`](crate::explicit::ExplicitDynamics::run_to_rest_observed), [`run_steps_observed`](crate::explicit::ExplicitDynamics::run_steps_observed) | [`Event::Step`] after every step, [`Event::Check`] at every rest check, [`Event::Finished`] |
+//! | implicit ([`crate::implicit::ImplicitDynamics`], DDA) | [`advance_observed`](crate::implicit::ImplicitDynamics::advance_observed) | [`Event::SubStep`] after every accepted sub-step, [`Event::Halved`] with the failure at every halving, [`Event::Finished`] at the end of the interval |
 
 use crate::error::Result;
 
 /// What just happened in an observed run.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Event {
+pub enum Event<'a> {
     /// A step was taken: the driver's step count and time after it.
     Step {
         /// Steps taken since the driver was built.
@@ -66,10 +67,33 @@ pub enum Event {
         /// Kinetic energy over the energy supplied.
         rest_ratio: f64,
     },
-    /// The run ended (at rest, or at a limit); not sent when it stops with
+    /// A sub-step of the implicit driver was accepted (its equations
+    /// solved and its state committed).
+    SubStep {
+        /// Sub-steps accepted so far in this call of
+        /// [`crate::implicit::ImplicitDynamics::advance_observed`].
+        substep: usize,
+        /// Time reached (s).
+        time: f64,
+        /// The sub-step's size (s).
+        dt: f64,
+    },
+    /// A trial sub-step of the implicit driver failed and is halved: what
+    /// failed, and the size it is tried at next.
+    Halved {
+        /// Time of the state it starts from (s).
+        time: f64,
+        /// The size that failed (s).
+        dt: f64,
+        /// Why.
+        reason: &'a crate::implicit::StepFailure,
+    },
+    /// The run ended (at rest, or at a limit; for the implicit driver, the
+    /// interval of the call was integrated); not sent when it stops with
     /// an error.
     Finished {
-        /// Steps taken since the driver was built.
+        /// Steps taken since the driver was built (the explicit driver),
+        /// or sub-steps accepted in the call (the implicit driver).
         step: u64,
         /// Time reached (s).
         time: f64,
@@ -83,20 +107,20 @@ pub trait Observer<W: ?Sized> {
     /// # Errors
     /// Whatever the observer cannot do (an output not written); the run
     /// stops and returns it.
-    fn observe(&mut self, world: &W, event: &Event) -> Result<()>;
+    fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()>;
 }
 
 impl<W: ?Sized, F> Observer<W> for F
 where
-    F: FnMut(&W, &Event) -> Result<()>,
+    F: FnMut(&W, &Event<'_>) -> Result<()>,
 {
-    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+    fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         self(world, event)
     }
 }
 
 impl<W: ?Sized, A: Observer<W>, B: Observer<W>> Observer<W> for (A, B) {
-    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+    fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         self.0.observe(world, event)?;
         self.1.observe(world, event)
     }
@@ -107,13 +131,14 @@ impl<W: ?Sized, A: Observer<W>, B: Observer<W>> Observer<W> for (A, B) {
 pub struct Unobserved;
 
 impl<W: ?Sized> Observer<W> for Unobserved {
-    fn observe(&mut self, _: &W, _: &Event) -> Result<()> {
+    fn observe(&mut self, _: &W, _: &Event<'_>) -> Result<()> {
         Ok(())
     }
 }
 
 /// An observer called at every `n`-th [`Event::Step`] (steps `n`, `2n`,
-/// … of the driver's count) and at every other event.
+/// … of the driver's count) or [`Event::SubStep`] (of the call's count),
+/// and at every other event.
 #[derive(Debug, Clone)]
 pub struct Every<O> {
     n: u64,
@@ -137,9 +162,10 @@ impl<O> Every<O> {
 }
 
 impl<W: ?Sized, O: Observer<W>> Observer<W> for Every<O> {
-    fn observe(&mut self, world: &W, event: &Event) -> Result<()> {
+    fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         match event {
             Event::Step { step, .. } if step % self.n != 0 => Ok(()),
+            Event::SubStep { substep, .. } if *substep as u64 % self.n != 0 => Ok(()),
             _ => self.observer.observe(world, event),
         }
     }
@@ -152,8 +178,8 @@ mod tests {
     #[test]
     fn every_passes_every_nth_step_and_every_other_event() {
         let mut seen = Vec::new();
-        let mut o = every(3, |_: &(), e: &Event| {
-            seen.push(*e);
+        let mut o = every(3, |_: &(), e: &Event<'_>| {
+            seen.push(format!("{e:?}"));
             Ok(())
         });
         for step in 1..=7 {
@@ -161,15 +187,10 @@ mod tests {
         }
         o.observe(&(), &Event::Finished { step: 7, time: 0.0 })
             .unwrap();
-        let steps: Vec<u64> = seen
-            .iter()
-            .filter_map(|e| match e {
-                Event::Step { step, .. } => Some(*step),
-                _ => None,
-            })
-            .collect();
-        assert_eq!(steps, [3, 6]);
-        assert!(matches!(seen.last(), Some(Event::Finished { .. })));
+        assert_eq!(seen.len(), 3);
+        assert!(seen[0].starts_with("Step { step: 3,"), "{seen:?}");
+        assert!(seen[1].starts_with("Step { step: 6,"), "{seen:?}");
+        assert!(seen[2].starts_with("Finished"), "{seen:?}");
     }
 
     #[test]

@@ -40,10 +40,10 @@ impl DemFrames {
 }
 
 impl<L: ContactLaw<2>, I: ExplicitIntegrator> Observer<ExplicitDynamics<L, I>> for DemFrames {
-    fn observe(&mut self, dem: &ExplicitDynamics<L, I>, event: &Event) -> Result<()> {
+    fn observe(&mut self, dem: &ExplicitDynamics<L, I>, event: &Event<'_>) -> Result<()> {
         let time = match *event {
             Event::Step { time, .. } | Event::Finished { time, .. } => time,
-            Event::Check { .. } => return Ok(()),
+            Event::Check { .. } | Event::SubStep { .. } | Event::Halved { .. } => return Ok(()),
         };
         if self.series.last_time() == Some(time) {
             return Ok(());
