@@ -552,6 +552,40 @@ pub enum DismechError {
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),
+    /// A digital elevation model with no cell of ground data, given to a
+    /// slope search ([`crate::slope`]).
+    #[error("{file}: none of its {rows} row(s) × {columns} column(s) has ground data (every cell is no-data); a slope search needs a digital elevation model with data")]
+    NoGroundData {
+        /// The file (or the name given to the raster).
+        file: String,
+        /// Grid rows.
+        rows: usize,
+        /// Grid columns.
+        columns: usize,
+    },
+    /// A digital elevation model too small for a slope search
+    /// ([`crate::slope`]): a trial surface may not touch the grid's edge, so
+    /// at least one cell must lie inside it.
+    #[error("{file}: a grid of {rows} row(s) × {columns} column(s) is too small for a slope search: a trial surface whose columns touch the edge of the grid leaves it and is refused, so at least 3 rows and 3 columns are needed (one inner cell); extend the grid beyond the slope")]
+    DemTooSmall {
+        /// The file (or the name given to the raster).
+        file: String,
+        /// Grid rows.
+        rows: usize,
+        /// Grid columns.
+        columns: usize,
+    },
+    /// A range of values whose lower bound lies above its upper bound
+    /// (e.g. the radii of a search of trial spheres).
+    #[error("invalid {name}: its lower bound {} lies above its upper bound {}; give min <= max", Number(*low), Number(*high))]
+    InvalidRange {
+        /// The range's name (e.g. `radius range`).
+        name: &'static str,
+        /// The lower bound given.
+        low: f64,
+        /// The upper bound given.
+        high: f64,
+    },
 }
 
 /// The messages of `items`, separated by semicolons.

@@ -33,6 +33,7 @@
 //! | implicit dynamics: open–close, Newton with line search, Δt control | kinematics `K: Kinematics<N>`, law `L: TangentLaw<2>` (per pair of body groups), integrator `I: ImplicitIntegrator`, linear solver `S: LinearSolver`; any 2D shapes through the variation queries | [`implicit::ImplicitDynamics`] |
 //! | limit analysis (rigid-plastic LP) | LP solver `S: LpSolver`; bodies of any shape; any `StrengthLaw` per contact; a driven plate or a live load | [`limit::analyse`], [`limit::analyse_static`] |
 //! | HPM slope analysis (elastic, nonlinear, strength reduction) | linear solver `S: LinearSolver<BlockMatrix>` (Cholesky or PCG); the 12-unknown element of [`kinematics::affine3`]; [`law::MohrCoulombSpring`] on the Coulomb core | [`hpm::HpmSolver`] |
+//! | slope search over a DEM: Hovland's 3D columns on thousands of trial surfaces, the map of the lowest Fs per cell (Scoops3D, r.slope.stability) | trial family `F: slope::TrialFamily` (spheres on Scoops3D's grid, random spheres or ellipsoids) with its `slope::TrialSurface`; rayon, streaming, deterministic | [`slope::search`] |
 //!
 //! ## The four papers as compositions
 //!
@@ -402,6 +403,7 @@ pub mod query;
 pub mod reference;
 pub mod scene;
 pub mod shape;
+pub mod slope;
 pub mod vtk;
 
 /// The README's code blocks, compiled as doctests so that they stay true.

@@ -132,6 +132,9 @@ impl Exit {
             | E::GridHeader { .. }
             | E::GridTooLarge { .. }
             | E::NoValidColumn { .. }
+            | E::NoGroundData { .. }
+            | E::DemTooSmall { .. }
+            | E::InvalidRange { .. }
             | E::InvalidPolygon { .. }
             | E::LawUndefinedForShape { .. }
             | E::InvalidBlock { .. }

@@ -1,0 +1,215 @@
+//! Hovland's 3D column method (Hovland 1977, J. Geotech. Eng. Div. ASCE
+//! 103(9)) evaluated directly on the columns of a trial surface, with no
+//! HPM model built: the sums of [`crate::hpm::hovland()`] with the base
+//! taken from the trial surface at each cell centre.
+//!
+//! For a column of vertical thickness `h = ground − base`, plan cell side
+//! `d` and base gradient `(z_x, z_y)`: weight `W = γ h d²`, base normal
+//! into the ground `n = (z_x, z_y, −1) / ρ` with `ρ = √(1 + z_x² + z_y²)`,
+//! true base area `A = d² ρ`, load `w = (k_h W s_x, k_h W s_y, −W)` with
+//! `s` the plan sliding direction, the base tangent along it
+//! `t = (s_x, s_y, a) / √(1 + a²)` with `a = z_x s_x + z_y s_y`, and
+//! `N = w · n`, `T = w · t` as in [`crate::hpm::hovland()`]. The pore
+//! pressure `u = γ_w h_p` ([`super::SlipColumn::pressure_head`]) lowers the
+//! normal force to `N' = N − u A`, and
+//! `Fs = Σ (c A + N' tan φ) / Σ T`.
+//!
+//! **Sliding direction.** The plan direction of the resultant of the
+//! columns' base shear under their weight, `−Σ W (z_x, z_y) / ρ²` (the
+//! horizontal part of `W` less its normal part `(W/ρ) n`): the direction
+//! the slide would take as one body, as Scoops3D takes the direction of
+//! the resultant (Reid, Christian & Brien, USGS 2015). It is computed in
+//! one pass over the columns and is the fall line wherever the surface and
+//! the ground are symmetric about a vertical plane (a sphere on a planar
+//! slope). Searching the direction that minimises Fs would take several
+//! passes per surface and is not done; the seismic force acts along this
+//! direction.
+
+use crate::error::Result;
+use crate::hpm::MIN_DRIVING_RATIO;
+
+use super::material::{SlopeLoads, SlopeMaterial};
+use super::surface::{surface_columns, Refusal, SlipColumn, SurfaceLimits, TrialSurface};
+use super::terrain::Terrain;
+
+/// Hovland's Fs of one trial surface and what it is made of.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceFs {
+    /// `Σ (c A + N' tan φ) / Σ T`.
+    pub safety_factor: f64,
+    /// The plan sliding direction (unit vector).
+    pub direction: (f64, f64),
+    /// Number of columns.
+    pub columns: usize,
+    /// Volume of the slide `Σ h d²` (m³).
+    pub volume: f64,
+    /// Plan area of the slide, columns × d² (m²).
+    pub area: f64,
+    /// Largest vertical thickness of a column (m).
+    pub depth: f64,
+    /// Weight `Σ W` (N).
+    pub weight: f64,
+    /// Strength `Σ (c A + N' tan φ)` (N).
+    pub resisting: f64,
+    /// Driving force `Σ T` (N).
+    pub driving: f64,
+}
+
+/// Hovland's sums over `columns` on a grid of cell side `cell_size`, the
+/// limits checked first. The material and the loads are taken as given
+/// (an [`Evaluator`] checks them once).
+///
+/// # Errors
+/// (A refusal, not a [`crate::error::DismechError`].) The refusal of the
+/// first limit the columns fail ([`Refusal::TooFewColumns`],
+/// [`Refusal::Volume`], [`Refusal::Area`], [`Refusal::Depth`]);
+/// [`Refusal::NothingDrives`] when the plan resultant of the base shear or
+/// `Σ T` is not above [`MIN_DRIVING_RATIO`] × `Σ W`, or the ratio is not
+/// finite; [`Refusal::NoStrength`] when `Σ (c A + N' tan φ)` is not
+/// positive.
+pub fn hovland_columns(
+    columns: &[SlipColumn],
+    cell_size: f64,
+    material: &SlopeMaterial,
+    loads: &SlopeLoads,
+    limits: &SurfaceLimits,
+) -> std::result::Result<SurfaceFs, Refusal> {
+    let cell_area = cell_size * cell_size;
+    if columns.len() < limits.min_columns {
+        return Err(Refusal::TooFewColumns);
+    }
+    let mut thickness_sum = 0.0;
+    let mut depth = 0.0f64;
+    for k in columns {
+        let h = k.ground - k.base;
+        thickness_sum += h;
+        depth = depth.max(h);
+    }
+    let volume = thickness_sum * cell_area;
+    let area = columns.len() as f64 * cell_area;
+    let within = |v: f64, (lo, hi): (f64, f64)| v >= lo && v <= hi;
+    if !within(volume, limits.volume) {
+        return Err(Refusal::Volume);
+    }
+    if !within(area, limits.area) {
+        return Err(Refusal::Area);
+    }
+    if !within(depth, limits.depth) {
+        return Err(Refusal::Depth);
+    }
+    let gamma = material.unit_weight;
+    // The plan resultant of the base shear under the weight.
+    let (mut hx, mut hy, mut weight) = (0.0, 0.0, 0.0);
+    for k in columns {
+        let w = gamma * (k.ground - k.base) * cell_area;
+        let (zx, zy) = k.gradient;
+        let rho2 = 1.0 + zx * zx + zy * zy;
+        hx -= w * zx / rho2;
+        hy -= w * zy / rho2;
+        weight += w;
+    }
+    let plan = hx.hypot(hy);
+    // `>` is false for NaN: a NaN resultant drives nothing.
+    if plan.partial_cmp(&(MIN_DRIVING_RATIO * weight)) != Some(std::cmp::Ordering::Greater) {
+        return Err(Refusal::NothingDrives);
+    }
+    let (sx, sy) = (hx / plan, hy / plan);
+    let (c, mu, kh) = (
+        material.cohesion,
+        material.friction_coefficient,
+        loads.seismic_coefficient,
+    );
+    let (mut resisting, mut driving) = (0.0, 0.0);
+    for k in columns {
+        let w = gamma * (k.ground - k.base) * cell_area;
+        let (zx, zy) = k.gradient;
+        let rho = (1.0 + zx * zx + zy * zy).sqrt();
+        let a = zx * sx + zy * sy;
+        // w = (k_h W s_x, k_h W s_y, −W); n = (z_x, z_y, −1)/ρ; t = (s_x, s_y, a)/√(1 + a²).
+        let (lx, ly, lz) = (kh * w * sx, kh * w * sy, -w);
+        let normal = (lx * zx + ly * zy - lz) / rho;
+        let along = (lx * sx + ly * sy + lz * a) / (1.0 + a * a).sqrt();
+        let base_area = cell_area * rho;
+        let effective = normal - loads.water_unit_weight * k.pressure_head * base_area;
+        resisting += c * base_area + effective * mu;
+        driving += along;
+    }
+    let safety_factor = resisting / driving;
+    if !(driving > MIN_DRIVING_RATIO * weight && safety_factor.is_finite()) {
+        return Err(Refusal::NothingDrives);
+    }
+    if resisting.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return Err(Refusal::NoStrength);
+    }
+    Ok(SurfaceFs {
+        safety_factor,
+        direction: (sx, sy),
+        columns: columns.len(),
+        volume,
+        area,
+        depth,
+        weight,
+        resisting,
+        driving,
+    })
+}
+
+/// Hovland's method on trial surfaces over one terrain, with the material,
+/// loads and limits checked once.
+#[derive(Debug, Clone, Copy)]
+pub struct Evaluator<'a> {
+    terrain: &'a Terrain,
+    material: SlopeMaterial,
+    loads: SlopeLoads,
+    limits: SurfaceLimits,
+}
+
+impl<'a> Evaluator<'a> {
+    /// Check the material, the loads and the limits.
+    ///
+    /// # Errors
+    /// Those of [`SlopeMaterial::validate`], [`SlopeLoads::validate`] and
+    /// [`SurfaceLimits::validate`].
+    pub fn new(
+        terrain: &'a Terrain,
+        material: &SlopeMaterial,
+        loads: &SlopeLoads,
+        limits: &SurfaceLimits,
+    ) -> Result<Self> {
+        material.validate()?;
+        loads.validate()?;
+        limits.validate()?;
+        Ok(Self {
+            terrain,
+            material: *material,
+            loads: *loads,
+            limits: *limits,
+        })
+    }
+
+    /// The terrain.
+    pub fn terrain(&self) -> &'a Terrain {
+        self.terrain
+    }
+
+    /// The columns of `surface` ([`surface_columns`]) into `scratch`, then
+    /// Hovland's Fs ([`hovland_columns`]).
+    ///
+    /// # Errors
+    /// (A refusal, not a [`crate::error::DismechError`].) Those of
+    /// [`surface_columns`], then of [`hovland_columns`].
+    pub fn evaluate<S: TrialSurface>(
+        &self,
+        surface: &S,
+        scratch: &mut Vec<SlipColumn>,
+    ) -> std::result::Result<SurfaceFs, Refusal> {
+        surface_columns(self.terrain, surface, scratch)?;
+        hovland_columns(
+            scratch,
+            self.terrain.cell_size(),
+            &self.material,
+            &self.loads,
+            &self.limits,
+        )
+    }
+}

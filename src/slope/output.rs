@@ -1,0 +1,139 @@
+//! What a search writes: rasters on the DEM's grid (its origin and cell
+//! size, so that a GIS lays them over the DEM) of the lowest Fs per cell
+//! and of the volume, area and depth of the surface that gave it, as
+//! Scoops3D writes its `*_fos3d_out.asc` and companions (Reid, Christian &
+//! Brien, USGS 2015); and the most critical surfaces as CSV.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::error::Result;
+use crate::grid::{write_esri_ascii, Raster};
+use crate::io::write_atomically;
+
+use super::search::{CellMinimum, SearchResult};
+use super::surface::TrialSurface;
+
+/// The files [`SearchResult::write_maps`] writes, `{prefix}_{name}.asc`.
+pub const MAP_NAMES: [&str; 4] = ["fs", "volume", "area", "depth"];
+
+impl<S> SearchResult<S> {
+    fn raster(&self, f: impl Fn(&CellMinimum) -> f64) -> Result<Raster> {
+        let values = (0..self.rows * self.columns)
+            .map(|k| self.cell(k / self.columns, k % self.columns).map(&f))
+            .collect();
+        Raster::new(
+            self.columns,
+            self.rows,
+            self.lower_left.0,
+            self.lower_left.1,
+            self.cell_size,
+            values,
+        )
+    }
+
+    /// The lowest Fs per cell, no data where no trial surface had a column.
+    ///
+    /// # Errors
+    /// Those of [`Raster::new`] (none for a result of [`super::search`]).
+    pub fn safety_factor_raster(&self) -> Result<Raster> {
+        self.raster(|m| m.safety_factor)
+    }
+
+    /// The volume (m³) of the surface that gave each cell its lowest Fs.
+    ///
+    /// # Errors
+    /// As [`Self::safety_factor_raster`].
+    pub fn volume_raster(&self) -> Result<Raster> {
+        self.raster(|m| m.volume)
+    }
+
+    /// The plan area (m²) of the surface that gave each cell its lowest Fs.
+    ///
+    /// # Errors
+    /// As [`Self::safety_factor_raster`].
+    pub fn area_raster(&self) -> Result<Raster> {
+        self.raster(|m| m.area)
+    }
+
+    /// The depth (m) of the surface that gave each cell its lowest Fs.
+    ///
+    /// # Errors
+    /// As [`Self::safety_factor_raster`].
+    pub fn depth_raster(&self) -> Result<Raster> {
+        self.raster(|m| m.depth)
+    }
+
+    /// Write the four maps as ESRI ASCII grids `{prefix}_fs.asc`,
+    /// `{prefix}_volume.asc`, `{prefix}_area.asc` and `{prefix}_depth.asc`
+    /// in `folder` (created if needed), each atomically
+    /// ([`write_esri_ascii`]); returns their paths.
+    ///
+    /// # Errors
+    /// [`crate::error::DismechError::Output`] naming the path when a file
+    /// cannot be written (it is then not there).
+    pub fn write_maps(&self, folder: &Path, prefix: &str) -> Result<Vec<PathBuf>> {
+        let rasters = [
+            self.safety_factor_raster()?,
+            self.volume_raster()?,
+            self.area_raster()?,
+            self.depth_raster()?,
+        ];
+        let mut paths = Vec::with_capacity(rasters.len());
+        for (name, raster) in MAP_NAMES.iter().zip(&rasters) {
+            let path = folder.join(format!("{prefix}_{name}.asc"));
+            write_esri_ascii(&path, raster)?;
+            paths.push(path);
+        }
+        Ok(paths)
+    }
+}
+
+impl<S: TrialSurface> SearchResult<S> {
+    /// The most critical surfaces as CSV: a header, then one line a
+    /// surface, lowest Fs first: rank, trial, the surface's parameters
+    /// ([`TrialSurface::PARAMETERS`]), Fs, columns, volume, area, depth,
+    /// the sliding direction's azimuth (degrees from +x, counter-clockwise),
+    /// `Σ W`, `Σ (c A + N' tan φ)` and `Σ T`. Numbers are written in full
+    /// (Rust's shortest exact form), so that they read back bit for bit.
+    pub fn critical_csv(&self) -> String {
+        let mut text = String::from("rank,trial");
+        for p in S::PARAMETERS {
+            text.push(',');
+            text.push_str(p);
+        }
+        text.push_str(
+            ",fs,columns,volume_m3,area_m2,depth_m,direction_deg,weight_n,resisting_n,driving_n\n",
+        );
+        for (rank, c) in self.critical.iter().enumerate() {
+            let _ = write!(text, "{},{}", rank + 1, c.trial);
+            for v in c.surface.parameters() {
+                let _ = write!(text, ",{v}");
+            }
+            let r = &c.result;
+            let _ = writeln!(
+                text,
+                ",{},{},{},{},{},{},{},{},{}",
+                r.safety_factor,
+                r.columns,
+                r.volume,
+                r.area,
+                r.depth,
+                r.direction.1.atan2(r.direction.0).to_degrees(),
+                r.weight,
+                r.resisting,
+                r.driving
+            );
+        }
+        text
+    }
+
+    /// Write [`Self::critical_csv`] to `path`, atomically.
+    ///
+    /// # Errors
+    /// [`crate::error::DismechError::Output`] naming the path when the file
+    /// cannot be written (it is then not there).
+    pub fn write_critical_csv(&self, path: &Path) -> Result<()> {
+        write_atomically(path, self.critical_csv().as_bytes())
+    }
+}
