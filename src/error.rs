@@ -540,6 +540,15 @@ pub enum DismechError {
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),
+    /// A checkpoint that cannot be saved, read or restored into this
+    /// model (see [`crate::checkpoint`]).
+    #[error("checkpoint {origin}: {problem}")]
+    Checkpoint {
+        /// Where it comes from: its path, or `bytes` for one in memory.
+        origin: String,
+        /// What is wrong.
+        problem: crate::checkpoint::CheckpointProblem,
+    },
 }
 
 /// The messages of `items`, separated by semicolons.

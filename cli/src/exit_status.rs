@@ -151,7 +151,8 @@ impl Exit {
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
             | E::SelfContact { .. }
-            | E::UnknownStudy(..) => Exit::BadInput,
+            | E::UnknownStudy(..)
+            | E::Checkpoint { .. } => Exit::BadInput,
         }
     }
 }

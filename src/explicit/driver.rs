@@ -26,6 +26,11 @@ use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
 use nalgebra::UnitComplex;
 
+// Saving the run and resuming it: a child module, which reads the
+// driver's fields.
+#[path = "checkpoint.rs"]
+mod checkpoint;
+
 /// One block's share of a step's motion: its index, its particles'
 /// forces (three entries each), the particles, their pair records and their
 /// rotations (none in a scene without ellipses).
@@ -42,8 +47,9 @@ type BlockMove<'a> = (
 /// more than it saves. The results do not depend on it.
 const PARALLEL_MIN_PARTICLES: usize = 2000;
 
-/// Settings of a DEM run; validated by [`ExplicitDynamics::new`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Settings of a DEM run; validated by [`ExplicitDynamics::new`] (and by
+/// [`ExplicitDynamics::restore`], which reads them from a checkpoint).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DemSettings {
     /// Time step Δt (s).
     pub dt: f64,
@@ -462,6 +468,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     fn build(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
+        let mut sim = Self::assemble(scene, law, integrator, settings)?;
+        sim.initial_overlap = sim.check_initial_overlaps()?;
+        sim.initial_potential = sim.potential_energy();
+        sim.initial_kinetic = sim.kinetic_energy();
+        Ok(sim)
+    }
+
+    /// The driver of a scene, its settings and the scene checked (all but
+    /// the overlaps), before any step: the start of [`Self::build`], and
+    /// of a restore from a checkpoint, which then puts the run's state in.
+    fn assemble(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
         require_positive("time step dt", settings.dt)?;
         require_normal_time_step(settings.dt)?;
         check_particles(&scene)?;
@@ -486,7 +503,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         for p in &scene.particles {
             mass.extend_from_slice(&[p.mass, p.mass, p.inertia]);
         }
-        let mut sim = Self {
+        let sim = Self {
             law,
             integrator,
             settings,
@@ -543,9 +560,6 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         };
         // The masses, checked once (the loop divides by them).
         solve_lumped_into(&sim.system, &mut Vec::new())?;
-        sim.initial_overlap = sim.check_initial_overlaps()?;
-        sim.initial_potential = sim.potential_energy();
-        sim.initial_kinetic = sim.kinetic_energy();
         Ok(sim)
     }
 
