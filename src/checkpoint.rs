@@ -155,10 +155,12 @@
 //! # Ok(()) }
 //! ```
 
+use std::any::type_name;
+use std::borrow::Cow;
 use std::path::Path;
 
 use serde::de::DeserializeOwned;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{DismechError, Result};
 
@@ -223,6 +225,47 @@ pub enum CheckpointProblem {
     /// The state could not be encoded (a law state's `Serialize` failed).
     #[error("cannot be encoded: {0}")]
     Unencodable(String),
+}
+
+/// A slot the user supplies again: its type's name and its serialized
+/// parameters, compared on restore.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct Piece<'a> {
+    pub(crate) type_name: Cow<'a, str>,
+    pub(crate) parameters: Vec<u8>,
+}
+
+impl Piece<'static> {
+    /// `value`'s piece.
+    pub(crate) fn of<T: Serialize>(value: &T) -> Result<Self> {
+        Ok(Self {
+            type_name: Cow::Borrowed(type_name::<T>()),
+            parameters: fingerprint(value)?,
+        })
+    }
+}
+
+impl Piece<'_> {
+    /// Refuse `supplied` (named `what`) when it is not this piece.
+    pub(crate) fn check(&self, what: &str, supplied: &Piece<'_>, origin: &str) -> Result<()> {
+        if self.type_name != supplied.type_name {
+            return Err(mismatch(
+                origin,
+                format!("{what} type"),
+                &self.type_name,
+                &supplied.type_name,
+            ));
+        }
+        if self.parameters != supplied.parameters {
+            return Err(mismatch(
+                origin,
+                format!("{what} parameters"),
+                format!("{} with the parameters it was saved with", self.type_name),
+                format!("{} with other parameters", supplied.type_name),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// The driver a checkpoint belongs to.

@@ -3,7 +3,6 @@
 //! the integrator supplied again (see [`crate::checkpoint`] for what is
 //! saved, the format and its version).
 
-use std::any::type_name;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -12,53 +11,12 @@ use serde::{Deserialize, Serialize};
 
 use super::super::neighbours::ListState;
 use super::{DemSettings, ExplicitDynamics};
-use crate::checkpoint::{self as format, Driver, IN_MEMORY};
+use crate::checkpoint::{self as format, Driver, Piece, IN_MEMORY};
 use crate::error::{DismechError, Result};
 use crate::integrate::ExplicitIntegrator;
 use crate::law::ContactLaw;
 use crate::math::Vec2;
 use crate::scene::Scene;
-
-/// A slot the user supplies again: its type's name and its serialized
-/// parameters, compared on restore.
-#[derive(Serialize, Deserialize)]
-struct Piece<'a> {
-    type_name: Cow<'a, str>,
-    parameters: Vec<u8>,
-}
-
-impl Piece<'static> {
-    /// `value`'s piece.
-    fn of<T: Serialize>(value: &T) -> Result<Self> {
-        Ok(Self {
-            type_name: Cow::Borrowed(type_name::<T>()),
-            parameters: format::fingerprint(value)?,
-        })
-    }
-}
-
-impl Piece<'_> {
-    /// Refuse `supplied` (named `what`) when it is not this piece.
-    fn check(&self, what: &str, supplied: &Piece<'_>, origin: &str) -> Result<()> {
-        if self.type_name != supplied.type_name {
-            return Err(format::mismatch(
-                origin,
-                format!("{what} type"),
-                &self.type_name,
-                &supplied.type_name,
-            ));
-        }
-        if self.parameters != supplied.parameters {
-            return Err(format::mismatch(
-                origin,
-                format!("{what} parameters"),
-                format!("{} with the parameters it was saved with", self.type_name),
-                format!("{} with other parameters", supplied.type_name),
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// What the explicit driver's checkpoint holds (see [`crate::checkpoint`]).
 #[derive(Serialize, Deserialize)]
