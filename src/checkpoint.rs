@@ -68,6 +68,12 @@
 //!   first difference. A prescribed motion is a closure and cannot be
 //!   compared: it must be the one of the run.
 //!
+//! The scene's types ([`Scene`](crate::scene::Scene),
+//! [`Particle`](crate::scene::Particle), the shapes,
+//! [`Frame`](crate::scene::Frame)) implement serde as well, for a user's
+//! own files: a circle, an ellipse and a frame are read back through their
+//! checking constructors, a polygon with the checks its type states.
+//!
 //! The checkpoint methods need the law's state to be
 //! `Serialize + DeserializeOwned` and the law and the integrator (and for
 //! the implicit driver the settings, which are) to be `Serialize`: they
@@ -141,17 +147,44 @@
 //! # Ok(()) }
 //! ```
 //!
-//! ```no_run
-//! # fn model() -> dismech::error::Result<dismech::dda::DdaModel> { unimplemented!() }
+//! The implicit driver is restored into its model built again:
+//!
+//! ```
 //! # fn main() -> dismech::error::Result<()> {
-//! // The implicit driver: build the model as at the start, then restore.
-//! let mut dda = model()?;
-//! dda.advance(1e-3)?;
-//! dda.save_checkpoint("run/dda.ckpt".as_ref())?;
-//! // Later, in another process:
+//! use dismech::dda::{Block, BlockMaterial, DdaModel, DdaSettings, PlaneState, Prescribed};
+//! use dismech::law::{FrictionIntegration, PenaltyCoulomb};
+//! use dismech::math::Point;
+//!
+//! // The model as the run builds it at the start: a block on a fixed base.
+//! let model = || -> dismech::error::Result<DdaModel> {
+//!     let rock = BlockMaterial { density: 2200.0, youngs_modulus: 1e9, poisson_ratio: 0.25,
+//!                                plane: PlaneState::Stress };
+//!     let square = |x0: f64, y0: f64, x1: f64, y1: f64| {
+//!         [Point::new(x0, y0), Point::new(x1, y0), Point::new(x1, y1), Point::new(x0, y1)]
+//!     };
+//!     let mut base = Block::new(&square(-2.0, -0.5, 2.0, 0.0), rock, 0)?;
+//!     base.prescribed = Some(Prescribed::fixed());
+//!     let block = Block::new(&square(-0.5, 0.0, 0.5, 0.5), rock, 1)?;
+//!     let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping)?;
+//!     DdaModel::new(vec![base, block], law, DdaSettings::default())
+//! };
+//! let mut straight = model()?;
+//! let mut first = model()?;
+//! for _ in 0..5 {
+//!     straight.advance(1e-3)?;
+//!     first.advance(1e-3)?;
+//! }
+//! let bytes = first.checkpoint()?; // or first.save_checkpoint(path)
+//! drop(first);
 //! let mut resumed = model()?;
-//! resumed.load_checkpoint("run/dda.ckpt".as_ref())?;
-//! resumed.advance(1e-3)?;
+//! resumed.restore(&bytes)?; // or resumed.load_checkpoint(path)
+//! for _ in 0..5 {
+//!     straight.advance(1e-3)?;
+//!     resumed.advance(1e-3)?;
+//! }
+//! assert_eq!(resumed.time().to_bits(), straight.time().to_bits());
+//! assert_eq!(resumed.blocks()[1].velocity, straight.blocks()[1].velocity);
+//! assert_eq!(resumed.blocks()[1].stress, straight.blocks()[1].stress);
 //! # Ok(()) }
 //! ```
 
@@ -210,7 +243,7 @@ pub enum CheckpointProblem {
     #[error("corrupt: {0}")]
     Corrupt(String),
     /// The model it is restored into is not the one it was written from.
-    #[error("written from another model: {what} differs (the checkpoint's: {checkpoint}; the model's: {model})")]
+    #[error("not the model it was written from: {what} (in the checkpoint: {checkpoint}; in the model: {model})")]
     ModelMismatch {
         /// What differs (e.g. `number of bodies`, `contact law`).
         what: String,

@@ -48,7 +48,7 @@ fn histories_of<S: Clone>(
 
 /// A penalty spring tying a material point of a body to its start position
 /// (the fixed point of classic DDA).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedPoint {
     /// The body.
     pub body: usize,
