@@ -586,6 +586,15 @@ pub enum DismechError {
         /// The upper bound given.
         high: f64,
     },
+    /// A checkpoint that cannot be saved, read or restored into this
+    /// model (see [`crate::checkpoint`]).
+    #[error("checkpoint {origin}: {problem}")]
+    Checkpoint {
+        /// Where it comes from: its path, or `bytes` for one in memory.
+        origin: String,
+        /// What is wrong.
+        problem: crate::checkpoint::CheckpointProblem,
+    },
 }
 
 /// The messages of `items`, separated by semicolons.

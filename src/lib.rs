@@ -351,6 +351,9 @@
 //!    reports of the reproductions (CSV tables, SVG plots,
 //!    `summary.json`) are the `dismech` command's, in the `dismech-cli`
 //!    package.
+//! 8. **Checkpoints**: the explicit and implicit drivers save their whole
+//!    state (postcard, versioned, written atomically) and resume from it
+//!    to the same bits ([`checkpoint`]).
 //!
 //! ## Conventions
 //! SI units (m, kg, s, N, Pa); 2D quantities are per metre of thickness.
@@ -383,6 +386,7 @@
 pub use nalgebra;
 
 pub mod broad_phase;
+pub mod checkpoint;
 pub mod dda;
 pub mod dem;
 pub mod error;

@@ -11,7 +11,7 @@ pub type Point = Point2<f64>;
 
 /// Position and orientation of a 2D body: centre `(x, y)` and angle `phi`
 /// (rad, counter-clockwise from +x).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Pose2 {
     /// Position of the reference point (the centroid for rigid bodies).
     pub position: Point,
@@ -68,7 +68,7 @@ pub fn cross(a: &Vec2, b: &Vec2) -> f64 {
 }
 
 /// Axis-aligned bounding box in 2D.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Aabb2 {
     /// Lower-left corner.
     pub min: Point,

@@ -17,7 +17,7 @@ use dismech::nalgebra::Vector2;
 use dismech::scene::{Frame, Scene};
 
 /// Frictionless Hertzian contact: `t_n = K δ^{3/2}`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize)]
 struct Hertz {
     coefficient: f64,
 }
@@ -191,4 +191,43 @@ fn a_linear_law_is_not_stopped_for_its_overlaps() {
         .unwrap();
     assert_eq!(outcome.status, RunStatus::AtRest);
     assert!(sim.largest_overlap_ratio().unwrap().0 > 1e-9);
+}
+
+/// A run resumed from its checkpoint keeps checking its overlaps: the drop
+/// checked at 0.1 %, stopped for its impact when run straight, is stopped
+/// the same way after a restore before the impact; a checkpoint of a run
+/// that checks its stable step is not resumed as one without a bound.
+#[test]
+fn a_restored_run_keeps_checking_its_overlaps() {
+    let law = Hertz { coefficient: HERTZ };
+    let low = 1e-3;
+    let settings = DemSettings {
+        dt: 0.9 * critical_time_step_at(&drop(), &law, low).dt,
+        stability_overlap: low,
+        ..DemSettings::default()
+    };
+    let criterion = RestCriterion {
+        max_time: 0.3,
+        check_every: 1,
+        ..RestCriterion::default()
+    };
+    let mut sim = DemSimulation::new(drop(), law, ExplicitEuler, settings).unwrap();
+    for _ in 0..10 {
+        sim.step().unwrap();
+    }
+    assert!(sim.contacts().is_empty(), "still falling");
+    let bytes = sim.checkpoint().unwrap();
+    let straight = sim.run_to_rest(&criterion, |_, _| {});
+    let mut resumed = DemSimulation::restore(law, ExplicitEuler, &bytes).unwrap();
+    let again = resumed.run_to_rest(&criterion, |_, _| {});
+    assert!(
+        matches!(straight, Err(DismechError::UnstableTimeStep { .. })),
+        "{straight:?}"
+    );
+    assert_eq!(again, straight);
+    assert_eq!(resumed.steps(), sim.steps());
+    assert!(matches!(
+        DemSimulation::restore_unchecked(law, ExplicitEuler, &bytes),
+        Err(DismechError::InvalidParameter { .. })
+    ));
 }

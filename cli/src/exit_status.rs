@@ -155,7 +155,8 @@ impl Exit {
             | E::NoSuchBody { .. }
             | E::SelfContact { .. }
             | E::UnknownStudy(..)
-            | E::VtkData { .. } => Exit::BadInput,
+            | E::VtkData { .. }
+            | E::Checkpoint { .. } => Exit::BadInput,
         }
     }
 }

@@ -27,6 +27,11 @@ use crate::scene::{Particle, Scene};
 use crate::shape::AnyShape2;
 use nalgebra::UnitComplex;
 
+// Saving the run and resuming it: a child module, which reads the
+// driver's fields.
+#[path = "checkpoint.rs"]
+mod checkpoint;
+
 /// One block's share of a step's motion: its index, its particles'
 /// forces (three entries each), the particles, their pair records and their
 /// rotations (none in a scene without ellipses).
@@ -43,8 +48,9 @@ type BlockMove<'a> = (
 /// more than it saves. The results do not depend on it.
 const PARALLEL_MIN_PARTICLES: usize = 2000;
 
-/// Settings of a DEM run; validated by [`ExplicitDynamics::new`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Settings of a DEM run; validated by [`ExplicitDynamics::new`] (and by
+/// [`ExplicitDynamics::restore`], which reads them from a checkpoint).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DemSettings {
     /// Time step Δt (s).
     pub dt: f64,
@@ -444,7 +450,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         }
         let mut sim = Self::build(scene, law, integrator, settings)?;
         sim.stable_estimate = Some(limit.dt).filter(|dt| dt.is_finite() && *dt > 0.0);
-        sim.stability_at = Some(critical_time_step_at::<L>);
+        sim.bounded_stiffness();
         Ok(sim)
     }
 
@@ -491,6 +497,26 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     fn build(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
+        let mut sim = Self::assemble(scene, law, integrator, settings)?;
+        sim.initial_overlap = sim.check_initial_overlaps()?;
+        sim.initial_potential = sim.potential_energy();
+        sim.initial_kinetic = sim.kinetic_energy();
+        Ok(sim)
+    }
+
+    /// The driver of a scene, its settings and the scene checked (all but
+    /// the overlaps), before any step: the start of [`Self::build`], and
+    /// of a restore from a checkpoint, which then puts the run's state in.
+    /// Let the run check its stable step at the overlaps it reaches
+    /// ([`Self::check_overlap_stability`]): the law bounds its stiffness.
+    pub(super) fn bounded_stiffness(&mut self)
+    where
+        L: BoundedStiffness<2>,
+    {
+        self.stability_at = Some(critical_time_step_at::<L>);
+    }
+
+    fn assemble(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self> {
         require_positive("time step dt", settings.dt)?;
         require_normal_time_step(settings.dt)?;
         check_particles(&scene)?;
@@ -515,7 +541,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         for p in &scene.particles {
             mass.extend_from_slice(&[p.mass, p.mass, p.inertia]);
         }
-        let mut sim = Self {
+        let sim = Self {
             law,
             integrator,
             settings,
@@ -573,9 +599,6 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         };
         // The masses, checked once (the loop divides by them).
         solve_lumped_into(&sim.system, &mut Vec::new())?;
-        sim.initial_overlap = sim.check_initial_overlaps()?;
-        sim.initial_potential = sim.potential_energy();
-        sim.initial_kinetic = sim.kinetic_energy();
         Ok(sim)
     }
 

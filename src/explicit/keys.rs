@@ -80,8 +80,9 @@ fn check_counts(particles: usize, walls: usize, most_vertices: usize) -> Result<
 }
 
 /// A listed pair: particle A and its target B, each in 32 bits (the top
-/// bit of B's says a wall).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// bit of B's says a wall). A checkpoint keeps the two words; the list
+/// checks them against the scene when it is restored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub(super) struct PairKey {
     a: u32,
     target: u32,
@@ -130,9 +131,29 @@ impl PairKey {
 
 /// A contact point's features and the regime of its law: A's feature in
 /// bits 0–30, B's in bits 31–61, the regime in bits 62–63. A feature is
-/// its kind (2 bits) above its index (29 bits).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// its kind (2 bits) above its index (29 bits). Serialized as the word; one
+/// read back with a kind or a regime that none packs to is refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "u64", into = "u64")]
 pub(super) struct PointKey(u64);
+
+impl From<PointKey> for u64 {
+    fn from(key: PointKey) -> u64 {
+        key.0
+    }
+}
+
+impl TryFrom<u64> for PointKey {
+    type Error = &'static str;
+    fn try_from(bits: u64) -> std::result::Result<Self, Self::Error> {
+        let mask = (1 << FEATURE_BITS) - 1;
+        let kinds = [bits & mask, bits >> FEATURE_BITS & mask].map(|f| f >> INDEX_BITS);
+        if bits >> (2 * FEATURE_BITS) > 2 || kinds.iter().any(|&k| k > 2) {
+            return Err("a contact point's key names no feature or regime");
+        }
+        Ok(Self(bits))
+    }
+}
 
 const FEATURE_BITS: u32 = 31;
 const INDEX_BITS: u32 = 29;
@@ -269,6 +290,25 @@ mod tests {
                 }
                 other => panic!("{counts:?}: {other:?}"),
             }
+        }
+    }
+
+    /// Keys read back from their words: every key packed passes, a word
+    /// with a feature kind or a regime of 3 is refused.
+    #[test]
+    fn a_point_key_read_back_is_checked() {
+        let features = ContactFeatures {
+            a: Feature::Edge(MOST_VERTICES - 1),
+            b: Feature::Vertex(7),
+        };
+        let key = PointKey::new(&features, Regime::Slip);
+        assert_eq!(PointKey::try_from(u64::from(key)), Ok(key));
+        for bad in [
+            3 << (2 * FEATURE_BITS),
+            3 << INDEX_BITS,
+            3 << (FEATURE_BITS + INDEX_BITS),
+        ] {
+            assert!(PointKey::try_from(bad).is_err(), "{bad:#x}");
         }
     }
 

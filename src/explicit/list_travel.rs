@@ -38,6 +38,7 @@
 //! the forces are those of a broad phase run at every step. A pose that is
 //! not finite always asks for a build.
 
+use std::borrow::Cow;
 use std::cmp::Ordering;
 
 use rayon::prelude::*;
@@ -69,6 +70,17 @@ struct BlockTravel {
     /// Whether a particle may have reached a wall it is not listed with,
     /// or a displacement or turn is not finite.
     stale: bool,
+}
+
+/// What a checkpoint keeps of [`ListTravel`]: the skin and the poses of
+/// the last build, and the walls' gaps and blocks' boxes the relative test
+/// measures from (the rest follows from the particles and the settings).
+#[derive(serde::Serialize, serde::Deserialize)]
+pub(super) struct TravelState<'a> {
+    skin: f64,
+    at_build: Cow<'a, [(Point, f64)]>,
+    wall_gaps: Cow<'a, [f64]>,
+    block_boxes: Cow<'a, [Aabb2]>,
 }
 
 /// The poses of the last build, which decide when the list must be built
@@ -115,6 +127,68 @@ impl ListTravel {
                 .collect(),
             block_boxes: Vec::new(),
         }
+    }
+
+    /// What a checkpoint keeps.
+    pub fn state(&self) -> TravelState<'_> {
+        TravelState {
+            skin: self.skin,
+            at_build: Cow::Borrowed(&self.at_build),
+            wall_gaps: Cow::Borrowed(&self.wall_gaps),
+            block_boxes: Cow::Borrowed(&self.block_boxes),
+        }
+    }
+
+    /// Back to a checkpoint's `state`, for `n` particles, built (`built`)
+    /// or not yet.
+    ///
+    /// # Errors
+    /// What is wrong, when the poses, gaps or boxes do not match `n`
+    /// particles (a list not built has none) and the way the travel is
+    /// tested.
+    pub fn restore(
+        &mut self,
+        state: TravelState<'_>,
+        n: usize,
+        built: bool,
+    ) -> std::result::Result<(), String> {
+        let relative = built && self.relative;
+        let expected = |count: usize, on: bool| if on { count } else { 0 };
+        let counts = [
+            (
+                state.at_build.len(),
+                expected(n, built),
+                "poses of the build",
+            ),
+            (
+                state.wall_gaps.len(),
+                expected(n, relative),
+                "gaps to the walls",
+            ),
+            (
+                state.block_boxes.len(),
+                expected(n.div_ceil(self.block), relative),
+                "boxes of the blocks",
+            ),
+        ];
+        for (found, expected, what) in counts {
+            if found != expected {
+                return Err(format!(
+                    "the neighbour list holds {found} {what} where {expected} were expected"
+                ));
+            }
+        }
+        if !(state.skin.is_finite() && state.skin >= 0.0) {
+            return Err(format!(
+                "the neighbour list's skin {} is not valid",
+                state.skin
+            ));
+        }
+        self.skin = state.skin;
+        self.at_build = state.at_build.into_owned();
+        self.wall_gaps = state.wall_gaps.into_owned();
+        self.block_boxes = state.block_boxes.into_owned();
+        Ok(())
     }
 
     /// Each particle's centre at the last build.

@@ -77,6 +77,12 @@
 //! energies, the total weight and the unbalanced force count the free
 //! particles only.
 //!
+//! A run is saved with [`ExplicitDynamics::checkpoint`] (or
+//! [`ExplicitDynamics::save_checkpoint`]) and resumed to the same bits by
+//! [`ExplicitDynamics::restore`] with the law and the integrator supplied
+//! again: the scene, the settings, the neighbour list and every contact's
+//! history come from the checkpoint ([`crate::checkpoint`]).
+//!
 //! Polygons are rigid bodies (3 DOF) here. Their contact points are vertices
 //! on edges, where paper 000's eq. (19) has no value (radius of curvature 0
 //! at the vertex, contact width 0): [`ExplicitDynamics::new`] refuses a law

@@ -16,12 +16,14 @@
 //! approximation: the forces are those of a broad phase rebuilt every
 //! step.
 
+use std::borrow::Cow;
+
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::driver::ContactTarget;
 use super::keys::{PairKey, PointKey};
-use super::list_travel::ListTravel;
+use super::list_travel::{ListTravel, TravelState};
 use super::skin::Skin;
 use crate::broad_phase::CellGrid;
 use crate::math::{Aabb2, Point, Vec2};
@@ -33,7 +35,7 @@ use crate::shape::Segment;
 /// result. (Its moments about the two centres are not kept: they follow
 /// from the point and the force, [`Self::moment_a`] and
 /// [`Self::moment_b`], while the bodies have not moved.)
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub(super) struct PointContact<S> {
     /// The features that name the point across steps, and the law's
     /// regime at the last step.
@@ -81,7 +83,7 @@ fn copy_points<S: Clone>(points: &PairPoints<S>) -> PairPoints<S> {
 
 /// A listed pair: a particle and what it may touch, and the contact points
 /// of the last step.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub(super) struct PairSlot<S> {
     /// The particle (A) and what it touches (B): a particle of higher
     /// index, or a wall.
@@ -159,6 +161,24 @@ pub(super) struct BlockSlots<'a, S> {
     pub cross_out: &'a mut [PairForce],
     /// Its walls' pairs (the particle in the block), in the list's order.
     pub walls: &'a mut [PairSlot<S>],
+}
+
+/// What a checkpoint keeps of a [`NeighbourList`]: its pairs in their
+/// order with their contact points, the skin and the poses of the last
+/// build, whether it must be built again and how many times it was built.
+/// The indices by particle and by block follow from the pairs, and are
+/// computed again on restore as a build computes them.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(bound(
+    serialize = "S: serde::Serialize + Clone",
+    deserialize = "S: serde::Deserialize<'de> + Clone"
+))]
+pub(super) struct ListState<'a, S: Clone> {
+    skin: Skin,
+    slots: Cow<'a, [PairSlot<S>]>,
+    travel: TravelState<'a>,
+    stale: bool,
+    builds: u64,
 }
 
 /// The listed pairs, how their forces are gathered by blocks, and the poses the
@@ -442,6 +462,16 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         old.clear();
         self.spare = old;
         self.slots = slots;
+        self.index(n);
+        self.stale = false;
+        self.builds += 1;
+    }
+
+    /// The indices of the list's pairs `self.pairs` and `self.wall_pairs`
+    /// (in `self.slots`) for `n` particles: where each particle's pairs and
+    /// each block's start, the pairs that cross blocks, and their force
+    /// summaries (written by the next step's evaluation).
+    fn index(&mut self, n: usize) {
         // Where each particle's pairs and walls start, for the next build.
         let count_from = |first: &mut Vec<usize>, offset: usize, pairs: &[(usize, usize)]| {
             first.clear();
@@ -509,9 +539,106 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         // Written by the step's evaluation, which follows every build.
         self.cross_forces.clear();
         self.cross_forces.resize(summary, PairForce::default());
+    }
 
-        self.stale = false;
-        self.builds += 1;
+    /// What a checkpoint keeps (borrowed).
+    pub fn state(&self) -> ListState<'_, S> {
+        ListState {
+            skin: self.skin,
+            slots: Cow::Borrowed(&self.slots),
+            travel: self.travel.state(),
+            stale: self.stale,
+            builds: self.builds,
+        }
+    }
+
+    /// Back to a checkpoint's `state` for `particles` and `walls` (the
+    /// list made by [`Self::new`] for them): the pairs and their points,
+    /// the skin, the poses of the last build, and the indices computed
+    /// from the pairs as the build computes them.
+    ///
+    /// # Errors
+    /// What is wrong when the state does not fit the scene: a pair naming
+    /// a particle or a wall it does not have, pairs out of the build's
+    /// order or that no build lists (two prescribed particles, a
+    /// prescribed particle and a wall), poses of the build that do not
+    /// match the particles, a skin that is not valid, or a list never
+    /// built that holds pairs.
+    pub fn restore(
+        &mut self,
+        state: ListState<'_, S>,
+        particles: &[Particle],
+        walls: &[Segment],
+    ) -> std::result::Result<(), String> {
+        let n = particles.len();
+        if !state.skin.is_valid() {
+            return Err(format!(
+                "the neighbour list's skin {:?} is not valid",
+                state.skin
+            ));
+        }
+        let built = state.builds > 0;
+        let fresh = state.slots.is_empty() && state.stale;
+        if !built && !fresh {
+            return Err("a neighbour list never built holds pairs".into());
+        }
+        let (mut pairs, mut wall_pairs) = (Vec::new(), Vec::new());
+        for slot in state.slots.iter() {
+            let a = slot.a();
+            let refused = |what: &str| {
+                Err(format!(
+                    "the neighbour list's pair {} of particle {a} with {:?} {what}",
+                    pairs.len() + wall_pairs.len(),
+                    slot.target()
+                ))
+            };
+            if a >= n {
+                return refused(&format!("names a particle beyond the {n} of the scene"));
+            }
+            match slot.target() {
+                ContactTarget::Particle(b) => {
+                    if b >= n || b <= a {
+                        return refused("does not name a particle after A in the scene");
+                    }
+                    if !wall_pairs.is_empty() || pairs.last().is_some_and(|&last| last >= (a, b)) {
+                        return refused("is out of the build's order");
+                    }
+                    if self.prescribed[a] && self.prescribed[b] {
+                        return refused("joins two prescribed particles");
+                    }
+                    pairs.push((a, b));
+                }
+                ContactTarget::Wall(w) => {
+                    if w >= walls.len() {
+                        return refused(&format!(
+                            "names a wall beyond the {} of the scene",
+                            walls.len()
+                        ));
+                    }
+                    if wall_pairs.last().is_some_and(|&last| last >= (a, w)) {
+                        return refused("is out of the build's order");
+                    }
+                    if self.prescribed[a] {
+                        return refused("joins a prescribed particle to a wall");
+                    }
+                    wall_pairs.push((a, w));
+                }
+            }
+        }
+        self.travel.restore(state.travel, n, built)?;
+        self.skin = state.skin;
+        self.stale = state.stale;
+        self.builds = state.builds;
+        self.slots = state.slots.into_owned();
+        self.pairs = pairs;
+        self.wall_pairs = wall_pairs;
+        self.wall_boxes.clear();
+        if built {
+            self.wall_boxes
+                .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
+            self.index(n);
+        }
+        Ok(())
     }
 }
 

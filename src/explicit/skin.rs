@@ -32,8 +32,9 @@ pub(super) const TARGET_STEPS_BETWEEN_BUILDS: f64 = 20.0;
 /// neighbour's centre is listed.
 pub(super) const CEILING_OVER_LEAST: f64 = 4.0;
 
-/// The skin of each build and the steps since the last one.
-#[derive(Debug, Clone, Copy)]
+/// The skin of each build and the steps since the last one (a checkpoint
+/// keeps it whole: the next skin is tuned from it).
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub(super) struct Skin {
     /// The skin of the last build (the least before the first).
     current: f64,
@@ -66,6 +67,13 @@ impl Skin {
             steps: 0,
             built: false,
         }
+    }
+
+    /// Whether the skins are finite, not negative and in order (a skin
+    /// read from a checkpoint is checked so).
+    pub fn is_valid(&self) -> bool {
+        let ordered = 0.0 <= self.least && self.least <= self.current && self.current <= self.most;
+        ordered && self.most.is_finite()
     }
 
     /// The skin of the last build.

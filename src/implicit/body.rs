@@ -12,7 +12,7 @@ use crate::math::{Aabb2, Point, Pose2, Vec2};
 use crate::shape::{AnyShape2, Circle, Ellipse, Segment, Shape2};
 
 /// The geometry of a body at the start of a step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum BodyGeometry {
     /// A simple polygon (a DDA block, a rigid block).
     Polygon(PlacedPolygon),
@@ -114,7 +114,7 @@ fn principal_axes(m: &Matrix2<f64>) -> (f64, f64, f64) {
 }
 
 /// Plane stress (the classic DDA choice) or plane strain.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum PlaneState {
     /// `σ_z = 0`.
     #[default]
@@ -125,7 +125,7 @@ pub enum PlaneState {
 
 /// Elastic and inertial properties of a body. A rigid kinematics uses
 /// only the density.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BodyMaterial {
     /// Density ρ (kg/m³).
     pub density: f64,

@@ -25,6 +25,11 @@ use crate::query::variation::PairContact;
 use crate::query::Feature;
 use crate::shape::{crossing_depth, Segment};
 
+// Saving the run and resuming it: a child module, which reads the
+// driver's fields.
+#[path = "checkpoint.rs"]
+mod checkpoint;
+
 /// The search distance a step that moved a boundary point by `m` relative
 /// to a neighbour leaves to the next step (and a repeated step uses): `m`
 /// times this, within the settings' bounds.

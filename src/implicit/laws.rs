@@ -4,7 +4,7 @@
 
 /// The contact law of each pair of body groups ([`super::Body::group`]): a
 /// default law, and laws for given pairs of groups (in either order).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ContactLaws<L> {
     default: L,
     pairs: Vec<((usize, usize), L)>,

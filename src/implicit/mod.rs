@@ -85,6 +85,13 @@
 //!   sub-step underflows, or which itself does not move the clock, is
 //!   refused ([`crate::error::DismechError::TimeStepTooSmall`]).
 //!
+//! * **Checkpoints**: [`ImplicitDynamics::checkpoint`] (or
+//!   [`ImplicitDynamics::save_checkpoint`]) saves the bodies' geometry and
+//!   motion, the step control and the contact history;
+//!   [`ImplicitDynamics::restore`] puts them into the model built again,
+//!   refusing a model that is not the run's, and the run goes on to the
+//!   same bits ([`crate::checkpoint`]).
+//!
 //! Conventions: the first two unknowns of every kinematics translate the
 //! body's reference point (its centroid); within a step every point moves
 //! by the kinematics' map `x = c + t(d) + F(d)(X − c)`.

@@ -166,7 +166,7 @@ pub struct StepReport {
 }
 
 /// A contact after the last accepted step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactReport<S> {
     /// Body A (the vertex or smooth side) and body B (the edge side).
     pub bodies: (usize, usize),

@@ -9,7 +9,7 @@ use crate::math::Vec2;
 pub const MIN_DT_RATIO_FLOOR: f64 = f64::EPSILON;
 
 /// Where the iteration of a step starts for the free unknowns.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub enum Predictor {
     /// The constant-acceleration motion for the bodies that ended the last
     /// step without a closed contact (free flight, where it is exact), and
@@ -35,7 +35,7 @@ pub enum Predictor {
 }
 
 /// Settings of the implicit driver (open–close, Newton, Δt control).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ImplicitSettings {
     /// Gravity (m/s²).
     pub gravity: Vec2,

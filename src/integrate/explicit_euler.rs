@@ -11,7 +11,7 @@ use super::ExplicitIntegrator;
 /// the one Cundall's DEM uses. It is first-order accurate, symplectic for
 /// conservative forces, and stable for an undamped spring when
 /// `Δt < 2/ω`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct ExplicitEuler;
 
 impl ExplicitIntegrator for ExplicitEuler {

@@ -9,7 +9,7 @@ use crate::error::{DismechError, Result};
 ///
 /// β = ¼, γ = ½ is the energy-conserving trapezoidal rule; β = ½, γ = 1 is
 /// the dissipative choice of classic DDA (paper 003).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Newmark {
     beta: f64,
     gamma: f64,

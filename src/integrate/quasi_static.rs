@@ -5,7 +5,7 @@ use super::{ImplicitCoefficients, ImplicitIntegrator};
 
 /// No inertia: each step is an equilibrium of the loads at its end
 /// (penalty pushovers, load steps). Velocities and accelerations stay zero.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct QuasiStatic;
 
 impl ImplicitIntegrator for QuasiStatic {
@@ -23,7 +23,7 @@ impl ImplicitIntegrator for QuasiStatic {
 /// after every step: the "static" analysis of classic DDA, which keeps the
 /// inertia term in each step's equations (a numerical damping of the
 /// step) but lets no motion carry over.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Restarting<I>(pub I);
 
 impl<I: ImplicitIntegrator> ImplicitIntegrator for Restarting<I> {

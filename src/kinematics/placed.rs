@@ -11,7 +11,7 @@ use crate::shape::{Ellipse, Polygon, Shape};
 /// A simple polygon in the world: its shape about the centroid and the
 /// centroid (the reference point of its kinematics), as a DDA block holds
 /// them.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PlacedPolygon {
     polygon: Polygon,
     centroid: Point,
@@ -69,10 +69,37 @@ impl PlacedPolygon {
 /// angle φ, `A = R(φ) diag(a, b)`; for a circle, `A = r I`). An affine map
 /// with gradient `F` takes it to the ellipse with axes `F A`, matrix `F M
 /// Fᵀ`; its support function is `h(m) = √(mᵀ M m) = |Aᵀ m|`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Serialized as its centre and axes matrix; read back through
+/// [`PlacedEllipse::new`], which checks them.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "PlacedEllipseRecord", into = "PlacedEllipseRecord")]
 pub struct PlacedEllipse {
     centre: Point,
     axes: Matrix2<f64>,
+}
+
+/// A placed ellipse as serialized.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct PlacedEllipseRecord {
+    centre: Point,
+    axes: Matrix2<f64>,
+}
+
+impl From<PlacedEllipse> for PlacedEllipseRecord {
+    fn from(e: PlacedEllipse) -> Self {
+        Self {
+            centre: e.centre,
+            axes: e.axes,
+        }
+    }
+}
+
+impl TryFrom<PlacedEllipseRecord> for PlacedEllipse {
+    type Error = DismechError;
+    fn try_from(record: PlacedEllipseRecord) -> Result<Self> {
+        Self::new(record.centre, record.axes)
+    }
 }
 
 impl PlacedEllipse {

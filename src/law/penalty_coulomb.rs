@@ -48,7 +48,7 @@ use super::traits::{
 use crate::error::{require_non_negative, require_positive, Result};
 
 /// How the friction law is integrated over a step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum FrictionIntegration {
     /// Classic DDA: shear capped at the next step (paper 003 Fig. 1).
     Conventional,
@@ -67,7 +67,7 @@ impl FrictionIntegration {
 }
 
 /// History of a DDA contact, kept from one accepted step to the next.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct PenaltyState {
     /// Normal force `t_n` (N/m, ≥ 0) at the end of the step.
     pub normal: f64,
@@ -79,7 +79,7 @@ pub struct PenaltyState {
 
 /// The penalty Coulomb law of DDA, unilateral (paper 003) or bonded
 /// ([`PenaltyCoulomb::bonded`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PenaltyCoulomb {
     penalty: f64,
     friction: f64,

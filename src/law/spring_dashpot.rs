@@ -47,7 +47,7 @@ use super::traits::{
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 
 /// How the normal stiffness is obtained.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub enum NormalStiffness {
     /// A constant `k_n` (N/m per m).
     Constant(f64),
@@ -64,7 +64,7 @@ pub enum NormalStiffness {
 }
 
 /// Dashpots of the law.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub enum Damping {
     /// No dashpots (elastic contact).
     None,
@@ -95,7 +95,7 @@ pub fn effective_mass(mass_a: f64, mass_b: f64) -> f64 {
 }
 
 /// The spring–dashpot–Coulomb law of paper 000.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SpringDashpotCoulomb {
     normal: NormalStiffness,
     stiffness_ratio: f64,
@@ -104,14 +104,14 @@ pub struct SpringDashpotCoulomb {
 }
 
 /// History of a spring–dashpot contact: the spring forces `e_n`, `e_s`.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct SpringState<const D: usize> {
     /// Spring forces `[e_n, e_s, (e_t)]`.
     pub spring: SpringVector<D>,
 }
 
 /// A `D`-vector with a `Default` of zeros.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SpringVector<const D: usize>(pub SVector<f64, D>);
 
 impl<const D: usize> Default for SpringVector<D> {

@@ -72,7 +72,7 @@ pub struct ContactInput<const D: usize> {
 }
 
 /// The state a contact is in after an evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Regime {
     /// No force: separated, or a tension was released.
     Open,

@@ -7,10 +7,35 @@ use crate::shape::Segment;
 /// Walls joined end to end, material on their left (a frame is drawn
 /// counter-clockwise around what it holds). A frame may be open (a box
 /// without a lid) but must not leave gaps between consecutive walls.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Serialized as its named walls; read back through [`Frame::from_walls`],
+/// which checks them.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "FrameRecord", into = "FrameRecord")]
 pub struct Frame {
     walls: Vec<Segment>,
     names: Vec<String>,
+}
+
+/// A frame as serialized: its walls with their names.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct FrameRecord {
+    walls: Vec<(String, Segment)>,
+}
+
+impl From<Frame> for FrameRecord {
+    fn from(frame: Frame) -> Self {
+        Self {
+            walls: frame.names.into_iter().zip(frame.walls).collect(),
+        }
+    }
+}
+
+impl TryFrom<FrameRecord> for Frame {
+    type Error = DismechError;
+    fn try_from(record: FrameRecord) -> Result<Self> {
+        Self::from_walls(record.walls)
+    }
 }
 
 /// Largest gap (m) accepted between the end of one wall and the start of the

@@ -15,7 +15,7 @@ use crate::math::{Point, Pose2, Vec2};
 use crate::shape::{AnyShape2, Circle, Ellipse, Polygon};
 
 /// Particles in a rigid frame under gravity (2D, per unit thickness).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Scene {
     /// The moving bodies.
     pub particles: Vec<Particle>,

@@ -17,7 +17,7 @@ use crate::shape::{AnyShape2, MassProperties};
 /// and potential energies, the total weight and the unbalanced force,
 /// which describe the free particles; the force of its contacts is
 /// `ExplicitDynamics::force_on`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Particle {
     /// Geometry.
     pub shape: AnyShape2,

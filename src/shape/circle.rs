@@ -5,7 +5,10 @@ use crate::error::{require_positive, Result};
 use crate::math::{Aabb2, Point, Pose2};
 
 /// A disc of radius `radius` centred on the body's reference point.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Serialized as its radius; read back through [`Circle::new`], which
+/// refuses a radius that is not finite and positive.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "CircleRecord", into = "CircleRecord")]
 pub struct Circle {
     radius: f64,
 }
@@ -25,6 +28,25 @@ impl Circle {
     /// The radius (m).
     pub fn radius(&self) -> f64 {
         self.radius
+    }
+}
+
+/// A circle as serialized: its radius.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct CircleRecord {
+    radius: f64,
+}
+
+impl From<Circle> for CircleRecord {
+    fn from(c: Circle) -> Self {
+        Self { radius: c.radius }
+    }
+}
+
+impl TryFrom<CircleRecord> for Circle {
+    type Error = crate::error::DismechError;
+    fn try_from(record: CircleRecord) -> Result<Self> {
+        Self::new(record.radius)
     }
 }
 

@@ -12,13 +12,37 @@ pub const MAX_ASPECT_RATIO: f64 = 10.0;
 ///
 /// `a < b` is refused rather than swapped: write the same ellipse as
 /// (b, a) with the orientation turned by 90°.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Serialized as its semi-axes; read back through [`Ellipse::new`], which
+/// checks them and computes the same weights.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "EllipseRecord", into = "EllipseRecord")]
 pub struct Ellipse {
     a: f64,
     b: f64,
     /// `1 / a²` and `1 / b²`, the weights of the implicit function, kept
     /// for the contact routines.
     inverse_squares: [f64; 2],
+}
+
+/// An ellipse as serialized: its semi-axes.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct EllipseRecord {
+    a: f64,
+    b: f64,
+}
+
+impl From<Ellipse> for EllipseRecord {
+    fn from(e: Ellipse) -> Self {
+        Self { a: e.a, b: e.b }
+    }
+}
+
+impl TryFrom<EllipseRecord> for Ellipse {
+    type Error = DismechError;
+    fn try_from(record: EllipseRecord) -> Result<Self> {
+        Self::new(record.a, record.b)
+    }
 }
 
 impl Ellipse {

@@ -93,7 +93,7 @@ pub trait Shape2: Shape {
 
 /// An owned 2D shape of any kind dismech has a 2D contact routine for; the
 /// pair dispatcher matches on it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum AnyShape2 {
     /// A disc.
     Circle(Circle),

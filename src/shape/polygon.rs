@@ -16,7 +16,15 @@ use crate::math::{cross, Aabb2, Point, Pose2, Vec2};
 /// to vertex `k + 1`); the outward unit normals of the edges and which
 /// vertices are reflex (interior angle above 180°) are kept for the contact
 /// routines.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Serialized with everything it keeps (vertices, normals, reflex
+/// vertices, radius, area, moments), so that a polygon read back is the
+/// same to the last bit: its area was measured from the world vertices it
+/// was made from, which it does not keep. Reading refuses fewer than three
+/// vertices, normals or flags that do not match them in number, a value
+/// that is not finite and an area that is not positive.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "PolygonRecord", into = "PolygonRecord")]
 pub struct Polygon {
     /// Shared: a particle's shape stays small (a polygon's vertices and
     /// normals live apart from the hot data of the particle).
@@ -36,6 +44,64 @@ struct PolygonData {
     area: f64,
     /// `∫x² dA`, `∫y² dA`, `∫xy dA` about the centroid.
     second_moments: [f64; 3],
+}
+
+/// A polygon as serialized: what it keeps.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct PolygonRecord {
+    vertices: Vec<Point>,
+    normals: Vec<Vec2>,
+    reflex: Vec<bool>,
+    radius: f64,
+    area: f64,
+    second_moments: [f64; 3],
+}
+
+impl From<Polygon> for PolygonRecord {
+    fn from(p: Polygon) -> Self {
+        let d = &*p.data;
+        Self {
+            vertices: d.vertices.clone(),
+            normals: d.normals.clone(),
+            reflex: d.reflex.clone(),
+            radius: d.radius,
+            area: d.area,
+            second_moments: d.second_moments,
+        }
+    }
+}
+
+impl TryFrom<PolygonRecord> for Polygon {
+    type Error = &'static str;
+    fn try_from(r: PolygonRecord) -> std::result::Result<Self, Self::Error> {
+        let n = r.vertices.len();
+        if n < 3 {
+            return Err("a polygon has fewer than three vertices");
+        }
+        if r.normals.len() != n || r.reflex.len() != n {
+            return Err("a polygon's normals or reflex flags do not match its vertices");
+        }
+        let finite = (r.vertices.iter().flat_map(|v| [v.x, v.y]))
+            .chain(r.normals.iter().flat_map(|v| [v.x, v.y]))
+            .chain([r.radius, r.area])
+            .chain(r.second_moments)
+            .all(f64::is_finite);
+        if !finite || r.area <= 0.0 || r.radius < 0.0 {
+            return Err(
+                "a polygon has a value that is not finite, or an area that is not positive",
+            );
+        }
+        Ok(Self {
+            data: Arc::new(PolygonData {
+                vertices: r.vertices,
+                normals: r.normals,
+                reflex: r.reflex,
+                radius: r.radius,
+                area: r.area,
+                second_moments: r.second_moments,
+            }),
+        })
+    }
 }
 
 /// Whether segments pq and rs cross or touch.

@@ -9,7 +9,7 @@ use crate::math::{Aabb2, Point, Pose2, Vec2};
 ///
 /// The *inner side* of a wall is the left of the direction `start → end`:
 /// a frame is drawn counter-clockwise around the material it holds.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Segment {
     /// First end point.
     pub start: Point,

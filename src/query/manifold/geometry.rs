@@ -9,7 +9,9 @@ use crate::math::{cross, perp, Point, Vec2};
 /// edge closes the outline). A wall (segment) is `Edge(0)` from `Vertex(0)`
 /// (its start) to `Vertex(1)` (its end). A smooth body (circle, ellipse) is
 /// always `Whole`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub enum Feature {
     /// The whole boundary: the body contributes one point to the pair.
     Whole,
@@ -22,7 +24,9 @@ pub enum Feature {
 /// The features of A and B that make one contact point; with the pair of
 /// bodies it names the point across steps, so that a contact law's history
 /// follows it while the bodies slide a little.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub struct ContactFeatures {
     /// The feature of body A.
     pub a: Feature,
