@@ -40,6 +40,33 @@ impl NamedRaster {
         }
     }
 
+    /// Refuse `self` unless it lies on the grid of `reference` (rows,
+    /// columns, cell size, lower-left corner).
+    ///
+    /// # Errors
+    /// [`DismechError::GridMismatch`] naming both rasters and both grids.
+    pub fn require_grid_of(&self, reference: &NamedRaster) -> Result<()> {
+        let (a, b) = (&reference.raster, &self.raster);
+        if a.same_grid(b) {
+            return Ok(());
+        }
+        Err(DismechError::GridMismatch {
+            file: self.name.clone(),
+            reference: reference.name.clone(),
+            message: format!(
+                "{} × {} cells of {} m at {:?} against {} × {} cells of {} m at {:?} (rows × columns, cell size, lower-left corner)",
+                b.rows(),
+                b.columns(),
+                b.cell_size(),
+                b.lower_left(),
+                a.rows(),
+                a.columns(),
+                a.cell_size(),
+                a.lower_left()
+            ),
+        })
+    }
+
     /// Read an ESRI ASCII grid file.
     ///
     /// # Errors
@@ -79,24 +106,7 @@ impl SlopeGrids {
     /// column ([`DismechError::NoValidColumn`]).
     pub fn new(ground: NamedRaster, slip: NamedRaster, water: Option<NamedRaster>) -> Result<Self> {
         for other in std::iter::once(&slip).chain(water.as_ref()) {
-            let (a, b) = (&ground.raster, &other.raster);
-            if !a.same_grid(b) {
-                return Err(DismechError::GridMismatch {
-                    file: other.name.clone(),
-                    reference: ground.name.clone(),
-                    message: format!(
-                        "{} × {} cells of {} m at {:?} against {} × {} cells of {} m at {:?} (rows × columns, cell size, lower-left corner)",
-                        b.rows(),
-                        b.columns(),
-                        b.cell_size(),
-                        b.lower_left(),
-                        a.rows(),
-                        a.columns(),
-                        a.cell_size(),
-                        a.lower_left()
-                    ),
-                });
-            }
+            other.require_grid_of(&ground)?;
         }
         let (rows, columns) = (ground.raster.rows(), ground.raster.columns());
         if rows < MIN_GRID_SIDE || columns < MIN_GRID_SIDE {

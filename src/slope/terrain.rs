@@ -53,24 +53,7 @@ impl Terrain {
             });
         }
         if let Some(w) = &water {
-            let (a, b) = (&dem.raster, &w.raster);
-            if !a.same_grid(b) {
-                return Err(DismechError::GridMismatch {
-                    file: w.name.clone(),
-                    reference: dem.name.clone(),
-                    message: format!(
-                        "{} × {} cells of {} m at {:?} against {} × {} cells of {} m at {:?} (rows × columns, cell size, lower-left corner)",
-                        b.rows(),
-                        b.columns(),
-                        b.cell_size(),
-                        b.lower_left(),
-                        a.rows(),
-                        a.columns(),
-                        a.cell_size(),
-                        a.lower_left()
-                    ),
-                });
-            }
+            w.require_grid_of(&dem)?;
         }
         Ok(Self { dem, water })
     }
