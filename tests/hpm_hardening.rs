@@ -1010,3 +1010,17 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
     let fs = hovland(&m, &one, towards_deg(270.0)).unwrap().safety_factor;
     assert!(fs > 0.0 && fs.is_finite(), "{fs}");
 }
+
+/// No seismic coefficient, no horizontal load, whatever the direction
+/// (a zero direction gave NaN loads: 0 × NaN).
+#[test]
+fn a_zero_seismic_coefficient_adds_no_load_whatever_its_direction() {
+    let m = model(3, 4, 20.0, 5.0);
+    let none = m.loads(&Seismic::none());
+    let zero_direction = m.loads(&Seismic {
+        coefficient: 0.0,
+        direction: (0.0, 0.0),
+    });
+    assert!(zero_direction.iter().all(|f| f.is_finite()));
+    assert_eq!(none, zero_direction);
+}

@@ -225,3 +225,48 @@ fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
         }
     }
 }
+
+/// `every(n, o)` counts the implicit sub-steps it is told of across calls:
+/// twenty calls of one sub-step each reach it four times at n = 5.
+#[test]
+fn every_counts_implicit_sub_steps_across_calls() {
+    use dismech::dda::{
+        Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb,
+        PlaneState, Prescribed,
+    };
+    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+        [
+            Point::new(x0, y0),
+            Point::new(x1, y0),
+            Point::new(x1, y1),
+            Point::new(x0, y1),
+        ]
+    };
+    let rock = BlockMaterial {
+        density: 2200.0,
+        youngs_modulus: 1e9,
+        poisson_ratio: 0.2,
+        plane: PlaneState::Strain,
+    };
+    let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), rock, 0).unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), rock, 1).unwrap();
+    let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+    let mut model = DdaModel::new(vec![base, block], law, DdaSettings::default()).unwrap();
+    let mut seen = Vec::new();
+    let mut every_fifth = every(5, |m: &DdaModel, e: &Event<'_>| {
+        if let Event::SubStep { .. } = e {
+            seen.push(m.time());
+        }
+        Ok(())
+    });
+    let mut substeps = 0;
+    for _ in 0..20 {
+        substeps += model
+            .advance_observed(1e-3, &mut every_fifth)
+            .unwrap()
+            .substeps;
+    }
+    assert_eq!(substeps, 20, "one sub-step a call");
+    assert_eq!(seen.len(), 4);
+}

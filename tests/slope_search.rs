@@ -109,7 +109,7 @@ fn hovland_per_surface_equals_an_independent_column_sum() {
         let t = Vector3::new(s.x, s.y, zx * s.x + zy * s.y).normalize();
         let w = Vector3::new(0.15 * weight(h) * s.x, 0.15 * weight(h) * s.y, -weight(h));
         let area = d * d * (1.0 + zx * zx + zy * zy).sqrt();
-        let normal = w.dot(&n) - 9810.0 * hw * area;
+        let normal = (w.dot(&n) - 9810.0 * hw * area).max(0.0);
         resisting += 8e3 * area + normal * 30f64.to_radians().tan();
         driving += w.dot(&t);
         volume += h * d * d;
@@ -597,4 +597,88 @@ fn surfaces_leaving_the_dem_are_refused() {
     assert!(result.counts.refused_for(Refusal::LeavesDem) > 0);
     let c = result.counts;
     assert_eq!(c.evaluated + c.refused.iter().sum::<u64>(), c.trials);
+}
+
+/// A slope saturated to its surface (the water table above the ground,
+/// lowered to it): on the steep rims of a sphere the pore pressure exceeds
+/// the columns' normal force, and those columns keep no frictional
+/// strength rather than a negative one. Counted negative they cancelled
+/// the rest, and the lowest Fs of the search fell to 0.011 where the
+/// infinite slope gives about 0.44. Now the lowest (0.432) lies above the
+/// saturated infinite slope's at great depth (0.324) and below 1. A
+/// family built through its public fields is checked before the search.
+#[test]
+fn a_saturated_slope_keeps_its_strength_positive_column_by_column() {
+    let (rows, columns, d) = (40, 40, 2.0);
+    let slope = 30f64.to_radians().tan();
+    let dem = Raster::from_fn(rows, columns, 0.0, 0.0, d, |_, y| Some(slope * y)).unwrap();
+    let high = Raster::from_fn(rows, columns, 0.0, 0.0, d, |_, y| Some(slope * y + 5.0)).unwrap();
+    let terrain = Terrain::new(
+        NamedRaster::new("plane", dem),
+        Some(NamedRaster::new("water", high)),
+    )
+    .unwrap();
+    let material = SlopeMaterial {
+        cohesion: 5e3,
+        friction_coefficient: 0.6,
+        unit_weight: 19e3,
+    };
+    let loads = SlopeLoads {
+        water_unit_weight: 9810.0,
+        ..SlopeLoads::default()
+    };
+    let family = SphereGrid::new(
+        2,
+        Steps::checked("heights", 5.0, 20.0, 4, false).unwrap(),
+        Steps::checked("radii", 10.0, 40.0, 7, true).unwrap(),
+    )
+    .unwrap();
+    let result = search(
+        &terrain,
+        &material,
+        &loads,
+        &family,
+        &SearchSettings::default(),
+        |_, _| {},
+    )
+    .unwrap();
+    let lowest = result.lowest_safety_factor().unwrap();
+    // The infinite slope saturated to its surface, u = γ_w z, at the
+    // deepest caps of the family (a few metres): Fs = c / (γ z sin β cos β)
+    // + (cos² β − γ_w / γ) tan φ / (sin β cos β), 0.45 at z = 5 m and 0.35
+    // as z grows without bound.
+    let beta = 30f64.to_radians();
+    let (sin, cos) = beta.sin_cos();
+    let deep = (cos * cos - 9810.0 / 19e3) * 0.6 / (sin * cos);
+    println!("lowest Fs {lowest}, the infinite slope's at great depth {deep}");
+    assert!(lowest > deep && lowest < 1.0, "{lowest}");
+
+    let broken = SphereGrid {
+        stride: 0,
+        ..family
+    };
+    assert!(matches!(
+        search(
+            &terrain,
+            &material,
+            &loads,
+            &broken,
+            &SearchSettings::default(),
+            |_, _| {}
+        ),
+        Err(DismechError::InvalidParameter { .. })
+    ));
+    let reversed = SphereRandom {
+        radii: (10.0, f64::INFINITY),
+        ..SphereRandom::new(10, 1, (5.0, 10.0), (10.0, 20.0)).unwrap()
+    };
+    assert!(search(
+        &terrain,
+        &material,
+        &loads,
+        &reversed,
+        &SearchSettings::default(),
+        |_, _| {}
+    )
+    .is_err());
 }

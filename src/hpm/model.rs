@@ -465,9 +465,15 @@ impl HpmModel {
     }
 
     /// The load vector: weights W_I (eqs. 8–10) and the seismic force
-    /// `k_h W_I (cos θ, sin θ)` (eqs. 11–13), at each element's centroid.
+    /// `k_h W_I` along the unit horizontal direction of `seismic` (eqs.
+    /// 11–13), at each element's centroid. A zero coefficient adds no
+    /// horizontal force whatever the direction.
     pub fn loads(&self, seismic: &Seismic) -> Vec<f64> {
-        let (cx, cy) = seismic.unit();
+        let (cx, cy) = if seismic.coefficient == 0.0 {
+            (0.0, 0.0)
+        } else {
+            seismic.unit()
+        };
         let mut f = vec![0.0; self.dof()];
         for (e, element) in self.elements.iter().enumerate() {
             let h = seismic.coefficient * element.weight;

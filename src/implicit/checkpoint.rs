@@ -167,7 +167,11 @@ where
     /// The run's checkpoint: each body's geometry and motion, the contact
     /// history and everything else the next step reads (see
     /// [`crate::checkpoint`]), with what is needed to check the model it
-    /// is restored into. [`Self::restore`] resumes it to the same bits.
+    /// is restored into. [`Self::restore`] resumes it to the same bits
+    /// when it is taken between calls of [`Self::advance`] (or at an
+    /// observer's [`crate::observe::Event::Finished`]); taken inside a call
+    /// (at an [`crate::observe::Event::SubStep`]) it holds that sub-step's
+    /// state but not the rest of the call's interval and its step control.
     ///
     /// # Errors
     /// [`DismechError::Checkpoint`](crate::error::DismechError::Checkpoint)

@@ -10,6 +10,12 @@
 //! error, which stops the run and is returned by it (an output that could
 //! not be written stops the run that would write it).
 //!
+//! An implicit driver's checkpoint ([`crate::checkpoint`]) belongs after a
+//! call of `advance` returns (or at its [`Event::Finished`]): taken at an
+//! [`Event::SubStep`] inside a call, it holds the sub-step's state but not
+//! the rest of the call's interval and its step control, so a run resumed
+//! from it does not end in the same bits.
+//!
 //! Observers compose: a closure `FnMut(&W, &Event) -> Result<()>` is one;
 //! a pair `(A, B)` calls both in order; [`every`] calls its observer at
 //! every n-th step and at every other event. The frames of [`crate::vtk`]
@@ -137,11 +143,13 @@ impl<W: ?Sized> Observer<W> for Unobserved {
 }
 
 /// An observer called at every `n`-th [`Event::Step`] (steps `n`, `2n`,
-/// … of the driver's count) or [`Event::SubStep`] (of the call's count),
-/// and at every other event.
+/// … of the driver's count), at every `n`-th [`Event::SubStep`] it is told
+/// of (counted across the calls it observes, so that `every(5, o)` over
+/// calls of one sub-step each sees every fifth), and at every other event.
 #[derive(Debug, Clone)]
 pub struct Every<O> {
     n: u64,
+    substeps: u64,
     observer: O,
 }
 
@@ -150,6 +158,7 @@ pub struct Every<O> {
 pub fn every<O>(n: u64, observer: O) -> Every<O> {
     Every {
         n: n.max(1),
+        substeps: 0,
         observer,
     }
 }
@@ -165,7 +174,14 @@ impl<W: ?Sized, O: Observer<W>> Observer<W> for Every<O> {
     fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         match event {
             Event::Step { step, .. } if step % self.n != 0 => Ok(()),
-            Event::SubStep { substep, .. } if *substep as u64 % self.n != 0 => Ok(()),
+            Event::SubStep { .. } => {
+                self.substeps += 1;
+                if self.substeps % self.n == 0 {
+                    self.observer.observe(world, event)
+                } else {
+                    Ok(())
+                }
+            }
             _ => self.observer.observe(world, event),
         }
     }

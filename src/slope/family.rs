@@ -15,6 +15,14 @@ pub trait TrialFamily: Sync {
     /// The kind of surface.
     type Surface: TrialSurface + Copy + Send + Sync + std::fmt::Debug;
 
+    /// Check the family's values (its fields are public: [`crate::slope::search`]
+    /// checks them again before the first trial).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] or [`DismechError::InvalidRange`]
+    /// naming the offending value, as the family's constructor.
+    fn validate(&self) -> Result<()>;
+
     /// The number of trials over `terrain`.
     fn len(&self, terrain: &Terrain) -> u64;
 
@@ -152,6 +160,10 @@ impl SphereGrid {
 impl TrialFamily for SphereGrid {
     type Surface = Sphere;
 
+    fn validate(&self) -> Result<()> {
+        Self::new(self.stride, self.heights, self.radii).map(|_| ())
+    }
+
     fn len(&self, terrain: &Terrain) -> u64 {
         (self.centres(terrain.rows()) as u64)
             .saturating_mul(self.centres(terrain.columns()) as u64)
@@ -274,6 +286,10 @@ impl SphereRandom {
 impl TrialFamily for SphereRandom {
     type Surface = Sphere;
 
+    fn validate(&self) -> Result<()> {
+        Self::new(self.count, self.seed, self.heights, self.radii).map(|_| ())
+    }
+
     fn len(&self, _terrain: &Terrain) -> u64 {
         self.count
     }
@@ -363,6 +379,18 @@ impl EllipsoidRandom {
 
 impl TrialFamily for EllipsoidRandom {
     type Surface = Ellipsoid;
+
+    fn validate(&self) -> Result<()> {
+        Self::new(
+            self.count,
+            self.seed,
+            self.heights,
+            self.along,
+            self.across_ratio,
+            self.vertical,
+        )
+        .map(|_| ())
+    }
 
     fn len(&self, _terrain: &Terrain) -> u64 {
         self.count

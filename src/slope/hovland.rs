@@ -11,7 +11,8 @@
 //! `t = (s_x, s_y, a) / √(1 + a²)` with `a = z_x s_x + z_y s_y`, and
 //! `N = w · n`, `T = w · t` as in [`crate::hpm::hovland()`]. The pore
 //! pressure `u = γ_w h_p` ([`super::SlipColumn::pressure_head`]) lowers the
-//! normal force to `N' = N − u A`, and
+//! normal force to `N' = max(N − u A, 0)` (a column lifted by its pore
+//! pressure keeps no frictional strength, and none below zero), and
 //! `Fs = Σ (c A + N' tan φ) / Σ T`.
 //!
 //! **Sliding direction.** The plan direction of the resultant of the
@@ -130,7 +131,11 @@ pub fn hovland_columns(
         let normal = (lx * zx + ly * zy - lz) / rho;
         let along = (lx * sx + ly * sy + lz * a) / (1.0 + a * a).sqrt();
         let base_area = cell_area * rho;
-        let effective = normal - loads.water_unit_weight * k.pressure_head * base_area;
+        // A column whose pore pressure (or seismic lift) exceeds its normal
+        // force has no frictional strength left, not a negative one: the
+        // effective normal force is taken as zero there, as
+        // limit-equilibrium codes do (Scoops3D; Reid et al. 2015).
+        let effective = (normal - loads.water_unit_weight * k.pressure_head * base_area).max(0.0);
         resisting += c * base_area + effective * mu;
         driving += along;
     }

@@ -259,6 +259,7 @@ pub fn search<F: TrialFamily>(
     mut progress: impl FnMut(u64, u64),
 ) -> Result<SearchResult<F::Surface>> {
     let evaluator = Evaluator::new(terrain, material, loads, &settings.limits)?;
+    family.validate()?;
     require_positive("search batch (trials)", settings.batch as f64)?;
     let total = family.len(terrain);
     require_positive("number of trials of the search family", total as f64)?;
