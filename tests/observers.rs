@@ -129,7 +129,9 @@ fn frames_are_written_by_an_observer_every_n_steps_and_at_the_end() {
     let _ = std::fs::remove_dir_all(&folder);
     let mut sim = dem();
     let dt = DemSettings::default().dt;
-    let mut frames = every(200, DemFrames::new(&folder, 24).unwrap());
+    let mut initial = DemFrames::new(&folder, 24).unwrap();
+    initial.write(&sim).unwrap();
+    let mut frames = every(200, initial);
     let outcome = sim.run_to_rest_observed(&criterion(), &mut frames).unwrap();
     assert_ne!(outcome.status, RunStatus::StepLimit);
     let frames = frames.into_inner();
@@ -139,7 +141,7 @@ fn frames_are_written_by_an_observer_every_n_steps_and_at_the_end() {
         .iter()
         .map(|e| e.time)
         .collect();
-    let expected: Vec<u64> = (1..=outcome.steps / 200)
+    let expected: Vec<u64> = (0..=outcome.steps / 200)
         .map(|k| 200 * k)
         .chain((outcome.steps % 200 != 0).then_some(outcome.steps))
         .collect();

@@ -165,6 +165,13 @@ where
         saved_law.check("contact law", &Piece::of(&law)?, origin)?;
         saved_integrator.check("integrator", &Piece::of(&integrator)?, origin)?;
         let state: ExplicitState<'_, L::State> = format::parse(payload, origin)?;
+        let overlap = state.settings.stability_overlap;
+        if !(overlap.is_finite() && overlap > 0.0 && overlap <= 1.0) {
+            return Err(format::corrupt(
+                origin,
+                format!("its settings' stability_overlap {overlap} lies outside (0, 1]"),
+            ));
+        }
         let n = state.scene.particles.len();
         if state.increments.len() != n || state.forces.len() != 3 * n {
             return Err(format::corrupt(

@@ -13,7 +13,9 @@ use crate::observe::{Event, Observer};
 /// An observer of the explicit driver that writes a [`dem_frame`] into a
 /// [`PvdSeries`] at each step it is called for (wrap it in
 /// [`crate::observe::every`] to write every n-th step) and at the end of
-/// the run (unless the last step was just written).
+/// the run (unless the last step was just written). The state before the
+/// first step is not an event: write it with [`DemFrames::write`] before
+/// the run if the series should start there.
 #[derive(Debug)]
 pub struct DemFrames {
     series: PvdSeries,
@@ -36,6 +38,19 @@ impl DemFrames {
     /// The series written so far.
     pub fn series(&self) -> &PvdSeries {
         &self.series
+    }
+
+    /// Write the frame of `dem` as it is now (e.g. its initial state,
+    /// before a run), at its time.
+    ///
+    /// # Errors
+    /// Those of [`dem_frame`] and [`PvdSeries::write_frame`].
+    pub fn write<L: ContactLaw<2>, I: ExplicitIntegrator>(
+        &mut self,
+        dem: &ExplicitDynamics<L, I>,
+    ) -> Result<()> {
+        self.series
+            .write_frame(dem.time(), &dem_frame(dem, self.segments)?)
     }
 }
 

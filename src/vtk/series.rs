@@ -180,20 +180,22 @@ impl PvdSeries {
             write_atomically(&self.folder.join(&file), piece.data.to_xml()?.as_bytes())?;
             written.push((piece.name.clone(), file));
         }
+        // The indices are updated in a copy and kept only once every one is
+        // written: a frame whose index could not be written is retried whole
+        // (the same file names), never listed twice.
+        let mut indices = self.indices.clone();
         for (name, file) in written {
-            let k = match self.indices.iter().position(|(n, _)| *n == name) {
+            let k = match indices.iter().position(|(n, _)| *n == name) {
                 Some(k) => k,
                 None => {
-                    self.indices.push((name.clone(), Vec::new()));
-                    self.indices.len() - 1
+                    indices.push((name.clone(), Vec::new()));
+                    indices.len() - 1
                 }
             };
-            self.indices[k].1.push(PvdEntry { time, file });
-            write_atomically(
-                &self.pvd_path(&name),
-                pvd_text(&self.indices[k].1).as_bytes(),
-            )?;
+            indices[k].1.push(PvdEntry { time, file });
+            write_atomically(&self.pvd_path(&name), pvd_text(&indices[k].1).as_bytes())?;
         }
+        self.indices = indices;
         self.frames += 1;
         self.last_time = Some(time);
         Ok(())
