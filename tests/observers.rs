@@ -157,15 +157,11 @@ fn frames_are_written_by_an_observer_every_n_steps_and_at_the_end() {
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
-/// The implicit driver tells an observer every accepted sub-step, every
-/// halving with its cause, and the end of the interval: a block 2 cm above
-/// a base, one call of 0.1 s, lands in halved sub-steps; the events add up
-/// to the call's report, the sub-steps tile the interval, and the model
-/// ends where the unobserved one does, bit for bit.
-#[test]
-fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
+/// A DDA block of 1 × 0.5 m, `gap` m above a fixed base (E = 1 GPa,
+/// penalty 1e9, μ = 0.5, return mapping).
+fn block_on_base(gap: f64) -> dismech::dda::DdaModel {
     use dismech::dda::{
-        Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, Halvings, PenaltyCoulomb,
+        Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb,
         PlaneState, Prescribed,
     };
     let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
@@ -182,13 +178,22 @@ fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
         poisson_ratio: 0.2,
         plane: PlaneState::Strain,
     };
-    let model = || {
-        let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), rock, 0).unwrap();
-        base.prescribed = Some(Prescribed::fixed());
-        let block = Block::new(&rect(-0.5, 0.02, 0.5, 0.52), rock, 1).unwrap();
-        let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
-        DdaModel::new(vec![base, block], law, DdaSettings::default()).unwrap()
-    };
+    let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), rock, 0).unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    let block = Block::new(&rect(-0.5, gap, 0.5, gap + 0.5), rock, 1).unwrap();
+    let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
+    DdaModel::new(vec![base, block], law, DdaSettings::default()).unwrap()
+}
+
+/// The implicit driver tells an observer every accepted sub-step, every
+/// halving with its cause, and the end of the interval: a block 2 cm above
+/// a base, one call of 0.1 s, lands in halved sub-steps; the events add up
+/// to the call's report, the sub-steps tile the interval, and the model
+/// ends where the unobserved one does, bit for bit.
+#[test]
+fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
+    use dismech::dda::{DdaModel, Halvings};
+    let model = || block_on_base(0.02);
     let mut plain = model();
     let expected = plain.advance(0.1).unwrap();
     assert!(expected.reductions > 0, "the landing needs halvings");
@@ -232,29 +237,8 @@ fn the_implicit_driver_tells_its_sub_steps_and_halvings() {
 /// twenty calls of one sub-step each reach it four times at n = 5.
 #[test]
 fn every_counts_implicit_sub_steps_across_calls() {
-    use dismech::dda::{
-        Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb,
-        PlaneState, Prescribed,
-    };
-    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
-        [
-            Point::new(x0, y0),
-            Point::new(x1, y0),
-            Point::new(x1, y1),
-            Point::new(x0, y1),
-        ]
-    };
-    let rock = BlockMaterial {
-        density: 2200.0,
-        youngs_modulus: 1e9,
-        poisson_ratio: 0.2,
-        plane: PlaneState::Strain,
-    };
-    let mut base = Block::new(&rect(-1.0, -1.0, 1.0, 0.0), rock, 0).unwrap();
-    base.prescribed = Some(Prescribed::fixed());
-    let block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), rock, 1).unwrap();
-    let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
-    let mut model = DdaModel::new(vec![base, block], law, DdaSettings::default()).unwrap();
+    use dismech::dda::DdaModel;
+    let mut model = block_on_base(0.0);
     let mut seen = Vec::new();
     let mut every_fifth = every(5, |m: &DdaModel, e: &Event<'_>| {
         if let Event::SubStep { .. } = e {

@@ -1088,14 +1088,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let clock = std::time::Instant::now();
         let mut calm_checks = 0u32;
         loop {
-            self.step()?;
-            observer.observe(
-                self,
-                &Event::Step {
-                    step: self.step,
-                    time: self.time,
-                },
-            )?;
+            self.step_observed(observer)?;
             let taken = self.step - start;
             if taken % every != 0 && taken < criterion.max_steps {
                 continue;
@@ -1141,13 +1134,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 None
             };
             if let Some(status) = status {
-                observer.observe(
-                    self,
-                    &Event::Finished {
-                        step: self.step,
-                        time: self.time,
-                    },
-                )?;
+                self.finished(observer)?;
                 return Ok(RunOutcome {
                     status,
                     steps: self.step - start,
@@ -1175,15 +1162,25 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         observer: &mut (impl Observer<Self> + ?Sized),
     ) -> Result<()> {
         for _ in 0..steps {
-            self.step()?;
-            observer.observe(
-                self,
-                &Event::Step {
-                    step: self.step,
-                    time: self.time,
-                },
-            )?;
+            self.step_observed(observer)?;
         }
+        self.finished(observer)
+    }
+
+    /// [`Self::step`], then [`Event::Step`] to `observer`.
+    fn step_observed(&mut self, observer: &mut (impl Observer<Self> + ?Sized)) -> Result<()> {
+        self.step()?;
+        observer.observe(
+            self,
+            &Event::Step {
+                step: self.step,
+                time: self.time,
+            },
+        )
+    }
+
+    /// [`Event::Finished`] to `observer`.
+    fn finished(&self, observer: &mut (impl Observer<Self> + ?Sized)) -> Result<()> {
         observer.observe(
             self,
             &Event::Finished {

@@ -63,7 +63,6 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> Observer<ExplicitDynamics<L, I>> f
         if self.series.last_time() == Some(time) {
             return Ok(());
         }
-        self.series
-            .write_frame(time, &dem_frame(dem, self.segments)?)
+        self.write(dem)
     }
 }
