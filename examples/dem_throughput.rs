@@ -24,6 +24,7 @@
 //! ```text
 //! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --settle 20000 --steps 10000
 //! cargo run --release --example dem_throughput -- --nx 200 --ny 200 --threads 2
+//! cargo run --release --example dem_throughput -- --nx 316 --ny 316 --settle 4000 --steps 2000 --threads 2 --phases
 //! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --shape ellipse
 //! ```
 //!
@@ -101,6 +102,10 @@ struct Args {
     /// Seed of the diameters and velocities.
     #[arg(long, default_value_t = 4321)]
     seed: u64,
+    /// Print where the timed steps spent their time, by phase
+    /// (`ExplicitDynamics::time_phases`).
+    #[arg(long)]
+    phases: bool,
 }
 
 const PITCH: f64 = 0.14;
@@ -205,6 +210,9 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     }
     let settle_seconds = started.elapsed().as_secs_f64();
     let builds = sim.neighbour_list_builds();
+    if args.phases {
+        sim.time_phases();
+    }
     let timed = Instant::now();
     for _ in 0..args.steps {
         sim.step()?;
@@ -232,5 +240,8 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         sim.kinetic_energy(),
         sim.contacts().len() as f64 / n as f64
     );
+    if let Some(phases) = sim.phase_times() {
+        print!("{phases}");
+    }
     Ok(())
 }

@@ -50,7 +50,7 @@ fn state(e_n: f64, e_s: f64) -> SpringState<2> {
 prop_compose! {
     fn any_input()(overlap in -1e-3f64..2e-3, du_n in -1e-4f64..1e-4, du_s in -1e-3f64..1e-3,
                    width in 1e-4f64..0.05, is_new in any::<bool>()) -> ContactInput<2> {
-        ContactInput { overlap, increment: Vector2::new(du_n, du_s), dt: 1e-4, is_new, pair: pair(width) }
+        ContactInput { overlap, increment: Vector2::new(du_n, du_s), dt: 1e-4, is_new, pair: pair(width), rotation: 0.0 }
     }
 }
 
@@ -142,7 +142,8 @@ proptest! {
             let du = relative_increment(&g, &first.1.position, (&first.2 .0, first.2 .1), &second.1.position, (&second.2 .0, second.2 .1));
             let input = ContactInput { overlap: g.overlap, increment: du.into(), dt: 1e-4, is_new: false,
                 pair: PairProperties { curvature_radius_a: g.curvature_radius_a, curvature_radius_b: g.curvature_radius_b,
-                    width: g.width, mass_a: 1.0, mass_b: 1.0 } };
+                    width: g.width, mass_a: 1.0, mass_b: 1.0 },
+                rotation: 0.0 };
             let r = law.evaluate(&input, &state(50.0, 10.0));
             g.normal * r.force[0] - g.tangent() * r.force[1]
         };
@@ -171,7 +172,8 @@ proptest! {
             let du = relative_increment(&g, &ca, (&Vec2::zeros(), dpa), &cb, (&inc_b, dpb));
             let input = ContactInput { overlap: g.overlap, increment: du.into(), dt: 1e-4, is_new: false,
                 pair: PairProperties { curvature_radius_a: g.curvature_radius_a, curvature_radius_b: g.curvature_radius_b,
-                    width: g.width, mass_a: 1.0, mass_b: 1.0 } };
+                    width: g.width, mass_a: 1.0, mass_b: 1.0 },
+                rotation: 0.0 };
             let r = law.evaluate(&input, &state(50.0, 10.0));
             (du, r.force, g.width, g.normal * r.force[0] - g.tangent() * r.force[1])
         };
@@ -253,6 +255,7 @@ fn per_mass_dashpots_give_the_effective_mass_times_gamma() {
                 mass_b,
                 ..pair(0.01)
             },
+            rotation: 0.0,
         };
         let r = law.evaluate(&input, &state(k_n * previous_overlap, 0.0));
         assert_eq!(r.regime, Regime::Stick);
@@ -305,6 +308,7 @@ proptest! {
         let law = law(true, damping, 0.4);
         let input = dismech::law::ContactInput::<3> {
             overlap, increment: nalgebra::Vector3::new(du[0], du[1], du[2]), dt: 1e-4, is_new: false, pair: pair(0.01),
+            rotation: 0.0,
         };
         let mut s = SpringState::<3>::default();
         s.spring.0 = nalgebra::Vector3::new(e_n, e_s[0], e_s[1]);
@@ -347,12 +351,12 @@ proptest! {
         constant in any::<bool>(), damping in any::<bool>(), is_new in any::<bool>()
     ) {
         let sd = law(constant, damping, mu);
-        let input2 = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new, pair: pair(0.01) };
+        let input2 = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new, pair: pair(0.01), rotation: 0.0 };
         let violations = conformance::check_all(&sd, &input2, &state(e_n, e_s[0]));
         prop_assert!(violations.is_empty(), "spring-dashpot 2D: {:?}", violations);
         prop_assert!(conformance::open_without_overlap(&sd, &input2, &state(e_n, e_s[0])).is_ok());
 
-        let input3 = ContactInput::<3> { overlap, increment: nalgebra::Vector3::new(du[0] * 0.1, du[1], du[2]), dt: 1e-4, is_new, pair: pair(0.01) };
+        let input3 = ContactInput::<3> { overlap, increment: nalgebra::Vector3::new(du[0] * 0.1, du[1], du[2]), dt: 1e-4, is_new, pair: pair(0.01), rotation: 0.0 };
         let mut s3 = SpringState::<3>::default();
         s3.spring.0 = nalgebra::Vector3::new(e_n, e_s[0], e_s[1]);
         let violations = conformance::check_all(&sd, &input3, &s3);
@@ -388,7 +392,7 @@ proptest! {
     ) {
         let law = PenaltyCoulomb::bonded_with_friction(1e7, cohesion, mu).unwrap();
         prop_assert!(!law.may_open());
-        let input = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new: false, pair: pair(0.01) };
+        let input = ContactInput { overlap, increment: Vector2::new(du[0] * 0.1, du[1]), dt: 1e-4, is_new: false, pair: pair(0.01), rotation: 0.0 };
         let state = PenaltyState { normal: 1e7 * overlap, shear, regime: Some(Regime::Stick) };
         let violations = conformance::check_all(&law, &input, &state);
         prop_assert!(violations.is_empty(), "bonded penalty: {:?}", violations);
@@ -415,6 +419,7 @@ fn conformance_catches_the_conventional_overshoot() {
         dt: 1e-3,
         is_new: false,
         pair: PairProperties::rigid(),
+        rotation: 0.0,
     };
     let state = PenaltyState {
         normal: 1e3,
@@ -453,6 +458,7 @@ fn the_contact_shape_check_catches_a_law_that_reads_it_unannounced() {
         dt: 1e-4,
         is_new: false,
         pair: pair(0.01),
+        rotation: 0.0,
     };
     let history = state(1e3, 2e2);
     assert!(conformance::contact_shape_unused(&width_law, &input, &history).is_ok());
@@ -509,6 +515,7 @@ fn a_force_only_law_runs_the_force_checks() {
         dt: 1e-4,
         is_new: false,
         pair: pair(0.01),
+        rotation: 0.0,
     };
     let hertz = Hertz {
         stiffness: 1e10,

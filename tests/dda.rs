@@ -35,6 +35,7 @@ fn input(overlap: f64, shear: f64) -> ContactInput<2> {
             mass_a: 1.0,
             mass_b: 1.0,
         },
+        rotation: 0.0,
     }
 }
 

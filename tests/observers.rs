@@ -256,3 +256,46 @@ fn every_counts_implicit_sub_steps_across_calls() {
     assert_eq!(substeps, 20, "one sub-step a call");
     assert_eq!(seen.len(), 4);
 }
+
+/// Timing the phases counts every step and every build of the list, takes
+/// time in each phase, and changes no bit of the run.
+#[test]
+fn phase_times_count_the_steps_and_builds_and_change_nothing() {
+    let (mut timed, mut plain) = (dem(), dem());
+    assert!(timed.phase_times().is_none());
+    for _ in 0..100 {
+        timed.step().unwrap();
+        plain.step().unwrap();
+    }
+    timed.time_phases();
+    let builds = timed.neighbour_list_builds();
+    for _ in 0..2000 {
+        timed.step().unwrap();
+        plain.step().unwrap();
+    }
+    let times = *timed.phase_times().unwrap();
+    assert_eq!(times.steps, 2000);
+    assert_eq!(times.builds, timed.neighbour_list_builds() - builds);
+    assert!(times.builds > 0, "the discs fell through the skin");
+    for (name, time) in times.phases() {
+        assert!(!time.is_zero(), "no time in {name}");
+    }
+    assert_eq!(times.total(), times.phases().iter().map(|(_, t)| *t).sum());
+    let table = times.to_string();
+    assert!(
+        table.contains("2000 steps") && table.contains("forces"),
+        "{table}"
+    );
+    let bits = |s: &Dem| -> Vec<u64> {
+        s.scene()
+            .particles
+            .iter()
+            .flat_map(|p| [p.pose.position.x, p.pose.position.y, p.pose.angle])
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert_eq!(bits(&timed), bits(&plain));
+    // Asked again, the times start from zero.
+    timed.time_phases();
+    assert_eq!(timed.phase_times().unwrap().steps, 0);
+}

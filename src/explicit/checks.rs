@@ -270,6 +270,7 @@ pub(crate) fn check_law_for_polygons<L: ContactLaw<2>>(
                 dt,
                 is_new: true,
                 pair,
+                rotation: 0.0,
             },
             &L::State::default(),
         );

@@ -13,6 +13,7 @@ use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, PairSlot, BLOCK};
 use super::pair_bodies::PairBody;
 use super::pair_forces::PairContext;
+use super::phases::{PhaseClock, PhaseTimes};
 use super::skin::Skin;
 use super::stability::{critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP};
 use crate::broad_phase::CellGrid;
@@ -285,6 +286,10 @@ pub struct ContactRecord {
     pub features: ContactFeatures,
     /// The overlap at the point (m).
     pub overlap: f64,
+    /// The law's rolling moment on the particle (N·m per m,
+    /// counter-clockwise; the target receives the opposite), 0 for a law
+    /// without rolling resistance ([`crate::law::ContactLaw::moment`]).
+    pub rolling_moment: f64,
 }
 
 /// The stable step of a scene under a law at an overlap ratio.
@@ -337,6 +342,8 @@ pub struct ExplicitDynamics<L: ContactLaw<2>, I: ExplicitIntegrator = ExplicitEu
     /// top (particles may be dropped from high above an open box): a
     /// particle whose centre leaves it has left the frame.
     frame_reach: Aabb2,
+    /// The steps' time by phase, when asked for ([`Self::time_phases`]).
+    phase_times: Option<PhaseTimes>,
 }
 
 /// Refuse a scene of `n` particles whose run the system cannot hold: the
@@ -579,6 +586,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 mass,
             },
             records: OnceLock::new(),
+            phase_times: None,
             applied: scene
                 .particles
                 .iter()
@@ -673,6 +681,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                         regime: p.key.regime(),
                         features: p.key.features(),
                         overlap: p.overlap,
+                        rolling_moment: self.law.moment(&p.state),
                     })
                 })
                 .collect()
@@ -735,6 +744,20 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 limit.governing, self.step, self.settings.stability_overlap
             ),
         })
+    }
+
+    /// Time the steps by phase from now on ([`PhaseTimes`]: the list's
+    /// builds, the contact forces, the motion, the list's travel),
+    /// starting again from zero if they were being timed. A run that does
+    /// not ask reads no clock.
+    pub fn time_phases(&mut self) {
+        self.phase_times = Some(PhaseTimes::default());
+    }
+
+    /// The steps' time by phase since [`Self::time_phases`]; `None` when
+    /// it was not called.
+    pub fn phase_times(&self) -> Option<&PhaseTimes> {
+        self.phase_times.as_ref()
     }
 
     /// How many times the neighbour list has been built.
@@ -849,12 +872,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         let dt = self.settings.dt;
         let parallel = n >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1;
         self.records = OnceLock::new();
+        let clock = PhaseClock::start(self.phase_times.is_some());
+        let builds = self.neighbours.builds();
         self.neighbours.update(
             &self.scene.particles,
             self.scene.frame.walls(),
             &mut self.grid,
             parallel,
         );
+        let built = clock.lap();
 
         // Per block: each pair's contact points, added at once to its
         // particles in the block (the weight and external force first); a
@@ -893,6 +919,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 context.evaluate_block(applied, &mut self.manifold, block, force)?;
             }
         }
+        let forced = clock.lap();
 
         // Per block: the pairs that cross into it from earlier blocks,
         // then its particles moved (see `BlockMotion::block`).
@@ -903,6 +930,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             dt,
         };
         let neighbours = &self.neighbours;
+        let law = &self.law;
         let rotations: Vec<&mut [UnitComplex<f64>]> = if self.rotations.is_empty() {
             (0..n.div_ceil(BLOCK))
                 .map(|_| <&mut [_]>::default())
@@ -911,7 +939,15 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             self.rotations.chunks_mut(BLOCK).collect()
         };
         let move_block = |(k, (((force, particles), bodies), rotations)): BlockMove<'_>| {
-            motion.block(neighbours, k, force, particles, bodies, rotations)
+            motion.block(
+                neighbours,
+                |state| law.moment(state),
+                k,
+                force,
+                particles,
+                bodies,
+                rotations,
+            )
         };
         let (force, particles, bodies) = (
             &mut self.system.force,
@@ -936,8 +972,18 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 .map(move_block)
                 .fold(StepCheck::default(), StepCheck::combine)
         };
+        let moved = clock.lap();
         self.neighbours
             .note_travel(check.travel, &self.scene.particles, parallel);
+        if let Some(times) = &mut self.phase_times {
+            let noted = clock.lap();
+            times.steps += 1;
+            times.builds += self.neighbours.builds() - builds;
+            times.build += built.unwrap_or_default();
+            times.forces += forced.unwrap_or_default();
+            times.motion += moved.unwrap_or_default();
+            times.travel += noted.unwrap_or_default();
+        }
         if let Some(i) = check.bad_force {
             return Err(self.non_finite(i, "force"));
         }

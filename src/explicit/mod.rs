@@ -97,6 +97,7 @@ mod motion;
 mod neighbours;
 mod pair_bodies;
 mod pair_forces;
+mod phases;
 mod skin;
 mod stability;
 
@@ -105,6 +106,7 @@ pub use driver::{
     ContactRecord, ContactTarget, DemSettings, ExplicitDynamics, RestCriterion, RunOutcome,
     RunStatus,
 };
+pub use phases::PhaseTimes;
 pub use stability::{
     critical_time_step, critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
 };

@@ -64,10 +64,14 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
     /// were made at the start), an ellipse's rotation at its new angle
     /// (`rotations` is empty in a scene without ellipses), and how far
     /// its boundary has moved since the list was built. Every pair that
-    /// reads the block's particles must have been evaluated.
+    /// reads the block's particles must have been evaluated. `rolling`
+    /// reads a contact's rolling moment from its state
+    /// ([`crate::law::ContactLaw::moment`]).
+    #[allow(clippy::too_many_arguments)]
     pub fn block<S>(
         &self,
         neighbours: &NeighbourList<S>,
+        rolling: impl Fn(&S) -> f64,
         k: usize,
         force: &mut [f64],
         particles: &mut [Particle],
@@ -93,7 +97,7 @@ impl<I: ExplicitIntegrator> BlockMotion<'_, I> {
                 neighbours.cross_force(cross),
                 points,
                 // (A's moment went to A in A's block: not read here.)
-                |point| (f64::NAN, point.moment_b(centre_b)),
+                |point| (f64::NAN, point.moment_b(centre_b, rolling(&point.state))),
                 |force_on_b, _, moment_b| add_action(&mut force[b..b + 3], force_on_b, moment_b),
             );
         }

@@ -33,7 +33,8 @@ use crate::shape::Segment;
 
 /// One contact point of a pair: the law's history and the last step's
 /// result. (Its moments about the two centres are not kept: they follow
-/// from the point and the force, [`Self::moment_a`] and
+/// from the point, the force and the law's rolling moment (read from the
+/// state, [`crate::law::ContactLaw::moment`]), [`Self::moment_a`] and
 /// [`Self::moment_b`], while the bodies have not moved.)
 #[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub(super) struct PointContact<S> {
@@ -53,17 +54,31 @@ pub(super) struct PointContact<S> {
 }
 
 impl<S> PointContact<S> {
-    /// The moment of B's force on A about A's centre `centre_a`.
+    /// The moment on A about A's centre `centre_a`: that of B's force,
+    /// and the law's rolling moment `rolling` on A.
     #[inline]
-    pub fn moment_a(&self, centre_a: &Point) -> f64 {
-        moment_about(centre_a, &self.point, &(-self.force_on_b))
+    pub fn moment_a(&self, centre_a: &Point, rolling: f64) -> f64 {
+        let of_force = moment_about(centre_a, &self.point, &(-self.force_on_b));
+        // (Added only when there is one, so that a law without rolling
+        // resistance gives the bits it gave before: −0 + 0 is +0.)
+        if rolling == 0.0 {
+            of_force
+        } else {
+            of_force + rolling
+        }
     }
 
-    /// The moment of A's force on B about B's centre `centre_b` (a wall
-    /// has no centre: its moment is 0, which the callers take instead).
+    /// The moment on B about B's centre `centre_b`: that of A's force, and
+    /// the opposite of the law's rolling moment `rolling` on A (a wall has
+    /// no centre: its moment is 0, which the callers take instead).
     #[inline]
-    pub fn moment_b(&self, centre_b: &Point) -> f64 {
-        moment_about(centre_b, &self.point, &self.force_on_b)
+    pub fn moment_b(&self, centre_b: &Point, rolling: f64) -> f64 {
+        let of_force = moment_about(centre_b, &self.point, &self.force_on_b);
+        if rolling == 0.0 {
+            of_force
+        } else {
+            of_force - rolling
+        }
     }
 }
 

@@ -133,9 +133,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 &pair,
                 || &slot.points,
                 |point| {
+                    let rolling = self.law.moment(&point.state);
                     (
-                        point.moment_a(&self.bodies[slot.a()].centre),
-                        point.moment_b(&self.bodies[b].centre),
+                        point.moment_a(&self.bodies[slot.a()].centre, rolling),
+                        point.moment_b(&self.bodies[b].centre, rolling),
                     )
                 },
                 |force_on_b, moment_a, moment_b| {
@@ -154,7 +155,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             for_each_point(
                 &pair,
                 || &slot.points,
-                |point| (point.moment_a(&self.bodies[slot.a()].centre), 0.0),
+                |point| {
+                    let rolling = self.law.moment(&point.state);
+                    (point.moment_a(&self.bodies[slot.a()].centre, rolling), 0.0)
+                },
                 |force_on_b, moment_a, _| {
                     add_reaction(&mut force[a..a + 3], force_on_b, moment_a);
                 },
@@ -362,6 +366,7 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
                 mass_a: body_a.mass,
                 mass_b,
             },
+            rotation: increment_a.1 - increment_b.1,
         };
         let response = self.law.evaluate(
             &input,
@@ -377,9 +382,10 @@ impl<L: ContactLaw<2>> PairContext<'_, L> {
             normal: geometry.normal,
             force_on_b,
         };
-        let moment_a = point.moment_a(&body_a.centre);
+        let rolling = self.law.moment(&point.state);
+        let moment_a = point.moment_a(&body_a.centre, rolling);
         let moment_b = match other {
-            Some(_) => point.moment_b(&centre_b),
+            Some(_) => point.moment_b(&centre_b, rolling),
             None => 0.0,
         };
         (

@@ -176,12 +176,18 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 mass_a: ba.area() * ba.material().density,
                 mass_b: bb.area() * bb.material().density,
             },
+            rotation: 0.0,
         };
         let law = self.laws.law(ba.group, bb.group);
-        match history {
+        let answer = match history {
             Some(old) => law.evaluate_with_tangent(&input, old),
             None => law.evaluate_with_tangent(&input, &L::State::default()),
-        }
+        };
+        debug_assert!(
+            law.moment(&answer.0.state) == 0.0,
+            "a tangent law answered a rolling moment, which the implicit driver does not apply"
+        );
+        answer
     }
 
     /// Contact `c`'s share of the residual and (with `matrix`) of the

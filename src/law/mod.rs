@@ -14,6 +14,7 @@
 //! | [`PenaltyCoulomb`] (return mapping or conventional) | 003 eqs. 7–10 | ✓ | ✓ | ✓ | ✓ |
 //! | [`MohrCoulombSpring`] (3D, cohesive, no tension) | 001 §4(4) | ✓ | ✓ | ✓ | ✓ |
 //! | [`RigidPlastic`] | 002 eqs. 13–15 | – | – | ✓ | – |
+//! | [`RollingResistance`]`<L>` (adds a rolling moment to a 2D law `L`) | Iwashita & Oda 1998 | ✓ + moment | – | – | ✓ (if `L`'s) |
 //!
 //! Friction is the coefficient `μ = tan φ` in every law (and in HPM's
 //! material); [`friction_from_degrees`] converts a friction angle, and
@@ -34,6 +35,7 @@ pub mod coulomb;
 mod mohr_coulomb;
 mod penalty_coulomb;
 mod rigid_plastic;
+mod rolling;
 mod spring_dashpot;
 mod traits;
 
@@ -41,6 +43,7 @@ pub use coulomb::friction_from_degrees;
 pub use mohr_coulomb::MohrCoulombSpring;
 pub use penalty_coulomb::{FrictionIntegration, PenaltyCoulomb, PenaltyState};
 pub use rigid_plastic::RigidPlastic;
+pub use rolling::{RollingResistance, RollingState};
 pub use spring_dashpot::{
     effective_mass, Damping, NormalStiffness, SpringDashpotCoulomb, SpringState, SpringVector,
 };

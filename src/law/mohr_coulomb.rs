@@ -76,6 +76,7 @@ impl MohrCoulombSpring {
             dt: 1.0,
             is_new: false,
             pair: PairProperties::rigid(),
+            rotation: 0.0,
         }
     }
 

@@ -69,6 +69,12 @@ pub struct ContactInput<const D: usize> {
     pub is_new: bool,
     /// Geometry and masses of the pair.
     pub pair: PairProperties,
+    /// Rotation of A relative to B over the step (rad, counter-clockwise;
+    /// `Δθ_A − Δθ_B`, a wall not turning): what a rolling resistance
+    /// resists. 2D only: a driver without rotations (the 3D columns, the
+    /// implicit driver, whose tangent has no rotational coupling) passes
+    /// 0.
+    pub rotation: f64,
 }
 
 /// The state a contact is in after an evaluation.
@@ -175,6 +181,23 @@ pub trait ContactLaw<const D: usize>: Sync {
     /// displacement history rather than the overlap answers `false`.
     fn opens_without_overlap(&self) -> bool {
         true
+    }
+
+    /// The rolling moment on A about the out-of-plane axis (N·m per m,
+    /// counter-clockwise; B receives the opposite) of a contact whose
+    /// history is `state`, beside the moments of its force about the two
+    /// centres: 0 for a law without rolling resistance (the default).
+    ///
+    /// A law with rolling resistance ([`super::RollingResistance`]) keeps
+    /// its moment in its history, as a spring keeps its force, and the
+    /// explicit driver reads it from the state of each evaluation: so a
+    /// contact of a law without one stores nothing more. Only the
+    /// explicit 2D driver applies it; the implicit driver's tangent has no
+    /// rotational coupling, and a [`TangentLaw`] answers 0
+    /// ([`super::conformance::no_moment_with_tangent`]).
+    fn moment(&self, state: &Self::State) -> f64 {
+        let _ = state;
+        0.0
     }
 }
 

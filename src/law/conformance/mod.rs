@@ -16,7 +16,7 @@
 //! use dismech::nalgebra::Vector2;
 //! let law = PenaltyCoulomb::new(1e8, 0.5, FrictionIntegration::ReturnMapping).unwrap();
 //! let input = ContactInput { overlap: 1e-4, increment: Vector2::new(1e-5, 2e-5), dt: 1e-3,
-//!                            is_new: false, pair: PairProperties::rigid() };
+//!                            is_new: false, pair: PairProperties::rigid(), rotation: 0.0 };
 //! let state = PenaltyState { normal: 9e3, shear: 2e3, regime: None };
 //! assert!(conformance::check_all(&law, &input, &state).is_empty());
 //! ```
@@ -25,11 +25,12 @@
 //! |---|---|---|
 //! | [`deterministic`] | `evaluate` twice gives the same response | [`check_force_law`] |
 //! | [`contact_shape_unused`] | a law that says it reads neither the contact's width nor its radii of curvature gives the same response without them | [`check_force_law`] |
-//! | [`open_without_overlap`] | no overlap, no force, regime `Open` (for a law that [`ContactLaw::opens_without_overlap`]) | [`check_force_law`] |
+//! | [`open_without_overlap`] | no overlap, no force or moment, regime `Open` (for a law that [`ContactLaw::opens_without_overlap`]) | [`check_force_law`] |
 //! | [`no_tension`] | a law that may open never pulls: `t_n ≥ 0` | [`check_strength_law`] |
 //! | [`within_strength`] | the spring part of the shear stays within `c + μ t_n`, and lies on it in slip | [`check_strength_law`] |
 //! | [`tangent_matches_finite_differences`] | the consistent tangent equals central differences of the force | [`check_tangent_law`] |
 //! | [`pure`] | `evaluate` twice gives the same response, equal to `evaluate_with_tangent`'s | [`check_tangent_law`] |
+//! | [`no_moment_with_tangent`] | a law with a tangent answers no rolling moment (the implicit driver's tangent has no rotational coupling) | [`check_tangent_law`] |
 
 use super::traits::{ContactInput, ContactLaw, ContactResponse, Regime, StrengthLaw, TangentLaw};
 
@@ -78,7 +79,7 @@ pub fn no_tension<L: ContactLaw<D>, const D: usize>(
     Ok(())
 }
 
-/// Without overlap there is no force and the regime is `Open`. (What an
+/// Without overlap there is no force, no moment, and the regime is `Open`. (What an
 /// open contact keeps as history is the law's business: the DDA law
 /// records that it opened.)
 ///
@@ -95,13 +96,15 @@ pub fn open_without_overlap<L: ContactLaw<D>, const D: usize>(
     let mut apart = *input;
     apart.overlap = -input.overlap.abs().max(f64::MIN_POSITIVE);
     let r = law.evaluate(&apart, state);
-    if r.regime != Regime::Open || r.force.iter().any(|f| *f != 0.0) {
+    let moment = law.moment(&r.state);
+    if r.regime != Regime::Open || r.force.iter().any(|f| *f != 0.0) || moment != 0.0 {
         return fail(
             "open_without_overlap",
             format!(
-                "overlap {} gives force {:?} in regime {:?}",
+                "overlap {} gives force {:?} and moment {} in regime {:?}",
                 apart.overlap,
                 r.force.as_slice(),
+                moment,
                 r.regime
             ),
         );
@@ -347,8 +350,8 @@ where
 }
 
 /// The checks of a [`TangentLaw`]: [`tangent_matches_finite_differences`]
-/// (`h = 1e-7 · (|increment| + |overlap|)`, relative tolerance `1e-6`) and
-/// [`pure`].
+/// (`h = 1e-7 · (|increment| + |overlap|)`, relative tolerance `1e-6`),
+/// [`pure`] and [`no_moment_with_tangent`].
 pub fn check_tangent_law<L, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -363,7 +366,31 @@ where
     violations([
         tangent_matches_finite_differences(law, input, state, h, 1e-6),
         pure(law, input, state),
+        no_moment_with_tangent(law, input, state),
     ])
+}
+
+/// A law with a consistent tangent answers no rolling moment
+/// ([`ContactLaw::moment`]): the implicit driver, which needs the
+/// tangent, has no rotational coupling in it and applies no moment.
+///
+/// # Errors
+/// A [`Violation`] of check `no_moment_with_tangent`, with the moment,
+/// when the response carries one.
+pub fn no_moment_with_tangent<L: TangentLaw<D>, const D: usize>(
+    law: &L,
+    input: &ContactInput<D>,
+    state: &L::State,
+) -> Result<(), Violation> {
+    let (r, _) = law.evaluate_with_tangent(input, state);
+    let moment = law.moment(&r.state);
+    if moment != 0.0 {
+        return fail(
+            "no_moment_with_tangent",
+            format!("a law with a tangent answered the rolling moment {moment}"),
+        );
+    }
+    Ok(())
 }
 
 /// Every check, on one input, of a law with a tangent and a linear

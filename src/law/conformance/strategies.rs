@@ -37,7 +37,8 @@ use crate::law::{ContactInput, ContactLaw, PairProperties};
 
 /// The sizes of the random inputs: overlaps are drawn in
 /// `[−overlap/2, overlap]`, each component of an increment in
-/// `[−increment, increment]` (the normal one scaled by `normal_ratio`).
+/// `[−increment, increment]` (the normal one scaled by `normal_ratio`),
+/// and the relative rotation in `[−rotation, rotation]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
     /// Largest overlap at the start of a path (m).
@@ -51,10 +52,15 @@ pub struct Scales {
     pub dt: f64,
     /// The pair's geometry and masses, the same for every input.
     pub pair: PairProperties,
+    /// Largest relative rotation of a step (rad;
+    /// [`ContactInput::rotation`]), 0 by default: for a law with rolling
+    /// resistance. (At 0 no rotation is drawn, and the paths are those
+    /// drawn before the field existed.)
+    pub rotation: f64,
 }
 
 impl Scales {
-    /// Scales with `normal_ratio = 1` and `dt = 1e-4` s.
+    /// Scales with `normal_ratio = 1`, `dt = 1e-4` s and no rotation.
     pub fn new(overlap: f64, increment: f64, pair: PairProperties) -> Self {
         Self {
             overlap,
@@ -62,6 +68,7 @@ impl Scales {
             normal_ratio: 1.0,
             dt: 1e-4,
             pair,
+            rotation: 0.0,
         }
     }
 }
@@ -74,15 +81,18 @@ pub fn loading_path<const D: usize>(
     steps: Range<usize>,
 ) -> impl Strategy<Value = Vec<ContactInput<D>>> {
     let steps = steps.start.max(1)..steps.end.max(steps.start.max(1) + 1);
-    let unit = prop::collection::vec(-1.0f64..1.0, D);
+    // A rotation, when drawn, is one more component of each step's draw.
+    let width = if scales.rotation > 0.0 { D + 1 } else { D };
+    let unit = prop::collection::vec(-1.0f64..1.0, width);
     (-0.5f64..1.0, prop::collection::vec(unit, steps)).prop_map(move |(start, increments)| {
         let mut overlap = start * scales.overlap;
         increments
             .into_iter()
             .enumerate()
             .map(|(k, unit)| {
+                let rotation = unit.get(D).map_or(0.0, |u| u * scales.rotation);
                 let mut increment = SVector::<f64, D>::from_iterator(
-                    unit.into_iter().map(|u| u * scales.increment),
+                    unit.into_iter().take(D).map(|u| u * scales.increment),
                 );
                 increment[0] *= scales.normal_ratio;
                 if k > 0 {
@@ -94,6 +104,7 @@ pub fn loading_path<const D: usize>(
                     dt: scales.dt,
                     is_new: k == 0,
                     pair: scales.pair,
+                    rotation,
                 }
             })
             .collect()
