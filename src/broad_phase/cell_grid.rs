@@ -74,6 +74,47 @@ struct Level {
     /// occupied cells, sorted.
     keys: Vec<(i64, i64)>,
     occupied: Vec<(i64, i64)>,
+    /// Scratch of the parallel layout: `(cell << 32) | body`, sorted.
+    packed: Vec<u64>,
+}
+
+/// The span of a set of boxes and the extremes of their larger sides.
+#[derive(Debug, Clone, Copy)]
+struct Bounds {
+    min: (f64, f64),
+    max: (f64, f64),
+    largest: f64,
+    smallest: f64,
+}
+
+impl Bounds {
+    fn empty() -> Self {
+        Self {
+            min: (f64::INFINITY, f64::INFINITY),
+            max: (f64::NEG_INFINITY, f64::NEG_INFINITY),
+            largest: 0.0,
+            smallest: f64::INFINITY,
+        }
+    }
+
+    fn with(self, b: &Aabb2) -> Self {
+        let side = (b.max.x - b.min.x).max(b.max.y - b.min.y);
+        Self {
+            min: (self.min.0.min(b.min.x), self.min.1.min(b.min.y)),
+            max: (self.max.0.max(b.max.x), self.max.1.max(b.max.y)),
+            largest: self.largest.max(side),
+            smallest: self.smallest.min(side),
+        }
+    }
+
+    fn merged(self, other: Self) -> Self {
+        Self {
+            min: (self.min.0.min(other.min.0), self.min.1.min(other.min.1)),
+            max: (self.max.0.max(other.max.0), self.max.1.max(other.max.1)),
+            largest: self.largest.max(other.largest),
+            smallest: self.smallest.min(other.smallest),
+        }
+    }
 }
 
 /// How many bodies one task of [`CellGrid::candidate_pairs_filtered`]
@@ -113,11 +154,14 @@ impl CellGrid {
         pairs: &mut Vec<(usize, usize)>,
     ) {
         pairs.clear();
-        if !self.lay_out(boxes, margin) {
+        if !self.lay_out(boxes, margin, parallel) {
             return;
         }
         let grid = &*self;
-        // The pairs of the bodies of one part, appended to `found`.
+        // The pairs of the bodies of one part, appended to `found`; a pair
+        // visited twice (far cells merged) is listed once (all of a
+        // body's pairs are found from it, so the twice-found pairs of
+        // each body lie side by side once its few partners are sorted).
         let search = |part: usize, found: &mut Vec<(usize, usize)>| {
             let first = part * PARALLEL_BODIES;
             for i in first..(first + PARALLEL_BODIES).min(boxes.len()) {
@@ -130,6 +174,14 @@ impl CellGrid {
                         Ok(())
                     });
                 found[start..].sort_unstable();
+                let mut kept = start;
+                for k in start..found.len() {
+                    if kept == start || found[k] != found[kept - 1] {
+                        found[kept] = found[k];
+                        kept += 1;
+                    }
+                }
+                found.truncate(kept);
             }
         };
         let parts = boxes.len().div_ceil(PARALLEL_BODIES);
@@ -154,8 +206,6 @@ impl CellGrid {
                 search(part, pairs);
             }
         }
-        // A pair visited twice (far cells merged) is listed once.
-        pairs.dedup();
     }
 
     /// Visit the candidate pairs `(i, j)`, `i < j`, whose boxes (grown by
@@ -174,7 +224,7 @@ impl CellGrid {
         margin: f64,
         mut visit: impl FnMut(usize, usize) -> Result<(), E>,
     ) -> Result<(), E> {
-        if !self.lay_out(boxes, margin) {
+        if !self.lay_out(boxes, margin, false) {
             return Ok(());
         }
         for i in 0..boxes.len() {
@@ -193,23 +243,29 @@ impl CellGrid {
     /// a factor 2 of the largest (or a box has its corners swapped), else
     /// a grid per size level (see [`CellGrid`]). `false` when there is
     /// nothing to pair (fewer than two bodies, or a box that is not
-    /// finite).
-    fn lay_out(&mut self, boxes: &[Aabb2], margin: f64) -> bool {
+    /// finite). The one grid is laid out on rayon's threads when
+    /// `parallel`, to the same layout.
+    fn lay_out(&mut self, boxes: &[Aabb2], margin: f64, parallel: bool) -> bool {
         let n = boxes.len();
         if n < 2 {
             return false;
         }
-        let mut min = (f64::INFINITY, f64::INFINITY);
-        let mut max = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-        let mut largest = 0.0f64;
-        let mut smallest = f64::INFINITY;
-        for b in boxes {
-            min = (min.0.min(b.min.x), min.1.min(b.min.y));
-            max = (max.0.max(b.max.x), max.1.max(b.max.y));
-            let side = (b.max.x - b.min.x).max(b.max.y - b.min.y);
-            largest = largest.max(side);
-            smallest = smallest.min(side);
-        }
+        // The span of the boxes and the extremes of their sides (minima
+        // and maxima, the same in any order).
+        let bounds = if parallel {
+            boxes
+                .par_iter()
+                .fold(Bounds::empty, Bounds::with)
+                .reduce(Bounds::empty, Bounds::merged)
+        } else {
+            boxes.iter().fold(Bounds::empty(), Bounds::with)
+        };
+        let Bounds {
+            min,
+            max,
+            largest,
+            smallest,
+        } = bounds;
         if !(min.0.is_finite() && min.1.is_finite() && max.0.is_finite() && max.1.is_finite()) {
             return false;
         }
@@ -218,7 +274,11 @@ impl CellGrid {
         // one grid, as it always has.)
         self.multilevel = smallest >= 0.0 && smallest + 2.0 * margin <= 0.5 * cell_size;
         if !self.multilevel {
-            self.single.lay_out(boxes, None, cell_size, min, max);
+            if parallel {
+                self.single.lay_out_parallel(boxes, cell_size, min, max);
+            } else {
+                self.single.lay_out(boxes, None, cell_size, min, max);
+            }
             return true;
         }
         // Each body's level: extents in (e/2^(k+1), e/2^k] at level k.
@@ -329,6 +389,62 @@ impl Level {
             self.sorted.iter_mut().for_each(|k| *k = members[*k]);
         }
         self.sort_boxes(boxes);
+    }
+
+    /// [`Self::lay_out`] of all the bodies on rayon's threads, to the same
+    /// layout: the bodies sorted by `(cell, index)` (the counting sort's
+    /// order) in one parallel sort of the two packed in a `u64`, and each
+    /// cell's start found in the sorted keys. A grid too large for the
+    /// packing, or a sparse one, is laid out by [`Self::lay_out`].
+    fn lay_out_parallel(
+        &mut self,
+        boxes: &[Aabb2],
+        cell_size: f64,
+        min: (f64, f64),
+        max: (f64, f64),
+    ) {
+        let n = boxes.len();
+        let columns = ((max.0 - min.0) / cell_size).floor() + 1.0;
+        let rows = ((max.1 - min.1) / cell_size).floor() + 1.0;
+        let max_cells = (4 * n).max(16) as f64;
+        let dense = columns >= 1.0 && rows >= 1.0 && columns * rows <= max_cells;
+        if !(dense && n < 1 << 32 && columns * rows < 4_294_967_296.0) {
+            self.lay_out(boxes, None, cell_size, min, max);
+            return;
+        }
+        self.sparse = false;
+        self.cell_size = cell_size;
+        self.origin = min;
+        self.columns = columns as usize;
+        self.rows = rows as usize;
+        let cells = self.columns * self.rows;
+        let mut keys = std::mem::take(&mut self.packed);
+        keys.clear();
+        let grid = &*self;
+        keys.par_extend(
+            boxes
+                .par_iter()
+                .enumerate()
+                .map(|(i, b)| ((grid.cell_of(b) as u64) << 32) | i as u64),
+        );
+        self.body_cell.clear();
+        self.body_cell
+            .par_extend(keys.par_iter().map(|key| (key >> 32) as usize));
+        keys.par_sort_unstable();
+        self.sorted.clear();
+        self.sorted
+            .par_extend(keys.par_iter().map(|key| (key & 0xffff_ffff) as usize));
+        self.cell_start.clear();
+        self.cell_start.par_extend(
+            (0..=cells)
+                .into_par_iter()
+                .map(|c| keys.partition_point(|key| key >> 32 < c as u64)),
+        );
+        self.sorted_boxes.clear();
+        let sorted = &self.sorted;
+        self.sorted_boxes
+            .par_extend(sorted.par_iter().map(|&i| boxes[i]));
+        self.packed = keys;
     }
 
     /// Lay out the bodies of one size level (indices ascending), in cells

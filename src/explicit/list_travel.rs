@@ -199,40 +199,54 @@ impl ListTravel {
     /// A build with skin `skin` at the particles' present poses: `boxes`
     /// are their boxes, `wall_boxes` the walls', and `listed(a, w)`
     /// whether wall `w` is listed with particle `a`. The tests until the
-    /// next build measure from these poses against this skin.
+    /// next build measure from these poses against this skin. On rayon's
+    /// threads when `parallel` (the same values).
     pub fn built(
         &mut self,
         skin: f64,
         particles: &[Particle],
         boxes: &[Aabb2],
         wall_boxes: &[Aabb2],
-        listed: impl Fn(usize, usize) -> bool,
+        listed: impl Fn(usize, usize) -> bool + Sync,
+        parallel: bool,
     ) {
         self.skin = skin;
         self.at_build.clear();
-        self.at_build
-            .extend(particles.iter().map(|p| (p.pose.position, p.pose.angle)));
+        let pose = |p: &Particle| (p.pose.position, p.pose.angle);
+        if parallel {
+            self.at_build.par_extend(particles.par_iter().map(pose));
+        } else {
+            self.at_build.extend(particles.iter().map(pose));
+        }
         self.wall_gaps.clear();
         self.block_boxes.clear();
         if !self.relative {
             return;
         }
-        self.wall_gaps
-            .extend(boxes.iter().enumerate().map(|(a, bounds)| {
-                let gap = wall_boxes
-                    .iter()
-                    .enumerate()
-                    .filter(|&(w, _)| !listed(a, w))
-                    .map(|(_, wall)| bounds.separation(wall))
-                    .fold(f64::INFINITY, f64::min);
-                gap * (1.0 - HAIR)
-            }));
-        self.block_boxes
-            .extend(boxes.chunks(self.block).map(|chunk| {
-                chunk[1..]
-                    .iter()
-                    .fold(chunk[0], |union, bounds| union.merged(bounds))
-            }));
+        let wall_gap = |(a, bounds): (usize, &Aabb2)| {
+            let gap = wall_boxes
+                .iter()
+                .enumerate()
+                .filter(|&(w, _)| !listed(a, w))
+                .map(|(_, wall)| bounds.separation(wall))
+                .fold(f64::INFINITY, f64::min);
+            gap * (1.0 - HAIR)
+        };
+        let union = |chunk: &[Aabb2]| {
+            chunk[1..]
+                .iter()
+                .fold(chunk[0], |union, bounds| union.merged(bounds))
+        };
+        if parallel {
+            self.wall_gaps
+                .par_extend(boxes.par_iter().enumerate().map(wall_gap));
+            self.block_boxes
+                .par_extend(boxes.par_chunks(self.block).map(union));
+        } else {
+            self.wall_gaps
+                .extend(boxes.iter().enumerate().map(wall_gap));
+            self.block_boxes.extend(boxes.chunks(self.block).map(union));
+        }
     }
 
     /// The largest travel the first test stands: half the skin, less the
@@ -402,7 +416,7 @@ mod tests {
                 .map(|a| (0..n).map(|b| listed(a, b)).collect())
                 .collect();
             let mut travel = ListTravel::new(4, true, particles);
-            travel.built(skin, particles, &boxes, &walls, wall_listed);
+            travel.built(skin, particles, &boxes, &walls, wall_listed, false);
             let mut shifts = vec![Vec2::zeros(); n.div_ceil(4)];
             let all = Vec2::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * (0.3 * skin);
             let apart = uniform(0.0, 0.2) * skin;
@@ -463,9 +477,14 @@ mod tests {
             .map(|p| p.shape.as_shape().aabb(&p.pose))
             .collect();
         let mut travel = ListTravel::new(block, true, &particles);
-        travel.built(SKIN, &particles, &boxes, walls, |a, w| {
-            boxes[a].inflated(SKIN).intersects(&walls[w])
-        });
+        travel.built(
+            SKIN,
+            &particles,
+            &boxes,
+            walls,
+            |a, w| boxes[a].inflated(SKIN).intersects(&walls[w]),
+            false,
+        );
         (travel, particles)
     }
 
@@ -607,7 +626,7 @@ mod tests {
         let boxes: Vec<Aabb2> = particles.iter().map(box_of).collect();
         assert!(!boxes[0].inflated(SKIN).intersects(&boxes[1]), "listed");
         let mut travel = ListTravel::new(2, true, &particles);
-        travel.built(SKIN, &particles, &boxes, &[], |_, _| false);
+        travel.built(SKIN, &particles, &boxes, &[], |_, _| false, false);
         let (mut asked, mut met) = (None, None);
         for step in 1..=500 {
             particles[0].pose.angle += 0.001;

@@ -396,11 +396,16 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         let wall_listed = |bounds: &Aabb2, wall: &Aabb2| bounds.inflated(skin).intersects(wall);
         // The poses of this build, which the travels are measured from.
         let boxes = &self.boxes;
-        self.travel
-            .built(skin, particles, boxes, &self.wall_boxes, |a, w| {
-                // A prescribed particle meets no wall: none to watch.
-                self.prescribed[a] || wall_listed(&boxes[a], &self.wall_boxes[w])
-            });
+        let (prescribed, wall_boxes) = (&self.prescribed, &self.wall_boxes);
+        self.travel.built(
+            skin,
+            particles,
+            boxes,
+            wall_boxes,
+            // A prescribed particle meets no wall: none to watch.
+            |a, w| prescribed[a] || wall_listed(&boxes[a], &wall_boxes[w]),
+            parallel,
+        );
         // Of the pairs whose boxes are closer than the skin, those whose
         // bounding circles are too (a circle's box corner is far from the
         // circle: a square packing's diagonal neighbours have touching
@@ -474,10 +479,16 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
                     .chain(self.wall_pairs.iter().map(wall_slot)),
             );
         }
-        old.clear();
+        // (The old slots' points are dropped on the threads too: a
+        // point list that spilled to the heap is given back.)
+        if parallel {
+            old.par_drain(..).for_each(drop);
+        } else {
+            old.clear();
+        }
         self.spare = old;
         self.slots = slots;
-        self.index(n);
+        self.index(n, parallel);
         self.stale = false;
         self.builds += 1;
     }
@@ -485,11 +496,21 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
     /// The indices of the list's pairs `self.pairs` and `self.wall_pairs`
     /// (in `self.slots`) for `n` particles: where each particle's pairs and
     /// each block's start, the pairs that cross blocks, and their force
-    /// summaries (written by the next step's evaluation).
-    fn index(&mut self, n: usize) {
-        // Where each particle's pairs and walls start, for the next build.
+    /// summaries (written by the next step's evaluation). Where each
+    /// particle's pairs start is found on rayon's threads when `parallel`.
+    fn index(&mut self, n: usize, parallel: bool) {
+        // Where each particle's pairs and walls start, for the next build
+        // (the pairs are sorted by their first particle).
         let count_from = |first: &mut Vec<usize>, offset: usize, pairs: &[(usize, usize)]| {
             first.clear();
+            if parallel {
+                first.par_extend(
+                    (0..=n)
+                        .into_par_iter()
+                        .map(|a| offset + pairs.partition_point(|&(i, _)| i < a)),
+                );
+                return;
+            }
             first.resize(n + 1, 0);
             for &(a, _) in pairs {
                 first[a + 1] += 1;
@@ -651,7 +672,7 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
         if built {
             self.wall_boxes
                 .extend(walls.iter().map(|w| Aabb2::from_corners(w.start, w.end)));
-            self.index(n);
+            self.index(n, false);
         }
         Ok(())
     }
