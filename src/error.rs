@@ -364,6 +364,14 @@ pub enum DismechError {
         /// What does not fit, and what to change.
         reason: String,
     },
+    /// Maps asked of a result on a grid it does not belong to: an HPM or
+    /// Hovland result of another model, or a model of another grid
+    /// ([`crate::hpm::ColumnMaps`]).
+    #[error("maps: {reason}")]
+    MapData {
+        /// What does not fit, and what to change.
+        reason: String,
+    },
     /// Writing an output failed.
     #[error("cannot write {path}: {message}")]
     Output {
