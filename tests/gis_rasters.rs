@@ -6,6 +6,11 @@
 //! (20 significant digits), whose values must equal the raster's bit for
 //! bit.
 //!
+//! The other way, GeoTIFF DEMs written by GDAL (64- and 32-bit floats,
+//! 16-bit integers; uncompressed, LZW, Deflate; strips and tiles; pixels
+//! as areas and as points) are read by the library with the grid and the
+//! values GDAL reads.
+//!
 //! GDAL's tools come from the Debian package `gdal-bin`, which `.ci/run`
 //! installs; the tests fail, not skip, where `gdalinfo` cannot be run.
 
@@ -14,7 +19,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use dismech::grid::{
-    read_esri_ascii, write_esri_ascii, write_geotiff, Raster, RasterFormat, GEOTIFF_NODATA,
+    read_esri_ascii, read_geotiff, read_raster, write_esri_ascii, write_geotiff, Raster,
+    RasterFormat, GEOTIFF_NODATA,
 };
 use dismech::hpm::{
     hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
@@ -326,4 +332,119 @@ fn a_slope_search_writes_its_maps_as_geotiff_beside_the_ascii_grids() {
     for (a, both) in ascii.iter().zip(paths.chunks(2)) {
         assert_eq!(std::fs::read(a).unwrap(), std::fs::read(&both[0]).unwrap());
     }
+}
+
+/// `gdal_translate` `source` into the GeoTIFF `target` with `options`.
+fn translate(source: &Path, target: &Path, options: &[&str]) {
+    let mut args: Vec<&OsStr> = open_options(source);
+    args.push(OsStr::new("-q"));
+    args.extend(options.iter().map(OsStr::new));
+    args.extend([source.as_os_str(), target.as_os_str()]);
+    gdal("gdal_translate", &args);
+}
+
+#[test]
+fn geotiff_dems_written_by_gdal_are_read_with_their_grid_and_values() {
+    let dir = folder("gdal_written");
+    let raster = utm_raster();
+    let asc = dir.join("dem.asc");
+    write_esri_ascii(&asc, &raster).unwrap();
+    let same_values = |read: &Raster, expected: &dyn Fn(f64) -> f64| {
+        assert!(read.same_grid(&raster));
+        assert_eq!(read.lower_left(), raster.lower_left());
+        assert_eq!(read.cell_size(), raster.cell_size());
+        let want: Vec<Option<f64>> = raster.values().iter().map(|v| v.map(expected)).collect();
+        assert_eq!(read.values(), &want[..]);
+    };
+    let exact = |v: f64| v;
+    for (name, options) in [
+        ("plain", &["-ot", "Float64"][..]),
+        ("lzw", &["-ot", "Float64", "-co", "COMPRESS=LZW"][..]),
+        (
+            "deflate_tiled",
+            &[
+                "-ot",
+                "Float64",
+                "-co",
+                "COMPRESS=DEFLATE",
+                "-co",
+                "TILED=YES",
+                "-co",
+                "BLOCKXSIZE=16",
+                "-co",
+                "BLOCKYSIZE=16",
+            ][..],
+        ),
+        (
+            "lzw_predictor",
+            &[
+                "-ot",
+                "Float64",
+                "-co",
+                "COMPRESS=LZW",
+                "-co",
+                "PREDICTOR=1",
+            ][..],
+        ),
+        // Pixels as points: GDAL moves the tie point to the first cell's
+        // centre, and the reader moves it back by half a cell.
+        (
+            "point",
+            &["-ot", "Float64", "-mo", "AREA_OR_POINT=Point"][..],
+        ),
+    ] {
+        let tif = dir.join(format!("{name}.tif"));
+        translate(&asc, &tif, options);
+        let read = read_geotiff(&tif).unwrap_or_else(|e| panic!("{name}: {e}"));
+        same_values(&read, &exact);
+        assert_eq!(read, gdal_values(&tif, &dir), "{name}");
+    }
+    let info = gdalinfo(&dir.join("point.tif"));
+    assert_eq!(info["metadata"][""]["AREA_OR_POINT"], "Point");
+
+    // 32-bit floats: the values rounded to f32 (and the no-data value
+    // compared as f32); 16-bit integers: as GDAL reads them.
+    let tif = dir.join("float32.tif");
+    translate(&asc, &tif, &["-ot", "Float32", "-co", "COMPRESS=DEFLATE"]);
+    same_values(&read_geotiff(&tif).unwrap(), &|v| v as f32 as f64);
+    let tif = dir.join("int16.tif");
+    translate(&asc, &tif, &["-ot", "Int16", "-co", "COMPRESS=LZW"]);
+    let read = read_geotiff(&tif).unwrap();
+    assert!(read.same_grid(&raster));
+    assert_eq!(read, gdal_values(&tif, &dir));
+    assert_eq!(read.values().iter().filter(|v| v.is_none()).count(), 2);
+    assert!(read.values().iter().flatten().all(|v| v.fract() == 0.0));
+
+    // A DEM given as GeoTIFF where an ESRI ASCII grid was: by extension.
+    let lzw = dir.join("lzw.tif");
+    assert_eq!(read_raster(&lzw).unwrap(), raster);
+    assert_eq!(NamedRaster::read(&lzw).unwrap().raster, raster);
+    assert_eq!(read_raster(&asc).unwrap(), raster);
+}
+
+#[test]
+fn gdal_files_a_raster_cannot_hold_are_refused_naming_the_tag() {
+    let dir = folder("gdal_refused");
+    let asc = dir.join("dem.asc");
+    write_esri_ascii(&asc, &utm_raster()).unwrap();
+    let refusal = |name: &str, options: &[&str]| {
+        let tif = dir.join(format!("{name}.tif"));
+        translate(&asc, &tif, options);
+        let e = read_geotiff(&tif).unwrap_err().to_string();
+        assert!(e.contains(&format!("{name}.tif")), "{e}");
+        e
+    };
+    // Cells of 2.5 m × 6.25 m (5 rows squeezed into 2).
+    let e = refusal("rectangular", &["-outsize", "100%", "50%"]);
+    assert!(e.contains("ModelPixelScale (33550) = (2.5, 6.25)"), "{e}");
+    // Two bands.
+    let e = refusal("two_bands", &["-b", "1", "-b", "1"]);
+    assert!(e.contains("one band"), "{e}");
+    // A baseline TIFF: no GeoTIFF tags (GDAL keeps the georeferencing in a
+    // side file the reader does not read).
+    let e = refusal("bare", &["-co", "PROFILE=BASELINE"]);
+    assert!(
+        e.contains("has no ModelPixelScale (33550) and ModelTiepoint (33922)"),
+        "{e}"
+    );
 }

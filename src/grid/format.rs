@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{write_esri_ascii, write_geotiff, Raster};
+use super::{read_esri_ascii, read_geotiff, write_esri_ascii, write_geotiff, Raster};
 use crate::error::Result;
 
 /// A raster file format.
@@ -29,6 +29,29 @@ impl RasterFormat {
         }
     }
 
+    /// The format of a file by its extension: `.tif` or `.tiff` (any case)
+    /// GeoTIFF, anything else ESRI ASCII.
+    pub fn of_path(path: &Path) -> RasterFormat {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff") => {
+                RasterFormat::GeoTiff
+            }
+            _ => RasterFormat::EsriAscii,
+        }
+    }
+
+    /// Read a raster in this format ([`read_esri_ascii`],
+    /// [`read_geotiff`]).
+    ///
+    /// # Errors
+    /// Those of the format's reader, naming the file.
+    pub fn read(self, path: &Path) -> Result<Raster> {
+        match self {
+            RasterFormat::EsriAscii => read_esri_ascii(path),
+            RasterFormat::GeoTiff => read_geotiff(path),
+        }
+    }
+
     /// Write `raster` to `path` in this format, atomically.
     ///
     /// # Errors
@@ -40,6 +63,16 @@ impl RasterFormat {
             RasterFormat::GeoTiff => write_geotiff(path, raster),
         }
     }
+}
+
+/// Read a raster file in the format of its extension
+/// ([`RasterFormat::of_path`]: `.tif` or `.tiff` GeoTIFF, anything else
+/// ESRI ASCII).
+///
+/// # Errors
+/// Those of [`read_esri_ascii`] or [`read_geotiff`], naming the file.
+pub fn read_raster(path: &Path) -> Result<Raster> {
+    RasterFormat::of_path(path).read(path)
 }
 
 /// Write each named raster as `{prefix}_{name}.{extension}` in `folder`

@@ -28,6 +28,16 @@
 //! coordinate system in metres; a GIS user assigns the projection of the
 //! input DEM (as for the input itself) and the map falls on it.
 //!
+//! [`read_geotiff`] reads a GeoTIFF DEM back into a [`Raster`]: the
+//! first image of the file, one band of any integer or floating-point
+//! sample type (uncompressed, LZW or Deflate, strips or tiles), square
+//! cells (`ModelPixelScale`), one tie point (`ModelTiepoint`, shifted half
+//! a cell where `GTRasterTypeGeoKey` says `RasterPixelIsPoint`), and
+//! `GDAL_NODATA` or NaN as no data. What it cannot use is refused with
+//! [`DismechError::GeoTiff`] naming the file, the tag and its value; no
+//! file makes it panic, and the memory it takes is bounded by the file's
+//! size (see [`read_geotiff`]).
+//!
 //! Values are written as 64-bit floats, so that every value reads back to
 //! the same bits (32-bit floats would round Fs, volumes and coordinates-
 //! sized heights to 7 digits). A raster of [`MAX_GRID_CELLS`](super::MAX_GRID_CELLS)
@@ -36,10 +46,13 @@
 use std::io::Cursor;
 use std::path::Path;
 
+use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::encoder::{colortype::Gray64Float, TiffEncoder};
 use tiff::tags::Tag;
+use tiff::ColorType;
 
-use super::Raster;
+use super::esri_ascii::describe;
+use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
 
@@ -175,6 +188,285 @@ pub fn write_geotiff(path: &Path, raster: &Raster) -> Result<()> {
     write_atomically(path, &bytes)
 }
 
+/// The most bytes of decoded values a compressed GeoTIFF may claim per
+/// byte of its file: 4 096, above the largest ratio LZW (a 12-bit code for
+/// at most 4 096 bytes) or Deflate (1 032) can reach, so no valid file is
+/// refused, while a small hostile file cannot make the reader allocate
+/// more than 4 096 times its size. An uncompressed file must hold every
+/// value it claims.
+pub const MAX_GEOTIFF_EXPANSION: u64 = 4096;
+
+/// What [`read_geotiff`] reads of the GeoKey directory: the raster type
+/// (`true` for `RasterPixelIsPoint`).
+fn pixel_is_point(keys: &[u16]) -> std::result::Result<bool, String> {
+    let count = keys.get(3).copied().unwrap_or(0) as usize;
+    if keys.len() < 4 || keys.len() < 4 + 4 * count {
+        return Err(format!(
+            "GeoKeyDirectory (34735) of {} values announces {count} keys: it is damaged",
+            keys.len()
+        ));
+    }
+    for key in keys[4..4 + 4 * count].chunks_exact(4) {
+        if key[0] == geokey::RASTER_TYPE {
+            return match (key[1], key[3]) {
+                (0, 1) => Ok(false),
+                (0, 2) => Ok(true),
+                (location, value) => Err(format!(
+                    "GTRasterTypeGeoKey (1025) = {value} (location {location}): expected 1 (RasterPixelIsArea) or 2 (RasterPixelIsPoint)"
+                )),
+            };
+        }
+    }
+    Ok(false)
+}
+
+/// The sample values as `f64`, with the no-data value compared in the
+/// samples' own type (a 32-bit file's `GDAL_NODATA` is the 32-bit value).
+fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
+    fn convert<T: Copy>(
+        values: Vec<T>,
+        to_f64: impl Fn(T) -> f64,
+        nodata: Option<f64>,
+    ) -> Vec<Option<f64>> {
+        values
+            .into_iter()
+            .map(|v| {
+                let v = to_f64(v);
+                let missing = v.is_nan() || nodata == Some(v);
+                (!missing).then_some(v)
+            })
+            .collect()
+    }
+    let narrow = nodata.map(|n| n as f32 as f64);
+    match result {
+        DecodingResult::U8(v) => convert(v, f64::from, nodata),
+        DecodingResult::U16(v) => convert(v, f64::from, nodata),
+        DecodingResult::U32(v) => convert(v, f64::from, nodata),
+        DecodingResult::U64(v) => convert(v, |x| x as f64, nodata),
+        DecodingResult::I8(v) => convert(v, f64::from, nodata),
+        DecodingResult::I16(v) => convert(v, f64::from, nodata),
+        DecodingResult::I32(v) => convert(v, f64::from, nodata),
+        DecodingResult::I64(v) => convert(v, |x| x as f64, nodata),
+        DecodingResult::F16(v) => convert(v, f64::from, nodata),
+        DecodingResult::F32(v) => convert(v, f64::from, narrow),
+        DecodingResult::F64(v) => convert(v, |x| x, nodata),
+    }
+}
+
+/// Read a GeoTIFF file as a [`Raster`] (a DEM, or a map written by
+/// [`write_geotiff`], which reads back to the same bits).
+///
+/// What is read: the first image, which must have one band (`Gray`,
+/// any integer or floating-point sample type of the `tiff` crate;
+/// uncompressed, LZW or Deflate; strips or tiles); its georeferencing from
+/// `ModelPixelScale` (square cells: the x and y scales equal within 1e-9
+/// of a cell) and one tie point `ModelTiepoint` `(i, j, 0, x, y, z)`
+/// (the corner of raster point (i, j), or with `GTRasterTypeGeoKey` =
+/// `RasterPixelIsPoint` its centre); `GDAL_NODATA` as the no-data value
+/// (compared in the samples' type); NaN samples are no data as well. The
+/// coordinate reference system is not read (a [`Raster`] holds none).
+///
+/// Before any value is decoded, the file is checked as
+/// [`super::read_esri_ascii`] checks a text grid: it must be a regular
+/// file; `width × height` at most [`MAX_GRID_CELLS`]; an uncompressed
+/// file at least as large as its values, a compressed one no smaller than
+/// its values over [`MAX_GEOTIFF_EXPANSION`]. So the memory the reader
+/// takes is bounded by the file's size.
+///
+/// # Errors
+/// [`DismechError::GeoTiff`] naming the file and, where one is at fault,
+/// the tag and its value: a path that cannot be read or is not a regular
+/// file, not a TIFF or a damaged one (the decoder's message), more than
+/// one band, no `ModelPixelScale` or `ModelTiepoint` (or a
+/// `ModelTransformation` instead), cells that are not square or a scale
+/// that is not finite and positive, more than one tie point, a
+/// `GTRasterTypeGeoKey` other than area or point, a `GDAL_NODATA` that is
+/// not a number, or values the file cannot hold;
+/// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells;
+/// [`DismechError::GridCell`] for an infinite value (naming its row and
+/// column); [`DismechError::InvalidParameter`] as [`Raster::new`] for a
+/// corner or extent that is not finite.
+pub fn read_geotiff(path: &Path) -> Result<Raster> {
+    let name = path.display().to_string();
+    let fail = |message: String| DismechError::GeoTiff {
+        file: name.clone(),
+        message,
+    };
+    let tiff_error = |e: tiff::TiffError| fail(format!("not a TIFF file that can be read: {e}"));
+    let kind = std::fs::metadata(path)
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?
+        .file_type();
+    let not_regular = |kind: std::fs::FileType| {
+        fail(format!(
+            "is {}, not a regular file: give the path of a GeoTIFF file",
+            describe(kind)
+        ))
+    };
+    if !kind.is_file() {
+        return Err(not_regular(kind));
+    }
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let meta = file
+        .metadata()
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    let size = meta.len();
+    let mut decoder = Decoder::new(std::io::BufReader::new(file)).map_err(tiff_error)?;
+
+    let (width, height) = decoder.dimensions().map_err(tiff_error)?;
+    let cells = u128::from(width) * u128::from(height);
+    if cells > MAX_GRID_CELLS as u128 {
+        return Err(DismechError::GridTooLarge {
+            file: name.clone(),
+            columns: u64::from(width),
+            rows: u64::from(height),
+            cells,
+            cap: MAX_GRID_CELLS,
+        });
+    }
+    let bits = match decoder.colortype().map_err(tiff_error)? {
+        ColorType::Gray(bits) => u64::from(bits),
+        other => {
+            return Err(fail(format!(
+                "its image is {other:?}: a raster is one band of values (a DEM), not a colour or multi-band image"
+            )))
+        }
+    };
+    let compression: u16 = decoder
+        .find_tag_unsigned(Tag::Compression)
+        .map_err(tiff_error)?
+        .unwrap_or(1);
+    let bytes = (cells as u64).saturating_mul(bits.div_ceil(8));
+    let holds = if compression == 1 {
+        size
+    } else {
+        size.saturating_mul(MAX_GEOTIFF_EXPANSION)
+    };
+    if bytes > holds {
+        return Err(fail(format!(
+            "{width} × {height} values of {bits} bits ({bytes} bytes) cannot be held in a file of {size} bytes (compression {compression}): the file is truncated or damaged"
+        )));
+    }
+
+    let f64_tag = |decoder: &mut Decoder<_>, tag: Tag, number: u16, what: &str| match decoder
+        .find_tag(tag)
+        .map_err(tiff_error)?
+    {
+        None => Ok(None),
+        Some(v) => v
+            .into_f64_vec()
+            .map(Some)
+            .map_err(|e| fail(format!("{what} ({number}) cannot be read as numbers: {e}"))),
+    };
+    let scale = f64_tag(
+        &mut decoder,
+        Tag::ModelPixelScaleTag,
+        33550,
+        "ModelPixelScale",
+    )?;
+    let tie = f64_tag(&mut decoder, Tag::ModelTiepointTag, 33922, "ModelTiepoint")?;
+    let (scale, tie) = match (scale, tie) {
+        (Some(scale), Some(tie)) => (scale, tie),
+        (scale, tie) => {
+            let transformation = decoder
+                .find_tag(Tag::ModelTransformationTag)
+                .map_err(tiff_error)?
+                .is_some();
+            let missing = match (scale.is_none(), tie.is_none()) {
+                (true, true) => "ModelPixelScale (33550) and ModelTiepoint (33922)",
+                (true, false) => "ModelPixelScale (33550)",
+                _ => "ModelTiepoint (33922)",
+            };
+            return Err(fail(if transformation {
+                format!("is georeferenced by a ModelTransformation (34264), which may rotate the grid; a raster needs {missing}: warp it onto a north-up grid (gdalwarp)")
+            } else {
+                format!("has no {missing}: it is not georeferenced (a GeoTIFF DEM has both)")
+            }));
+        }
+    };
+    let (sx, sy) = match scale[..] {
+        [sx, sy, ..] => (sx, sy),
+        _ => {
+            return Err(fail(format!(
+                "ModelPixelScale (33550) = {scale:?}: expected (x scale, y scale, z scale)"
+            )))
+        }
+    };
+    if !(sx.is_finite() && sx > 0.0 && sy.is_finite() && sy > 0.0) {
+        return Err(fail(format!(
+            "ModelPixelScale (33550) = ({sx}, {sy}): the cell sides must be finite and positive"
+        )));
+    }
+    if (sx - sy).abs() > 1e-9 * sx {
+        return Err(fail(format!(
+            "ModelPixelScale (33550) = ({sx}, {sy}): cells of {sx} × {sy} m; a raster has square cells: resample it (gdalwarp -tr)"
+        )));
+    }
+    let [i, j, _, x, y, _] = tie[..] else {
+        return Err(fail(format!(
+            "ModelTiepoint (33922) has {} values: expected one tie point (i, j, k, x, y, z), 6 values",
+            tie.len()
+        )));
+    };
+    let keys = match decoder
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .map_err(tiff_error)?
+    {
+        None => Vec::new(),
+        Some(v) => v.into_u16_vec().map_err(|e| {
+            fail(format!(
+                "GeoKeyDirectory (34735) cannot be read as numbers: {e}"
+            ))
+        })?,
+    };
+    let point = if keys.is_empty() {
+        false
+    } else {
+        pixel_is_point(&keys).map_err(fail)?
+    };
+    let shift = if point { 0.5 } else { 0.0 };
+    let x_left = x - (i + shift) * sx;
+    let y_top = y + (j + shift) * sy;
+    let nodata =
+        match decoder.find_tag(Tag::GdalNodata).map_err(tiff_error)? {
+            None => None,
+            Some(v) => {
+                let text = v
+                    .into_string()
+                    .map_err(|e| fail(format!("GDAL_NODATA (42113) is not text: {e}")))?;
+                let trimmed = text.trim_matches(|c: char| c.is_whitespace() || c == '\0');
+                Some(trimmed.parse::<f64>().map_err(|_| {
+                    fail(format!("GDAL_NODATA (42113) = `{trimmed}`: not a number"))
+                })?)
+            }
+        };
+
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = usize::try_from(bytes.max(1)).unwrap_or(usize::MAX);
+    // A chunk's compressed bytes lie in the file.
+    limits.intermediate_buffer_size = usize::try_from(size.max(1)).unwrap_or(usize::MAX);
+    let mut decoder = decoder.with_limits(limits);
+    let values = samples(decoder.read_image().map_err(tiff_error)?, nodata);
+    let (columns, rows) = (width as usize, height as usize);
+    if values.len() != columns * rows {
+        return Err(fail(format!(
+            "{} values decoded for {width} × {height} cells",
+            values.len()
+        )));
+    }
+    if let Some(k) = values.iter().position(|v| v.is_some_and(f64::is_infinite)) {
+        return Err(DismechError::GridCell {
+            file: name,
+            row: k / columns,
+            column: k % columns,
+            message: format!("value {}: not finite", values[k].unwrap_or_default()),
+        });
+    }
+    Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -232,6 +524,31 @@ mod tests {
         };
         assert_eq!(values[0], -9999.0);
         assert!(values[1].is_nan());
+    }
+
+    #[test]
+    fn geotiff_reads_back_to_the_same_raster() {
+        let dir = std::env::temp_dir().join(format!("dismech-geotiff-rt-{}", std::process::id()));
+        let path = dir.join("fs.tif");
+        write_geotiff(&path, &sample()).unwrap();
+        assert_eq!(read_geotiff(&path).unwrap(), sample());
+        let minus = Raster::new(2, 1, 0.0, 0.0, 1.0, vec![Some(-9999.0), None]).unwrap();
+        write_geotiff(&path, &minus).unwrap();
+        assert_eq!(read_geotiff(&path).unwrap(), minus);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_raster_type_key_is_found_and_a_damaged_directory_named() {
+        assert_eq!(pixel_is_point(&geokey_directory()), Ok(false));
+        let mut point = geokey_directory();
+        point[11] = 2;
+        assert_eq!(pixel_is_point(&point), Ok(true));
+        point[11] = 7;
+        assert!(pixel_is_point(&point).unwrap_err().contains("= 7"));
+        assert!(pixel_is_point(&[1, 1, 1, 9, 1024])
+            .unwrap_err()
+            .contains("announces 9 keys"));
     }
 
     #[test]
