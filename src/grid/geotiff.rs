@@ -220,6 +220,99 @@ fn pixel_is_point(keys: &[u16]) -> std::result::Result<bool, String> {
     Ok(false)
 }
 
+/// The bytes of a value of TIFF field type `kind` (TIFF 6.0 §2, BigTIFF),
+/// `None` for a type the decoder skips.
+fn type_bytes(kind: u16) -> Option<u64> {
+    match kind {
+        1 | 2 | 6 | 7 => Some(1),
+        3 | 8 => Some(2),
+        4 | 9 | 11 | 13 => Some(4),
+        5 | 10 | 12 | 16..=18 => Some(8),
+        _ => None,
+    }
+}
+
+/// Check the first directory of a TIFF file of `size` bytes before the
+/// decoder reads it: every entry's values (`count × type size` bytes, in
+/// the entry or at its offset) must lie within the file. The decoder sizes
+/// a tag's buffer by its count before it reads it; checked here, no tag
+/// can make it allocate more than the file holds.
+fn check_first_directory(
+    file: &mut (impl std::io::Read + std::io::Seek),
+    size: u64,
+) -> std::result::Result<(), String> {
+    use std::io::SeekFrom;
+    let mut read = |at: u64, n: usize| -> std::result::Result<Vec<u8>, String> {
+        let mut buf = vec![0; n];
+        file.seek(SeekFrom::Start(at))
+            .and_then(|_| file.read_exact(&mut buf))
+            .map_err(|e| format!("cannot read {n} bytes at offset {at} of {size}: {e}"))?;
+        Ok(buf)
+    };
+    let header = read(0, 8)?;
+    let little = match &header[..2] {
+        b"II" => true,
+        b"MM" => false,
+        other => {
+            return Err(format!(
+                "it starts with {other:?}, not a TIFF byte order (`II` or `MM`)"
+            ))
+        }
+    };
+    let uint = |b: &[u8]| -> u64 {
+        let mut v = 0u64;
+        for (k, &byte) in b.iter().enumerate() {
+            let shift = if little { 8 * k } else { 8 * (b.len() - 1 - k) };
+            v |= u64::from(byte) << shift;
+        }
+        v
+    };
+    let big = match uint(&header[2..4]) {
+        42 => false,
+        43 => true,
+        magic => {
+            return Err(format!(
+                "TIFF version {magic}: expected 42 (TIFF) or 43 (BigTIFF)"
+            ))
+        }
+    };
+    let (first, count_bytes, entry_bytes, inline) = if big {
+        (uint(&read(8, 8)?), 8, 20, 8)
+    } else {
+        (uint(&header[4..8]), 2, 12, 4)
+    };
+    let count = uint(&read(first, count_bytes)?);
+    let table = count.saturating_mul(entry_bytes as u64);
+    if first
+        .saturating_add(count_bytes as u64)
+        .saturating_add(table)
+        > size
+    {
+        return Err(format!(
+            "its first directory, at offset {first}, announces {count} entries, which do not fit in the file's {size} bytes"
+        ));
+    }
+    let entries = read(first + count_bytes as u64, table as usize)?;
+    for entry in entries.chunks_exact(entry_bytes) {
+        let tag = uint(&entry[..2]);
+        let Some(unit) = type_bytes(uint(&entry[2..4]) as u16) else {
+            continue;
+        };
+        let (n, offset) = if big {
+            (uint(&entry[4..12]), uint(&entry[12..20]))
+        } else {
+            (uint(&entry[4..8]), uint(&entry[8..12]))
+        };
+        let bytes = n.saturating_mul(unit);
+        if bytes > inline && offset.saturating_add(bytes) > size {
+            return Err(format!(
+                "tag {tag} announces {n} values ({bytes} bytes) at offset {offset}, beyond the file's {size} bytes"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The sample values as `f64`, with the no-data value compared in the
 /// samples' own type (a 32-bit file's `GDAL_NODATA` is the 32-bit value).
 fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
@@ -268,7 +361,8 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 ///
 /// Before any value is decoded, the file is checked as
 /// [`super::read_esri_ascii`] checks a text grid: it must be a regular
-/// file; `width × height` at most [`MAX_GRID_CELLS`]; an uncompressed
+/// file; the values of every tag of its first directory must lie within
+/// it; `width × height` at most [`MAX_GRID_CELLS`]; an uncompressed
 /// file at least as large as its values, a compressed one no smaller than
 /// its values over [`MAX_GEOTIFF_EXPANSION`]. So the memory the reader
 /// takes is bounded by the file's size.
@@ -284,15 +378,14 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 /// not a number, or values the file cannot hold;
 /// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells;
 /// [`DismechError::GridCell`] for an infinite value (naming its row and
-/// column); [`DismechError::InvalidParameter`] as [`Raster::new`] for a
-/// corner or extent that is not finite.
+/// column); and [`DismechError::GeoTiff`] with the message of
+/// [`Raster::new`] for a corner or extent that is not finite.
 pub fn read_geotiff(path: &Path) -> Result<Raster> {
     let name = path.display().to_string();
     let fail = |message: String| DismechError::GeoTiff {
         file: name.clone(),
         message,
     };
-    let tiff_error = |e: tiff::TiffError| fail(format!("not a TIFF file that can be read: {e}"));
     let kind = std::fs::metadata(path)
         .map_err(|e| fail(format!("cannot read the file: {e}")))?
         .file_type();
@@ -312,8 +405,37 @@ pub fn read_geotiff(path: &Path) -> Result<Raster> {
     if !meta.is_file() {
         return Err(not_regular(meta.file_type()));
     }
-    let size = meta.len();
-    let mut decoder = Decoder::new(std::io::BufReader::new(file)).map_err(tiff_error)?;
+    decode(std::io::BufReader::new(file), meta.len(), &name)
+}
+
+/// Read the bytes of a GeoTIFF file as a [`Raster`], as [`read_geotiff`]
+/// reads a file; `name` names it in errors.
+///
+/// # Errors
+/// Those of [`read_geotiff`] but for the path's.
+pub fn parse_geotiff(bytes: &[u8], name: &str) -> Result<Raster> {
+    decode(Cursor::new(bytes), bytes.len() as u64, name)
+}
+
+/// [`read_geotiff`] after the checks of the path: `reader` holds `size`
+/// bytes.
+fn decode<R: std::io::Read + std::io::Seek>(
+    mut reader: R,
+    size: u64,
+    name: &str,
+) -> Result<Raster> {
+    let name = name.to_string();
+    let fail = |message: String| DismechError::GeoTiff {
+        file: name.clone(),
+        message,
+    };
+    let tiff_error = |e: tiff::TiffError| fail(format!("not a TIFF file that can be read: {e}"));
+    check_first_directory(&mut reader, size)
+        .map_err(|e| fail(format!("not a TIFF file that can be read: {e}")))?;
+    reader
+        .rewind()
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let mut decoder = Decoder::new(reader).map_err(tiff_error)?;
 
     let (width, height) = decoder.dimensions().map_err(tiff_error)?;
     let cells = u128::from(width) * u128::from(height);
@@ -350,7 +472,7 @@ pub fn read_geotiff(path: &Path) -> Result<Raster> {
         )));
     }
 
-    let f64_tag = |decoder: &mut Decoder<_>, tag: Tag, number: u16, what: &str| match decoder
+    let f64_tag = |decoder: &mut Decoder<R>, tag: Tag, number: u16, what: &str| match decoder
         .find_tag(tag)
         .map_err(tiff_error)?
     {
@@ -464,7 +586,11 @@ pub fn read_geotiff(path: &Path) -> Result<Raster> {
             message: format!("value {}: not finite", values[k].unwrap_or_default()),
         });
     }
-    Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values)
+    Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values).map_err(|e| {
+        fail(format!(
+            "{e} (from ModelTiepoint (33922) = {tie:?} and ModelPixelScale (33550) = {scale:?}, {width} × {height} cells)"
+        ))
+    })
 }
 
 #[cfg(test)]

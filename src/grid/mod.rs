@@ -15,5 +15,7 @@ pub use esri_ascii::{
     MAX_HEADER_BYTES,
 };
 pub use format::{read_raster, write_rasters, RasterFormat};
-pub use geotiff::{read_geotiff, write_geotiff, GEOTIFF_NODATA, MAX_GEOTIFF_EXPANSION};
+pub use geotiff::{
+    parse_geotiff, read_geotiff, write_geotiff, GEOTIFF_NODATA, MAX_GEOTIFF_EXPANSION,
+};
 pub use raster::{Raster, MAX_GRID_CELLS};
