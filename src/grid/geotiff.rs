@@ -1,47 +1,6 @@
-//! GeoTIFF: a raster as one band of 64-bit floats that a GIS (GDAL, QGIS,
-//! ArcGIS) lays where the input grid lay.
-//!
-//! The file is a baseline TIFF (TIFF 6.0, uncompressed, strips, row 0 the
-//! top row as in an ESRI ASCII grid) with the GeoTIFF tags of the OGC
-//! GeoTIFF standard (OGC 19-008r4, GeoTIFF 1.1) and GDAL's no-data tag:
-//!
-//! | tag | what is written |
-//! |---|---|
-//! | `ModelPixelScale` (33550) | `(cellsize, cellsize, 0)` |
-//! | `ModelTiepoint` (33922) | raster point `(0, 0, 0)`, the upper-left corner of the upper-left cell, at model point `(xllcorner, yllcorner + nrows × cellsize, 0)` |
-//! | `GeoKeyDirectory` (34735) | version 1.1.1; `GTModelTypeGeoKey` = 1 (projected), `GTRasterTypeGeoKey` = 1 (`RasterPixelIsArea`), `ProjectedCSTypeGeoKey` = 32767 (user-defined), `ProjLinearUnitsGeoKey` = 9001 (metre) |
-//! | `GDAL_NODATA` (42113) | the no-data value in text: [`GEOTIFF_NODATA`] (−9999, as the ESRI ASCII grids), or `nan` where a cell holds −9999 itself |
-//!
-//! An ESRI ASCII grid gives the lower-left corner of its grid and lists
-//! its rows from the top; GeoTIFF ties the upper-left corner of pixel
-//! (0, 0) to the model and lists its rows from the top too, so the values
-//! are written in the grid's own order and the tie point is the grid's
-//! upper-left corner, `nrows × cellsize` above `yllcorner`. With
-//! `RasterPixelIsArea` a pixel is the square cell, not a point at its
-//! centre: the same reading as ESRI's `xllcorner`.
-//!
-//! The coordinate reference system: an ESRI ASCII grid carries none (a GIS
-//! keeps it beside the grid, in a `.prj` file), and a [`Raster`] holds
-//! plane coordinates in metres. The file therefore says what is known —
-//! projected (plane) coordinates in metres — and leaves the projection
-//! user-defined (32767), which GDAL reads as a local, engineering
-//! coordinate system in metres; a GIS user assigns the projection of the
-//! input DEM (as for the input itself) and the map falls on it.
-//!
-//! [`read_geotiff`] reads a GeoTIFF DEM back into a [`Raster`]: the
-//! first image of the file, one band of any integer or floating-point
-//! sample type (uncompressed, LZW or Deflate, strips or tiles), square
-//! cells (`ModelPixelScale`), one tie point (`ModelTiepoint`, shifted half
-//! a cell where `GTRasterTypeGeoKey` says `RasterPixelIsPoint`), and
-//! `GDAL_NODATA` or NaN as no data. What it cannot use is refused with
-//! [`DismechError::GeoTiff`] naming the file, the tag and its value; no
-//! file makes it panic, and the memory it takes is bounded by the file's
-//! size (see [`read_geotiff`]).
-//!
-//! Values are written as 64-bit floats, so that every value reads back to
-//! the same bits (32-bit floats would round Fs, volumes and coordinates-
-//! sized heights to 7 digits). A raster of [`MAX_GRID_CELLS`](super::MAX_GRID_CELLS)
-//! cells takes 800 MB, within classic TIFF's 4 GiB.
+//! GeoTIFF: a raster written as one band of 64-bit floats with its
+//! georeferencing, and a GeoTIFF DEM read back; the format as written and
+//! as read is described in the [`grid`](super) module's documentation.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -136,8 +95,7 @@ fn nodata_text(nodata: f64) -> String {
     }
 }
 
-/// The bytes of `raster` as a GeoTIFF file (see the [module
-/// documentation](self)).
+/// The bytes of `raster` as a GeoTIFF file (see the [`grid`](super#geotiff) module's documentation).
 ///
 /// # Errors
 /// The encoder's, as text (none for a [`Raster`], whose sides fit TIFF's
@@ -174,7 +132,7 @@ fn encode(raster: &Raster) -> std::result::Result<Vec<u8>, String> {
 
 /// Write a raster as a GeoTIFF file (one band of 64-bit floats, its
 /// georeferencing and no-data value in the GeoTIFF and GDAL tags: see the
-/// [module documentation](self)), atomically.
+/// [`grid`](super#geotiff) module's documentation), atomically.
 ///
 /// # Errors
 /// [`DismechError::Output`] naming the path when the file cannot be

@@ -1,18 +1,8 @@
 //! An analysis as maps for a GIS: one value per grid column, on the grid
 //! of the slope's rasters (its corner and cell size), no data where the
 //! grid has no column; written as ESRI ASCII grids and GeoTIFF
-//! ([`crate::grid::RasterFormat`]).
-//!
-//! | map | HPM ([`HpmResult::maps`]) | Hovland ([`Hovland::maps`]) |
-//! |---|---|---|
-//! | `local_fs` | [`HpmResult::local_safety_factors`] (no data where the springs carry no shear) | `(c A + N tan φ) / T` of the column (no data where `T ≤ 0`) |
-//! | `displacement_x`, `_y`, `_z`, `displacement` | the displacement (m) at the top of the column, at its centre ([`HpmResult::surface`]), and its length | — |
-//! | `strain_major`, `strain_minor` | the principal plan strains there ([`SurfacePoint::principal`](super::SurfacePoint::principal)), extension positive | — |
-//! | `normal_force`, `driving_force` | — | the column's base normal force N and driving force T (N) |
-//!
-//! A local Fs of 0 marks a column whose strength `c A + N tan φ` (HPM: over
-//! its springs) is not positive, as [`HpmResult::local_safety_factors`]
-//! gives it.
+//! ([`crate::grid::RasterFormat`]); the maps are listed at
+//! [`ColumnMaps`].
 
 use std::path::{Path, PathBuf};
 
@@ -38,7 +28,20 @@ pub const HPM_MAP_NAMES: [&str; 7] = [
 /// The maps of [`Hovland::maps`], in this order.
 pub const HOVLAND_MAP_NAMES: [&str; 3] = ["local_fs", "normal_force", "driving_force"];
 
-/// Named rasters of one analysis, on the grid of its slope.
+/// Named rasters of one analysis, on the grid of its slope: one value per
+/// grid column, no data where the grid has no column (nor where a value is
+/// not finite).
+///
+/// | map | HPM ([`HpmResult::maps`]) | Hovland ([`Hovland::maps`]) |
+/// |---|---|---|
+/// | `local_fs` | [`HpmResult::local_safety_factors`] (no data where the springs carry no shear) | `(c A + N tan φ) / T` of the column (no data where `T ≤ 0`) |
+/// | `displacement_x`, `_y`, `_z`, `displacement` | the displacement (m) at the top of the column, at its centre ([`HpmResult::surface`]), and its length | — |
+/// | `strain_major`, `strain_minor` | the principal plan strains there ([`SurfacePoint::principal`](super::SurfacePoint::principal)), extension positive | — |
+/// | `normal_force`, `driving_force` | — | the column's base normal force N and driving force T (N) |
+///
+/// A local Fs of 0 marks a column whose strength `c A + N tan φ` (HPM: over
+/// its springs) is not positive, as [`HpmResult::local_safety_factors`]
+/// gives it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColumnMaps {
     /// Each map's name ([`HPM_MAP_NAMES`], [`HOVLAND_MAP_NAMES`]) and
@@ -143,8 +146,8 @@ fn column_raster(
 impl HpmResult {
     /// The maps of this analysis of `model`, built on `grids`: local Fs,
     /// displacement at the top of each column (components and length) and
-    /// principal plan strains there ([`HPM_MAP_NAMES`]; see the [module
-    /// documentation](self)), each a raster on the grid of `grids`.
+    /// principal plan strains there ([`HPM_MAP_NAMES`]; see
+    /// [`ColumnMaps`]), each a raster on the grid of `grids`.
     ///
     /// # Errors
     /// [`DismechError::MapData`] when `model` was not built on the grid of
