@@ -1,7 +1,9 @@
 //! HPM slope stability on grid columns (paper 001) composed from library
 //! pieces: ground and slip surface read from ESRI ASCII grids, columns cut
 //! into layers, elastic and nonlinear analyses, static and seismic,
-//! Hovland's method beside them.
+//! Hovland's method beside them; the static analyses' maps (local Fs,
+//! displacement, strain per column) written for a GIS, as ESRI ASCII grids
+//! and GeoTIFF on the input grid, into `target/hpm_slope_maps/`.
 //!
 //! `cargo run --release --example hpm_slope [ground.asc slip.asc [water.asc]]`
 //! (default: the representative slope of the reproduction, shipped in
@@ -10,6 +12,7 @@
 use std::path::PathBuf;
 
 use dismech::error::DismechError;
+use dismech::grid::RasterFormat;
 use dismech::hpm::{
     hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NonlinearSettings, Seismic, SlopeGrids,
 };
@@ -33,14 +36,15 @@ fn main() -> Result<(), DismechError> {
     );
     // 3. One factorisation of the elastic stiffness serves every analysis.
     let mut solver = HpmSolver::new(&model)?;
-    for (case, load) in [
-        ("static", Seismic::none()),
+    for (case, load, maps_prefix) in [
+        ("static", Seismic::none(), Some("static")),
         (
             "seismic k_h = 0.15 towards -y",
             Seismic {
                 coefficient: 0.15,
                 direction: (0.0, -1.0),
             },
+            None,
         ),
     ] {
         let elastic = solver.elastic(&model, &load)?;
@@ -53,6 +57,21 @@ fn main() -> Result<(), DismechError> {
             nonlinear.convergence,
             hov.safety_factor
         );
+        if let Some(prefix) = maps_prefix {
+            // 4. Maps on the input grid, for a GIS.
+            let maps = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/hpm_slope_maps");
+            let mut files = nonlinear.maps(&model, &grids)?.write(
+                &maps,
+                &format!("nonlinear_{prefix}"),
+                &RasterFormat::ALL,
+            )?;
+            files.extend(hov.maps(&model, &grids)?.write(
+                &maps,
+                &format!("hovland_{prefix}"),
+                &RasterFormat::ALL,
+            )?);
+            println!("{} maps written in {}", files.len(), maps.display());
+        }
     }
     Ok(())
 }

@@ -207,6 +207,16 @@ pub enum DismechError {
         /// The largest number of cells accepted.
         cap: usize,
     },
+    /// A GeoTIFF file cannot be read as a raster: not a TIFF, damaged, or a
+    /// TIFF without what a raster needs (one band, square cells, a tie
+    /// point), naming the tag and its value.
+    #[error("{file}: {message}")]
+    GeoTiff {
+        /// The file.
+        file: String,
+        /// What is wrong, naming the tag and its value.
+        message: String,
+    },
     /// A cell of a grid file cannot be used (no data inside the slide, a
     /// water table missing over a column, ...).
     #[error("{file}, grid row {row}, column {column}: {message}")]
@@ -361,6 +371,14 @@ pub enum DismechError {
     /// mechanism ([`crate::vtk`]).
     #[error("VTK output: {reason}")]
     VtkData {
+        /// What does not fit, and what to change.
+        reason: String,
+    },
+    /// Maps asked of a result on a grid it does not belong to: an HPM or
+    /// Hovland result of another model, or a model of another grid
+    /// ([`crate::hpm::ColumnMaps`]).
+    #[error("maps: {reason}")]
+    MapData {
         /// What does not fit, and what to change.
         reason: String,
     },

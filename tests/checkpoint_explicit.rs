@@ -2,7 +2,11 @@
 //! dropped and resumed ends N steps in the same bits as the run that
 //! never stopped (positions, angles, velocities, forces, contacts, time,
 //! neighbour list), with contacts sliding at the checkpoint; and a
-//! checkpoint that does not fit is refused by a typed error.
+//! checkpoint that does not fit is refused by a typed error; and a run
+//! that writes its checkpoints through an observer, killed at a random
+//! step, resumes from the last one on disk to the same bits.
+
+mod kill_common;
 
 use std::path::PathBuf;
 
@@ -13,6 +17,7 @@ use dismech::explicit::DemSettings;
 use dismech::integrate::{ExplicitEuler, ExplicitIntegrator};
 use dismech::law::{Damping, NormalStiffness, Regime, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
+use dismech::observe::{every, Event};
 use dismech::scene::{Frame, Scene};
 
 const G: f64 = 9.81;
@@ -220,6 +225,68 @@ fn a_resumed_incline_run_ends_in_the_same_bits() {
     std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
 
     assert!(resumed.neighbour_list_builds() > builds_at_k);
+    assert_eq!(described_contacts(&resumed), described_contacts(&straight));
+    assert_eq!(fingerprint(&resumed), fingerprint(&straight));
+    assert_eq!(
+        resumed.checkpoint().unwrap(),
+        straight.checkpoint().unwrap()
+    );
+}
+
+/// The incline run for 10 000 steps by a child process that writes a
+/// checkpoint every 500 steps through an observer ([`every`],
+/// [`Dem::save_checkpoint`], a file per checkpoint, each written
+/// atomically) and is killed by SIGKILL at a random step (see
+/// `kill_common`); resumed from the last checkpoint on disk and run to
+/// step 10 000, it ends in the same bits as the run never interrupted.
+#[test]
+fn a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits() {
+    const STEPS: u64 = 10_000;
+    const EVERY: u64 = 500;
+    const LEAD: u64 = 1_000;
+    let new = || Dem::new(incline_scene(), law(0.15), ExplicitEuler, SETTINGS).unwrap();
+    if let Some((folder, limit)) = kill_common::child() {
+        let mut sim = new();
+        let mut observer = (
+            |_: &Dem, event: &Event<'_>| {
+                if let Event::Step { step, .. } = event {
+                    kill_common::report_progress(*step);
+                }
+                Ok(())
+            },
+            every(EVERY, |sim: &Dem, event: &Event<'_>| {
+                if let Event::Step { step, .. } = event {
+                    sim.save_checkpoint(&kill_common::checkpoint_path(&folder, *step))?;
+                }
+                Ok(())
+            }),
+        );
+        sim.run_steps_observed(limit, &mut observer).unwrap();
+        kill_common::wait_for_the_kill();
+    }
+
+    let mut straight = new();
+    steps(&mut straight, STEPS as usize);
+    let folder = temp_path("killed").parent().unwrap().to_path_buf();
+    let killed = kill_common::run_and_kill(
+        "a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits",
+        &folder,
+        2 * EVERY..=STEPS - LEAD - 1,
+        LEAD,
+    );
+    let (at, path) = &killed.checkpoint;
+    // The last checkpoint is the one before the kill, or the one before
+    // that where the kill fell inside its write.
+    assert_eq!(at % EVERY, 0, "{killed:?}");
+    assert!(*at <= killed.last_reported, "{killed:?}");
+    assert!(at + 2 * EVERY > killed.last_reported, "{killed:?}");
+    assert!(killed.last_reported >= killed.drawn, "{killed:?}");
+
+    let mut resumed = Dem::load_checkpoint(law(0.15), ExplicitEuler, path).unwrap();
+    assert_eq!(resumed.steps(), *at);
+    steps(&mut resumed, (STEPS - at) as usize);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(resumed.steps(), STEPS);
     assert_eq!(described_contacts(&resumed), described_contacts(&straight));
     assert_eq!(fingerprint(&resumed), fingerprint(&straight));
     assert_eq!(

@@ -3,7 +3,11 @@
 //! the same bits as the run that never stopped (vertices, stresses,
 //! velocities, accelerations, contacts, reports, time), with a block
 //! sliding under return mapping at the checkpoint and steps halved around
-//! it; and a checkpoint that does not fit is refused by a typed error.
+//! it; and a checkpoint that does not fit is refused by a typed error;
+//! and a run that writes its checkpoints through an observer, killed at a
+//! random step, resumes from the last one on disk to the same bits.
+
+mod kill_common;
 
 use std::path::PathBuf;
 
@@ -16,6 +20,7 @@ use dismech::kinematics::Affine2;
 use dismech::law::{FrictionIntegration, PenaltyCoulomb, Regime};
 use dismech::linsolve::SparseLu;
 use dismech::math::{Point, Vec2};
+use dismech::observe::Event;
 
 fn material() -> BlockMaterial {
     BlockMaterial {
@@ -257,6 +262,69 @@ fn a_resumed_dda_run_ends_in_the_same_bits() {
     assert_eq!(
         described_reports(&resumed_reports),
         described_reports(&straight_reports[k..])
+    );
+    assert_eq!(described_contacts(&resumed), described_contacts(&straight));
+    assert_eq!(fingerprint(&resumed), fingerprint(&straight));
+    assert_eq!(
+        resumed.checkpoint().unwrap(),
+        straight.checkpoint().unwrap()
+    );
+}
+
+/// The slope run for 60 calls of `advance(0.01)` by a child process whose
+/// observer writes a checkpoint at the end of every third call (at
+/// [`Event::Finished`], between calls: a checkpoint at a sub-step inside a
+/// call would not resume to the same bits), a file per checkpoint, each
+/// written atomically, and which is killed by SIGKILL at a random call
+/// (see `kill_common`), most often inside the next one; resumed from the
+/// last checkpoint on disk into the model built again and advanced to the
+/// 60th call, it ends in the same bits as the run never interrupted.
+#[test]
+fn a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits() {
+    const CALLS: u64 = 60;
+    const EVERY: u64 = 3;
+    const LEAD: u64 = 10;
+    if let Some((folder, limit)) = kill_common::child() {
+        let mut run = model();
+        for call in 1..=limit {
+            let mut observer = |model: &DdaModel, event: &Event<'_>| {
+                if let Event::Finished { .. } = event {
+                    kill_common::report_progress(call);
+                    if call % EVERY == 0 {
+                        model.save_checkpoint(&kill_common::checkpoint_path(&folder, call))?;
+                    }
+                }
+                Ok(())
+            };
+            run.advance_observed(DT, &mut observer).unwrap();
+        }
+        kill_common::wait_for_the_kill();
+    }
+
+    let mut straight = model();
+    let straight_reports = advance(&mut straight, CALLS as usize);
+    let folder = temp_path("killed").parent().unwrap().to_path_buf();
+    let killed = kill_common::run_and_kill(
+        "a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits",
+        &folder,
+        2 * EVERY..=CALLS - LEAD - 1,
+        LEAD,
+    );
+    let (at, path) = &killed.checkpoint;
+    // The last checkpoint is the one before the kill, or the one before
+    // that where the kill fell inside its write.
+    assert_eq!(at % EVERY, 0, "{killed:?}");
+    assert!(*at <= killed.last_reported, "{killed:?}");
+    assert!(at + 2 * EVERY > killed.last_reported, "{killed:?}");
+    assert!(killed.last_reported >= killed.drawn, "{killed:?}");
+
+    let mut resumed = model();
+    resumed.load_checkpoint(path).unwrap();
+    let resumed_reports = advance(&mut resumed, (CALLS - at) as usize);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(
+        described_reports(&resumed_reports),
+        described_reports(&straight_reports[*at as usize..])
     );
     assert_eq!(described_contacts(&resumed), described_contacts(&straight));
     assert_eq!(fingerprint(&resumed), fingerprint(&straight));

@@ -1024,3 +1024,52 @@ fn a_zero_seismic_coefficient_adds_no_load_whatever_its_direction() {
     assert!(zero_direction.iter().all(|f| f.is_finite()));
     assert_eq!(none, zero_direction);
 }
+
+/// Maps asked on a grid the model was not built on, or of a result of
+/// another model, are refused with a typed error naming what differs.
+#[test]
+fn maps_on_another_grid_or_of_another_model_are_refused() {
+    let small = model(4, 4, 20.0, 5.0);
+    let large = model(5, 4, 20.0, 5.0);
+    let mut solver = HpmSolver::new(&small).unwrap();
+    let result = solver.elastic(&small, &Seismic::none()).unwrap();
+    let hov = hovland(&small, &Seismic::none(), towards_deg(270.0)).unwrap();
+    assert!(result
+        .maps(&small, &grids(4, 4, 20.0, 5.0).unwrap())
+        .is_ok());
+
+    // Another grid: 5 rows where the model has 4.
+    let other = grids(5, 4, 20.0, 5.0).unwrap();
+    for e in [
+        result.maps(&small, &other).unwrap_err(),
+        hov.maps(&small, &other).unwrap_err(),
+    ] {
+        let message = e.to_string();
+        assert!(matches!(e, DismechError::MapData { .. }), "{e}");
+        assert!(message.contains("`ground.asc`"), "{message}");
+        assert!(
+            message.contains("4 × 4 cells of 10 m, the rasters 5 × 4"),
+            "{message}"
+        );
+    }
+    // The same shape moved by a cell.
+    let (ground, slip) = slab(4, 4, 20.0, 5.0);
+    let moved = |r: &Raster| {
+        let (x, y) = r.lower_left();
+        Raster::new(4, 4, x + 10.0, y, 10.0, r.values().to_vec()).unwrap()
+    };
+    let shifted = SlopeGrids::new(
+        NamedRaster::new("moved.asc", moved(&ground)),
+        NamedRaster::new("slip.asc", moved(&slip)),
+        None,
+    )
+    .unwrap();
+    let e = result.maps(&small, &shifted).unwrap_err().to_string();
+    assert!(e.contains("`moved.asc`") && e.contains("corner"), "{e}");
+    // A result of another model.
+    let large_grids = grids(5, 4, 20.0, 5.0).unwrap();
+    let e = result.maps(&large, &large_grids).unwrap_err().to_string();
+    assert!(e.contains("not a result of this model"), "{e}");
+    let e = hov.maps(&large, &large_grids).unwrap_err().to_string();
+    assert!(e.contains("not Hovland's method of this model"), "{e}");
+}

@@ -131,6 +131,7 @@ impl Exit {
             | E::GridMismatch { .. }
             | E::GridHeader { .. }
             | E::GridTooLarge { .. }
+            | E::GeoTiff { .. }
             | E::NoValidColumn { .. }
             | E::NoGroundData { .. }
             | E::DemTooSmall { .. }
@@ -156,6 +157,7 @@ impl Exit {
             | E::SelfContact { .. }
             | E::UnknownStudy(..)
             | E::VtkData { .. }
+            | E::MapData { .. }
             | E::Checkpoint { .. } => Exit::BadInput,
         }
     }

@@ -61,7 +61,7 @@ pub const MAX_HEADER_BYTES: usize = 64 * 1024;
 pub const MAX_BYTES_PER_VALUE: u64 = 256;
 
 /// What a file that is not a regular file is, in words.
-fn describe(kind: std::fs::FileType) -> &'static str {
+pub(super) fn describe(kind: std::fs::FileType) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;

@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use crate::error::{DismechError, Result};
-use crate::grid::{read_esri_ascii, Raster};
+use crate::grid::{read_raster, Raster};
 
 /// The fewest rows, and the fewest columns, of slope grids: corner heights
 /// are interpolated (and at the edge extrapolated) between two cell centres
@@ -67,15 +67,14 @@ impl NamedRaster {
         })
     }
 
-    /// Read an ESRI ASCII grid file.
+    /// Read a grid file: GeoTIFF where its extension is `.tif` or `.tiff`,
+    /// ESRI ASCII otherwise ([`crate::grid::read_raster`]).
     ///
     /// # Errors
-    /// Those of [`crate::grid::read_esri_ascii`].
+    /// Those of [`crate::grid::read_esri_ascii`] or
+    /// [`crate::grid::read_geotiff`].
     pub fn read(path: &Path) -> Result<Self> {
-        Ok(Self::new(
-            path.display().to_string(),
-            read_esri_ascii(path)?,
-        ))
+        Ok(Self::new(path.display().to_string(), read_raster(path)?))
     }
 }
 
@@ -182,10 +181,12 @@ impl SlopeGrids {
         })
     }
 
-    /// Read the three grids from ESRI ASCII files.
+    /// Read the three grids from ESRI ASCII (or GeoTIFF) files
+    /// ([`NamedRaster::read`]).
     ///
     /// # Errors
-    /// Those of [`crate::grid::read_esri_ascii`] for each file (a path that
+    /// Those of [`crate::grid::read_esri_ascii`] (or
+    /// [`crate::grid::read_geotiff`]) for each file (a path that
     /// is not a regular file, a file far larger than its header's grid can
     /// need, a header over [`crate::grid::MAX_GRID_CELLS`] cells: each
     /// refused before the values are read), then those of

@@ -21,6 +21,7 @@
 //! | elastic and nonlinear analyses, Fs | `analysis.rs` | §5 |
 //! | what makes the stiffness ill-conditioned | `conditioning.rs` | (beyond the paper) |
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
+//! | the results as maps for a GIS (ESRI ASCII, GeoTIFF) | `maps.rs` | (beyond the paper) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
 //!
 //! Composition, on the engine's slots:
@@ -59,6 +60,7 @@ mod conditioning;
 mod face;
 mod grids;
 mod hovland;
+mod maps;
 mod material;
 mod model;
 mod stiffness;
@@ -76,6 +78,7 @@ pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, TH
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
+pub use maps::{ColumnMaps, HOVLAND_MAP_NAMES, HPM_MAP_NAMES};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
 pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY};
 pub use stiffness::BlockMatrix;

@@ -17,7 +17,7 @@
 //! | Hovland per surface | [`hovland_columns`], [`Evaluator`], [`SurfaceFs`] | `hovland.rs` |
 //! | families | [`TrialFamily`]: [`SphereGrid`] (Scoops3D), [`SphereRandom`], [`EllipsoidRandom`] (r.slope.stability); [`Steps`] | `family.rs` |
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
-//! | outputs | rasters on the DEM's grid, [`SearchResult::write_maps`], [`SearchResult::write_critical_csv`] | `output.rs` |
+//! | outputs | rasters on the DEM's grid (ESRI ASCII, GeoTIFF), [`SearchResult::write_maps`], [`SearchResult::write_maps_as`], [`SearchResult::write_critical_csv`] | `output.rs` |
 //!
 //! No HPM model is built per surface (that would be far too slow for
 //! thousands of surfaces): the columns are the DEM cells themselves, the

@@ -8,13 +8,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
-use crate::grid::{write_esri_ascii, Raster};
+use crate::grid::{write_rasters, Raster, RasterFormat};
 use crate::io::write_atomically;
 
 use super::search::{CellMinimum, SearchResult};
 use super::surface::TrialSurface;
 
-/// The files [`SearchResult::write_maps`] writes, `{prefix}_{name}.asc`.
+/// The maps [`SearchResult::write_maps`] writes, `{prefix}_{name}.asc`
+/// ([`SearchResult::write_maps_as`]: and `.tif`).
 pub const MAP_NAMES: [&str; 4] = ["fs", "volume", "area", "depth"];
 
 impl<S> SearchResult<S> {
@@ -67,25 +68,40 @@ impl<S> SearchResult<S> {
     /// Write the four maps as ESRI ASCII grids `{prefix}_fs.asc`,
     /// `{prefix}_volume.asc`, `{prefix}_area.asc` and `{prefix}_depth.asc`
     /// in `folder` (created if needed), each atomically
-    /// ([`write_esri_ascii`]); returns their paths.
+    /// ([`write_esri_ascii`](crate::grid::write_esri_ascii)); returns their
+    /// paths. [`Self::write_maps_as`] writes GeoTIFF as well.
     ///
     /// # Errors
     /// [`crate::error::DismechError::Output`] naming the path when a file
     /// cannot be written (it is then not there).
     pub fn write_maps(&self, folder: &Path, prefix: &str) -> Result<Vec<PathBuf>> {
+        self.write_maps_as(folder, prefix, &[RasterFormat::EsriAscii])
+    }
+
+    /// Write the four maps ([`MAP_NAMES`]) as `{prefix}_{name}.asc`
+    /// and/or `{prefix}_{name}.tif` in `folder` (created if needed), in
+    /// each of `formats` (e.g. [`RasterFormat::ALL`] for the ESRI ASCII
+    /// grids and GeoTIFF beside them), each file atomically
+    /// ([`write_rasters`]); returns their paths, map by map and format by
+    /// format.
+    ///
+    /// # Errors
+    /// [`crate::error::DismechError::Output`] naming the path when a file
+    /// cannot be written (it is then not there).
+    pub fn write_maps_as(
+        &self,
+        folder: &Path,
+        prefix: &str,
+        formats: &[RasterFormat],
+    ) -> Result<Vec<PathBuf>> {
         let rasters = [
             self.safety_factor_raster()?,
             self.volume_raster()?,
             self.area_raster()?,
             self.depth_raster()?,
         ];
-        let mut paths = Vec::with_capacity(rasters.len());
-        for (name, raster) in MAP_NAMES.iter().zip(&rasters) {
-            let path = folder.join(format!("{prefix}_{name}.asc"));
-            write_esri_ascii(&path, raster)?;
-            paths.push(path);
-        }
-        Ok(paths)
+        let named: Vec<(&str, &Raster)> = MAP_NAMES.iter().copied().zip(&rasters).collect();
+        write_rasters(folder, prefix, &named, formats)
     }
 }
 

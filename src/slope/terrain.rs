@@ -58,10 +58,12 @@ impl Terrain {
         Ok(Self { dem, water })
     }
 
-    /// Read the DEM and the water table from ESRI ASCII grid files.
+    /// Read the DEM and the water table from ESRI ASCII grid files (or
+    /// GeoTIFF, `.tif`: [`NamedRaster::read`]).
     ///
     /// # Errors
-    /// Those of [`crate::grid::read_esri_ascii`] for each file, then those
+    /// Those of [`crate::grid::read_esri_ascii`] (or
+    /// [`crate::grid::read_geotiff`]) for each file, then those
     /// of [`Terrain::new`].
     pub fn read(dem: &Path, water: Option<&Path>) -> Result<Self> {
         Self::new(

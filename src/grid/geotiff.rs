@@ -1,0 +1,653 @@
+//! GeoTIFF: a raster written as one band of 64-bit floats with its
+//! georeferencing, and a GeoTIFF DEM read back; the format as written and
+//! as read is described in the [`grid`](super) module's documentation.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use tiff::decoder::{Decoder, DecodingResult, Limits};
+use tiff::encoder::{colortype::Gray64Float, TiffEncoder};
+use tiff::tags::Tag;
+use tiff::ColorType;
+
+use super::esri_ascii::describe;
+use super::{Raster, MAX_GRID_CELLS};
+use crate::error::{DismechError, Result};
+use crate::io::write_atomically;
+
+/// The no-data value a GeoTIFF is written with (its `GDAL_NODATA` tag):
+/// −9999, as the ESRI ASCII grids of [`super::write_esri_ascii`]. Where a
+/// cell of the raster holds −9999 itself, NaN is written instead (a
+/// raster's values are finite, so NaN marks no value).
+pub const GEOTIFF_NODATA: f64 = -9999.0;
+
+/// GeoKey values (OGC 19-008r4, requirements classes GeoKeyDirectoryTag
+/// and the code lists of its annex).
+mod geokey {
+    /// `GTModelTypeGeoKey`.
+    pub const MODEL_TYPE: u16 = 1024;
+    /// `GTRasterTypeGeoKey`.
+    pub const RASTER_TYPE: u16 = 1025;
+    /// `ProjectedCSTypeGeoKey` (`ProjectedCRSGeoKey` in GeoTIFF 1.1).
+    pub const PROJECTED_CRS: u16 = 3072;
+    /// `ProjLinearUnitsGeoKey`.
+    pub const LINEAR_UNITS: u16 = 3076;
+    /// `ModelTypeProjected`.
+    pub const PROJECTED: u16 = 1;
+    /// `RasterPixelIsArea`.
+    pub const PIXEL_IS_AREA: u16 = 1;
+    /// User-defined.
+    pub const USER_DEFINED: u16 = 32767;
+    /// EPSG 9001, metre.
+    pub const METRE: u16 = 9001;
+}
+
+/// The `GeoKeyDirectory` of every file written: a header (directory
+/// version 1, key revision 1.1, four keys), then each key as
+/// `(id, location 0 = the value itself, count 1, value)`, ids ascending.
+fn geokey_directory() -> [u16; 20] {
+    use geokey::*;
+    [
+        1,
+        1,
+        1,
+        4,
+        MODEL_TYPE,
+        0,
+        1,
+        PROJECTED,
+        RASTER_TYPE,
+        0,
+        1,
+        PIXEL_IS_AREA,
+        PROJECTED_CRS,
+        0,
+        1,
+        USER_DEFINED,
+        LINEAR_UNITS,
+        0,
+        1,
+        METRE,
+    ]
+}
+
+/// The no-data value for `raster`: [`GEOTIFF_NODATA`], or NaN where a cell
+/// holds it.
+fn nodata_for(raster: &Raster) -> f64 {
+    if raster
+        .values()
+        .iter()
+        .flatten()
+        .any(|&v| v == GEOTIFF_NODATA)
+    {
+        f64::NAN
+    } else {
+        GEOTIFF_NODATA
+    }
+}
+
+/// `GDAL_NODATA`'s text for `nodata`: `-9999` or `nan`.
+fn nodata_text(nodata: f64) -> String {
+    if nodata.is_nan() {
+        "nan".to_string()
+    } else {
+        format!("{nodata}")
+    }
+}
+
+/// The bytes of `raster` as a GeoTIFF file (see the [`grid`](super#geotiff) module's documentation).
+///
+/// # Errors
+/// The encoder's, as text (none for a [`Raster`], whose sides fit TIFF's
+/// 32-bit sizes and whose values fit its 4 GiB).
+fn encode(raster: &Raster) -> std::result::Result<Vec<u8>, String> {
+    let columns = u32::try_from(raster.columns()).map_err(|e| e.to_string())?;
+    let rows = u32::try_from(raster.rows()).map_err(|e| e.to_string())?;
+    let nodata = nodata_for(raster);
+    let values: Vec<f64> = raster
+        .values()
+        .iter()
+        .map(|v| v.unwrap_or(nodata))
+        .collect();
+    let (x0, y0) = raster.lower_left();
+    let d = raster.cell_size();
+    let top = y0 + raster.rows() as f64 * d;
+    let mut bytes = Cursor::new(Vec::with_capacity(8 * values.len() + 1024));
+    let mut tiff = TiffEncoder::new(&mut bytes).map_err(|e| e.to_string())?;
+    let mut image = tiff
+        .new_image::<Gray64Float>(columns, rows)
+        .map_err(|e| e.to_string())?;
+    let tags = image.encoder();
+    tags.write_tag(Tag::ModelPixelScaleTag, &[d, d, 0.0][..])
+        .map_err(|e| e.to_string())?;
+    tags.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, x0, top, 0.0][..])
+        .map_err(|e| e.to_string())?;
+    tags.write_tag(Tag::GeoKeyDirectoryTag, &geokey_directory()[..])
+        .map_err(|e| e.to_string())?;
+    tags.write_tag(Tag::GdalNodata, nodata_text(nodata).as_str())
+        .map_err(|e| e.to_string())?;
+    image.write_data(&values).map_err(|e| e.to_string())?;
+    Ok(bytes.into_inner())
+}
+
+/// Write a raster as a GeoTIFF file (one band of 64-bit floats, its
+/// georeferencing and no-data value in the GeoTIFF and GDAL tags: see the
+/// [`grid`](super#geotiff) module's documentation), atomically.
+///
+/// # Errors
+/// [`DismechError::Output`] naming the path when the file cannot be
+/// encoded or written, or its folder created (see
+/// [`crate::io::write_atomically`]); the file is then not there.
+pub fn write_geotiff(path: &Path, raster: &Raster) -> Result<()> {
+    let bytes = encode(raster).map_err(|message| DismechError::Output {
+        path: path.display().to_string(),
+        message: format!("cannot encode the GeoTIFF: {message}"),
+    })?;
+    write_atomically(path, &bytes)
+}
+
+/// The most bytes of decoded values a compressed GeoTIFF may claim per
+/// byte of its file: 4 096, above the largest ratio LZW (a 12-bit code for
+/// at most 4 096 bytes) or Deflate (1 032) can reach, so no valid file is
+/// refused, while a small hostile file cannot make the reader allocate
+/// more than 4 096 times its size. An uncompressed file must hold every
+/// value it claims.
+pub const MAX_GEOTIFF_EXPANSION: u64 = 4096;
+
+/// What [`read_geotiff`] reads of the GeoKey directory: the raster type
+/// (`true` for `RasterPixelIsPoint`).
+fn pixel_is_point(keys: &[u16]) -> std::result::Result<bool, String> {
+    let count = keys.get(3).copied().unwrap_or(0) as usize;
+    if keys.len() < 4 || keys.len() < 4 + 4 * count {
+        return Err(format!(
+            "GeoKeyDirectory (34735) of {} values announces {count} keys: it is damaged",
+            keys.len()
+        ));
+    }
+    for key in keys[4..4 + 4 * count].chunks_exact(4) {
+        if key[0] == geokey::RASTER_TYPE {
+            return match (key[1], key[3]) {
+                (0, 1) => Ok(false),
+                (0, 2) => Ok(true),
+                (location, value) => Err(format!(
+                    "GTRasterTypeGeoKey (1025) = {value} (location {location}): expected 1 (RasterPixelIsArea) or 2 (RasterPixelIsPoint)"
+                )),
+            };
+        }
+    }
+    Ok(false)
+}
+
+/// The bytes of a value of TIFF field type `kind` (TIFF 6.0 §2, BigTIFF),
+/// `None` for a type the decoder skips.
+fn type_bytes(kind: u16) -> Option<u64> {
+    match kind {
+        1 | 2 | 6 | 7 => Some(1),
+        3 | 8 => Some(2),
+        4 | 9 | 11 | 13 => Some(4),
+        5 | 10 | 12 | 16..=18 => Some(8),
+        _ => None,
+    }
+}
+
+/// Check the first directory of a TIFF file of `size` bytes before the
+/// decoder reads it: every entry's values (`count × type size` bytes, in
+/// the entry or at its offset) must lie within the file. The decoder sizes
+/// a tag's buffer by its count before it reads it; checked here, no tag
+/// can make it allocate more than the file holds.
+fn check_first_directory(
+    file: &mut (impl std::io::Read + std::io::Seek),
+    size: u64,
+) -> std::result::Result<(), String> {
+    use std::io::SeekFrom;
+    let mut read = |at: u64, n: usize| -> std::result::Result<Vec<u8>, String> {
+        let mut buf = vec![0; n];
+        file.seek(SeekFrom::Start(at))
+            .and_then(|_| file.read_exact(&mut buf))
+            .map_err(|e| format!("cannot read {n} bytes at offset {at} of {size}: {e}"))?;
+        Ok(buf)
+    };
+    let header = read(0, 8)?;
+    let little = match &header[..2] {
+        b"II" => true,
+        b"MM" => false,
+        other => {
+            return Err(format!(
+                "it starts with {other:?}, not a TIFF byte order (`II` or `MM`)"
+            ))
+        }
+    };
+    let uint = |b: &[u8]| -> u64 {
+        let mut v = 0u64;
+        for (k, &byte) in b.iter().enumerate() {
+            let shift = if little { 8 * k } else { 8 * (b.len() - 1 - k) };
+            v |= u64::from(byte) << shift;
+        }
+        v
+    };
+    let big = match uint(&header[2..4]) {
+        42 => false,
+        43 => true,
+        magic => {
+            return Err(format!(
+                "TIFF version {magic}: expected 42 (TIFF) or 43 (BigTIFF)"
+            ))
+        }
+    };
+    let (first, count_bytes, entry_bytes, inline) = if big {
+        (uint(&read(8, 8)?), 8, 20, 8)
+    } else {
+        (uint(&header[4..8]), 2, 12, 4)
+    };
+    let count = uint(&read(first, count_bytes)?);
+    let table = count.saturating_mul(entry_bytes as u64);
+    if first
+        .saturating_add(count_bytes as u64)
+        .saturating_add(table)
+        > size
+    {
+        return Err(format!(
+            "its first directory, at offset {first}, announces {count} entries, which do not fit in the file's {size} bytes"
+        ));
+    }
+    let entries = read(first + count_bytes as u64, table as usize)?;
+    for entry in entries.chunks_exact(entry_bytes) {
+        let tag = uint(&entry[..2]);
+        let Some(unit) = type_bytes(uint(&entry[2..4]) as u16) else {
+            continue;
+        };
+        let (n, offset) = if big {
+            (uint(&entry[4..12]), uint(&entry[12..20]))
+        } else {
+            (uint(&entry[4..8]), uint(&entry[8..12]))
+        };
+        let bytes = n.saturating_mul(unit);
+        if bytes > inline && offset.saturating_add(bytes) > size {
+            return Err(format!(
+                "tag {tag} announces {n} values ({bytes} bytes) at offset {offset}, beyond the file's {size} bytes"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The sample values as `f64`, with the no-data value compared in the
+/// samples' own type (a 32-bit file's `GDAL_NODATA` is the 32-bit value).
+fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
+    fn convert<T: Copy>(
+        values: Vec<T>,
+        to_f64: impl Fn(T) -> f64,
+        nodata: Option<f64>,
+    ) -> Vec<Option<f64>> {
+        values
+            .into_iter()
+            .map(|v| {
+                let v = to_f64(v);
+                let missing = v.is_nan() || nodata == Some(v);
+                (!missing).then_some(v)
+            })
+            .collect()
+    }
+    let narrow = nodata.map(|n| n as f32 as f64);
+    match result {
+        DecodingResult::U8(v) => convert(v, f64::from, nodata),
+        DecodingResult::U16(v) => convert(v, f64::from, nodata),
+        DecodingResult::U32(v) => convert(v, f64::from, nodata),
+        DecodingResult::U64(v) => convert(v, |x| x as f64, nodata),
+        DecodingResult::I8(v) => convert(v, f64::from, nodata),
+        DecodingResult::I16(v) => convert(v, f64::from, nodata),
+        DecodingResult::I32(v) => convert(v, f64::from, nodata),
+        DecodingResult::I64(v) => convert(v, |x| x as f64, nodata),
+        DecodingResult::F16(v) => convert(v, f64::from, nodata),
+        DecodingResult::F32(v) => convert(v, f64::from, narrow),
+        DecodingResult::F64(v) => convert(v, |x| x, nodata),
+    }
+}
+
+/// Read a GeoTIFF file as a [`Raster`] (a DEM, or a map written by
+/// [`write_geotiff`], which reads back to the same bits).
+///
+/// What is read: the first image, which must have one band (`Gray`,
+/// any integer or floating-point sample type of the `tiff` crate;
+/// uncompressed, LZW or Deflate; strips or tiles); its georeferencing from
+/// `ModelPixelScale` (square cells: the x and y scales equal within 1e-9
+/// of a cell) and one tie point `ModelTiepoint` `(i, j, 0, x, y, z)`
+/// (the corner of raster point (i, j), or with `GTRasterTypeGeoKey` =
+/// `RasterPixelIsPoint` its centre); `GDAL_NODATA` as the no-data value
+/// (compared in the samples' type); NaN samples are no data as well. The
+/// coordinate reference system is not read (a [`Raster`] holds none).
+///
+/// Before any value is decoded, the file is checked as
+/// [`super::read_esri_ascii`] checks a text grid: it must be a regular
+/// file; the values of every tag of its first directory must lie within
+/// it; `width × height` at most [`MAX_GRID_CELLS`]; an uncompressed
+/// file at least as large as its values, a compressed one no smaller than
+/// its values over [`MAX_GEOTIFF_EXPANSION`]. So the memory the reader
+/// takes is bounded by the file's size.
+///
+/// # Errors
+/// [`DismechError::GeoTiff`] naming the file and, where one is at fault,
+/// the tag and its value: a path that cannot be read or is not a regular
+/// file, not a TIFF or a damaged one (the decoder's message), more than
+/// one band, no `ModelPixelScale` or `ModelTiepoint` (or a
+/// `ModelTransformation` instead), cells that are not square or a scale
+/// that is not finite and positive, more than one tie point, a
+/// `GTRasterTypeGeoKey` other than area or point, a `GDAL_NODATA` that is
+/// not a number, or values the file cannot hold;
+/// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells;
+/// [`DismechError::GridCell`] for an infinite value (naming its row and
+/// column); and [`DismechError::GeoTiff`] with the message of
+/// [`Raster::new`] for a corner or extent that is not finite.
+pub fn read_geotiff(path: &Path) -> Result<Raster> {
+    let name = path.display().to_string();
+    let fail = |message: String| DismechError::GeoTiff {
+        file: name.clone(),
+        message,
+    };
+    let kind = std::fs::metadata(path)
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?
+        .file_type();
+    let not_regular = |kind: std::fs::FileType| {
+        fail(format!(
+            "is {}, not a regular file: give the path of a GeoTIFF file",
+            describe(kind)
+        ))
+    };
+    if !kind.is_file() {
+        return Err(not_regular(kind));
+    }
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let meta = file
+        .metadata()
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    decode(std::io::BufReader::new(file), meta.len(), &name)
+}
+
+/// Read the bytes of a GeoTIFF file as a [`Raster`], as [`read_geotiff`]
+/// reads a file; `name` names it in errors.
+///
+/// # Errors
+/// Those of [`read_geotiff`] but for the path's.
+pub fn parse_geotiff(bytes: &[u8], name: &str) -> Result<Raster> {
+    decode(Cursor::new(bytes), bytes.len() as u64, name)
+}
+
+/// [`read_geotiff`] after the checks of the path: `reader` holds `size`
+/// bytes.
+fn decode<R: std::io::Read + std::io::Seek>(
+    mut reader: R,
+    size: u64,
+    name: &str,
+) -> Result<Raster> {
+    let name = name.to_string();
+    let fail = |message: String| DismechError::GeoTiff {
+        file: name.clone(),
+        message,
+    };
+    let tiff_error = |e: tiff::TiffError| fail(format!("not a TIFF file that can be read: {e}"));
+    check_first_directory(&mut reader, size)
+        .map_err(|e| fail(format!("not a TIFF file that can be read: {e}")))?;
+    reader
+        .rewind()
+        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let mut decoder = Decoder::new(reader).map_err(tiff_error)?;
+
+    let (width, height) = decoder.dimensions().map_err(tiff_error)?;
+    let cells = u128::from(width) * u128::from(height);
+    if cells > MAX_GRID_CELLS as u128 {
+        return Err(DismechError::GridTooLarge {
+            file: name.clone(),
+            columns: u64::from(width),
+            rows: u64::from(height),
+            cells,
+            cap: MAX_GRID_CELLS,
+        });
+    }
+    let bits = match decoder.colortype().map_err(tiff_error)? {
+        ColorType::Gray(bits) => u64::from(bits),
+        other => {
+            return Err(fail(format!(
+                "its image is {other:?}: a raster is one band of values (a DEM), not a colour or multi-band image"
+            )))
+        }
+    };
+    let compression: u16 = decoder
+        .find_tag_unsigned(Tag::Compression)
+        .map_err(tiff_error)?
+        .unwrap_or(1);
+    let bytes = (cells as u64).saturating_mul(bits.div_ceil(8));
+    let holds = if compression == 1 {
+        size
+    } else {
+        size.saturating_mul(MAX_GEOTIFF_EXPANSION)
+    };
+    if bytes > holds {
+        return Err(fail(format!(
+            "{width} × {height} values of {bits} bits ({bytes} bytes) cannot be held in a file of {size} bytes (compression {compression}): the file is truncated or damaged"
+        )));
+    }
+
+    let f64_tag = |decoder: &mut Decoder<R>, tag: Tag, number: u16, what: &str| match decoder
+        .find_tag(tag)
+        .map_err(tiff_error)?
+    {
+        None => Ok(None),
+        Some(v) => v
+            .into_f64_vec()
+            .map(Some)
+            .map_err(|e| fail(format!("{what} ({number}) cannot be read as numbers: {e}"))),
+    };
+    let scale = f64_tag(
+        &mut decoder,
+        Tag::ModelPixelScaleTag,
+        33550,
+        "ModelPixelScale",
+    )?;
+    let tie = f64_tag(&mut decoder, Tag::ModelTiepointTag, 33922, "ModelTiepoint")?;
+    let (scale, tie) = match (scale, tie) {
+        (Some(scale), Some(tie)) => (scale, tie),
+        (scale, tie) => {
+            let transformation = decoder
+                .find_tag(Tag::ModelTransformationTag)
+                .map_err(tiff_error)?
+                .is_some();
+            let missing = match (scale.is_none(), tie.is_none()) {
+                (true, true) => "ModelPixelScale (33550) and ModelTiepoint (33922)",
+                (true, false) => "ModelPixelScale (33550)",
+                _ => "ModelTiepoint (33922)",
+            };
+            return Err(fail(if transformation {
+                format!("is georeferenced by a ModelTransformation (34264), which may rotate the grid; a raster needs {missing}: warp it onto a north-up grid (gdalwarp)")
+            } else {
+                format!("has no {missing}: it is not georeferenced (a GeoTIFF DEM has both)")
+            }));
+        }
+    };
+    let (sx, sy) = match scale[..] {
+        [sx, sy, ..] => (sx, sy),
+        _ => {
+            return Err(fail(format!(
+                "ModelPixelScale (33550) = {scale:?}: expected (x scale, y scale, z scale)"
+            )))
+        }
+    };
+    if !(sx.is_finite() && sx > 0.0 && sy.is_finite() && sy > 0.0) {
+        return Err(fail(format!(
+            "ModelPixelScale (33550) = ({sx}, {sy}): the cell sides must be finite and positive"
+        )));
+    }
+    if (sx - sy).abs() > 1e-9 * sx {
+        return Err(fail(format!(
+            "ModelPixelScale (33550) = ({sx}, {sy}): cells of {sx} × {sy} m; a raster has square cells: resample it (gdalwarp -tr)"
+        )));
+    }
+    let [i, j, _, x, y, _] = tie[..] else {
+        return Err(fail(format!(
+            "ModelTiepoint (33922) has {} values: expected one tie point (i, j, k, x, y, z), 6 values",
+            tie.len()
+        )));
+    };
+    let keys = match decoder
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .map_err(tiff_error)?
+    {
+        None => Vec::new(),
+        Some(v) => v.into_u16_vec().map_err(|e| {
+            fail(format!(
+                "GeoKeyDirectory (34735) cannot be read as numbers: {e}"
+            ))
+        })?,
+    };
+    let point = if keys.is_empty() {
+        false
+    } else {
+        pixel_is_point(&keys).map_err(fail)?
+    };
+    let shift = if point { 0.5 } else { 0.0 };
+    let x_left = x - (i + shift) * sx;
+    let y_top = y + (j + shift) * sy;
+    let nodata =
+        match decoder.find_tag(Tag::GdalNodata).map_err(tiff_error)? {
+            None => None,
+            Some(v) => {
+                let text = v
+                    .into_string()
+                    .map_err(|e| fail(format!("GDAL_NODATA (42113) is not text: {e}")))?;
+                let trimmed = text.trim_matches(|c: char| c.is_whitespace() || c == '\0');
+                Some(trimmed.parse::<f64>().map_err(|_| {
+                    fail(format!("GDAL_NODATA (42113) = `{trimmed}`: not a number"))
+                })?)
+            }
+        };
+
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = usize::try_from(bytes.max(1)).unwrap_or(usize::MAX);
+    // A chunk's compressed bytes lie in the file.
+    limits.intermediate_buffer_size = usize::try_from(size.max(1)).unwrap_or(usize::MAX);
+    let mut decoder = decoder.with_limits(limits);
+    let values = samples(decoder.read_image().map_err(tiff_error)?, nodata);
+    let (columns, rows) = (width as usize, height as usize);
+    if values.len() != columns * rows {
+        return Err(fail(format!(
+            "{} values decoded for {width} × {height} cells",
+            values.len()
+        )));
+    }
+    if let Some(k) = values.iter().position(|v| v.is_some_and(f64::is_infinite)) {
+        return Err(DismechError::GridCell {
+            file: name,
+            row: k / columns,
+            column: k % columns,
+            message: format!("value {}: not finite", values[k].unwrap_or_default()),
+        });
+    }
+    Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values).map_err(|e| {
+        fail(format!(
+            "{e} (from ModelTiepoint (33922) = {tie:?} and ModelPixelScale (33550) = {scale:?}, {width} × {height} cells)"
+        ))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tiff::decoder::{Decoder, DecodingResult};
+
+    fn sample() -> Raster {
+        Raster::from_fn(4, 3, 1000.0, 2000.0, 2.5, |x, y| {
+            if x > 1008.0 {
+                None
+            } else {
+                Some(x * 1e-3 + y / 3.0)
+            }
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn geotiff_holds_the_values_georeferencing_and_nodata() {
+        let raster = sample();
+        let bytes = encode(&raster).unwrap();
+        let mut decoder = Decoder::new(Cursor::new(bytes)).unwrap();
+        assert_eq!(decoder.dimensions().unwrap(), (4, 3));
+        let scale = decoder.get_tag_f64_vec(Tag::ModelPixelScaleTag).unwrap();
+        assert_eq!(scale, [2.5, 2.5, 0.0]);
+        let tie = decoder.get_tag_f64_vec(Tag::ModelTiepointTag).unwrap();
+        assert_eq!(tie, [0.0, 0.0, 0.0, 1000.0, 2007.5, 0.0]);
+        let keys = decoder.get_tag_u16_vec(Tag::GeoKeyDirectoryTag).unwrap();
+        assert_eq!(keys, geokey_directory());
+        assert_eq!(
+            decoder.get_tag_ascii_string(Tag::GdalNodata).unwrap(),
+            "-9999"
+        );
+        let DecodingResult::F64(values) = decoder.read_image().unwrap() else {
+            panic!("not 64-bit floats");
+        };
+        let expected: Vec<f64> = raster
+            .values()
+            .iter()
+            .map(|v| v.unwrap_or(GEOTIFF_NODATA))
+            .collect();
+        assert_eq!(values, expected);
+        assert_eq!(values[3], GEOTIFF_NODATA);
+    }
+
+    #[test]
+    fn a_cell_holding_minus_9999_makes_the_nodata_nan() {
+        let raster = Raster::new(2, 1, 0.0, 0.0, 1.0, vec![Some(-9999.0), None]).unwrap();
+        let mut decoder = Decoder::new(Cursor::new(encode(&raster).unwrap())).unwrap();
+        assert_eq!(
+            decoder.get_tag_ascii_string(Tag::GdalNodata).unwrap(),
+            "nan"
+        );
+        let DecodingResult::F64(values) = decoder.read_image().unwrap() else {
+            panic!("not 64-bit floats");
+        };
+        assert_eq!(values[0], -9999.0);
+        assert!(values[1].is_nan());
+    }
+
+    #[test]
+    fn geotiff_reads_back_to_the_same_raster() {
+        let dir = std::env::temp_dir().join(format!("dismech-geotiff-rt-{}", std::process::id()));
+        let path = dir.join("fs.tif");
+        write_geotiff(&path, &sample()).unwrap();
+        assert_eq!(read_geotiff(&path).unwrap(), sample());
+        let minus = Raster::new(2, 1, 0.0, 0.0, 1.0, vec![Some(-9999.0), None]).unwrap();
+        write_geotiff(&path, &minus).unwrap();
+        assert_eq!(read_geotiff(&path).unwrap(), minus);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_raster_type_key_is_found_and_a_damaged_directory_named() {
+        assert_eq!(pixel_is_point(&geokey_directory()), Ok(false));
+        let mut point = geokey_directory();
+        point[11] = 2;
+        assert_eq!(pixel_is_point(&point), Ok(true));
+        point[11] = 7;
+        assert!(pixel_is_point(&point).unwrap_err().contains("= 7"));
+        assert!(pixel_is_point(&[1, 1, 1, 9, 1024])
+            .unwrap_err()
+            .contains("announces 9 keys"));
+    }
+
+    #[test]
+    fn geotiff_is_written_atomically_and_an_unwritable_path_is_named() {
+        let dir = std::env::temp_dir().join(format!("dismech-geotiff-{}", std::process::id()));
+        let path = dir.join("fs.tif");
+        write_geotiff(&path, &sample()).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), encode(&sample()).unwrap());
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(names.len(), 1);
+        // A folder where the file should go: nothing is written, the path is named.
+        let blocked = dir.join("blocked.tif");
+        std::fs::create_dir_all(&blocked).unwrap();
+        let e = write_geotiff(&blocked, &sample()).unwrap_err().to_string();
+        assert!(e.contains("blocked.tif"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,238 @@
+//! An analysis as maps for a GIS: one value per grid column, on the grid
+//! of the slope's rasters (its corner and cell size), no data where the
+//! grid has no column; written as ESRI ASCII grids and GeoTIFF
+//! ([`crate::grid::RasterFormat`]); the maps are listed at
+//! [`ColumnMaps`].
+
+use std::path::{Path, PathBuf};
+
+use super::analysis::HpmResult;
+use super::grids::SlopeGrids;
+use super::hovland::Hovland;
+use super::model::HpmModel;
+use crate::error::{DismechError, Result};
+use crate::grid::{write_rasters, Raster, RasterFormat};
+use crate::kinematics::affine3::ELEMENT_DOF;
+
+/// The maps of [`HpmResult::maps`], in this order.
+pub const HPM_MAP_NAMES: [&str; 7] = [
+    "local_fs",
+    "displacement_x",
+    "displacement_y",
+    "displacement_z",
+    "displacement",
+    "strain_major",
+    "strain_minor",
+];
+
+/// The maps of [`Hovland::maps`], in this order.
+pub const HOVLAND_MAP_NAMES: [&str; 3] = ["local_fs", "normal_force", "driving_force"];
+
+/// Named rasters of one analysis, on the grid of its slope: one value per
+/// grid column, no data where the grid has no column (nor where a value is
+/// not finite).
+///
+/// | map | HPM ([`HpmResult::maps`]) | Hovland ([`Hovland::maps`]) |
+/// |---|---|---|
+/// | `local_fs` | [`HpmResult::local_safety_factors`] (no data where the springs carry no shear) | `(c A + N tan φ) / T` of the column (no data where `T ≤ 0`) |
+/// | `displacement_x`, `_y`, `_z`, `displacement` | the displacement (m) at the top of the column, at its centre ([`HpmResult::surface`]), and its length | — |
+/// | `strain_major`, `strain_minor` | the principal plan strains there ([`SurfacePoint::principal`](super::SurfacePoint::principal)), extension positive | — |
+/// | `normal_force`, `driving_force` | — | the column's base normal force N and driving force T (N) |
+///
+/// A local Fs of 0 marks a column whose strength `c A + N tan φ` (HPM: over
+/// its springs) is not positive, as [`HpmResult::local_safety_factors`]
+/// gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColumnMaps {
+    /// Each map's name ([`HPM_MAP_NAMES`], [`HOVLAND_MAP_NAMES`]) and
+    /// raster.
+    pub maps: Vec<(&'static str, Raster)>,
+}
+
+impl ColumnMaps {
+    /// The map named `name`, if there is one.
+    pub fn get(&self, name: &str) -> Option<&Raster> {
+        self.maps.iter().find(|(n, _)| *n == name).map(|(_, r)| r)
+    }
+
+    /// Write every map as `{prefix}_{name}.{asc|tif}` in `folder` (created
+    /// if needed), in each of `formats`, each file atomically
+    /// ([`write_rasters`]); returns the paths, map by map and format by
+    /// format.
+    ///
+    /// # Errors
+    /// [`DismechError::Output`] naming the path of a file that cannot be
+    /// written (it is then not there).
+    pub fn write(
+        &self,
+        folder: &Path,
+        prefix: &str,
+        formats: &[RasterFormat],
+    ) -> Result<Vec<PathBuf>> {
+        let named: Vec<(&str, &Raster)> = self.maps.iter().map(|(n, r)| (*n, r)).collect();
+        write_rasters(folder, prefix, &named, formats)
+    }
+}
+
+/// Check that `model` was built on the grid of `grids` (rows, columns and
+/// cell size, and its first column at its cell), and give each column's
+/// cell as an index into that grid's values.
+fn column_cells(model: &HpmModel, grids: &SlopeGrids) -> Result<Vec<usize>> {
+    let raster = &grids.ground().raster;
+    let (rows, columns, d) = model.grid;
+    let mismatch = |what: String| DismechError::MapData {
+        reason: format!(
+            "the model is not one of the grid of `{}`: {what}",
+            grids.ground().name
+        ),
+    };
+    if (rows, columns, d) != (raster.rows(), raster.columns(), raster.cell_size()) {
+        return Err(mismatch(format!(
+            "its grid has {rows} × {columns} cells of {d} m, the rasters {} × {} cells of {} m",
+            raster.rows(),
+            raster.columns(),
+            raster.cell_size()
+        )));
+    }
+    let mut cells = Vec::with_capacity(model.columns.len());
+    for (k, column) in model.columns.iter().enumerate() {
+        let (r, c) = column.cell;
+        if r >= rows || c >= columns {
+            return Err(mismatch(format!(
+                "column {k} lies in cell ({r}, {c}), outside the grid"
+            )));
+        }
+        cells.push(r * columns + c);
+    }
+    if let Some(first) = model.columns.first() {
+        let (r, c) = first.cell;
+        let (x, y) = first.shape.origin();
+        let (xc, yc) = raster.cell_centre(r, c);
+        let (x_ll, y_ll) = (xc - 0.5 * d, yc - 0.5 * d);
+        if (x - x_ll).abs() > 1e-9 * d.max(x_ll.abs())
+            || (y - y_ll).abs() > 1e-9 * d.max(y_ll.abs())
+        {
+            return Err(mismatch(format!(
+                "column 0 of cell ({r}, {c}) has its corner at ({x}, {y}), the cell at ({x_ll}, {y_ll})"
+            )));
+        }
+    }
+    Ok(cells)
+}
+
+/// A raster on the grid of `grids` holding `value(k)` at the cell of
+/// column `k`, no data elsewhere.
+fn column_raster(
+    grids: &SlopeGrids,
+    cells: &[usize],
+    value: impl Fn(usize) -> Option<f64>,
+) -> Result<Raster> {
+    let raster = &grids.ground().raster;
+    let mut values = vec![None; raster.rows() * raster.columns()];
+    for (k, &cell) in cells.iter().enumerate() {
+        values[cell] = value(k).filter(|v| v.is_finite());
+    }
+    let (x0, y0) = raster.lower_left();
+    Raster::new(
+        raster.columns(),
+        raster.rows(),
+        x0,
+        y0,
+        raster.cell_size(),
+        values,
+    )
+}
+
+impl HpmResult {
+    /// The maps of this analysis of `model`, built on `grids`: local Fs,
+    /// displacement at the top of each column (components and length) and
+    /// principal plan strains there ([`HPM_MAP_NAMES`]; see
+    /// [`ColumnMaps`]), each a raster on the grid of `grids`.
+    ///
+    /// # Errors
+    /// [`DismechError::MapData`] when `model` was not built on the grid of
+    /// `grids`, or this result is not an analysis of `model` (its
+    /// displacements not 12 per element, its tractions not one per slip
+    /// spring).
+    pub fn maps(&self, model: &HpmModel, grids: &SlopeGrids) -> Result<ColumnMaps> {
+        if self.displacements.len() != ELEMENT_DOF * model.elements.len()
+            || self.tractions.len() != model.slip.len()
+        {
+            return Err(DismechError::MapData {
+                reason: format!(
+                    "the HPM result has {} displacements and {} slip tractions, the model {} elements ({} displacements) and {} slip springs: it is not a result of this model",
+                    self.displacements.len(),
+                    self.tractions.len(),
+                    model.elements.len(),
+                    ELEMENT_DOF * model.elements.len(),
+                    model.slip.len()
+                ),
+            });
+        }
+        let cells = column_cells(model, grids)?;
+        let local = self.local_safety_factors(model);
+        let surface = self.surface(model);
+        let map = |f: &dyn Fn(usize) -> f64| column_raster(grids, &cells, |k| Some(f(k)));
+        let maps = vec![
+            ("local_fs", map(&|k| local[k])?),
+            ("displacement_x", map(&|k| surface[k].displacement.x)?),
+            ("displacement_y", map(&|k| surface[k].displacement.y)?),
+            ("displacement_z", map(&|k| surface[k].displacement.z)?),
+            ("displacement", map(&|k| surface[k].displacement.norm())?),
+            ("strain_major", map(&|k| surface[k].principal[0])?),
+            ("strain_minor", map(&|k| surface[k].principal[1])?),
+        ];
+        debug_assert!(maps.iter().map(|(n, _)| *n).eq(HPM_MAP_NAMES));
+        Ok(ColumnMaps { maps })
+    }
+}
+
+impl Hovland {
+    /// The maps of Hovland's method for the columns of `model`, built on
+    /// `grids`: each column's own ratio `(c A + N tan φ) / T` (0 where its
+    /// strength is not positive, no data where `T ≤ 0`: the column holds
+    /// the slide back or does not drive it), its normal force N and its
+    /// driving force T ([`HOVLAND_MAP_NAMES`]).
+    ///
+    /// # Errors
+    /// [`DismechError::MapData`] when `model` was not built on the grid of
+    /// `grids`, or these are not Hovland's terms of `model` (not one per
+    /// column).
+    pub fn maps(&self, model: &HpmModel, grids: &SlopeGrids) -> Result<ColumnMaps> {
+        if self.columns.len() != model.columns.len() {
+            return Err(DismechError::MapData {
+                reason: format!(
+                    "Hovland's method has {} columns, the model {}: it is not Hovland's method of this model",
+                    self.columns.len(),
+                    model.columns.len()
+                ),
+            });
+        }
+        let cells = column_cells(model, grids)?;
+        let (c, mu) = (model.material.cohesion, model.material.friction());
+        let local = |k: usize| {
+            let t = &self.columns[k];
+            let strength = c * t.area + t.normal * mu;
+            if t.driving <= 0.0 {
+                None
+            } else if strength <= 0.0 {
+                Some(0.0)
+            } else {
+                Some(strength / t.driving)
+            }
+        };
+        let maps = vec![
+            ("local_fs", column_raster(grids, &cells, local)?),
+            (
+                "normal_force",
+                column_raster(grids, &cells, |k| Some(self.columns[k].normal))?,
+            ),
+            (
+                "driving_force",
+                column_raster(grids, &cells, |k| Some(self.columns[k].driving))?,
+            ),
+        ];
+        debug_assert!(maps.iter().map(|(n, _)| *n).eq(HOVLAND_MAP_NAMES));
+        Ok(ColumnMaps { maps })
+    }
+}
