@@ -271,6 +271,86 @@ fn the_default_sphere_grid_over_the_shipped_terrain_agrees_with_the_library() {
     std::fs::remove_dir_all(out.parent().unwrap()).unwrap();
 }
 
+/// A water table and a seismic coefficient reach the search: the map
+/// equals the library's with the same pore pressure and k_h, bit for bit,
+/// and its lowest Fs lies below the dry, static one.
+#[test]
+fn a_water_table_and_k_h_are_those_of_the_library_search() {
+    let dir = scratch("water");
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    // The water table 20 m below the ground everywhere.
+    let values = dem.values().iter().map(|v| v.map(|z| z - 20.0)).collect();
+    let (x0, y0) = dem.lower_left();
+    let water = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+    let water_path = dir.join("water.asc");
+    dismech::grid::write_esri_ascii(&water_path, &water).unwrap();
+    let out = dir.join("run");
+    let run = slope(
+        &out,
+        &[
+            "--water",
+            water_path.to_str().unwrap(),
+            "--kh",
+            "0.1",
+            "--search",
+            "ellipsoids",
+            "--count",
+            "5000",
+            "--seed",
+            "11",
+        ],
+    );
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let fs_map = read_esri_ascii(&out.join("slope_fs.asc")).unwrap();
+    // The defaults of this DEM (100 × 100 cells of 75 m).
+    let family = EllipsoidRandom::new(
+        5_000,
+        11,
+        (0.0, 187.5),
+        (300.0, 1875.0),
+        (0.5, 1.0),
+        (75.0, 375.0),
+    )
+    .unwrap();
+    let wet = Terrain::new(
+        dismech::hpm::NamedRaster::new("dem", dem.clone()),
+        Some(dismech::hpm::NamedRaster::new("water", water)),
+    )
+    .unwrap();
+    let loads = SlopeLoads {
+        seismic_coefficient: 0.1,
+        ..SlopeLoads::default()
+    };
+    let settings = SearchSettings::default();
+    let result = search(&wet, &material(), &loads, &family, &settings, |_, _| {}).unwrap();
+    let library_map = result.safety_factor_raster().unwrap();
+    for (a, b) in library_map.values().iter().zip(fs_map.values()) {
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+    }
+    let dry = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem), None).unwrap();
+    let dry = search(
+        &dry,
+        &material(),
+        &SlopeLoads::default(),
+        &family,
+        &settings,
+        |_, _| {},
+    )
+    .unwrap();
+    let (wet_fs, dry_fs) = (
+        result.lowest_safety_factor().unwrap(),
+        dry.lowest_safety_factor().unwrap(),
+    );
+    assert!(wet_fs < dry_fs, "wet {wet_fs} against dry {dry_fs}");
+    assert_eq!(raster_min(&fs_map).to_bits(), wet_fs.to_bits());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Bad input: the option and the value in the message, exit status 2
 /// (bad input) or 6 (an output that cannot be written), no panic, and the
 /// previous output folder untouched.

@@ -57,7 +57,7 @@ fn progress_bar(total: u64, quiet: bool) -> indicatif::ProgressBar {
     }
     let bar = indicatif::ProgressBar::new(total);
     if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "slope search [{elapsed_precise}] {bar:30} {human_pos}/{human_len} trials ({per_sec}, {eta} left)",
+        "slope search [{elapsed_precise}] {bar:30} {human_pos}/{human_len} trials ({eta} left)",
     ) {
         bar.set_style(style);
     }
@@ -146,6 +146,10 @@ where
         folder.path(),
         outputs::Run {
             family: description,
+            kind: match args.search {
+                SearchKind::Spheres => "spheres",
+                SearchKind::Ellipsoids => "ellipsoids",
+            },
             threads,
             seconds,
         },

@@ -25,6 +25,8 @@ pub const SUMMARY_JSON: &str = "summary.json";
 pub struct Run {
     /// The family, as the options that give it.
     pub family: String,
+    /// `spheres` or `ellipsoids`.
+    pub kind: &'static str,
     /// Worker threads.
     pub threads: usize,
     /// Seconds the search took (the files not included).
@@ -192,10 +194,7 @@ pub fn write<S: TrialSurface + Copy>(
     let map = SlopeMap {
         dem,
         safety: &safety,
-        title: format!(
-            "{dem_name}: lowest Fs per cell ({})",
-            family_word(&run.family)
-        ),
+        title: format!("{dem_name}: lowest Fs per cell ({})", run.kind),
         outline: outline(dem, &columns),
         arrow: Some((
             centre,
@@ -221,11 +220,6 @@ pub fn write<S: TrialSurface + Copy>(
         .map_err(|e| output_error(&dir.join(SUMMARY_JSON), e))?;
     dismech::io::write_atomically(&dir.join(SUMMARY_JSON), text.as_bytes())?;
     Ok(report)
-}
-
-/// `spheres` or `ellipsoids`, from the family's options.
-fn family_word(family: &str) -> &str {
-    family.split_whitespace().nth(1).unwrap_or("trial surfaces")
 }
 
 /// `summary.json`: the inputs, the family, the counts, the most critical
