@@ -104,9 +104,10 @@ impl std::fmt::Display for Report {
         }
         writeln!(
             f,
-            "; {:.2} s on {} threads ({:.2} µs a trial)",
+            "; {:.2} s on {} thread{} ({:.2} µs a trial)",
             self.run.seconds,
             self.run.threads,
+            if self.run.threads == 1 { "" } else { "s" },
             1e6 * self.run.seconds / self.counts.trials as f64
         )?;
         write!(f, "wrote {}: {}", self.out.display(), self.files.join(", "))
