@@ -10,14 +10,17 @@
 //!   by the LP, a block wall by the DEM and the DDA, ellipses in the
 //!   implicit driver, a disc with DDA's affine unknowns, penalty contacts
 //!   against the LP), each with the quantities its checks compare;
+//! - [`slope`]: `dismech slope`, the slope search over a DEM with its
+//!   rasters, critical surfaces and map;
 //! - [`output`]: the reproductions' reports: the pass rule of each check,
 //!   `summary.json`, console and report listings, study folders swapped in
 //!   whole, CSV tables and SVG plots.
 //!
 //! The `dismech` binary (`dismech reproduce <study>`, `dismech
-//! lattice-limit-load`) runs the studies built from both.
+//! lattice-limit-load`, `dismech slope`) runs the studies built from both.
 
 #![deny(missing_docs)]
 
 pub mod compositions;
 pub mod output;
+pub mod slope;

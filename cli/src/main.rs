@@ -11,6 +11,7 @@ use dismech::error::DismechError;
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitStatus};
 use dismech::lp::LinearProgramSolver;
+use dismech_cli::slope::{SlopeArgs, SlopeError};
 use exit_status::Exit;
 
 #[derive(Parser)]
@@ -73,6 +74,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Slope stability over a terrain: search trial slip surfaces (a grid
+    /// of spheres or random ellipsoids) over a DEM by Hovland's method and
+    /// map the lowest factor of safety of each cell.
+    ///
+    /// Writes into OUT (replaced whole once every file is written): the
+    /// lowest Fs per cell and the volume, area and depth of the surface
+    /// that gave it as ESRI ASCII grids on the DEM's grid (slope_fs.asc,
+    /// slope_volume.asc, slope_area.asc, slope_depth.asc), the most
+    /// critical surfaces (critical.csv), the map (map.svg) and
+    /// summary.json. The family's sizes default to fractions of the DEM's
+    /// extent (each overridable).
+    Slope(Box<SlopeArgs>),
 }
 
 fn lattice_limit_load(
@@ -161,6 +174,26 @@ fn reproduce_command(study: &str, out: &Path, progress: bool) -> Exit {
     reproduce::outcome::exit(&outcomes)
 }
 
+/// `slope`: the search, its folder and its summary; the exit status of an
+/// error from the library's error, bad input for an option refused.
+fn slope_command(args: &SlopeArgs) -> Exit {
+    match dismech_cli::slope::run(args) {
+        Ok(report) => {
+            println!("{report}");
+            Exit::Success
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            match &e {
+                SlopeError::Run(error) => Exit::of_error(error),
+                SlopeError::Argument { .. }
+                | SlopeError::Unused { .. }
+                | SlopeError::NoSurface { .. } => Exit::BadInput,
+            }
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let help = Exit::help();
     let mut command = Cli::command().after_help(help.clone());
@@ -184,6 +217,7 @@ fn main() -> ExitCode {
             json: _,
         } => lattice_command(&model, m, n, nprime, !no_rolling, c_wall),
         Command::Reproduce { study, out, quiet } => reproduce_command(&study, &out, !quiet),
+        Command::Slope(args) => slope_command(&args),
     };
     exit.into()
 }

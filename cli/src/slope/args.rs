@@ -1,0 +1,370 @@
+//! The options of `dismech slope`, each value checked as it is parsed, so
+//! that a bad value is refused by the command-line parser with the option's
+//! name, the value as written and what it must satisfy (exit status 2).
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use dismech::error::{require_non_negative, require_positive, DismechError};
+use dismech::law::friction_from_degrees;
+use dismech::slope::Steps;
+
+/// The trial surfaces a search runs through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SearchKind {
+    /// Scoops3D's systematic grid of sphere centres and radii.
+    Spheres,
+    /// r.slope.stability's random ellipsoids along the fall line.
+    Ellipsoids,
+}
+
+/// A range `MIN:MAX`, with a number of values `MIN:MAX:COUNT` where the
+/// option takes one (a single value `V` is `V:V`, one value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Span {
+    /// The first value.
+    pub min: f64,
+    /// The last value.
+    pub max: f64,
+    /// How many values, where given.
+    pub count: Option<usize>,
+}
+
+impl Span {
+    /// `(min, max)`.
+    pub fn pair(&self) -> (f64, f64) {
+        (self.min, self.max)
+    }
+
+    /// The values as a grid's [`Steps`], `default_count` of them unless
+    /// the option gave a count.
+    pub fn steps(&self, default_count: usize) -> Steps {
+        Steps {
+            min: self.min,
+            max: self.max,
+            count: self.count.unwrap_or(default_count),
+        }
+    }
+}
+
+impl std::fmt::Display for Span {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}", self.min, self.max)?;
+        if let Some(count) = self.count {
+            write!(f, ":{count}")?;
+        }
+        Ok(())
+    }
+}
+
+/// The options of `dismech slope`.
+#[derive(Debug, Clone, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct SlopeArgs {
+    /// Digital elevation model: an ESRI ASCII grid of ground heights (m)
+    /// on square cells in metres (a projected grid). No-data cells are
+    /// allowed; a trial surface over one is refused.
+    #[arg(long, value_name = "FILE")]
+    pub dem: PathBuf,
+    /// Water table: heights of the phreatic surface (m), an ESRI ASCII
+    /// grid on the DEM's grid. Without it the ground is dry.
+    #[arg(long, value_name = "FILE")]
+    pub water: Option<PathBuf>,
+    /// Effective cohesion c' on the slip surface (Pa).
+    #[arg(long, value_name = "PA", value_parser = parse_cohesion)]
+    pub cohesion: f64,
+    /// Effective friction angle φ' on the slip surface (degrees, in [0, 90)).
+    #[arg(long, value_name = "DEG", value_parser = parse_friction_angle)]
+    pub friction_angle: f64,
+    /// Total unit weight γ of the ground (N/m³).
+    #[arg(long, value_name = "N_PER_M3", value_parser = parse_unit_weight)]
+    pub unit_weight: f64,
+    /// Horizontal seismic coefficient k_h (pseudo-static force k_h W along
+    /// each surface's sliding direction).
+    #[arg(long, value_name = "K", default_value_t = 0.0, value_parser = parse_seismic)]
+    pub kh: f64,
+    /// Trial surfaces: `spheres` (Scoops3D's systematic grid of centres and
+    /// radii) or `ellipsoids` (r.slope.stability's random sampling).
+    #[arg(long, value_enum)]
+    pub search: SearchKind,
+
+    /// Cells between neighbouring sphere centres [default: a 25th of the
+    /// DEM's shorter side, at least 1].
+    #[arg(long, value_name = "CELLS", value_parser = parse_stride, help_heading = "Sphere grid (--search spheres)")]
+    pub stride: Option<usize>,
+    /// Sphere radii (m), COUNT of them [default: 4 cells to a third of the
+    /// DEM's shorter side, 10 radii].
+    #[arg(long, value_name = "MIN:MAX[:COUNT]", value_parser = parse_radii, help_heading = "Sphere grid (--search spheres)")]
+    pub radii: Option<Span>,
+
+    /// Heights of the centres above the ground under them (m); COUNT of
+    /// them for spheres, a uniform range for ellipsoids [default: spheres 1
+    /// cell to a quarter of the DEM's shorter side, 6 heights; ellipsoids 0
+    /// to a 40th of it].
+    #[arg(long, value_name = "MIN:MAX[:COUNT]", value_parser = parse_heights, help_heading = "Trial surfaces, both families")]
+    pub heights: Option<Span>,
+
+    /// Number of random ellipsoids.
+    #[arg(long, value_name = "N", default_value_t = 100_000, value_parser = parse_count, help_heading = "Random ellipsoids (--search ellipsoids)")]
+    pub count: u64,
+    /// Seed of the random ellipsoids (the same seed, the same trials).
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1,
+        help_heading = "Random ellipsoids (--search ellipsoids)"
+    )]
+    pub seed: u64,
+    /// Semi-axis along the fall line (m) [default: 4 cells to a quarter of
+    /// the DEM's shorter side].
+    #[arg(long, value_name = "MIN:MAX", value_parser = parse_along, help_heading = "Random ellipsoids (--search ellipsoids)")]
+    pub along: Option<Span>,
+    /// Ratio of the semi-axis across the fall line to the one along it.
+    #[arg(long, value_name = "MIN:MAX", default_value = "0.5:1", value_parser = parse_across_ratio, help_heading = "Random ellipsoids (--search ellipsoids)")]
+    pub across_ratio: Span,
+    /// Vertical semi-axis (m) [default: 1 cell to a 20th of the DEM's
+    /// shorter side].
+    #[arg(long, value_name = "MIN:MAX", value_parser = parse_vertical, help_heading = "Random ellipsoids (--search ellipsoids)")]
+    pub vertical: Option<Span>,
+
+    /// The fewest columns (DEM cells) of a surface kept.
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = parse_min_columns, help_heading = "Limits on the surfaces kept")]
+    pub min_columns: usize,
+    /// Range of a surface's depth, its thickest column (m; `inf` for no
+    /// upper limit).
+    #[arg(long, value_name = "MIN:MAX", value_parser = parse_depth, help_heading = "Limits on the surfaces kept")]
+    pub depth: Option<Span>,
+    /// Range of a surface's volume (m³).
+    #[arg(long, value_name = "MIN:MAX", value_parser = parse_volume, help_heading = "Limits on the surfaces kept")]
+    pub volume: Option<Span>,
+    /// Range of a surface's plan area (m²).
+    #[arg(long, value_name = "MIN:MAX", value_parser = parse_area, help_heading = "Limits on the surfaces kept")]
+    pub area: Option<Span>,
+
+    /// How many of the most critical surfaces to list in critical.csv.
+    #[arg(long, value_name = "K", default_value_t = 10, value_parser = parse_keep)]
+    pub keep: usize,
+    /// Worker threads [default: one per core].
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+    /// Output folder, replaced whole once every file is written (a failed
+    /// run leaves the previous one as it was).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Hide the progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+fn number(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    if value.is_nan() {
+        return Err("NaN is not a value".into());
+    }
+    Ok(value)
+}
+
+fn whole<T: std::str::FromStr>(text: &str) -> Result<T, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a whole number >= 0"))
+}
+
+fn message(e: DismechError) -> String {
+    e.to_string()
+}
+
+fn parse_cohesion(text: &str) -> Result<f64, String> {
+    require_non_negative("cohesion c' (Pa)", number(text)?).map_err(message)
+}
+
+fn parse_friction_angle(text: &str) -> Result<f64, String> {
+    let degrees = number(text)?;
+    friction_from_degrees(degrees).map_err(message)?;
+    Ok(degrees)
+}
+
+fn parse_unit_weight(text: &str) -> Result<f64, String> {
+    require_positive("unit weight gamma (N/m3)", number(text)?).map_err(message)
+}
+
+fn parse_seismic(text: &str) -> Result<f64, String> {
+    let kh = number(text)?;
+    let loads = dismech::slope::SlopeLoads {
+        seismic_coefficient: kh,
+        ..Default::default()
+    };
+    loads.validate().map_err(message)?;
+    Ok(kh)
+}
+
+fn at_least_one<T: std::str::FromStr + Into<u64> + Copy>(
+    text: &str,
+    what: &str,
+) -> Result<T, String> {
+    let value: T = whole(text)?;
+    if value.into() == 0 {
+        return Err(format!("{what} must be at least 1"));
+    }
+    Ok(value)
+}
+
+fn parse_stride(text: &str) -> Result<usize, String> {
+    at_least_one::<u32>(text, "the stride (cells)").map(|v| v as usize)
+}
+
+fn parse_count(text: &str) -> Result<u64, String> {
+    at_least_one::<u64>(text, "the number of trials")
+}
+
+fn parse_min_columns(text: &str) -> Result<usize, String> {
+    at_least_one::<u32>(text, "the fewest columns").map(|v| v as usize)
+}
+
+fn parse_threads(text: &str) -> Result<usize, String> {
+    at_least_one::<u16>(text, "the number of threads").map(usize::from)
+}
+
+fn parse_keep(text: &str) -> Result<usize, String> {
+    whole::<u32>(text).map(|v| v as usize)
+}
+
+/// `MIN:MAX`, `MIN:MAX:COUNT` (where `counted`) or `V`, min ≤ max.
+fn span(text: &str, counted: bool) -> Result<Span, String> {
+    let parts: Vec<&str> = text.split(':').collect();
+    let (min, max, count) = match parts.as_slice() {
+        [v] => {
+            let v = number(v)?;
+            (v, v, None)
+        }
+        [a, b] => (number(a)?, number(b)?, None),
+        [a, b, n] if counted => {
+            let n: usize = whole(n)?;
+            if n == 0 {
+                return Err("COUNT must be at least 1".into());
+            }
+            (number(a)?, number(b)?, Some(n))
+        }
+        _ if counted => return Err(format!("`{text}` is not MIN:MAX or MIN:MAX:COUNT")),
+        _ => return Err(format!("`{text}` is not MIN:MAX")),
+    };
+    if min > max {
+        return Err(format!("MIN {min} lies above MAX {max}"));
+    }
+    Ok(Span { min, max, count })
+}
+
+/// A span whose bounds are finite and, where `positive`, > 0, checked by
+/// the library's [`Steps`] (the check its families make).
+fn checked_span(
+    text: &str,
+    counted: bool,
+    name: &'static str,
+    positive: bool,
+) -> Result<Span, String> {
+    let s = span(text, counted)?;
+    Steps::checked(name, s.min, s.max, s.count.unwrap_or(1), positive).map_err(message)?;
+    Ok(s)
+}
+
+fn parse_radii(text: &str) -> Result<Span, String> {
+    checked_span(text, true, "sphere radius (m)", true)
+}
+
+fn parse_heights(text: &str) -> Result<Span, String> {
+    checked_span(text, true, "height above the ground (m)", false)
+}
+
+fn parse_along(text: &str) -> Result<Span, String> {
+    checked_span(text, false, "semi-axis along (m)", true)
+}
+
+fn parse_across_ratio(text: &str) -> Result<Span, String> {
+    checked_span(text, false, "ratio across/along", true)
+}
+
+fn parse_vertical(text: &str) -> Result<Span, String> {
+    checked_span(text, false, "vertical semi-axis (m)", true)
+}
+
+/// A limit: `MIN:MAX` with MIN ≥ 0 finite and MAX ≥ MIN (`inf` allowed).
+fn limit(text: &str, name: &'static str) -> Result<Span, String> {
+    let s = span(text, false)?;
+    require_non_negative(name, s.min).map_err(message)?;
+    Ok(s)
+}
+
+fn parse_depth(text: &str) -> Result<Span, String> {
+    limit(text, "depth (m)")
+}
+
+fn parse_volume(text: &str) -> Result<Span, String> {
+    limit(text, "volume (m3)")
+}
+
+fn parse_area(text: &str) -> Result<Span, String> {
+    limit(text, "area (m2)")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spans_are_read_with_and_without_a_count() {
+        assert_eq!(
+            span("2:8:4", true).unwrap(),
+            Span {
+                min: 2.0,
+                max: 8.0,
+                count: Some(4)
+            }
+        );
+        assert_eq!(span("5", false).unwrap().pair(), (5.0, 5.0));
+        assert_eq!(span("0:inf", false).unwrap().max, f64::INFINITY);
+        assert_eq!(span("-1.5:2", true).unwrap().steps(6).count, 6);
+        assert_eq!(span("2:8:4", true).unwrap().to_string(), "2:8:4");
+    }
+
+    #[test]
+    fn bad_spans_say_what_is_wrong() {
+        assert_eq!(span("8:2", false).unwrap_err(), "MIN 8 lies above MAX 2");
+        assert_eq!(span("1:2:3", false).unwrap_err(), "`1:2:3` is not MIN:MAX");
+        assert_eq!(span("1:2:0", true).unwrap_err(), "COUNT must be at least 1");
+        assert_eq!(span("a:2", true).unwrap_err(), "`a` is not a number");
+        assert_eq!(span("nan:2", true).unwrap_err(), "NaN is not a value");
+        let e = parse_radii("-5:10").unwrap_err();
+        assert!(e.contains("sphere radius (m) = -5"), "{e}");
+        let e = parse_along("1:inf").unwrap_err();
+        assert!(e.contains("semi-axis along (m) = inf"), "{e}");
+        let e = parse_depth("-1:5").unwrap_err();
+        assert!(e.contains("depth (m) = -1"), "{e}");
+    }
+
+    #[test]
+    fn material_values_are_checked_by_the_library_rules() {
+        assert_eq!(parse_cohesion("5e3").unwrap(), 5e3);
+        assert!(parse_cohesion("-1")
+            .unwrap_err()
+            .contains("cohesion c' (Pa) = -1"));
+        assert!(parse_friction_angle("90")
+            .unwrap_err()
+            .contains("must lie in [0, 90)"));
+        assert_eq!(parse_friction_angle("0").unwrap(), 0.0);
+        assert!(parse_unit_weight("0")
+            .unwrap_err()
+            .contains("must be finite and > 0"));
+        assert!(parse_seismic("11").unwrap_err().contains("at most 10"));
+        assert_eq!(
+            parse_stride("0").unwrap_err(),
+            "the stride (cells) must be at least 1"
+        );
+        assert_eq!(
+            parse_threads("x").unwrap_err(),
+            "`x` is not a whole number >= 0"
+        );
+    }
+}

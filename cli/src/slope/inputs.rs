@@ -1,0 +1,90 @@
+//! The ground, the material, the loads and the limits of a command line,
+//! read and checked, each error naming its option.
+
+use dismech::error::DismechError;
+use dismech::hpm::NamedRaster;
+use dismech::law::friction_from_degrees;
+use dismech::slope::{SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain};
+
+use super::args::{SlopeArgs, Span};
+use super::error::SlopeError;
+
+/// The DEM and the water table of `args`, read and checked.
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--dem` or `--water` and the file: a
+/// file that cannot be read or is not an ESRI ASCII grid, a DEM too small
+/// or without data, a water table on another grid.
+pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
+    let dem_value = args.dem.display().to_string();
+    let dem =
+        NamedRaster::read(&args.dem).map_err(|e| SlopeError::argument("--dem", &dem_value, e))?;
+    let water = match &args.water {
+        Some(path) => Some(
+            NamedRaster::read(path)
+                .map_err(|e| SlopeError::argument("--water", &path.display().to_string(), e))?,
+        ),
+        None => None,
+    };
+    Terrain::new(dem, water).map_err(|e| match (&e, &args.water) {
+        (DismechError::GridMismatch { .. }, Some(path)) => {
+            SlopeError::argument("--water", &path.display().to_string(), e)
+        }
+        _ => SlopeError::argument("--dem", &dem_value, e),
+    })
+}
+
+/// The material of `args`.
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--cohesion` where both c' and φ' are
+/// zero (no strength); the values alone are checked as they are parsed.
+pub fn material(args: &SlopeArgs) -> Result<SlopeMaterial, SlopeError> {
+    let friction_coefficient = friction_from_degrees(args.friction_angle).map_err(|e| {
+        SlopeError::argument("--friction-angle", &args.friction_angle.to_string(), e)
+    })?;
+    let material = SlopeMaterial {
+        cohesion: args.cohesion,
+        friction_coefficient,
+        unit_weight: args.unit_weight,
+    };
+    material
+        .validate()
+        .map_err(|e| SlopeError::argument("--cohesion", &args.cohesion.to_string(), e))?;
+    Ok(material)
+}
+
+/// The loads of `args` (k_h; γ_w = 9810 N/m³).
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--kh` (checked as it is parsed).
+pub fn loads(args: &SlopeArgs) -> Result<SlopeLoads, SlopeError> {
+    let loads = SlopeLoads {
+        seismic_coefficient: args.kh,
+        ..SlopeLoads::default()
+    };
+    loads
+        .validate()
+        .map_err(|e| SlopeError::argument("--kh", &args.kh.to_string(), e))?;
+    Ok(loads)
+}
+
+/// The limits of `args` (no limit where an option is not given).
+///
+/// # Errors
+/// [`SlopeError::Run`] with the library's error naming the limit (the
+/// options are checked as they are parsed).
+pub fn limits(args: &SlopeArgs) -> Result<SurfaceLimits, SlopeError> {
+    let open = SurfaceLimits::default();
+    let pick = |s: Option<Span>, default| s.map_or(default, |s| s.pair());
+    let limits = SurfaceLimits {
+        min_columns: args.min_columns,
+        volume: pick(args.volume, open.volume),
+        area: pick(args.area, open.area),
+        depth: pick(args.depth, open.depth),
+    };
+    // The options were checked as they were parsed; the library checks
+    // the whole again and names the limit.
+    limits.validate()?;
+    Ok(limits)
+}

@@ -1,0 +1,181 @@
+//! `dismech slope`: the slope search of [`dismech::slope`] over a DEM from
+//! one command, with a progress bar, and its results written into one
+//! folder, whole or not at all.
+//!
+//! | concept | items | file |
+//! |---|---|---|
+//! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`Span`] | `args.rs` |
+//! | ground, material, loads, limits | [`inputs::terrain`], [`inputs::material`], … | `inputs.rs` |
+//! | the family, defaults from the DEM | [`family::family`], [`family::Family`] | `family.rs` |
+//! | errors naming the option | [`SlopeError`] | `error.rs` |
+//! | the run and its files | [`run`], [`Report`] | `mod.rs`, `outputs.rs` |
+//! | the map | [`map::write_slope_map`], [`hillshade::hillshade`], [`footprint`] | `map.rs`, `hillshade.rs`, `footprint.rs` |
+//!
+//! The folder `--out` holds the rasters of the lowest Fs per cell and of
+//! the volume, area and depth of the surface that gave it (`slope_fs.asc`,
+//! `slope_volume.asc`, `slope_area.asc`, `slope_depth.asc`, on the DEM's
+//! grid; with a copy of the DEM's `.prj` beside each where it has one),
+//! the most critical surfaces (`critical.csv`), the map (`map.svg`) and
+//! `summary.json`.
+
+mod args;
+mod error;
+pub mod family;
+pub mod footprint;
+pub mod hillshade;
+pub mod inputs;
+pub mod map;
+mod outputs;
+
+use std::time::Instant;
+
+use dismech::slope::{
+    search, SearchResult, SearchSettings, SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain,
+    TrialFamily, TrialSurface,
+};
+
+use crate::output::StagedFolder;
+
+pub use args::{SearchKind, SlopeArgs, Span};
+pub use error::{refusal_words, refusals, SlopeError};
+pub use outputs::{Lowest, Report};
+
+use family::Family;
+
+/// What a search needs besides its family.
+struct Problem {
+    terrain: Terrain,
+    material: SlopeMaterial,
+    loads: SlopeLoads,
+    limits: SurfaceLimits,
+}
+
+/// A progress bar over the trials, hidden when `quiet`.
+fn progress_bar(total: u64, quiet: bool) -> indicatif::ProgressBar {
+    if quiet {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(total);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "slope search [{elapsed_precise}] {bar:30} {human_pos}/{human_len} trials ({eta} left)",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Run the search of `family` and keep the `keep` most critical surfaces
+/// (at least one, for the map).
+fn run_family<F: TrialFamily>(
+    problem: &Problem,
+    family: &F,
+    keep: usize,
+    bar: &indicatif::ProgressBar,
+) -> dismech::error::Result<SearchResult<F::Surface>> {
+    let settings = SearchSettings {
+        limits: problem.limits,
+        critical: keep.max(1),
+        ..SearchSettings::default()
+    };
+    bar.set_length(family.len(&problem.terrain));
+    search(
+        &problem.terrain,
+        &problem.material,
+        &problem.loads,
+        family,
+        &settings,
+        |done, _| bar.set_position(done),
+    )
+}
+
+/// Search, then write every output into the staged folder and put it in
+/// place.
+fn search_and_write<F: TrialFamily>(
+    args: &SlopeArgs,
+    problem: &Problem,
+    family: &F,
+    description: String,
+) -> Result<Report, SlopeError>
+where
+    F::Surface: TrialSurface,
+{
+    // A target that cannot become the folder is refused before the search.
+    let folder = StagedFolder::new(&args.out)?;
+    let bar = progress_bar(family.len(&problem.terrain), args.quiet);
+    let threads;
+    let start = Instant::now();
+    let result = match args.threads {
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|_| {
+                    SlopeError::argument(
+                        "--threads",
+                        &n.to_string(),
+                        dismech::error::DismechError::InvalidParameter {
+                            name: "worker threads",
+                            value: n as f64,
+                            requirement: "no thread pool of that many threads could be started",
+                        },
+                    )
+                })?;
+            threads = n;
+            pool.install(|| run_family(problem, family, args.keep, &bar))?
+        }
+        None => {
+            threads = rayon::current_num_threads();
+            run_family(problem, family, args.keep, &bar)?
+        }
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    if result.counts.evaluated == 0 {
+        let extent = family::Extent::of(&problem.terrain);
+        let (width, height) = extent.size();
+        return Err(SlopeError::NoSurface {
+            family: description,
+            dem: (width, height, extent.cell),
+            counts: Box::new(result.counts),
+        });
+    }
+    let report = outputs::write(
+        args,
+        &problem.terrain,
+        &result,
+        folder.path(),
+        outputs::Run {
+            family: description,
+            kind: match args.search {
+                SearchKind::Spheres => "spheres",
+                SearchKind::Ellipsoids => "ellipsoids",
+            },
+            threads,
+            seconds,
+        },
+    )?;
+    folder.commit()?;
+    Ok(report)
+}
+
+/// Run `dismech slope` with `args`: read and check the inputs, search,
+/// write the folder `--out` whole, and report what was found.
+///
+/// # Errors
+/// A [`SlopeError`] naming the option or file at fault; the folder
+/// `--out` is then left as it was.
+pub fn run(args: &SlopeArgs) -> Result<Report, SlopeError> {
+    let terrain = inputs::terrain(args)?;
+    let problem = Problem {
+        material: inputs::material(args)?,
+        loads: inputs::loads(args)?,
+        limits: inputs::limits(args)?,
+        terrain,
+    };
+    let family = family::family(args, &problem.terrain)?;
+    let description = family::describe(&family);
+    match family {
+        Family::Spheres(grid) => search_and_write(args, &problem, &grid, description),
+        Family::Ellipsoids(random) => search_and_write(args, &problem, &random, description),
+    }
+}
