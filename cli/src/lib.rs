@@ -10,6 +10,8 @@
 //!   by the LP, a block wall by the DEM and the DDA, ellipses in the
 //!   implicit driver, a disc with DDA's affine unknowns, penalty contacts
 //!   against the LP), each with the quantities its checks compare;
+//! - [`scenario`]: scenario files, a model described in TOML slot by
+//!   slot, built, run and written out (`dismech run model.toml`);
 //! - [`output`]: the reproductions' reports: the pass rule of each check,
 //!   `summary.json`, console and report listings, study folders swapped in
 //!   whole, CSV tables and SVG plots.
@@ -21,3 +23,4 @@
 
 pub mod compositions;
 pub mod output;
+pub mod scenario;
