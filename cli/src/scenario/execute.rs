@@ -61,16 +61,6 @@ pub fn execute(
     };
     let Prepared { spec, model } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
-    if segments < 3 {
-        let text = std::fs::read_to_string(file).unwrap_or_default();
-        let source = super::Source::parse(file, &text)?;
-        return Err(source
-            .at_key(
-                &super::KeyPath::root("output").key("segments"),
-                format!("{segments} is refused: at least 3 sides"),
-            )
-            .into_error());
-    }
     let every = spec.output.frames_every.unwrap_or(DEFAULT_FRAMES_EVERY);
     let folder = StagedFolder::new(out).map_err(run_error)?;
     let dir = folder.path().to_path_buf();

@@ -25,6 +25,7 @@ mod check;
 pub mod driver;
 mod execute;
 mod explicit;
+pub mod fuzz;
 mod implicit;
 pub mod law;
 mod limit;
@@ -140,10 +141,21 @@ pub fn parse(source: &Source<'_>) -> Result<ScenarioSpec, Box<Located>> {
     let deserializer = toml::de::Deserializer::from(tree);
     ScenarioSpec::deserialize(deserializer).map_err(|e| {
         let message = explain(e.message());
-        Box::new(match e.span() {
+        let mut located = match e.span() {
             Some(span) => source.at_span(span, message),
             None => source.at_key(&KeyPath::default(), message),
-        })
+        };
+        if let Some(field) = missing_field(e.message()) {
+            located.key = match e
+                .span()
+                .and_then(|span| source::innermost_key(&source, span))
+            {
+                Some(table) => format!("{table}.{field}"),
+                None => field.to_string(),
+            };
+            located.value = None;
+        }
+        Box::new(located)
     })
 }
 
@@ -151,14 +163,21 @@ pub fn parse(source: &Source<'_>) -> Result<ScenarioSpec, Box<Located>> {
 /// words.
 fn explain(message: &str) -> String {
     let missing = format!("unknown variant `{}`", retag::MISSING_KIND);
-    match message.strip_prefix(&missing) {
-        Some(rest) => format!(
-            "no `kind` (or a `kind` that is not a string) in this table{}",
-            rest.replace("expected one of", "; give `kind` = one of")
-                .replace("expected", "; give `kind` =")
-        ),
+    match message.trim_end().strip_prefix(&missing) {
+        Some(rest) => {
+            let kinds = rest.trim_start_matches([',', ' ']);
+            let kinds = kinds.strip_prefix("expected ").unwrap_or(kinds);
+            format!(
+                "no `kind` (or a `kind` that is not a string) in this table; give `kind` = {kinds}"
+            )
+        }
         None => message.trim_end().to_string(),
     }
+}
+
+/// The key a serde message names as missing (`missing field `x``).
+fn missing_field(message: &str) -> Option<&str> {
+    message.strip_prefix("missing field `")?.split('`').next()
 }
 
 /// A scenario built and checked, ready to run.
@@ -201,6 +220,15 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
     }
     let source = Source::parse(file, text)?;
     let spec = parse(&source)?;
+    if let Some(segments) = spec.output.segments {
+        check::count(
+            &source,
+            &KeyPath::root("output").key("segments"),
+            segments,
+            3,
+            1 << 16,
+        )?;
+    }
     let model = match &spec.driver {
         driver::DriverSpec::Explicit(settings) => {
             Model::Explicit(explicit::build(&source, &spec, settings, overrides)?)

@@ -173,6 +173,13 @@ impl<'i> Source<'i> {
     /// The error `message` about a combination of values at `paths`
     /// (placed at the first that the file has; every key named).
     pub fn at_keys(&self, paths: &[&KeyPath], message: impl Into<String>) -> Located {
+        let mut unique: Vec<&KeyPath> = Vec::with_capacity(paths.len());
+        for p in paths {
+            if !unique.contains(p) {
+                unique.push(p);
+            }
+        }
+        let paths = unique.as_slice();
         let present = paths
             .iter()
             .find_map(|p| lookup(&self.tree, p).map(|(_, v)| v));
@@ -224,6 +231,15 @@ impl<'i> Source<'i> {
             one_line
         }
     }
+}
+
+/// The innermost key of `source` whose key or value holds `span`, if any
+/// (none for the span of the whole file).
+pub fn innermost_key(source: &Source<'_>, span: Range<usize>) -> Option<KeyPath> {
+    if span == source.tree.span() {
+        return None;
+    }
+    innermost(&source.tree, &span)
 }
 
 /// A [`Located`] at byte `span.start` of `text`, without key or value.
