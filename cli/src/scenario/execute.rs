@@ -57,7 +57,7 @@ pub fn execute(
 ) -> std::result::Result<Finished, ScenarioError> {
     let run_error = |error: DismechError| ScenarioError::Run {
         file: file.display().to_string(),
-        error,
+        error: Box::new(error),
     };
     let Prepared { spec, model } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
@@ -123,7 +123,7 @@ pub fn execute(
         Model::Limit(plan) => {
             let bar = bar(1, "LP");
             bar.set_message("solving the limit analysis");
-            let (value, status) = run_limit(plan, &dir, segments).map_err(run_error)?;
+            let (value, status) = run_limit(*plan, &dir, segments).map_err(run_error)?;
             bar.finish_and_clear();
             (value, Some(status))
         }

@@ -257,7 +257,7 @@ fn mutate_once(text: &str, rng: &mut SplitMix64) -> String {
             if let Some((key, value)) = lines[k].split_once('=') {
                 let factor = rng.pick(&["1e300", "-1", "0", "1e-300", "1e6"]).to_string();
                 let scaled = value
-                    .split(|c: char| c == ',' || c == '[' || c == ']')
+                    .split([',', '[', ']'])
                     .find_map(|v| v.trim().parse::<f64>().ok())
                     .map(|v| v * factor.parse::<f64>().unwrap_or(1.0));
                 if let Some(v) = scaled {

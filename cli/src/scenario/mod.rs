@@ -111,7 +111,7 @@ pub enum ScenarioError {
         /// The file.
         file: String,
         /// What stopped it.
-        error: DismechError,
+        error: Box<DismechError>,
     },
 }
 
@@ -148,7 +148,7 @@ pub fn parse(source: &Source<'_>) -> Result<ScenarioSpec, Box<Located>> {
         if let Some(field) = missing_field(e.message()) {
             located.key = match e
                 .span()
-                .and_then(|span| source::innermost_key(&source, span))
+                .and_then(|span| source::innermost_key(source, span))
             {
                 Some(table) => format!("{table}.{field}"),
                 None => field.to_string(),
@@ -195,7 +195,7 @@ pub enum Model {
     /// Implicit dynamics.
     Implicit(implicit::ImplicitModel),
     /// Limit analysis.
-    Limit(limit::LimitPlan),
+    Limit(Box<limit::LimitPlan>),
 }
 
 /// Parse, build and check the scenario `text` read from `file`, with the
@@ -236,7 +236,7 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
         driver::DriverSpec::Implicit(settings) => {
             Model::Implicit(implicit::build(&source, &spec, settings, overrides)?)
         }
-        driver::DriverSpec::Limit(_) => Model::Limit(limit::build(&source, &spec)?),
+        driver::DriverSpec::Limit(_) => Model::Limit(Box::new(limit::build(&source, &spec)?)),
     };
     Ok(Prepared { spec, model })
 }
