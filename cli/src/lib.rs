@@ -12,6 +12,8 @@
 //!   against the LP), each with the quantities its checks compare;
 //! - [`slope`]: `dismech slope`, the slope search over a DEM with its
 //!   rasters, critical surfaces and map;
+//! - [`scenario`]: scenario files, a model described in TOML slot by
+//!   slot, built, run and written out (`dismech run model.toml`);
 //! - [`output`]: the reproductions' reports: the pass rule of each check,
 //!   `summary.json`, console and report listings, study folders swapped in
 //!   whole, CSV tables and SVG plots.
@@ -23,4 +25,5 @@
 
 pub mod compositions;
 pub mod output;
+pub mod scenario;
 pub mod slope;

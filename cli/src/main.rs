@@ -11,6 +11,7 @@ use dismech::error::DismechError;
 use dismech::limit::lattice::Lattice;
 use dismech::limit::{analyse, LimitStatus};
 use dismech::lp::LinearProgramSolver;
+use dismech_cli::scenario::Overrides;
 use dismech_cli::slope::{SlopeArgs, SlopeError};
 use exit_status::Exit;
 
@@ -44,6 +45,30 @@ enum Command {
         /// Hide the progress bars.
         #[arg(long)]
         quiet: bool,
+    },
+    /// Run a model described in a scenario file (TOML): build it from its
+    /// slots, run it, and write ParaView frames (`.pvd` indices) and
+    /// `summary.json` into the output folder, replaced whole once all is
+    /// written. `docs/scenarios.md` lists every key.
+    Run {
+        /// The scenario file.
+        file: PathBuf,
+        /// Output folder (default: beside the file, `NAME.out/`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Hide the progress bar.
+        #[arg(long)]
+        quiet: bool,
+        /// Take at most this many steps (runs a scenario at reduced size).
+        #[arg(long)]
+        max_steps: Option<u64>,
+        /// Stop at this simulated time (s) at the latest.
+        #[arg(long)]
+        end_time: Option<f64>,
+        /// Parse, build and check the scenario, then stop (nothing is run
+        /// or written).
+        #[arg(long)]
+        check: bool,
     },
     /// Limit load of a lattice of rigid circles by LP (paper 002's U- and
     /// L-models; R = 1, C_p = 1).
@@ -174,6 +199,46 @@ fn reproduce_command(study: &str, out: &Path, progress: bool) -> Exit {
     reproduce::outcome::exit(&outcomes)
 }
 
+/// `run`: the scenario built, run and written; the outcome in the exit
+/// status (a refused file is bad input; a limit analysis exits as
+/// `lattice-limit-load` does).
+fn run_command(
+    file: &Path,
+    out: Option<&Path>,
+    progress: bool,
+    overrides: Overrides,
+    check: bool,
+) -> Exit {
+    use dismech_cli::scenario::{self, ScenarioError};
+    let outcome = scenario::load(file, overrides).and_then(|prepared| {
+        if check {
+            println!("{}: the scenario is valid", file.display());
+            return Ok(None);
+        }
+        let out = out.map_or_else(|| scenario::default_output(file), Path::to_path_buf);
+        scenario::execute(prepared, file, &out, progress).map(Some)
+    });
+    match outcome {
+        Ok(None) => Exit::Success,
+        Ok(Some(finished)) => {
+            println!("{}", finished.summary["outcome"]);
+            println!("written: {}", finished.out.display());
+            finished
+                .limit_status
+                .map_or(Exit::Success, |s| Exit::of_limit(&s))
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            match &e {
+                ScenarioError::Run { error, .. } => Exit::of_error(error),
+                ScenarioError::Read { .. }
+                | ScenarioError::Invalid(_)
+                | ScenarioError::Option(_) => Exit::BadInput,
+            }
+        }
+    }
+}
+
 /// `slope`: the search, its folder and its summary; the exit status of an
 /// error from the library's error, bad input for an option refused.
 fn slope_command(args: &SlopeArgs) -> Exit {
@@ -218,6 +283,23 @@ fn main() -> ExitCode {
         } => lattice_command(&model, m, n, nprime, !no_rolling, c_wall),
         Command::Reproduce { study, out, quiet } => reproduce_command(&study, &out, !quiet),
         Command::Slope(args) => slope_command(&args),
+        Command::Run {
+            file,
+            out,
+            quiet,
+            max_steps,
+            end_time,
+            check,
+        } => run_command(
+            &file,
+            out.as_deref(),
+            !quiet,
+            Overrides {
+                max_steps,
+                end_time,
+            },
+            check,
+        ),
     };
     exit.into()
 }

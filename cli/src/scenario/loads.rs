@@ -1,0 +1,39 @@
+//! `[loads]`: gravity, forces on bodies, tractions on polygon edges.
+
+use serde::Deserialize;
+
+/// The loads.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsSpec {
+    /// Gravitational acceleration (m/s²); [0, -9.81] by default.
+    pub gravity: Option<[f64; 2]>,
+    /// Constant forces at bodies' centres (explicit driver).
+    #[serde(default)]
+    pub forces: Vec<ForceSpec>,
+    /// Uniform tractions on polygon edges (implicit driver).
+    #[serde(default)]
+    pub tractions: Vec<TractionSpec>,
+}
+
+/// A constant force at a body's centre.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceSpec {
+    /// Index of the body, counted over the bodies as built.
+    pub body: usize,
+    /// Force (N per m of thickness).
+    pub force: [f64; 2],
+}
+
+/// A uniform traction on one edge of a polygon body.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    /// Index of the body, counted over the bodies as built.
+    pub body: usize,
+    /// Edge k runs from vertex k to vertex k + 1.
+    pub edge: usize,
+    /// Traction (Pa), in world axes.
+    pub traction: [f64; 2],
+}

@@ -1,0 +1,15 @@
+//! `[output]`: what the run writes besides `summary.json`.
+
+use serde::Deserialize;
+
+/// The outputs.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write a ParaView frame every this many steps (and at the start and
+    /// the end); 0 writes the start and the end only. 100 by default.
+    pub frames_every: Option<u64>,
+    /// Sides of the polygons that draw circles and ellipses (≥ 3); 32 by
+    /// default.
+    pub segments: Option<usize>,
+}
