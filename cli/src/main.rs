@@ -106,7 +106,8 @@ enum Command {
     /// Writes into OUT (replaced whole once every file is written): the
     /// lowest Fs per cell and the volume, area and depth of the surface
     /// that gave it as ESRI ASCII grids on the DEM's grid (slope_fs.asc,
-    /// slope_volume.asc, slope_area.asc, slope_depth.asc), the most
+    /// slope_volume.asc, slope_area.asc, slope_depth.asc) and as GeoTIFF
+    /// (slope_fs.tif, ...), the most
     /// critical surfaces (critical.csv), the map (map.svg) and
     /// summary.json. The family's sizes default to fractions of the DEM's
     /// extent (each overridable).

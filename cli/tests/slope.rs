@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use dismech::grid::{read_esri_ascii, Raster};
+use dismech::grid::{read_esri_ascii, read_raster, Raster};
 use dismech::law::friction_from_degrees;
 use dismech::slope::{
     search, EllipsoidRandom, SearchSettings, SlopeLoads, SlopeMaterial, SphereGrid, Steps,
@@ -109,6 +109,45 @@ fn raster_min(raster: &Raster) -> f64 {
 
 /// The outputs of a run agree with each other and with the library's
 /// search of the same family.
+/// `gdalinfo -json` of a GeoTIFF map: its size and geotransform are the
+/// DEM's (`header`: ncols, nrows, xllcorner, yllcorner, cellsize; the
+/// geotransform's origin is the upper-left corner). Fails without GDAL's
+/// tools (`.ci/run` installs `gdal-bin`).
+fn check_geotiff_grid(tif: &Path, header: &[(String, f64)]) {
+    let value = |key: &str| header.iter().find(|(k, _)| k == key).unwrap().1;
+    let out = Command::new("gdalinfo")
+        .arg("-json")
+        .arg(tif)
+        .output()
+        .expect("gdalinfo runs (install GDAL's tools: apt-get install gdal-bin)");
+    assert!(
+        out.status.success(),
+        "gdalinfo {tif:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let size: Vec<f64> = json["size"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(size, [value("ncols"), value("nrows")], "{tif:?}");
+    let transform: Vec<f64> = json["geoTransform"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let cell = value("cellsize");
+    let top = value("yllcorner") + value("nrows") * cell;
+    assert_eq!(
+        transform,
+        [value("xllcorner"), cell, 0.0, top, 0.0, -cell],
+        "{tif:?}"
+    );
+}
+
 fn check_run<F: TrialFamily>(out: &Path, family: &F, keep: usize) {
     let dem_path = terrain_file();
     // The rasters lie on the DEM's grid, as their headers say.
@@ -128,6 +167,16 @@ fn check_run<F: TrialFamily>(out: &Path, family: &F, keep: usize) {
             std::fs::read(path.with_extension("prj")).unwrap(),
             std::fs::read(dem_path.with_extension("prj")).unwrap()
         );
+        // The same map as GeoTIFF: GDAL reads the DEM's grid from it, and
+        // its values are the ESRI grid's to the bit.
+        let tif = path.with_extension("tif");
+        check_geotiff_grid(&tif, &dem_header);
+        let (from_tif, from_asc) = (read_raster(&tif).unwrap(), read_esri_ascii(&path).unwrap());
+        assert!(from_tif.same_grid(&from_asc), "{tif:?}");
+        let bits = |r: &Raster| -> Vec<Option<u64>> {
+            r.values().iter().map(|v| v.map(f64::to_bits)).collect()
+        };
+        assert_eq!(bits(&from_tif), bits(&from_asc), "{tif:?}");
     }
     let fs_map = read_esri_ascii(&out.join("slope_fs.asc")).unwrap();
     let critical = critical_fs(&out.join("critical.csv"));

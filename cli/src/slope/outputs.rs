@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
+use dismech::grid::RasterFormat;
 use dismech::slope::{surface_columns, SearchCounts, SearchResult, Terrain, TrialSurface};
 
 use super::args::SlopeArgs;
@@ -136,12 +137,14 @@ pub fn write<S: TrialSurface + Copy>(
 ) -> Result<Report, SlopeError> {
     let mut files = Vec::new();
     let name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
-    let rasters = result.write_maps(dir, MAP_PREFIX)?;
-    // A GIS reads the grid's coordinate system from a `.prj` beside it.
+    // ESRI ASCII grids and GeoTIFF beside them, on the DEM's grid.
+    let rasters = result.write_maps_as(dir, MAP_PREFIX, &RasterFormat::ALL)?;
+    // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
+    // beside it (a GeoTIFF carries its georeferencing inside).
     let prj = args.dem.with_extension("prj");
     for raster in &rasters {
         files.extend(name(raster));
-        if prj.is_file() {
+        if prj.is_file() && RasterFormat::of_path(raster) == RasterFormat::EsriAscii {
             let copy = raster.with_extension("prj");
             std::fs::copy(&prj, &copy).map_err(|e| output_error(&copy, e))?;
             files.extend(name(&copy));
