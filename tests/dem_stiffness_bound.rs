@@ -52,6 +52,7 @@ impl BoundedStiffness<2> for Hertz {
             shear: 0.0,
             normal_damping: 0.0,
             shear_damping: 0.0,
+            rolling: 0.0,
         }
     }
 }

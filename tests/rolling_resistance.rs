@@ -204,7 +204,7 @@ fn without_rolling_resistance_the_run_is_the_inner_laws_bit_for_bit() {
     let mut plain = simulation(heap(), inner_law());
     let mut wrapped = simulation(
         heap(),
-        RollingResistance::new(inner_law(), 0.0, 0.0).unwrap(),
+        RollingResistance::new(inner_law(), 0.0, SHEAR_RATIO * K_N).unwrap(),
     );
     for _ in 0..3000 {
         plain.step().unwrap();
@@ -368,4 +368,111 @@ fn the_conformance_checks_refuse_a_moment_from_a_law_with_a_tangent() {
             .any(|v| v.check == "no_moment_with_tangent"),
         "{violations:?}"
     );
+}
+
+/// The angular momentum `I ω + m x × v` of particles `ids` about the origin.
+fn angular_momentum(scene: &Scene, ids: &[usize]) -> f64 {
+    ids.iter()
+        .map(|&i| {
+            let p = &scene.particles[i];
+            let (x, v) = (p.pose.position, p.velocity);
+            p.inertia * p.angular_velocity + p.mass * (x.x * v.y - x.y * v.x)
+        })
+        .sum()
+}
+
+/// Two spinning discs of unequal radii pressed together, without gravity:
+/// each pair's angular momentum is kept (to round-off) while its rolling
+/// moment acts, so the moment on B is the opposite of A's. One pair lies
+/// in one block of particles, the other across blocks (its B's moment
+/// added in the motion pass), among 2 100 resting discs that touch
+/// nothing (the driver's threaded path).
+#[test]
+fn the_rolling_moment_on_b_is_the_opposite_of_as_within_and_across_blocks() {
+    let mut scene = Scene::new(Frame::open_box(200.0, 200.0).unwrap(), Vec2::zeros()).unwrap();
+    for k in 0..2100 {
+        let (col, row) = ((k % 60) as f64, (k / 60) as f64);
+        scene
+            .add_circle(Point::new(20.0 + col, 20.0 + row), 0.1, DENSITY)
+            .unwrap();
+    }
+    // The pairs replace discs 100 & 101 (one block) and 500 & 1900
+    // (blocks 0 and 1), placed apart from the rest.
+    let pairs = [(100usize, 101usize, 150.0), (500, 1900, 170.0)];
+    for &(a, b, x) in &pairs {
+        let (ra, rb) = (0.05, 0.08);
+        let overlap = 5e-5;
+        for (i, r, centre, spin) in [
+            (a, ra, Point::new(x, 150.0), 12.0),
+            (b, rb, Point::new(x + ra + rb - overlap, 150.0), -3.0),
+        ] {
+            let mass = DENSITY * std::f64::consts::PI * r * r;
+            let p = &mut scene.particles[i];
+            p.shape = dismech::shape::Circle::new(r).unwrap().into();
+            p.pose.position = centre;
+            p.mass = mass;
+            p.inertia = 0.5 * mass * r * r;
+            p.angular_velocity = spin;
+        }
+    }
+    let law = rolling_law(0.3);
+    let mut sim = simulation(scene, law);
+    let ids = |&(a, b, _): &(usize, usize, f64)| [a, b];
+    let before: Vec<f64> = pairs
+        .iter()
+        .map(|pair| angular_momentum(sim.scene(), &ids(pair)))
+        .collect();
+    let mut rolled = [false; 2];
+    for _ in 0..400 {
+        sim.step().unwrap();
+        for (k, &(a, b, _)) in pairs.iter().enumerate() {
+            rolled[k] |= sim.contacts().iter().any(|c| {
+                c.particle == a
+                    && c.target == dismech::explicit::ContactTarget::Particle(b)
+                    && c.rolling_moment != 0.0
+            });
+        }
+    }
+    assert_eq!(rolled, [true, true], "each pair took a rolling moment");
+    for (k, pair) in pairs.iter().enumerate() {
+        let after = angular_momentum(sim.scene(), &ids(pair));
+        let spin_scale: f64 = ids(pair)
+            .iter()
+            .map(|&i| {
+                let p = &sim.scene().particles[i];
+                p.inertia * 12.0
+            })
+            .sum();
+        assert!(
+            (after - before[k]).abs() <= 1e-9 * spin_scale,
+            "pair {k}: angular momentum {} -> {after}",
+            before[k]
+        );
+    }
+}
+
+/// An ellipse's flat side rolls on the stiffest rolling spring
+/// (`k_roll (a²/b)²` against a wall): the stable step the driver estimates
+/// lies below that rolling mode's, `2 √(I / k_r)`.
+#[test]
+fn the_stable_step_bounds_an_ellipses_rolling_mode() {
+    let mut scene = Scene::new(Frame::open_box(2.0, 2.0).unwrap(), Vec2::new(0.0, -G)).unwrap();
+    let (a, b) = (0.09, 0.03);
+    scene
+        .add_ellipse(Point::new(1.0, 0.5), a, b, 0.0, DENSITY)
+        .unwrap();
+    let p = &scene.particles[0];
+    let k_roll = 50.0 * K_N;
+    let law = RollingResistance::new(inner_law(), 0.3, k_roll).unwrap();
+    let limit = dismech::explicit::critical_time_step(&scene, &law);
+    let flat = a * a / b;
+    let rolling_mode = 2.0 * (p.inertia / (k_roll * flat * flat)).sqrt();
+    assert!(
+        limit.dt <= rolling_mode,
+        "stable step {} above the rolling mode's {rolling_mode}",
+        limit.dt
+    );
+    // Without the rolling spring the estimate is the inner law's, above it.
+    let inner = dismech::explicit::critical_time_step(&scene, &inner_law());
+    assert!(inner.dt > rolling_mode, "{} <= {rolling_mode}", inner.dt);
 }

@@ -337,6 +337,22 @@ fn refusals_name_the_file_line_column_key_and_value() {
         "{outside}"
     );
     assert!(outside.contains("outside the frame's box"), "{outside}");
+    // A shape's own refusal names the key that gave the value: an
+    // ellipse's semi-axes (and their order), a rectangle's sides.
+    let body = |table: &str| {
+        refusal(
+            "density = 2690.0000000000005\n",
+            &format!("density = 2690.0000000000005\n\n[[bodies]]\n{table}\n"),
+        )
+    };
+    let ellipse = body("kind = \"ellipse\"\ncentre = [1.0, 2.5]\nsemi_major = -0.1\nsemi_minor = 0.05\ndensity = 2690.0");
+    assert!(ellipse.contains("`bodies[1].semi_major`"), "{ellipse}");
+    let swapped = body("kind = \"ellipse\"\ncentre = [1.0, 2.5]\nsemi_major = 0.05\nsemi_minor = 0.1\ndensity = 2690.0");
+    assert!(swapped.contains("`bodies[1].semi_minor`"), "{swapped}");
+    let rectangle = body(
+        "kind = \"rectangle\"\ncentre = [1.0, 2.5]\nwidth = 0.2\nheight = 0.0\ndensity = 2690.0",
+    );
+    assert!(rectangle.contains("`bodies[1].height`"), "{rectangle}");
     // A syntax error names its line and column.
     assert_eq!(
         refusal("per_row = 14", "per_row = = 14"),

@@ -408,7 +408,23 @@ fn bad_input_names_the_option_and_leaves_the_folder_as_it_was() {
     let dir = scratch("refusals");
     let out = dir.join("out");
     std::fs::create_dir_all(&out).unwrap();
+    // A folder of the user's own files is not an earlier run's: refused
+    // whole (exit 6), not replaced.
     std::fs::write(out.join("previous.txt"), "kept").unwrap();
+    let foreign = slope(&out, &["--search", "spheres", "--stride", "25"]);
+    assert_eq!(foreign.status.code(), Some(6));
+    assert!(
+        String::from_utf8_lossy(&foreign.stderr).contains("no summary.json"),
+        "{}",
+        String::from_utf8_lossy(&foreign.stderr)
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("previous.txt")).unwrap(),
+        "kept"
+    );
+    // An earlier run's folder (it has its summary) is kept by every
+    // refusal below and replaced by the run that succeeds.
+    std::fs::write(out.join("summary.json"), "{}").unwrap();
     let malformed = dir.join("malformed.asc");
     std::fs::write(
         &malformed,
@@ -526,7 +542,7 @@ fn bad_input_names_the_option_and_leaves_the_folder_as_it_was() {
         assert!(!names.iter().any(|n| n.starts_with(".out.")), "{names:?}");
         assert_eq!(
             std::fs::read_dir(&out).unwrap().count(),
-            1,
+            2,
             "{extra:?} touched the folder"
         );
         assert_eq!(

@@ -25,7 +25,7 @@ pub struct PhaseTimes {
     /// every particle moved by the integrator.
     pub motion: Duration,
     /// Whether the list still holds every pair that can meet (the travel
-    /// since the build), and the step's checks.
+    /// since the build).
     pub travel: Duration,
 }
 

@@ -91,11 +91,17 @@ pub fn critical_time_step_at<L: BoundedStiffness<2>>(
             AnyShape2::Circle(c) => c.radius(),
             other => other.as_shape().bounding_radius(),
         };
+        // The largest radius of curvature on the outline (an ellipse's
+        // flat side, a²/b), where a law's rolling spring is stiffest.
+        let curvature = match &p.shape {
+            AnyShape2::Ellipse(e) => e.a() * e.a() / e.b(),
+            _ => r,
+        };
         let shear_mass_one = 1.0 / (1.0 / p.mass + r * r / p.inertia);
         for (partner, partner_radius, partner_mass, rel_mass, rel_shear_mass) in [
             (
                 "an identical particle",
-                r,
+                curvature,
                 p.mass,
                 0.5 * p.mass,
                 0.5 * shear_mass_one,
@@ -109,21 +115,25 @@ pub fn critical_time_step_at<L: BoundedStiffness<2>>(
             ),
         ] {
             let pair = PairProperties {
-                curvature_radius_a: r,
+                curvature_radius_a: curvature,
                 curvature_radius_b: partner_radius,
                 width: 2.0 * r,
                 mass_a: p.mass,
                 mass_b: partner_mass,
             };
             let bound = law.stiffness_bound(&pair, overlap_ratio * r);
+            // A rolling spring turns the particle beside the shear spring:
+            // at the lever r it acts as a shear spring k_r / r², whose
+            // mode with the shear–rotation mass (≤ I / r²) bounds the
+            // rolling mode √(k_r / I) of an identical pair or a wall.
+            let shear = if bound.rolling == 0.0 {
+                bound.shear
+            } else {
+                bound.shear + bound.rolling / (r * r)
+            };
             for (mode, k, m, eta) in [
                 ("normal", bound.normal, rel_mass, bound.normal_damping),
-                (
-                    "shear-rotation",
-                    bound.shear,
-                    rel_shear_mass,
-                    bound.shear_damping,
-                ),
+                ("shear-rotation", shear, rel_shear_mass, bound.shear_damping),
             ] {
                 let dt = oscillator_limit(k, m, eta);
                 if dt < best.dt {

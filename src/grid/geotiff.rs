@@ -305,7 +305,9 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 }
 
 /// Read a GeoTIFF file as a [`Raster`] (a DEM, or a map written by
-/// [`write_geotiff`], which reads back to the same bits).
+/// [`write_geotiff`], whose values read back to the same bits; its lower
+/// corner is found again from the upper-left tie point, `top − rows d`,
+/// which may differ from the written `yll` in the last bit).
 ///
 /// What is read: the first image, which must have one band (`Gray`,
 /// any integer or floating-point sample type of the `tiff` crate;

@@ -165,6 +165,7 @@ impl BoundedStiffness<3> for MohrCoulombSpring {
             shear: self.shear_stiffness,
             normal_damping: 0.0,
             shear_damping: 0.0,
+            rolling: 0.0,
         }
     }
 }

@@ -407,6 +407,7 @@ impl BoundedStiffness<2> for PenaltyCoulomb {
             shear: self.penalty,
             normal_damping: 0.0,
             shear_damping: 0.0,
+            rolling: 0.0,
         }
     }
 }

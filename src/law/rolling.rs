@@ -11,7 +11,8 @@
 //! * the relative rotation of A with respect to B over a step,
 //!   `Δθ_r = Δθ_A − Δθ_B` ([`ContactInput::rotation`]), loads a spring of
 //!   stiffness `k_r = k_roll R*²`: `M_trial = M_old − k_r Δθ_r`;
-//! * the moment is capped by the rolling strength `|M| ≤ μ_r R* F_n`;
+//! * the moment is capped by the rolling strength `|M| ≤ μ_r R* F_n`
+//!   (`F_n` the inner law's whole normal force, its dashpot included);
 //! * `R* = R_A R_B / (R_A + R_B)` is the rolling radius, from the radii of
 //!   curvature at the contact (a wall's is infinite, so `R* = R_A`; a
 //!   polygon's vertex has radius 0 and no rolling resistance).
@@ -87,10 +88,10 @@ impl<L: ContactLaw<2>> RollingResistance<L> {
 
     /// The rolling radius `R* = R_A R_B / (R_A + R_B)` of a pair (`R_A`
     /// against a wall; 0 where either radius is 0, as at a polygon's
-    /// vertex, or not a number).
+    /// vertex, or not a number, and between two flat sides).
     pub fn rolling_radius(pair: &PairProperties) -> f64 {
         let (a, b) = (pair.curvature_radius_a, pair.curvature_radius_b);
-        if !(a > 0.0 && b > 0.0) {
+        if !(a > 0.0 && b > 0.0) || (a.is_infinite() && b.is_infinite()) {
             return 0.0;
         }
         if b.is_infinite() {
@@ -152,14 +153,15 @@ impl<L: ContactLaw<2>> ContactLaw<2> for RollingResistance<L> {
 }
 
 impl<L: BoundedStiffness<2>> BoundedStiffness<2> for RollingResistance<L> {
-    /// The inner law's bound, with `k_roll` added to the shear stiffness:
-    /// the rolling spring `k_roll R*²` turns the particle as a shear spring
-    /// `k_roll` at the lever `R*` would, and the driver's shear–rotation
-    /// mode, which takes the lever as the particle's radius `≥ R*`, then
-    /// bounds it.
+    /// The inner law's bound, with the rolling spring `k_roll R*²` as its
+    /// rolling stiffness ([`StiffnessBound::rolling`]), `R*` from the
+    /// pair's radii of curvature (the explicit driver gives a particle's
+    /// largest: an ellipse's flat side, `a²/b`, rolls on the stiffest
+    /// spring).
     fn stiffness_bound(&self, pair: &PairProperties, overlap: f64) -> StiffnessBound {
         let mut bound = self.inner.stiffness_bound(pair, overlap);
-        bound.shear += self.stiffness;
+        let radius = Self::rolling_radius(pair);
+        bound.rolling += self.stiffness * radius * radius;
         bound
     }
 }

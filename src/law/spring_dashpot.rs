@@ -386,6 +386,7 @@ impl<const D: usize> BoundedStiffness<D> for SpringDashpotCoulomb {
             shear: self.stiffness_ratio * k_n,
             normal_damping: eta_n,
             shear_damping: eta_s,
+            rolling: 0.0,
         }
     }
 }

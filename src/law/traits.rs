@@ -145,6 +145,13 @@ pub struct StiffnessBound {
     pub normal_damping: f64,
     /// Shear dashpot.
     pub shear_damping: f64,
+    /// Rolling stiffness on the relative rotation of the two bodies
+    /// (N·m/rad per m), for a law that exerts a moment
+    /// ([`ContactLaw::moment`]); 0 for one that exerts none. The explicit
+    /// driver bounds the rotation mode with it and the particle's
+    /// inertia, at the particle's largest radius of curvature (an
+    /// ellipse's `a²/b`).
+    pub rolling: f64,
 }
 
 /// A constitutive law for one contact: relative motion and history to

@@ -39,6 +39,33 @@ impl StagedFolder {
     /// exists but is not a folder is refused here, before anything is
     /// computed for it.
     pub fn new(target: &Path) -> Result<Self> {
+        Self::staging(target)
+    }
+
+    /// [`Self::new`] for a folder a user names (`--out`), which is replaced
+    /// whole: a target that exists with files in it but without `marker`
+    /// (the file every run of the command writes there, e.g.
+    /// `summary.json`) is refused rather than replaced, so that a folder
+    /// holding other files (the input's own) is not removed.
+    ///
+    /// # Errors
+    /// Those of [`Self::new`], and [`DismechError::Output`] naming the
+    /// target when it holds files but no `marker`.
+    pub fn new_replacing_runs(target: &Path, marker: &str) -> Result<Self> {
+        if let Ok(mut entries) = std::fs::read_dir(target) {
+            if entries.next().is_some() && !target.join(marker).is_file() {
+                return Err(output_error(
+                    target,
+                    format!(
+                        "the folder holds files but no {marker}, so it is not the output of an earlier run: it would be replaced whole; give a new or empty folder"
+                    ),
+                ));
+            }
+        }
+        Self::staging(target)
+    }
+
+    fn staging(target: &Path) -> Result<Self> {
         let (parent, name) = split(target)?;
         std::fs::create_dir_all(&parent).map_err(|e| output_error(&parent, e))?;
         recover(&parent, &name, target)?;
@@ -281,5 +308,28 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "mine");
         assert_eq!(names(&out), ["study"]);
         std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    #[test]
+    fn a_folder_of_other_files_is_not_replaced() {
+        let parent = std::env::temp_dir().join(format!("dismech-foreign-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&parent);
+        let target = parent.join("data");
+        std::fs::create_dir_all(&target).unwrap();
+        std::fs::write(target.join("dem.asc"), "the user's own").unwrap();
+        let err = StagedFolder::new_replacing_runs(&target, "summary.json").unwrap_err();
+        assert!(err.to_string().contains("no summary.json"), "{err}");
+        assert_eq!(
+            std::fs::read_to_string(target.join("dem.asc")).unwrap(),
+            "the user's own"
+        );
+        // An earlier run's folder, and an empty one, are replaced.
+        std::fs::write(target.join("summary.json"), "{}").unwrap();
+        let folder = StagedFolder::new_replacing_runs(&target, "summary.json").unwrap();
+        folder.commit().unwrap();
+        assert!(!target.join("dem.asc").exists());
+        let folder = StagedFolder::new_replacing_runs(&target, "summary.json").unwrap();
+        folder.commit().unwrap();
+        std::fs::remove_dir_all(&parent).unwrap();
     }
 }

@@ -62,7 +62,7 @@ pub fn execute(
     let Prepared { spec, model } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
     let every = spec.output.frames_every.unwrap_or(DEFAULT_FRAMES_EVERY);
-    let folder = StagedFolder::new(out).map_err(run_error)?;
+    let folder = StagedFolder::new_replacing_runs(out, "summary.json").map_err(run_error)?;
     let dir = folder.path().to_path_buf();
     let bar = |len: u64, unit: &str| -> ProgressBar {
         if !progress {

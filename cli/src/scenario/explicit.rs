@@ -20,8 +20,19 @@ use super::solvers::IntegratorSpec;
 use super::source::{KeyPath, Source};
 use super::{Overrides, ScenarioSpec};
 
-/// The most bodies a scenario may build (a generator's `count` included).
+/// The most bodies a scenario may build, all its `[[bodies]]` together (a
+/// generator's `count` included).
 pub const MAX_BODIES: usize = 1_000_000;
+
+/// The most outline points a ParaView frame may hold (bodies ×
+/// `output.segments`): about 0.5 GB of coordinates.
+pub const MAX_OUTLINE_POINTS: usize = 20_000_000;
+
+/// The name the library gives an ellipse whose semi-axis `a` is smaller
+/// than `b` (`dismech::shape::Ellipse::new`): the refusal names
+/// `semi_minor`, the key that broke the order.
+pub const ELLIPSE_AXES_SWAPPED: &str =
+    "semi-axis a (must not be smaller than b; turn the ellipse by 90° instead)";
 
 /// The explicit driver with the law the scenario chose.
 pub enum ExplicitDem {
@@ -433,6 +444,20 @@ fn scene(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(Scene, Vec<usize>)
         entry_of.resize(scene.particles.len(), k);
         inside_frame(source, &scene, before, &path)?;
     }
+    let segments = spec
+        .output
+        .segments
+        .unwrap_or(super::execute::DEFAULT_SEGMENTS);
+    let points = scene.particles.len().saturating_mul(segments);
+    if points > MAX_OUTLINE_POINTS {
+        return Err(Box::new(source.at_key(
+            &KeyPath::root("output").key("segments"),
+            format!(
+                "{segments} segments for each of {} bodies make {points} outline points a frame, above {MAX_OUTLINE_POINTS}: give fewer segments",
+                scene.particles.len()
+            ),
+        )));
+    }
     if scene.particles.is_empty() {
         return Err(Box::new(source.at_key(
             &KeyPath::root("bodies"),
@@ -538,8 +563,9 @@ fn add_body(
         }
         BodySpec::Ellipse(b) => {
             let shape = Ellipse::new(b.semi_major, b.semi_minor).map_err(shape_error(&[
-                ("semi-major axis a", "semi_major"),
-                ("semi-minor axis b", "semi_minor"),
+                ("semi-axis a", "semi_major"),
+                ("semi-axis b", "semi_minor"),
+                (ELLIPSE_AXES_SWAPPED, "semi_minor"),
             ]))?;
             let c = centre(b.centre)?;
             let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
@@ -563,8 +589,10 @@ fn add_body(
             )
         }
         BodySpec::Rectangle(b) => {
-            let shape = Polygon::rectangle(b.width, b.height)
-                .map_err(shape_error(&[("width", "width"), ("height", "height")]))?;
+            let shape = Polygon::rectangle(b.width, b.height).map_err(shape_error(&[
+                ("rectangle width", "width"),
+                ("rectangle height", "height"),
+            ]))?;
             let c = centre(b.centre)?;
             let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
             scene.add_shape(shape, Pose2::new(c.x, c.y, angle), density(b.density)?)
@@ -616,7 +644,9 @@ fn add_rows(
             ))
         }
     };
-    count(source, &path.key("count"), rows.count, 1, MAX_BODIES)?;
+    // The bodies of the entries before count towards the same limit.
+    let room = MAX_BODIES.saturating_sub(scene.particles.len());
+    count(source, &path.key("count"), rows.count, 1, room)?;
     count(source, &path.key("per_row"), rows.per_row, 1, MAX_BODIES)?;
     positive(source, &path.key("radius"), rows.radius)?;
     positive(source, &path.key("row_pitch"), rows.row_pitch)?;

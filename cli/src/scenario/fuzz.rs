@@ -271,6 +271,10 @@ fn mutate_once(text: &str, rng: &mut SplitMix64) -> String {
     out
 }
 
+/// The key of a refusal placed at the file's root ([`super::source::KeyPath`]'s
+/// empty path).
+const ROOT_KEY: &str = "(the file)";
+
 /// What the fuzzer saw.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Tally {
@@ -280,7 +284,9 @@ pub struct Tally {
     pub valid: u64,
     /// Files refused with an error naming a key and a line.
     pub refused: u64,
-    /// Refusals that name no key or no line, with the first few messages.
+    /// Refusals that name no key (or only the file's root), with the first
+    /// few messages. (Every refusal has a line: a key's, or the file's
+    /// first.)
     pub unnamed: Vec<String>,
     /// Panics, with the first few files that caused them.
     pub panics: Vec<String>,
@@ -296,7 +302,9 @@ pub fn check_one(file: &Path, text: &str, tally: &mut Tally) {
     match outcome {
         Ok(Ok(_)) => tally.valid += 1,
         Ok(Err(ScenarioError::Invalid(located))) => {
-            if located.key.is_empty() || located.line == 0 || located.column == 0 {
+            // A refusal placed at the file's root (`(the file)`) names no
+            // key: every table and value the schema has is a key.
+            if located.key.is_empty() || located.key == ROOT_KEY {
                 tally.unnamed.push(located.to_string());
             } else {
                 tally.refused += 1;

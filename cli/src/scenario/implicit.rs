@@ -408,6 +408,7 @@ fn single<const N: usize>(
         ("Poisson's ratio", "poisson_ratio"),
         ("semi-axis a", "semi_major"),
         ("semi-axis b", "semi_minor"),
+        (super::explicit::ELLIPSE_AXES_SWAPPED, "semi_minor"),
         ("ellipse angle", "angle"),
     ];
     let refuse = |e: DismechError| named(source, path, names, e);

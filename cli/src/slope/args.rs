@@ -61,13 +61,13 @@ impl std::fmt::Display for Span {
 #[derive(Debug, Clone, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct SlopeArgs {
-    /// Digital elevation model: an ESRI ASCII grid of ground heights (m)
-    /// on square cells in metres (a projected grid). No-data cells are
-    /// allowed; a trial surface over one is refused.
+    /// Digital elevation model: an ESRI ASCII grid (or a GeoTIFF, `.tif`)
+    /// of ground heights (m) on square cells in metres (a projected grid).
+    /// No-data cells are allowed; a trial surface over one is refused.
     #[arg(long, value_name = "FILE")]
     pub dem: PathBuf,
     /// Water table: heights of the phreatic surface (m), an ESRI ASCII
-    /// grid on the DEM's grid. Without it the ground is dry.
+    /// grid (or GeoTIFF) on the DEM's grid. Without it the ground is dry.
     #[arg(long, value_name = "FILE")]
     pub water: Option<PathBuf>,
     /// Effective cohesion c' on the slip surface (Pa).

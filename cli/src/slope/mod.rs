@@ -100,7 +100,7 @@ where
     F::Surface: TrialSurface,
 {
     // A target that cannot become the folder is refused before the search.
-    let folder = StagedFolder::new(&args.out)?;
+    let folder = StagedFolder::new_replacing_runs(&args.out, "summary.json")?;
     let bar = progress_bar(family.len(&problem.terrain), args.quiet);
     let threads;
     let start = Instant::now();

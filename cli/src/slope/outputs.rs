@@ -140,7 +140,9 @@ pub fn write<S: TrialSurface + Copy>(
     // ESRI ASCII grids and GeoTIFF beside them, on the DEM's grid.
     let rasters = result.write_maps_as(dir, MAP_PREFIX, &RasterFormat::ALL)?;
     // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
-    // beside it (a GeoTIFF carries its georeferencing inside).
+    // beside it. (A GeoTIFF carries its origin and cell size inside, but
+    // not the DEM's coordinate system, which an ESRI grid does not give:
+    // GDAL ignores a `.prj` beside a GeoTIFF.)
     let prj = args.dem.with_extension("prj");
     for raster in &rasters {
         files.extend(name(raster));
