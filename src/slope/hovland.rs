@@ -15,6 +15,13 @@
 //! pressure keeps no frictional strength, and none below zero), and
 //! `Fs = Σ (c A + N' tan φ) / Σ T`.
 //!
+//! **Layered ground** ([`hovland_ground`], [`super::Ground`]): the weight
+//! is `W = σ_v d²` with `σ_v = Σ γ_i t_i` over the layers between the base
+//! and the ground, c and φ those of the layer the base passes through
+//! (Scoops3D's convention, Reid, Christian & Brien, USGS 2015), and with a
+//! pore-pressure ratio the pore pressure is `u = r_u σ_v` (Bishop &
+//! Morgenstern 1960) in place of `γ_w h_p`.
+//!
 //! **Sliding direction.** The plan direction of the resultant of the
 //! columns' base shear under their weight, `−Σ W (z_x, z_y) / ρ²` (the
 //! horizontal part of `W` less its normal part `(W/ρ) n`): the direction
