@@ -593,6 +593,35 @@ pub enum DismechError {
         /// Grid columns.
         columns: usize,
     },
+    /// A strength layer of the ground of a slope search that cannot be
+    /// used ([`crate::slope::Layer`]): its bottom raster off the DEM's
+    /// grid, a bottom missing or given where it must not be, no layer.
+    #[error("layer `{layer}`: {message}")]
+    InvalidLayer {
+        /// The layer's name.
+        layer: String,
+        /// What is wrong, with the offending file or value.
+        message: String,
+    },
+    /// A pore-pressure ratio r_u outside `[0, 1)` ([`crate::slope::PoreRatio`]).
+    #[error("pore-pressure ratio r_u = {} from {source_name} at {location}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value))]
+    PoreRatioOutOfRange {
+        /// The constant, or the raster's file.
+        source_name: String,
+        /// `every cell` for a constant, `row R, column C` for a raster cell.
+        location: String,
+        /// The value given.
+        value: f64,
+    },
+    /// Two sources of pore pressure given at once to a slope search: the
+    /// water table and a pore-pressure ratio r_u.
+    #[error("pore pressure given twice: the water table {water} and the pore-pressure ratio r_u {ratio}; give one of them")]
+    PorePressureTwice {
+        /// The water table's file.
+        water: String,
+        /// The r_u constant or file.
+        ratio: String,
+    },
     /// A range of values whose lower bound lies above its upper bound
     /// (e.g. the radii of a search of trial spheres).
     #[error("invalid {name}: its lower bound {} lies above its upper bound {}; give min <= max", Number(*low), Number(*high))]

@@ -158,7 +158,10 @@ impl Exit {
             | E::UnknownStudy(..)
             | E::VtkData { .. }
             | E::MapData { .. }
-            | E::Checkpoint { .. } => Exit::BadInput,
+            | E::Checkpoint { .. }
+            | E::InvalidLayer { .. }
+            | E::PoreRatioOutOfRange { .. }
+            | E::PorePressureTwice { .. } => Exit::BadInput,
         }
     }
 }

@@ -623,3 +623,170 @@ fn bad_input_names_the_option_and_leaves_the_folder_as_it_was() {
     assert!(out.join("map.svg").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The defaults of the shipped DEM's random ellipsoids (100 × 100 cells of
+/// 75 m), 5000 trials, seed 11.
+fn ellipsoids_5000() -> EllipsoidRandom {
+    EllipsoidRandom::new(
+        5_000,
+        11,
+        (0.0, 187.5),
+        (300.0, 1875.0),
+        (0.5, 1.0),
+        (75.0, 375.0),
+    )
+    .unwrap()
+}
+
+/// `dismech slope` with `extra`, then the Fs map it wrote.
+fn fs_map_of(out: &Path, extra: &[&str]) -> Raster {
+    let mut args = vec!["--search", "ellipsoids", "--count", "5000", "--seed", "11"];
+    args.extend_from_slice(extra);
+    let run = slope(out, &args);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    read_esri_ascii(&out.join("slope_fs.asc")).unwrap()
+}
+
+fn bits(r: &Raster) -> Vec<Option<u64>> {
+    r.values().iter().map(|v| v.map(f64::to_bits)).collect()
+}
+
+/// Two layers (`--layer`) and r_u (`--ru`): the maps of the library's
+/// search on the same ground bit for bit; a weak upper layer 40 m thick
+/// changes the map and the lowest Fs; an upper layer whose bottom lies
+/// below every trial surface gives the one-layer run of its own material
+/// bit for bit (every base lies in it: σ_v = γ₁ (g − z_b), the same
+/// operations); --ru 0 is dry; --ru with --water, and bad layers, are
+/// refused naming the option and the value.
+#[test]
+fn layers_and_ru_are_those_of_the_library_search() {
+    use dismech::hpm::NamedRaster;
+    use dismech::slope::{Ground, Layer, PoreRatio};
+    let dir = scratch("layers");
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let (x0, y0) = dem.lower_left();
+    let shifted = |dz: f64, name: &str| {
+        let values = dem.values().iter().map(|v| v.map(|z| z - dz)).collect();
+        let r = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+        let path = dir.join(name);
+        dismech::grid::write_esri_ascii(&path, &r).unwrap();
+        (path, r)
+    };
+    let (shallow_path, shallow) = shifted(40.0, "colluvium.asc");
+    let (deep_path, _) = shifted(5000.0, "deep.asc");
+    let weak = SlopeMaterial {
+        cohesion: 5e3,
+        friction_coefficient: friction_from_degrees(22.0).unwrap(),
+        unit_weight: 18e3,
+    };
+    let terrain = Terrain::new(NamedRaster::new("dem", dem.clone()), None).unwrap();
+    let family = ellipsoids_5000();
+    let settings = SearchSettings::default();
+    let lib = |ground: &Ground| {
+        search(
+            &terrain,
+            ground,
+            &SlopeLoads::default(),
+            &family,
+            &settings,
+            |_, _| {},
+        )
+        .unwrap()
+    };
+
+    let one = fs_map_of(&dir.join("one"), &[]);
+    let layer_arg = format!("colluvium:{}:5e3:22:18e3", shallow_path.display());
+    let two = fs_map_of(&dir.join("two"), &["--layer", &layer_arg]);
+    let ground = Ground::layered(vec![
+        Layer {
+            name: "colluvium".into(),
+            bottom: Some(NamedRaster::new("colluvium.asc", shallow)),
+            material: weak,
+        },
+        Layer {
+            name: "base".into(),
+            bottom: None,
+            material: material(),
+        },
+    ])
+    .unwrap();
+    let layered = lib(&ground);
+    assert_eq!(bits(&two), bits(&layered.safety_factor_raster().unwrap()));
+    let differing = one
+        .values()
+        .iter()
+        .zip(two.values())
+        .filter(|(a, b)| a.map(f64::to_bits) != b.map(f64::to_bits))
+        .count();
+    assert!(differing > 1000, "{differing} cells differ");
+    let (fs_one, fs_two) = (raster_min(&one), raster_min(&two));
+    assert!(fs_two < fs_one - 0.05, "two layers {fs_two}, one {fs_one}");
+    println!("lowest Fs: one layer {fs_one}, two layers {fs_two}; {differing} cells differ");
+
+    // An upper layer below every surface: its material alone.
+    let deep_arg = format!("all:{}:5e3:22:18e3", deep_path.display());
+    let deep = fs_map_of(&dir.join("deep"), &["--layer", &deep_arg]);
+    let alone = search(
+        &terrain,
+        &weak,
+        &SlopeLoads::default(),
+        &family,
+        &settings,
+        |_, _| {},
+    )
+    .unwrap();
+    assert_eq!(bits(&deep), bits(&alone.safety_factor_raster().unwrap()));
+
+    // r_u: 0 is dry, 0.25 is the library's.
+    assert_eq!(
+        bits(&fs_map_of(&dir.join("ru0"), &["--ru", "0"])),
+        bits(&one)
+    );
+    let ru = fs_map_of(&dir.join("ru"), &["--ru", "0.25", "--layer", &layer_arg]);
+    let wet = lib(&ground
+        .clone()
+        .with_pore_ratio(PoreRatio::Constant(0.25))
+        .unwrap());
+    assert_eq!(bits(&ru), bits(&wet.safety_factor_raster().unwrap()));
+    assert!(raster_min(&ru) < fs_two);
+
+    // Refusals: exit status 2, the option and the value named.
+    let (water_path, _) = shifted(20.0, "water.asc");
+    let out = dir.join("refused");
+    for (extra, words) in [
+        (
+            vec!["--ru", "0.2", "--water", water_path.to_str().unwrap()],
+            vec!["--ru", "--water"],
+        ),
+        (vec!["--ru", "1"], vec!["--ru", "r_u = 1"]),
+        (
+            vec!["--layer", "sand:x.asc:5e3:95:18e3"],
+            vec!["--layer", "sand", "95"],
+        ),
+        (
+            vec!["--layer", "sand:5e3:18e3"],
+            vec!["--layer", "NAME:BOTTOM"],
+        ),
+        (
+            vec!["--layer", "sand:missing.asc:5e3:30:18e3"],
+            vec!["--layer", "missing.asc"],
+        ),
+    ] {
+        let mut args = vec!["--search", "spheres"];
+        args.extend_from_slice(&extra);
+        let run = slope(&out, &args);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{extra:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{extra:?}: `{w}` not in {err}");
+        }
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!out.exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

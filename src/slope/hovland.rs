@@ -15,6 +15,13 @@
 //! pressure keeps no frictional strength, and none below zero), and
 //! `Fs = Σ (c A + N' tan φ) / Σ T`.
 //!
+//! **Layered ground** ([`hovland_ground`], [`super::Ground`]): the weight
+//! is `W = σ_v d²` with `σ_v = Σ γ_i t_i` over the layers between the base
+//! and the ground, c and φ those of the layer the base passes through
+//! (Scoops3D's convention, Reid, Christian & Brien, USGS 2015), and with a
+//! pore-pressure ratio the pore pressure is `u = r_u σ_v` (Bishop &
+//! Morgenstern 1960) in place of `γ_w h_p`.
+//!
 //! **Sliding direction.** The plan direction of the resultant of the
 //! columns' base shear under their weight, `−Σ W (z_x, z_y) / ρ²` (the
 //! horizontal part of `W` less its normal part `(W/ρ) n`): the direction
@@ -29,6 +36,7 @@
 use crate::error::Result;
 use crate::hpm::MIN_DRIVING_RATIO;
 
+use super::ground::{ColumnGround, Ground, ToGround};
 use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::{surface_columns, Refusal, SlipColumn, SurfaceLimits, TrialSurface};
 use super::terrain::Terrain;
@@ -75,6 +83,53 @@ pub fn hovland_columns(
     loads: &SlopeLoads,
     limits: &SurfaceLimits,
 ) -> std::result::Result<SurfaceFs, Refusal> {
+    let gamma = material.unit_weight;
+    let (c, mu) = (material.cohesion, material.friction_coefficient);
+    hovland_core(columns, cell_size, loads, limits, |k| {
+        Some(ColumnGround {
+            vertical_stress: gamma * (k.ground - k.base),
+            cohesion: c,
+            friction_coefficient: mu,
+            ratio_pore_pressure: None,
+        })
+    })
+}
+
+/// Hovland's sums over `columns` on layered ground: each column's weight
+/// `σ_v d²` with `σ_v = Σ γ_i t_i` over the layers between its base and the
+/// ground, the base strength that of the layer the base passes through,
+/// and the pore pressure `r_u σ_v` where the ground has a pore-pressure
+/// ratio, `γ_w h_p` ([`SlipColumn::pressure_head`]) otherwise
+/// ([`Ground::column`]; Scoops3D's convention, Reid, Christian & Brien,
+/// USGS 2015). A one-layer ground gives [`hovland_columns`]'s result bit
+/// for bit. The ground is taken as given (an [`Evaluator`] checks it
+/// against the terrain once).
+///
+/// # Errors
+/// (A refusal, not a [`crate::error::DismechError`].) Those of
+/// [`hovland_columns`]; [`Refusal::NoData`] when a layer's bottom or the
+/// r_u raster has no data at a column that needs it.
+pub fn hovland_ground(
+    columns: &[SlipColumn],
+    cell_size: f64,
+    ground: &Ground,
+    loads: &SlopeLoads,
+    limits: &SurfaceLimits,
+) -> std::result::Result<SurfaceFs, Refusal> {
+    hovland_core(columns, cell_size, loads, limits, |k| {
+        ground.column(k.row, k.column, k.ground, k.base)
+    })
+}
+
+/// The sums, with what the ground gives each column from `at` (`None`:
+/// no data, the surface refused).
+fn hovland_core(
+    columns: &[SlipColumn],
+    cell_size: f64,
+    loads: &SlopeLoads,
+    limits: &SurfaceLimits,
+    at: impl Fn(&SlipColumn) -> Option<ColumnGround>,
+) -> std::result::Result<SurfaceFs, Refusal> {
     let cell_area = cell_size * cell_size;
     if columns.len() < limits.min_columns {
         return Err(Refusal::TooFewColumns);
@@ -98,11 +153,10 @@ pub fn hovland_columns(
     if !within(depth, limits.depth) {
         return Err(Refusal::Depth);
     }
-    let gamma = material.unit_weight;
     // The plan resultant of the base shear under the weight.
     let (mut hx, mut hy, mut weight) = (0.0, 0.0, 0.0);
     for k in columns {
-        let w = gamma * (k.ground - k.base) * cell_area;
+        let w = at(k).ok_or(Refusal::NoData)?.vertical_stress * cell_area;
         let (zx, zy) = k.gradient;
         let rho2 = 1.0 + zx * zx + zy * zy;
         hx -= w * zx / rho2;
@@ -115,14 +169,12 @@ pub fn hovland_columns(
         return Err(Refusal::NothingDrives);
     }
     let (sx, sy) = (hx / plan, hy / plan);
-    let (c, mu, kh) = (
-        material.cohesion,
-        material.friction_coefficient,
-        loads.seismic_coefficient,
-    );
+    let kh = loads.seismic_coefficient;
     let (mut resisting, mut driving) = (0.0, 0.0);
     for k in columns {
-        let w = gamma * (k.ground - k.base) * cell_area;
+        let g = at(k).ok_or(Refusal::NoData)?;
+        let (c, mu) = (g.cohesion, g.friction_coefficient);
+        let w = g.vertical_stress * cell_area;
         let (zx, zy) = k.gradient;
         let rho = (1.0 + zx * zx + zy * zy).sqrt();
         let a = zx * sx + zy * sy;
@@ -135,7 +187,11 @@ pub fn hovland_columns(
         // force has no frictional strength left, not a negative one: the
         // effective normal force is taken as zero there, as
         // limit-equilibrium codes do (Scoops3D; Reid et al. 2015).
-        let effective = (normal - loads.water_unit_weight * k.pressure_head * base_area).max(0.0);
+        let u = match g.ratio_pore_pressure {
+            Some(u) => u,
+            None => loads.water_unit_weight * k.pressure_head,
+        };
+        let effective = (normal - u * base_area).max(0.0);
         resisting += c * base_area + effective * mu;
         driving += along;
     }
@@ -161,32 +217,35 @@ pub fn hovland_columns(
 
 /// Hovland's method on trial surfaces over one terrain, with the material,
 /// loads and limits checked once.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
     terrain: &'a Terrain,
-    material: SlopeMaterial,
+    ground: Ground,
     loads: SlopeLoads,
     limits: SurfaceLimits,
 }
 
 impl<'a> Evaluator<'a> {
-    /// Check the material, the loads and the limits.
+    /// Check the ground (one material, `&SlopeMaterial`, or a layered
+    /// [`Ground`]), the loads and the limits.
     ///
     /// # Errors
-    /// Those of [`SlopeMaterial::validate`], [`SlopeLoads::validate`] and
+    /// Those of [`Ground::validate_on`] (for one material, those of
+    /// [`SlopeMaterial::validate`]), [`SlopeLoads::validate`] and
     /// [`SurfaceLimits::validate`].
     pub fn new(
         terrain: &'a Terrain,
-        material: &SlopeMaterial,
+        ground: &(impl ToGround + ?Sized),
         loads: &SlopeLoads,
         limits: &SurfaceLimits,
     ) -> Result<Self> {
-        material.validate()?;
+        let ground = ground.to_ground();
+        ground.validate_on(terrain)?;
         loads.validate()?;
         limits.validate()?;
         Ok(Self {
             terrain,
-            material: *material,
+            ground,
             loads: *loads,
             limits: *limits,
         })
@@ -197,22 +256,27 @@ impl<'a> Evaluator<'a> {
         self.terrain
     }
 
+    /// The ground.
+    pub fn ground(&self) -> &Ground {
+        &self.ground
+    }
+
     /// The columns of `surface` ([`surface_columns`]) into `scratch`, then
-    /// Hovland's Fs ([`hovland_columns`]).
+    /// Hovland's Fs ([`hovland_ground`]).
     ///
     /// # Errors
     /// (A refusal, not a [`crate::error::DismechError`].) Those of
-    /// [`surface_columns`], then of [`hovland_columns`].
+    /// [`surface_columns`], then of [`hovland_ground`].
     pub fn evaluate<S: TrialSurface>(
         &self,
         surface: &S,
         scratch: &mut Vec<SlipColumn>,
     ) -> std::result::Result<SurfaceFs, Refusal> {
         surface_columns(self.terrain, surface, scratch)?;
-        hovland_columns(
+        hovland_ground(
             scratch,
             self.terrain.cell_size(),
-            &self.material,
+            &self.ground,
             &self.loads,
             &self.limits,
         )

@@ -5,7 +5,8 @@ use crate::error::{require_non_negative, require_positive, DismechError, Result}
 use crate::hpm::MAX_SEISMIC_COEFFICIENT;
 
 /// One material for the whole terrain: Mohr–Coulomb strength on the slip
-/// surface and the unit weight of the ground above it.
+/// surface and the unit weight of the ground above it (a one-layer
+/// [`super::Ground`]; layers of several materials are [`super::Layer`]s).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlopeMaterial {
     /// Effective cohesion c (Pa).

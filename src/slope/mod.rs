@@ -13,8 +13,9 @@
 //! |---|---|---|
 //! | the ground | [`Terrain`] (DEM and optional water table), [`Terrain::fall_line`] | `terrain.rs` |
 //! | strength and loads | [`SlopeMaterial`] (c, μ = tan φ, γ), [`SlopeLoads`] (k_h, γ_w) | `material.rs` |
+//! | layered ground, r_u | [`Ground`] (strength [`Layer`]s bounded by elevation rasters, Scoops3D's convention), [`PoreRatio`] (Bishop & Morgenstern's r_u), [`ColumnGround`] | `ground.rs` |
 //! | trial surfaces | [`TrialSurface`]: [`Sphere`], [`Ellipsoid`]; [`surface_columns`], [`SlipColumn`], [`SurfaceLimits`], [`Refusal`] | `surface.rs` |
-//! | Hovland per surface | [`hovland_columns`], [`Evaluator`], [`SurfaceFs`] | `hovland.rs` |
+//! | Hovland per surface | [`hovland_columns`], [`hovland_ground`], [`Evaluator`], [`SurfaceFs`] | `hovland.rs` |
 //! | families | [`TrialFamily`]: [`SphereGrid`] (Scoops3D), [`SphereRandom`], [`EllipsoidRandom`] (r.slope.stability); [`Steps`] | `family.rs` |
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
 //! | outputs | rasters on the DEM's grid (ESRI ASCII, GeoTIFF), [`SearchResult::write_maps`], [`SearchResult::write_maps_as`], [`SearchResult::write_critical_csv`] | `output.rs` |
@@ -42,6 +43,7 @@
 //! ```
 
 mod family;
+mod ground;
 mod hovland;
 mod material;
 mod output;
@@ -50,7 +52,8 @@ mod surface;
 mod terrain;
 
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};
-pub use hovland::{hovland_columns, Evaluator, SurfaceFs};
+pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
+pub use hovland::{hovland_columns, hovland_ground, Evaluator, SurfaceFs};
 pub use material::{SlopeLoads, SlopeMaterial, WATER_UNIT_WEIGHT};
 pub use output::MAP_NAMES;
 pub use search::{

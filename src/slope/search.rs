@@ -21,8 +21,9 @@ use rayon::prelude::*;
 use crate::error::{require_positive, Result};
 
 use super::family::TrialFamily;
+use super::ground::ToGround;
 use super::hovland::{Evaluator, SurfaceFs};
-use super::material::{SlopeLoads, SlopeMaterial};
+use super::material::SlopeLoads;
 use super::surface::{Refusal, SlipColumn, SurfaceLimits};
 use super::terrain::Terrain;
 
@@ -241,24 +242,26 @@ impl<S: Copy> Partial<S> {
 }
 
 /// Search the trial surfaces of `family` over `terrain` by Hovland's
-/// method ([`super::hovland_columns`]), in parallel on the current rayon
+/// method ([`super::hovland_ground`]) on `ground` (one material,
+/// `&SlopeMaterial`, or a layered [`super::Ground`] with an optional
+/// pore-pressure ratio), in parallel on the current rayon
 /// pool (install a `rayon::ThreadPool` to choose the threads), calling
 /// `progress(done, total)` on the caller's thread after each batch of
 /// [`SearchSettings::batch`] trials (hook a progress bar there).
 ///
 /// # Errors
-/// Those of [`Evaluator::new`] (material, loads, limits);
+/// Those of [`Evaluator::new`] (ground, loads, limits);
 /// [`crate::error::DismechError::InvalidParameter`] for a batch of 0
 /// trials or a family with no trial over the terrain.
 pub fn search<F: TrialFamily>(
     terrain: &Terrain,
-    material: &SlopeMaterial,
+    ground: &(impl ToGround + ?Sized),
     loads: &SlopeLoads,
     family: &F,
     settings: &SearchSettings,
     mut progress: impl FnMut(u64, u64),
 ) -> Result<SearchResult<F::Surface>> {
-    let evaluator = Evaluator::new(terrain, material, loads, &settings.limits)?;
+    let evaluator = Evaluator::new(terrain, ground, loads, &settings.limits)?;
     family.validate()?;
     require_positive("search batch (trials)", settings.batch as f64)?;
     let total = family.len(terrain);

@@ -9,6 +9,31 @@ use dismech::error::{require_non_negative, require_positive, DismechError};
 use dismech::law::friction_from_degrees;
 use dismech::slope::Steps;
 
+/// A pore-pressure ratio as given to `--ru`: a constant or a grid file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RuArg {
+    /// The same r_u everywhere (checked to lie in [0, 1)).
+    Constant(f64),
+    /// A grid of r_u on the DEM's grid.
+    File(PathBuf),
+}
+
+/// A strength layer as given to `--layer NAME:BOTTOM:C:PHI:GAMMA`, the
+/// numbers checked as parsed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayerArg {
+    /// The layer's name.
+    pub name: String,
+    /// The grid of its bottom elevations.
+    pub bottom: PathBuf,
+    /// Cohesion c' (Pa).
+    pub cohesion: f64,
+    /// Friction angle φ' (degrees).
+    pub friction_angle: f64,
+    /// Unit weight γ (N/m³).
+    pub unit_weight: f64,
+}
+
 /// The trial surfaces a search runs through.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum SearchKind {
@@ -70,13 +95,33 @@ pub struct SlopeArgs {
     /// grid (or GeoTIFF) on the DEM's grid. Without it the ground is dry.
     #[arg(long, value_name = "FILE")]
     pub water: Option<PathBuf>,
-    /// Effective cohesion c' on the slip surface (Pa).
+    /// Pore-pressure ratio r_u (Bishop & Morgenstern 1960): the pore
+    /// pressure on a base is u = r_u σ_v, with σ_v = Σ γ_i t_i the vertical
+    /// stress of the ground above it. A constant in [0, 1) or an ESRI ASCII
+    /// grid (or GeoTIFF) of r_u on the DEM's grid. Instead of --water.
+    #[arg(long, value_name = "VALUE|FILE", conflicts_with = "water", value_parser = parse_ru)]
+    pub ru: Option<RuArg>,
+    /// A strength layer above the ground of --cohesion, --friction-angle
+    /// and --unit-weight (which becomes the last layer, unbounded below):
+    /// NAME:BOTTOM:C:PHI:GAMMA, with BOTTOM a grid of the layer's bottom
+    /// elevations (m) on the DEM's grid, C the cohesion c' (Pa), PHI the
+    /// friction angle φ' (degrees) and GAMMA the unit weight (N/m³).
+    /// Repeat it for several layers, top to bottom. A bottom above the
+    /// ground or above the layer above is clipped to it. A column weighs
+    /// Σ γ_i t_i over the layers above its base; its base takes the
+    /// strength of the layer it passes through (Scoops3D's convention).
+    #[arg(long = "layer", value_name = "NAME:BOTTOM:C:PHI:GAMMA", value_parser = parse_layer)]
+    pub layers: Vec<LayerArg>,
+    /// Effective cohesion c' on the slip surface (Pa) (of the last layer,
+    /// with --layer).
     #[arg(long, value_name = "PA", value_parser = parse_cohesion)]
     pub cohesion: f64,
-    /// Effective friction angle φ' on the slip surface (degrees, in [0, 90)).
+    /// Effective friction angle φ' on the slip surface (degrees, in [0,
+    /// 90)) (of the last layer, with --layer).
     #[arg(long, value_name = "DEG", value_parser = parse_friction_angle)]
     pub friction_angle: f64,
-    /// Total unit weight γ of the ground (N/m³).
+    /// Total unit weight γ of the ground (N/m³) (of the last layer, with
+    /// --layer).
     #[arg(long, value_name = "N_PER_M3", value_parser = parse_unit_weight)]
     pub unit_weight: f64,
     /// Horizontal seismic coefficient k_h (pseudo-static force k_h W along
@@ -175,6 +220,43 @@ fn whole<T: std::str::FromStr>(text: &str) -> Result<T, String> {
 
 fn message(e: DismechError) -> String {
     e.to_string()
+}
+
+fn parse_ru(text: &str) -> Result<RuArg, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) => {
+            dismech::slope::PoreRatio::Constant(v)
+                .validate()
+                .map_err(message)?;
+            Ok(RuArg::Constant(v))
+        }
+        Err(_) if !text.trim().is_empty() => Ok(RuArg::File(PathBuf::from(text))),
+        Err(_) => Err("give a number in [0, 1) or a grid file".to_string()),
+    }
+}
+
+fn parse_layer(text: &str) -> Result<LayerArg, String> {
+    // The name up to the first `:`, the three numbers after the last three
+    // (the file between may hold `:`).
+    let shape = || format!("`{text}` is not NAME:BOTTOM:C:PHI:GAMMA");
+    let (name, rest) = text.split_once(':').ok_or_else(shape)?;
+    let mut tail = rest.rsplitn(4, ':');
+    let (Some(gamma), Some(phi), Some(c), Some(bottom)) =
+        (tail.next(), tail.next(), tail.next(), tail.next())
+    else {
+        return Err(shape());
+    };
+    if name.trim().is_empty() || bottom.is_empty() {
+        return Err(shape());
+    }
+    let within = |e: String| format!("layer `{name}`: {e}");
+    Ok(LayerArg {
+        name: name.to_string(),
+        bottom: PathBuf::from(bottom),
+        cohesion: parse_cohesion(c).map_err(within)?,
+        friction_angle: parse_friction_angle(phi).map_err(within)?,
+        unit_weight: parse_unit_weight(gamma).map_err(within)?,
+    })
 }
 
 fn parse_cohesion(text: &str) -> Result<f64, String> {
@@ -366,5 +448,28 @@ mod tests {
             parse_threads("x").unwrap_err(),
             "`x` is not a whole number >= 0"
         );
+    }
+
+    #[test]
+    fn layers_and_ru_are_read_and_checked() {
+        let l = parse_layer("till:C:/data/till.asc:5e3:22:18e3").unwrap();
+        assert_eq!(l.name, "till");
+        assert_eq!(l.bottom, PathBuf::from("C:/data/till.asc"));
+        assert_eq!(
+            (l.cohesion, l.friction_angle, l.unit_weight),
+            (5e3, 22.0, 18e3)
+        );
+        let e = parse_layer("till:b.asc:5e3:22:-1").unwrap_err();
+        assert!(e.contains("layer `till`") && e.contains("-1"), "{e}");
+        assert!(parse_layer("till:5e3:22").is_err());
+        assert!(parse_layer(":b.asc:5e3:22:18e3").is_err());
+        assert_eq!(parse_ru("0.3").unwrap(), RuArg::Constant(0.3));
+        assert_eq!(
+            parse_ru("ru.asc").unwrap(),
+            RuArg::File(PathBuf::from("ru.asc"))
+        );
+        let e = parse_ru("1").unwrap_err();
+        assert!(e.contains("r_u = 1"), "{e}");
+        assert!(parse_ru("-0.1").is_err());
     }
 }

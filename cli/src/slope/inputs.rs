@@ -4,9 +4,9 @@
 use dismech::error::DismechError;
 use dismech::hpm::NamedRaster;
 use dismech::law::friction_from_degrees;
-use dismech::slope::{SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain};
+use dismech::slope::{Ground, Layer, PoreRatio, SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain};
 
-use super::args::{SlopeArgs, Span};
+use super::args::{RuArg, SlopeArgs, Span};
 use super::error::SlopeError;
 
 /// The DEM and the water table of `args`, read and checked.
@@ -52,6 +52,90 @@ pub fn material(args: &SlopeArgs) -> Result<SlopeMaterial, SlopeError> {
         .validate()
         .map_err(|e| SlopeError::argument("--cohesion", &args.cohesion.to_string(), e))?;
     Ok(material)
+}
+
+/// The ground of `args`: the layers of `--layer` above the material of
+/// `--cohesion`, `--friction-angle` and `--unit-weight` (one layer without
+/// `--layer`: the single material), with the r_u of `--ru`.
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--layer` and its value for a bottom
+/// file that cannot be read, lies on another grid than the DEM or a layer
+/// without strength; naming `--ru` for a file that cannot be read, a value
+/// outside [0, 1) or a grid other than the DEM's; those of [`material`].
+pub fn ground(args: &SlopeArgs, terrain: &Terrain) -> Result<Ground, SlopeError> {
+    let last = material(args)?;
+    let layer_value = |l: &super::args::LayerArg| {
+        format!(
+            "{}:{}:{}:{}:{}",
+            l.name,
+            l.bottom.display(),
+            l.cohesion,
+            l.friction_angle,
+            l.unit_weight
+        )
+    };
+    let mut ground = if args.layers.is_empty() {
+        Ground::from(last)
+    } else {
+        let mut layers = Vec::with_capacity(args.layers.len() + 1);
+        for l in &args.layers {
+            let fail = |e| SlopeError::argument("--layer", &layer_value(l), e);
+            let bottom = NamedRaster::read(&l.bottom).map_err(fail)?;
+            let material = SlopeMaterial {
+                cohesion: l.cohesion,
+                friction_coefficient: friction_from_degrees(l.friction_angle).map_err(fail)?,
+                unit_weight: l.unit_weight,
+            };
+            layers.push(Layer {
+                name: l.name.clone(),
+                bottom: Some(bottom),
+                material,
+            });
+        }
+        layers.push(Layer {
+            name: "base (--cohesion, --friction-angle, --unit-weight)".to_string(),
+            bottom: None,
+            material: last,
+        });
+        let ground = Ground::layered(layers).map_err(|e| {
+            let l = match &e {
+                DismechError::InvalidLayer { layer, .. } => {
+                    args.layers.iter().find(|l| &l.name == layer)
+                }
+                _ => None,
+            };
+            match l {
+                Some(l) => SlopeError::argument("--layer", &layer_value(l), e),
+                None => SlopeError::argument("--cohesion", &args.cohesion.to_string(), e),
+            }
+        })?;
+        for (l, layer) in args.layers.iter().zip(ground.layers()) {
+            if let Some(b) = &layer.bottom {
+                b.require_grid_of(terrain.dem())
+                    .map_err(|e| SlopeError::argument("--layer", &layer_value(l), e))?;
+            }
+        }
+        ground
+    };
+    if let Some(ru) = &args.ru {
+        let (value, ratio) = match ru {
+            RuArg::Constant(v) => (v.to_string(), PoreRatio::Constant(*v)),
+            RuArg::File(path) => {
+                let value = path.display().to_string();
+                let raster =
+                    NamedRaster::read(path).map_err(|e| SlopeError::argument("--ru", &value, e))?;
+                raster
+                    .require_grid_of(terrain.dem())
+                    .map_err(|e| SlopeError::argument("--ru", &value, e))?;
+                (value, PoreRatio::Raster(raster))
+            }
+        };
+        ground = ground
+            .with_pore_ratio(ratio)
+            .map_err(|e| SlopeError::argument("--ru", &value, e))?;
+    }
+    Ok(ground)
 }
 
 /// The loads of `args` (k_h; γ_w = 9810 N/m³).

@@ -5,7 +5,7 @@
 //! | concept | items | file |
 //! |---|---|---|
 //! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`Span`] | `args.rs` |
-//! | ground, material, loads, limits | [`inputs::terrain`], [`inputs::material`], … | `inputs.rs` |
+//! | ground, layers, r_u, loads, limits | [`inputs::terrain`], [`inputs::ground`], [`inputs::material`], … | `inputs.rs` |
 //! | the family, defaults from the DEM | [`family::family`], [`family::Family`] | `family.rs` |
 //! | errors naming the option | [`SlopeError`] | `error.rs` |
 //! | the run and its files | [`run`], [`Report`] | `mod.rs`, `outputs.rs` |
@@ -30,13 +30,13 @@ mod outputs;
 use std::time::Instant;
 
 use dismech::slope::{
-    search, SearchResult, SearchSettings, SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain,
-    TrialFamily, TrialSurface,
+    search, Ground, SearchResult, SearchSettings, SlopeLoads, SurfaceLimits, Terrain, TrialFamily,
+    TrialSurface,
 };
 
 use crate::output::StagedFolder;
 
-pub use args::{SearchKind, SlopeArgs, Span};
+pub use args::{LayerArg, RuArg, SearchKind, SlopeArgs, Span};
 pub use error::{refusal_words, refusals, SlopeError};
 pub use outputs::{Lowest, Report};
 
@@ -45,7 +45,7 @@ use family::Family;
 /// What a search needs besides its family.
 struct Problem {
     terrain: Terrain,
-    material: SlopeMaterial,
+    ground: Ground,
     loads: SlopeLoads,
     limits: SurfaceLimits,
 }
@@ -80,7 +80,7 @@ fn run_family<F: TrialFamily>(
     bar.set_length(family.len(&problem.terrain));
     search(
         &problem.terrain,
-        &problem.material,
+        &problem.ground,
         &problem.loads,
         family,
         &settings,
@@ -167,7 +167,7 @@ where
 pub fn run(args: &SlopeArgs) -> Result<Report, SlopeError> {
     let terrain = inputs::terrain(args)?;
     let problem = Problem {
-        material: inputs::material(args)?,
+        ground: inputs::ground(args, &terrain)?,
         loads: inputs::loads(args)?,
         limits: inputs::limits(args)?,
         terrain,

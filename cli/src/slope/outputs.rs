@@ -256,6 +256,17 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
             "friction_angle_deg": args.friction_angle,
             "unit_weight_n_per_m3": args.unit_weight,
         },
+        "layers": args.layers.iter().map(|l| serde_json::json!({
+            "name": l.name,
+            "bottom": l.bottom.display().to_string(),
+            "cohesion_pa": l.cohesion,
+            "friction_angle_deg": l.friction_angle,
+            "unit_weight_n_per_m3": l.unit_weight,
+        })).collect::<Vec<_>>(),
+        "ru": args.ru.as_ref().map(|r| match r {
+            super::args::RuArg::Constant(v) => serde_json::json!(v),
+            super::args::RuArg::File(p) => serde_json::json!(p.display().to_string()),
+        }),
         "kh": args.kh,
         "family": report.run.family,
         "limits": {
