@@ -1,4 +1,4 @@
-//! Trials per second of the slope search (issue 32's target: 10⁶ random
+//! Trials per second of the slope search (the aim: 10⁶ random
 //! ellipsoids on a 100 × 100-cell DEM in under 30 s on 2 cores, 30 µs a
 //! trial) on the terrain shipped in examples/data/terrain (100 × 100 cells
 //! of 75 m), and how the cost of a trial grows with its footprint: random

@@ -1,4 +1,4 @@
-//! Ground as it is for the slope search (issue 32, item 3): strength
+//! Ground as it is for the slope search: strength
 //! layers bounded by elevation rasters and the pore-pressure ratio r_u,
 //! against the single material, the infinite slope and an independent
 //! column sum; bad input refused with typed errors.

@@ -1,4 +1,4 @@
-//! The slope search (issue 32, first increment): Hovland per surface against
+//! The slope search: Hovland per surface against
 //! an independent column sum, the parallel search against an exhaustive
 //! loop, bit-identical results for any number of threads, the infinite
 //! slope's limit, the outputs read back, and bad input refused.

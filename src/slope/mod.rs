@@ -1,7 +1,8 @@
 //! Slope stability over real terrain: a search over trial slip surfaces
 //! on a digital elevation model, evaluated by Hovland's 3D column method,
-//! and the map of the lowest factor of safety per cell (issue 32, first
-//! increment).
+//! and the map of the lowest factor of safety per cell, on ground of one
+//! material or of layers, dry, under a water table or with a pore-pressure
+//! ratio.
 //!
 //! The slope engineer's tools work this way: Scoops3D (Reid, Christian &
 //! Brien, USGS Techniques and Methods 14-A1, 2015) evaluates a systematic

@@ -333,7 +333,7 @@ pub fn see_saw_residuals(steps: usize, dt: f64) -> Result<Vec<StepReport>> {
     Ok(out)
 }
 
-/// The convergence measure `ln r_{k+1} / ln r_k` (→ 2 for
+/// The convergence measure `ln r_{k+1} / ln r_k` (→ 2 for
 /// quadratic convergence of relative residuals), over consecutive iterates
 /// near the solution (`r_k < 1e-2`) joined by a full Newton step, whose
 /// successor is above `floor`.
