@@ -132,28 +132,23 @@ fn lattice_limit_load(
     let start = std::time::Instant::now();
     let result = analyse(&built, &mut LinearProgramSolver::default())?;
     let seconds = start.elapsed().as_secs_f64();
-    let value = serde_json::json!({
+    let mut value = serde_json::json!({
         "model": model,
         "m": m,
         "n": n,
         "nprime": if model == "u" { Some(nprime) } else { None },
         "rolling": rolling,
         "c_wall": c_wall,
-        "status": format!("{:?}", result.status),
-        "p_over_cp": result.load,
-        "kinematic_p_over_cp": result.kinematic_load,
-        "static_p_over_cp": result.static_load,
-        "plate_length": lattice.plate_length(),
-        "solver": {
-            "name": "clarabel",
-            "status": result.solver_status,
-            "iterations": result.iterations,
-            "variables": result.lp_size.0,
-            "equality_rows": result.lp_size.1,
-            "nonzeros": result.lp_size.2,
-            "seconds": seconds,
-        }
     });
+    if let Some(object) = value.as_object_mut() {
+        object.extend(dismech_cli::output::limit_summary(
+            &result,
+            lattice.plate_length(),
+        ));
+        if let Some(solver) = object.get_mut("solver").and_then(|s| s.as_object_mut()) {
+            solver.insert("seconds".into(), serde_json::json!(seconds));
+        }
+    }
     Ok((value, result.status))
 }
 

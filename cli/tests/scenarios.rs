@@ -269,13 +269,13 @@ fn lp_bearing_capacity_scenario_equals_lattice_limit_load_bit_for_bit() {
         .unwrap();
     let expected: Value = serde_json::from_slice(&cli.stdout).unwrap();
     assert_eq!(summary["outcome"]["status"], "Collapse");
-    assert_eq!(bits(&summary["load"]), bits(&expected["p_over_cp"]));
+    assert_eq!(bits(&summary["p_over_cp"]), bits(&expected["p_over_cp"]));
     assert_eq!(
-        bits(&summary["kinematic_load"]),
+        bits(&summary["kinematic_p_over_cp"]),
         bits(&expected["kinematic_p_over_cp"])
     );
     assert_eq!(
-        bits(&summary["static_load"]),
+        bits(&summary["static_p_over_cp"]),
         bits(&expected["static_p_over_cp"])
     );
     assert_eq!(

@@ -5,6 +5,7 @@
 
 mod csv;
 mod folder;
+mod limit_json;
 mod listing;
 pub mod map;
 pub mod plot;
@@ -13,6 +14,7 @@ mod summary;
 
 pub use csv::write_csv;
 pub use folder::StagedFolder;
+pub use limit_json::limit_summary;
 pub use listing::{check_line, checks_table, value_line};
 pub use rule::{number, Reference, Rule};
 pub use summary::{Check, Reported, Summary};

@@ -23,7 +23,7 @@ use super::explicit::{ExplicitDem, ExplicitPlan};
 use super::implicit::{ImplicitDriver, Scheme};
 use super::limit::LimitPlan;
 use super::{Model, Prepared, ScenarioError};
-use crate::output::StagedFolder;
+use crate::output::{limit_summary, StagedFolder};
 
 /// Steps between two frames when `[output]` does not say.
 pub const DEFAULT_FRAMES_EVERY: u64 = 100;
@@ -308,23 +308,14 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
         series.write_frame(0.0, &limit_frame(&plan.model, &result, segments)?)?;
         frames = series.frames();
     }
-    let value = json!({
+    let mut value = json!({
         "outcome": { "status": format!("{:?}", result.status) },
-        "load": result.load,
-        "kinematic_load": result.kinematic_load,
-        "static_load": result.static_load,
-        "plate_length": plan.lattice.plate_length(),
         "elements": plan.model.bodies().len(),
         "contacts": plan.model.contacts().len(),
-        "solver": {
-            "name": "clarabel",
-            "status": result.solver_status,
-            "iterations": result.iterations,
-            "variables": result.lp_size.0,
-            "equality_rows": result.lp_size.1,
-            "nonzeros": result.lp_size.2,
-        },
         "frames": frames,
     });
+    if let Some(object) = value.as_object_mut() {
+        object.extend(limit_summary(&result, plan.lattice.plate_length()));
+    }
     Ok((value, result.status))
 }
