@@ -95,6 +95,22 @@ pub fn combination(source: &Source<'_>, paths: &[&KeyPath], message: &str) -> Re
     Box::new(source.at_keys(paths, message))
 }
 
+/// Where `present`, the refusal of the key `other` beside the chosen
+/// `driver.kind`, saying `message`: a slot or load the driver does not
+/// take.
+pub fn refuse_beside_driver(
+    source: &Source<'_>,
+    present: bool,
+    other: KeyPath,
+    message: &str,
+) -> Result<(), Refusal> {
+    if present {
+        let kind = KeyPath::root("driver").key("kind");
+        return Err(combination(source, &[&kind, &other], message));
+    }
+    Ok(())
+}
+
 /// The friction coefficient of the table at `table`: its `friction` (μ),
 /// or its `friction_angle` (φ in degrees, μ = tan φ), not both;
 /// `default` where neither is given (none: one is required).

@@ -12,7 +12,9 @@ use dismech::shape::{Circle, Ellipse, Polygon};
 
 use super::bodies::BodySpec;
 use super::boundary::BoundarySpec;
-use super::check::{self, combination, count, finite2, named, non_negative, positive, Refusal};
+use super::check::{
+    self, combination, count, finite2, named, non_negative, positive, refuse_beside_driver, Refusal,
+};
 use super::driver::ExplicitSpec;
 use super::law::{DampingSpec, IntegrationSpec, LawSpec};
 use super::run::RunSpec;
@@ -144,45 +146,39 @@ const LAW_NAMES: check::Names<'static> = &[
 
 /// Refuse the tables that the explicit driver has no slot for.
 fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Refusal> {
-    let kind = KeyPath::root("driver").key("kind");
-    if let Some(k) = &spec.kinematics {
-        if k.kind() != "rigid" {
-            return Err(combination(
-                source,
-                &[&kind, &KeyPath::root("kinematics").key("kind")],
-                "the explicit driver moves rigid bodies only",
-            ));
-        }
-    }
-    if let Some(i) = &spec.integrator {
-        if !matches!(i, IntegratorSpec::ExplicitEuler(_)) {
-            return Err(combination(
-                source,
-                &[&kind, &KeyPath::root("integrator").key("kind")],
-                "the explicit driver takes an explicit integrator (`explicit-euler`); `newmark` and `quasi-static` are implicit",
-            ));
-        }
-    }
+    refuse_beside_driver(
+        source,
+        spec.kinematics
+            .as_ref()
+            .is_some_and(|k| k.kind() != "rigid"),
+        KeyPath::root("kinematics").key("kind"),
+        "the explicit driver moves rigid bodies only",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.integrator
+            .as_ref()
+            .is_some_and(|i| !matches!(i, IntegratorSpec::ExplicitEuler(_))),
+        KeyPath::root("integrator").key("kind"),
+        "the explicit driver takes an explicit integrator (`explicit-euler`); `newmark` and `quasi-static` are implicit",
+    )?;
     for (present, table) in [
         (spec.linear_solver.is_some(), "linear_solver"),
         (spec.lp_solver.is_some(), "lp_solver"),
     ] {
-        if present {
-            return Err(combination(
-                source,
-                &[&kind, &KeyPath::root(table)],
-                "the explicit driver solves no system: remove this table",
-            ));
-        }
-    }
-    if !spec.loads.tractions.is_empty() {
-        return Err(combination(
+        refuse_beside_driver(
             source,
-            &[&kind, &KeyPath::root("loads").key("tractions")],
-            "edge tractions load the implicit driver's polygons; the explicit driver takes `loads.forces`",
-        ));
+            present,
+            KeyPath::root(table),
+            "the explicit driver solves no system: remove this table",
+        )?;
     }
-    Ok(())
+    refuse_beside_driver(
+        source,
+        !spec.loads.tractions.is_empty(),
+        KeyPath::root("loads").key("tractions"),
+        "edge tractions load the implicit driver's polygons; the explicit driver takes `loads.forces`",
+    )
 }
 
 /// Build the explicit model of `spec`.

@@ -16,7 +16,9 @@ use dismech::math::{Point, Vec2};
 use dismech::shape::Segment;
 
 use super::bodies::{BodySpec, Common, MotionSpec, PlaneSpec};
-use super::check::{self, combination, count, finite2, named, positive, Refusal};
+use super::check::{
+    self, combination, count, finite2, named, positive, refuse_beside_driver, Refusal,
+};
 use super::driver::{ImplicitSpec, PredictorSpec};
 use super::explicit::{
     finite, gravity, limit_steps, stepping_law, SteppingLaw, MAX_BODIES, MAX_STEPS,
@@ -217,30 +219,24 @@ fn compose_error(source: &Source<'_>, spec: &ScenarioSpec, error: DismechError) 
 
 /// Refuse the tables that the implicit driver has no slot for.
 fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Refusal> {
-    let kind = KeyPath::root("driver").key("kind");
-    if let Some(b) = &spec.boundary {
-        let _ = b;
-        return Err(combination(
-            source,
-            &[&kind, &KeyPath::root("boundary").key("kind")],
-            "the implicit driver's walls are bodies: give `[[bodies]] kind = \"wall\"` instead of a `[boundary]`",
-        ));
-    }
-    if spec.lp_solver.is_some() {
-        return Err(combination(
-            source,
-            &[&kind, &KeyPath::root("lp_solver")],
-            "the implicit driver solves no LP: remove this table",
-        ));
-    }
-    if !spec.loads.forces.is_empty() {
-        return Err(combination(
-            source,
-            &[&kind, &KeyPath::root("loads").key("forces")],
-            "the implicit driver takes loads as edge tractions (`loads.tractions`)",
-        ));
-    }
-    Ok(())
+    refuse_beside_driver(
+        source,
+        spec.boundary.is_some(),
+        KeyPath::root("boundary").key("kind"),
+        "the implicit driver's walls are bodies: give `[[bodies]] kind = \"wall\"` instead of a `[boundary]`",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.lp_solver.is_some(),
+        KeyPath::root("lp_solver"),
+        "the implicit driver solves no LP: remove this table",
+    )?;
+    refuse_beside_driver(
+        source,
+        !spec.loads.forces.is_empty(),
+        KeyPath::root("loads").key("forces"),
+        "the implicit driver takes loads as edge tractions (`loads.tractions`)",
+    )
 }
 
 /// The integrator of `[integrator]` (Newmark β = ½, γ = 1 by default).
