@@ -117,6 +117,18 @@ impl Bounds {
     }
 }
 
+/// The columns and rows of a dense grid of cells of `cell_size` over the
+/// span `min`–`max` of `n` bodies, or `None` where the grid would be sparse:
+/// more than about 4 cells per body, or fewer than one column or row (which
+/// comes only of boxes whose corners are swapped: the sparse grid takes
+/// them without indexing an empty grid).
+fn dense_shape(n: usize, cell_size: f64, min: (f64, f64), max: (f64, f64)) -> Option<(f64, f64)> {
+    let max_cells = (4 * n).max(16) as f64;
+    let columns = ((max.0 - min.0) / cell_size).floor() + 1.0;
+    let rows = ((max.1 - min.1) / cell_size).floor() + 1.0;
+    (columns >= 1.0 && rows >= 1.0 && columns * rows <= max_cells).then_some((columns, rows))
+}
+
 /// How many bodies one task of [`CellGrid::candidate_pairs_filtered`]
 /// searches.
 const PARALLEL_BODIES: usize = 512;
@@ -346,17 +358,12 @@ impl Level {
         let n = members.map_or(boxes.len(), <[usize]>::len);
         self.cell_size = cell_size;
         self.origin = min;
-        let max_cells = (4 * n).max(16) as f64;
-        let columns = ((max.0 - min.0) / self.cell_size).floor() + 1.0;
-        let rows = ((max.1 - min.1) / self.cell_size).floor() + 1.0;
-        // (Fewer than one column or row, or none at all, comes only of
-        // boxes whose corners are swapped: the sparse grid takes them
-        // without indexing an empty grid.)
-        self.sparse = !(columns >= 1.0 && rows >= 1.0) || columns * rows > max_cells;
-        if self.sparse {
+        let shape = dense_shape(n, cell_size, min, max);
+        self.sparse = shape.is_none();
+        let Some((columns, rows)) = shape else {
             self.lay_out_sparse(boxes, members);
             return;
-        }
+        };
         self.columns = columns as usize;
         self.rows = rows as usize;
         let cells = self.columns * self.rows;
@@ -404,14 +411,15 @@ impl Level {
         max: (f64, f64),
     ) {
         let n = boxes.len();
-        let columns = ((max.0 - min.0) / cell_size).floor() + 1.0;
-        let rows = ((max.1 - min.1) / cell_size).floor() + 1.0;
-        let max_cells = (4 * n).max(16) as f64;
-        let dense = columns >= 1.0 && rows >= 1.0 && columns * rows <= max_cells;
-        if !(dense && n < 1 << 32 && columns * rows < 4_294_967_296.0) {
-            self.lay_out(boxes, None, cell_size, min, max);
-            return;
-        }
+        let (columns, rows) = match dense_shape(n, cell_size, min, max) {
+            Some((columns, rows)) if n < 1 << 32 && columns * rows < 4_294_967_296.0 => {
+                (columns, rows)
+            }
+            _ => {
+                self.lay_out(boxes, None, cell_size, min, max);
+                return;
+            }
+        };
         self.sparse = false;
         self.cell_size = cell_size;
         self.origin = min;
