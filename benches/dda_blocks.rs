@@ -19,7 +19,9 @@
 //!
 //! Run: `cargo bench --bench dda_blocks` (optionally sizes, e.g. `-- 100
 //! 400`, `steps=N` (50 by default), `touching` or `settling` for one state,
-//! `penalty=1` or `penalty=10` for one penalty (× E × 1 m); for one core,
+//! `penalty=1` or `penalty=10` for one penalty (× E × 1 m), `trace` for a
+//! line per step (milliseconds, solves, open–close iterations, halvings);
+//! for one core,
 //! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench --bench dda_blocks`).
 
 use std::time::Instant;
@@ -119,6 +121,7 @@ fn run(
     penalty: f64,
     integration: FrictionIntegration,
     steps: usize,
+    trace: bool,
 ) -> Result<Run, Box<dyn std::error::Error>> {
     let law = PenaltyCoulomb::new(penalty, 0.6, integration)?;
     let mut model = DdaModel::new(blocks, law, DdaSettings::default())?;
@@ -145,6 +148,12 @@ fn run(
         causes.add(&report.halvings);
         if step >= 10 {
             late_halvings += report.reductions;
+        }
+        if trace {
+            println!(
+                "step {step:>3} {:>8.1} ms solves {:>3} open-close {:>3} halvings {}",
+                times[step], report.iterations, report.open_close_iterations, report.reductions
+            );
         }
         if let Some(reason) = failed {
             failure = Some(format!("step {step}: {reason}"));
@@ -179,6 +188,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .find_map(|a| a.strip_prefix("steps=").and_then(|s| s.parse().ok()))
         .unwrap_or(50usize)
         .max(1);
+    let trace = args.iter().any(|a| a == "trace");
     let states: Vec<(&str, f64, f64)> = [("touching", 0.0, 0.0), ("settling", 1e-5, 0.002)]
         .into_iter()
         .filter(|(name, _, _)| {
@@ -219,7 +229,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ] {
                     let blocks = wall(courses, c, bed, head)?;
                     let count = blocks.len() - 1;
-                    let r = run(blocks, k * E, integration, steps)?;
+                    let r = run(blocks, k * E, integration, steps, trace)?;
                     println!(
                         "{count:>6} {state:>9} {:>7} {:>5} {:>8.1} {:>8.1} {:>8.1} {:>7.2} {:>6.2} {:>9} {:>9} {:>8.5}  {}{}",
                         format!("{k} E"),
