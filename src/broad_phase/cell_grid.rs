@@ -209,10 +209,20 @@ impl CellGrid {
                     found
                 })
                 .collect();
-            pairs.reserve(found.iter().map(Vec::len).sum());
-            for part in found {
-                pairs.extend_from_slice(&part);
+            // Concatenated on the threads: each part copied into its own
+            // stretch of `pairs`.
+            pairs.resize(found.iter().map(Vec::len).sum(), (0, 0));
+            let mut stretches = Vec::with_capacity(found.len());
+            let mut rest = pairs.as_mut_slice();
+            for part in &found {
+                let (stretch, tail) = rest.split_at_mut(part.len());
+                stretches.push(stretch);
+                rest = tail;
             }
+            stretches
+                .into_par_iter()
+                .zip(found.par_iter())
+                .for_each(|(stretch, part)| stretch.copy_from_slice(part));
         } else {
             for part in 0..parts {
                 search(part, pairs);

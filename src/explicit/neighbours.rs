@@ -536,45 +536,79 @@ impl<S: Clone + Send + Sync> NeighbourList<S> {
                 .push(self.particle_pairs + walls.partition_point(|s| s.a() < first));
         }
         // The pairs that cross blocks: their summaries by A's block in the
-        // list's order, and where each goes by B's block (a counting sort
-        // that keeps the list's order in each).
+        // list's order, and where each goes by B's block (a stable order by
+        // B's block, which keeps the list's order in each).
         let block_of = |i: usize| i / BLOCK;
         let crosses = |&(a, b): &(usize, usize)| crosses_blocks(a, b);
         self.cross_out_start.clear();
-        self.cross_out_start.resize(blocks + 1, 0);
         self.cross_in_start.clear();
-        self.cross_in_start.resize(blocks + 1, 0);
-        for &(a, b) in self.pairs.iter().filter(|pair| crosses(pair)) {
-            self.cross_out_start[block_of(a) + 1] += 1;
-            self.cross_in_start[block_of(b) + 1] += 1;
-        }
-        for k in 0..blocks {
-            self.cross_out_start[k + 1] += self.cross_out_start[k];
-            self.cross_in_start[k + 1] += self.cross_in_start[k];
-        }
-        let fill = &mut self.fill;
-        fill.clear();
-        fill.extend_from_slice(&self.cross_in_start);
         self.cross_in.clear();
-        self.cross_in.resize(
-            self.cross_in_start[blocks],
-            CrossIn {
-                summary: 0,
-                slot: 0,
-                b: 0,
-            },
-        );
-        let mut summary = 0;
-        for (slot, &(a, b)) in self.pairs.iter().enumerate() {
-            if crosses(&(a, b)) {
-                self.cross_in[fill[block_of(b)]] = CrossIn { summary, slot, b };
-                fill[block_of(b)] += 1;
-                summary += 1;
+        if parallel {
+            let pairs = &self.pairs;
+            self.cross_in.par_extend(
+                pairs
+                    .par_iter()
+                    .enumerate()
+                    .filter(|(_, pair)| crosses(pair))
+                    .map(|(slot, &(_, b))| CrossIn {
+                        summary: 0,
+                        slot,
+                        b,
+                    }),
+            );
+            // In the list's order, so sorted by A's block.
+            self.cross_in
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(summary, cross)| cross.summary = summary);
+            let crossing = &self.cross_in;
+            self.cross_out_start.par_extend(
+                (0..=blocks)
+                    .into_par_iter()
+                    .map(|k| crossing.partition_point(|c| block_of(pairs[c.slot].0) < k)),
+            );
+            self.cross_in.par_sort_by_key(|c| block_of(c.b));
+            let crossing = &self.cross_in;
+            self.cross_in_start.par_extend(
+                (0..=blocks)
+                    .into_par_iter()
+                    .map(|k| crossing.partition_point(|c| block_of(c.b) < k)),
+            );
+        } else {
+            self.cross_out_start.resize(blocks + 1, 0);
+            self.cross_in_start.resize(blocks + 1, 0);
+            for &(a, b) in self.pairs.iter().filter(|pair| crosses(pair)) {
+                self.cross_out_start[block_of(a) + 1] += 1;
+                self.cross_in_start[block_of(b) + 1] += 1;
+            }
+            for k in 0..blocks {
+                self.cross_out_start[k + 1] += self.cross_out_start[k];
+                self.cross_in_start[k + 1] += self.cross_in_start[k];
+            }
+            let fill = &mut self.fill;
+            fill.clear();
+            fill.extend_from_slice(&self.cross_in_start);
+            self.cross_in.resize(
+                self.cross_in_start[blocks],
+                CrossIn {
+                    summary: 0,
+                    slot: 0,
+                    b: 0,
+                },
+            );
+            let mut summary = 0;
+            for (slot, &(a, b)) in self.pairs.iter().enumerate() {
+                if crosses(&(a, b)) {
+                    self.cross_in[fill[block_of(b)]] = CrossIn { summary, slot, b };
+                    fill[block_of(b)] += 1;
+                    summary += 1;
+                }
             }
         }
+        let summaries = self.cross_in.len();
         // Written by the step's evaluation, which follows every build.
         self.cross_forces.clear();
-        self.cross_forces.resize(summary, PairForce::default());
+        self.cross_forces.resize(summaries, PairForce::default());
     }
 
     /// What a checkpoint keeps (borrowed).
