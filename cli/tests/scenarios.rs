@@ -405,3 +405,316 @@ fn mutated_scenarios_are_refused_by_key_without_a_panic() {
     assert!(tally.refused > 2000, "{tally:?}");
     assert!(tally.valid > 0, "{tally:?}");
 }
+
+/// The scenario `name` with `extra` appended (to its last table,
+/// `[output]`), written as `model.toml` into the folder `dir`.
+fn variant(name: &str, extra: &str, dir: &Path) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+    assert!(text
+        .trim_end()
+        .ends_with(&text[text.rfind("[output]").unwrap()..].trim_end()));
+    let file = dir.join("model.toml");
+    std::fs::write(&file, format!("{text}\n{extra}\n")).unwrap();
+    file
+}
+
+/// Run `file` into `dir/out`, from the start or from `resume`; the text
+/// of its summary without the keys a resumed run writes otherwise (its
+/// frames, and where it resumed from).
+fn run_file(file: &Path, out: &str, max_steps: Option<u64>, resume: Option<&Path>) -> String {
+    let overrides = Overrides {
+        max_steps,
+        end_time: None,
+    };
+    let prepared = scenario::load(file, overrides).unwrap();
+    let out = file.with_file_name(out);
+    let finished = match resume {
+        Some(c) => scenario::resume(prepared, file, &out, false, c),
+        None => scenario::execute(prepared, file, &out, false),
+    }
+    .unwrap();
+    let mut summary = finished.summary;
+    let map = summary.as_object_mut().unwrap();
+    assert_eq!(map.remove("resumed_from").is_some(), resume.is_some());
+    map.remove("frames");
+    serde_json::to_string(&summary).unwrap()
+}
+
+/// The checkpoints in `dir`, by name (a file being written is hidden).
+fn checkpoints(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    names.sort();
+    names
+}
+
+/// Every checkpoint the resumed run wrote is, byte for byte, the one the
+/// run that never stopped wrote at that step.
+fn same_checkpoints(straight: &Path, resumed: &Path) -> usize {
+    let names = checkpoints(resumed);
+    for name in &names {
+        assert_eq!(
+            std::fs::read(straight.join(name)).unwrap(),
+            std::fs::read(resumed.join(name)).unwrap(),
+            "{name}"
+        );
+    }
+    names.len()
+}
+
+/// Katsuki's Example 1 run to rest in one go, and stopped at step 3 000
+/// (particles still falling and sliding) then resumed from its
+/// checkpoint in a new run: the same summary, to the last digit of every
+/// number, and the same checkpoints.
+#[test]
+fn an_explicit_run_stopped_and_resumed_ends_in_the_same_bits() {
+    let dir = scratch("resume-explicit");
+    let file = variant("katsuki_example1.toml", "checkpoint_every = 500", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    assert!(straight.contains("\"AtRest\""), "{straight}");
+    let stopped = run_file(&file, "stopped", Some(3000), None);
+    assert!(stopped.contains("\"StepLimit\""), "{stopped}");
+    assert_eq!(
+        checkpoints(&dir.join("stopped.checkpoints")),
+        (1..=6)
+            .map(|k| format!("step-{:010}.ckpt", 500 * k))
+            .collect::<Vec<_>>()
+    );
+    let from = dir.join("stopped.checkpoints/step-0000003000.ckpt");
+    let resumed = run_file(&file, "resumed", None, Some(&from));
+    assert_eq!(resumed, straight);
+    assert!(
+        same_checkpoints(
+            &dir.join("straight.checkpoints"),
+            &dir.join("resumed.checkpoints")
+        ) >= 10
+    );
+    // A run stopped at step 3 000 by `--max-steps` and resumed with
+    // `--max-steps 4000` ends as the run stopped at 4 000.
+    let to_4000 = run_file(&file, "to4000", Some(4000), None);
+    let resumed_4000 = run_file(&file, "resumed4000", Some(4000), Some(&from));
+    assert_eq!(resumed_4000, to_4000);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The DDA sliding block run in one go, and stopped at step 700 (the
+/// block sliding on the shaken base) then resumed: the same summary and
+/// checkpoints.
+#[test]
+fn an_implicit_run_stopped_and_resumed_ends_in_the_same_bits() {
+    let dir = scratch("resume-implicit");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 100", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    run_file(&file, "stopped", Some(700), None);
+    let from = dir.join("stopped.checkpoints/step-0000000700.ckpt");
+    let resumed = run_file(&file, "resumed", None, Some(&from));
+    assert_eq!(resumed, straight);
+    assert_eq!(
+        same_checkpoints(
+            &dir.join("straight.checkpoints"),
+            &dir.join("resumed.checkpoints")
+        ),
+        8
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `dismech run` killed while it runs, then resumed from the last
+/// checkpoint it wrote, ends as the run never killed.
+#[test]
+fn a_killed_run_resumes_from_its_last_checkpoint() {
+    let dir = scratch("resume-killed");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 20", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    let ckpts = dir.join("killed.checkpoints");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(&file)
+        .args(["--quiet", "--out"])
+        .arg(dir.join("killed"))
+        .spawn()
+        .unwrap();
+    // Kill it once it has written a checkpoint, at a step the scheduler
+    // chooses.
+    while !ckpts.is_dir() || checkpoints(&ckpts).is_empty() {
+        if let Some(status) = child.try_wait().unwrap() {
+            assert!(
+                ckpts.is_dir(),
+                "the run ended ({status}) without a checkpoint"
+            );
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    let _ = child.kill();
+    child.wait().unwrap();
+    // The last checkpoint before the end (a killed run may have finished).
+    let last = checkpoints(&ckpts)
+        .into_iter()
+        .rfind(|n| n != "step-0000001500.ckpt")
+        .unwrap();
+    let resumed = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(&file)
+        .args(["--quiet", "--out"])
+        .arg(dir.join("resumed"))
+        .arg("--resume")
+        .arg(ckpts.join(&last))
+        .output()
+        .unwrap();
+    assert_eq!(
+        resumed.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    let mut summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("resumed/summary.json")).unwrap())
+            .unwrap();
+    let map = summary.as_object_mut().unwrap();
+    assert!(map.remove("resumed_from").is_some());
+    map.remove("frames");
+    assert_eq!(serde_json::to_string(&summary).unwrap(), straight);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The error of resuming `file` from `checkpoint`.
+fn resume_refusal(file: &Path, checkpoint: &Path, max_steps: Option<u64>) -> String {
+    let overrides = Overrides {
+        max_steps,
+        end_time: None,
+    };
+    let prepared = scenario::load(file, overrides).unwrap();
+    let out = file.with_file_name("refused");
+    match scenario::resume(prepared, file, &out, false, checkpoint) {
+        Ok(_) => panic!("resumed from {checkpoint:?}"),
+        Err(e) => {
+            assert!(!out.exists());
+            e.to_string()
+        }
+    }
+}
+
+#[test]
+fn a_checkpoint_of_another_run_or_damaged_is_refused_by_name() {
+    let dir = scratch("resume-refused");
+    let dem = variant(
+        "katsuki_example1.toml",
+        "checkpoint_every = 100",
+        &dir.join("dem"),
+    );
+    let dda = variant(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 10",
+        &dir.join("dda"),
+    );
+    run_file(&dem, "a", Some(200), None);
+    run_file(&dda, "a", Some(20), None);
+    let dem_ckpt = dir.join("dem/a.checkpoints/step-0000000200.ckpt");
+    let dda_ckpt = dir.join("dda/a.checkpoints/step-0000000020.ckpt");
+    let refused = resume_refusal(&dem, &dda_ckpt, None);
+    assert!(
+        refused.contains("a checkpoint of the implicit driver, restored into the explicit driver"),
+        "{refused}"
+    );
+    let refused = resume_refusal(&dda, &dem_ckpt, None);
+    assert!(
+        refused.contains("a checkpoint of the explicit driver"),
+        "{refused}"
+    );
+    // Past the run's end.
+    let refused = resume_refusal(&dda, &dda_ckpt, Some(20));
+    assert!(
+        refused.contains("at or past the run's end at step 20"),
+        "{refused}"
+    );
+    // Another model: the bodies' density, the law's penalty, the step.
+    let edit = |file: &Path, from: &str, to: &str| {
+        let text = std::fs::read_to_string(file).unwrap();
+        assert!(text.contains(from));
+        let edited = file.with_file_name("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        edited
+    };
+    let refused = resume_refusal(
+        &edit(&dem, "density = 2690.0000000000005", "density = 2691"),
+        &dem_ckpt,
+        None,
+    );
+    assert!(refused.contains("body 0's mass"), "{refused}");
+    let refused = resume_refusal(&edit(&dem, "\ndt = 1e-4", "\ndt = 0.5e-4"), &dem_ckpt, None);
+    assert!(refused.contains("driver.dt"), "{refused}");
+    let refused = resume_refusal(
+        &edit(&dda, "penalty = 2e9", "penalty = 3e9"),
+        &dda_ckpt,
+        None,
+    );
+    assert!(refused.contains("contact laws parameters"), "{refused}");
+    // Damaged: cut short, a byte changed, not a checkpoint, missing.
+    let bytes = std::fs::read(&dem_ckpt).unwrap();
+    let damaged = dir.join("damaged.ckpt");
+    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    let refused = resume_refusal(&dem, &damaged, None);
+    assert!(refused.contains("damaged.ckpt: truncated"), "{refused}");
+    let mut flipped = bytes.clone();
+    flipped[bytes.len() / 2] ^= 1;
+    std::fs::write(&damaged, &flipped).unwrap();
+    let refused = resume_refusal(&dem, &damaged, None);
+    assert!(refused.contains("damaged.ckpt: corrupt"), "{refused}");
+    let refused = resume_refusal(&dem, &dem, None);
+    assert!(refused.contains("not a dismech checkpoint"), "{refused}");
+    let refused = resume_refusal(&dem, &dir.join("none.ckpt"), None);
+    assert!(refused.contains("none.ckpt: cannot be read"), "{refused}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn checkpoint_keys_are_checked() {
+    let refused = |name: &str, extra: &str| -> String {
+        let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+        let text = if text.contains("[output]") {
+            format!("{text}\n{extra}\n")
+        } else {
+            format!("{text}\n[output]\n{extra}\n")
+        };
+        match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {extra}"),
+        }
+    };
+    let zero = refused("dda_sliding_block.toml", "checkpoint_every = 0");
+    assert!(
+        zero.contains("`output.checkpoint_every` = 0: 0 is refused"),
+        "{zero}"
+    );
+    let alone = refused("dda_sliding_block.toml", "checkpoint_dir = \"ck\"");
+    assert!(
+        alone.contains("`output.checkpoint_dir` and `output.checkpoint_every`"),
+        "{alone}"
+    );
+    let empty = refused(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 5\ncheckpoint_dir = \"\"",
+    );
+    assert!(empty.contains("`output.checkpoint_dir` = \"\""), "{empty}");
+    let rest = refused("katsuki_example1.toml", "checkpoint_every = 150");
+    assert!(
+        rest.contains("`output.checkpoint_every` and `run.check_every`"),
+        "{rest}"
+    );
+    let limit = refused("lp_bearing_capacity.toml", "checkpoint_every = 1");
+    assert!(
+        limit.contains("`driver.kind` and `output.checkpoint_every`"),
+        "{limit}"
+    );
+    let negative = refused("dda_sliding_block.toml", "checkpoint_every = -1");
+    assert!(
+        negative.contains("`output.checkpoint_every` = -1"),
+        "{negative}"
+    );
+}

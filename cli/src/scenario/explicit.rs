@@ -61,6 +61,8 @@ pub struct ExplicitModel {
     pub plan: ExplicitPlan,
     /// The time step (s).
     pub dt: f64,
+    /// The driver's settings.
+    pub settings: DemSettings,
 }
 
 /// The law of `[law]` for a time-stepping driver: a spring–dashpot law
@@ -224,6 +226,7 @@ pub fn build(
         dem,
         plan,
         dt: dem_settings_dt,
+        settings: dem_settings,
     })
 }
 

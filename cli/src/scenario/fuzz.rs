@@ -104,6 +104,8 @@ pub const KEYS: &[&str] = &[
     "max_steps",
     "segments",
     "frames_every",
+    "checkpoint_every",
+    "checkpoint_dir",
     "gravity",
     "bodies",
     "law",

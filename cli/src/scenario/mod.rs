@@ -18,10 +18,12 @@
 //! | values checked and library errors named by their keys | `check.rs` |
 //! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs` |
 //! | the run: progress, frames, summary, the folder written whole | `execute.rs` |
+//! | checkpoints of a run and its resumption | `checkpoint.rs` |
 
 pub mod bodies;
 pub mod boundary;
 mod check;
+pub mod checkpoint;
 pub mod driver;
 mod execute;
 mod explicit;
@@ -41,7 +43,7 @@ use std::path::{Path, PathBuf};
 use dismech::error::DismechError;
 use serde::Deserialize;
 
-pub use execute::{execute, Finished};
+pub use execute::{execute, resume, Finished};
 pub use source::{KeyPath, Located, Source};
 
 /// A scenario file as read: one field per table.
@@ -186,6 +188,8 @@ pub struct Prepared {
     pub spec: ScenarioSpec,
     /// The model of its driver.
     pub model: Model,
+    /// The checkpoints it writes.
+    pub checkpoints: Option<checkpoint::Plan>,
 }
 
 /// The model of one driver, built from a scenario.
@@ -238,7 +242,12 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
         }
         driver::DriverSpec::Limit(_) => Model::Limit(Box::new(limit::build(&source, &spec)?)),
     };
-    Ok(Prepared { spec, model })
+    let checkpoints = checkpoint::plan(&source, &spec, &model)?;
+    Ok(Prepared {
+        spec,
+        model,
+        checkpoints,
+    })
 }
 
 /// Read the scenario `file` and [`prepare`] it.
