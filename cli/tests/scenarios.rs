@@ -113,6 +113,18 @@ fn every_scenario_runs_at_reduced_size_and_writes_its_series() {
             .count();
         assert_eq!(leftovers, 0);
         std::fs::remove_dir_all(&out).unwrap();
+        // A scenario that saves checkpoints wrote the one of its end.
+        let ckpts = out.with_file_name(format!(
+            "{}.checkpoints",
+            out.file_name().unwrap().to_string_lossy()
+        ));
+        if std::fs::read_to_string(&file)
+            .unwrap()
+            .contains("checkpoint_every")
+        {
+            assert!(ckpts.join("step-0000000060.ckpt").is_file(), "{file:?}");
+            std::fs::remove_dir_all(&ckpts).unwrap();
+        }
     }
 }
 
@@ -392,6 +404,7 @@ fn mutated_scenarios_are_refused_by_key_without_a_panic() {
         "katsuki_example1.toml",
         "dda_sliding_block.toml",
         "lp_bearing_capacity.toml",
+        "dem_incline_and_plate.toml",
     ] {
         seeds.push((
             name.to_string(),
@@ -399,10 +412,10 @@ fn mutated_scenarios_are_refused_by_key_without_a_panic() {
         ));
     }
     let tally = fuzz::run(&seeds, 1000, 7);
-    assert_eq!(tally.files, 3000);
+    assert_eq!(tally.files, 4000);
     assert!(tally.panics.is_empty(), "{:?}", tally.panics.first());
     assert!(tally.unnamed.is_empty(), "{:?}", tally.unnamed.first());
-    assert!(tally.refused > 2000, "{tally:?}");
+    assert!(tally.refused > 3000, "{tally:?}");
     assert!(tally.valid > 0, "{tally:?}");
 }
 
@@ -717,4 +730,151 @@ fn checkpoint_keys_are_checked() {
         negative.contains("`output.checkpoint_every` = -1"),
         "{negative}"
     );
+}
+
+/// Fixed and driven bodies of any shape in the explicit driver: the
+/// scenario of a fixed wedge, a fixed disc and a plate at a constant
+/// velocity ends in the same bits as the scene built in Rust with
+/// `Particle::fixed` and `Particle::prescribed`.
+#[test]
+fn fixed_and_driven_bodies_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::law::{Damping, NormalStiffness};
+    use dismech::math::Pose2;
+    use dismech::scene::{Frame, Particle, Scene};
+    use dismech::shape::{Circle, Polygon};
+    let summary = run("dem_incline_and_plate.toml", Overrides::default());
+    let mut scene = Scene::new(Frame::open_box(2.0, 1.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
+    let wedge = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 0.5),
+    ];
+    let (wedge, centroid) = Polygon::from_world(&wedge, 0).unwrap();
+    scene.particles.push(Particle::fixed(
+        wedge.into(),
+        Pose2::new(centroid.x, centroid.y, 0.0),
+    ));
+    for (x, y) in [(0.2, 0.48), (0.35, 0.405), (0.5, 0.33)] {
+        scene.add_circle(Point::new(x, y), 0.05, 2600.0).unwrap();
+    }
+    scene.particles.push(Particle::fixed(
+        Circle::new(0.03).unwrap().into(),
+        Pose2::new(1.15, 0.0, 0.0),
+    ));
+    scene
+        .add_rectangle(Point::new(1.4, 0.0505), 0.1, 0.1, 0.0, 2000.0)
+        .unwrap();
+    scene.particles.push(Particle::prescribed(
+        Polygon::rectangle(0.04, 0.3).unwrap().into(),
+        Pose2::new(1.6, 0.16, 0.0),
+        Vec2::new(-0.4, 0.0),
+        0.0,
+    ));
+    let law =
+        SpringDashpotCoulomb::new(NormalStiffness::Constant(1e6), 0.25, 0.5, Damping::Critical)
+            .unwrap();
+    let settings = DemSettings {
+        dt: 1e-4,
+        ..DemSettings::default()
+    };
+    let mut dem = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
+    for _ in 0..8000 {
+        dem.step().unwrap();
+    }
+    assert_eq!(summary["steps"].as_u64(), Some(8000));
+    assert_eq!(bits(&summary["time"]), dem.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 7);
+    for (b, p) in bodies.iter().zip(&dem.scene().particles) {
+        assert_eq!(bits(&b["centre"][0]), p.pose.position.x.to_bits());
+        assert_eq!(bits(&b["centre"][1]), p.pose.position.y.to_bits());
+        assert_eq!(bits(&b["angle"]), p.pose.angle.to_bits());
+        assert_eq!(bits(&b["velocity"][0]), p.velocity.x.to_bits());
+        assert_eq!(bits(&b["velocity"][1]), p.velocity.y.to_bits());
+        assert_eq!(bits(&b["angular_velocity"]), p.angular_velocity.to_bits());
+    }
+    // The wedge and the bump did not move; the plate kept its velocity
+    // and pushed the block; the discs came down the wedge.
+    assert_eq!(
+        bodies[0]["centre"],
+        serde_json::json!([1.0 / 3.0, 0.5 / 3.0])
+    );
+    assert_eq!(bodies[4]["velocity"], serde_json::json!([0.0, 0.0]));
+    assert_eq!(bodies[6]["velocity"], serde_json::json!([-0.4, 0.0]));
+    assert!(bodies[5]["velocity"][0].as_f64().unwrap() < -0.1);
+    assert!(bodies[1]["centre"][0].as_f64().unwrap() > 0.9);
+    assert_eq!(
+        bits(&summary["weight"]),
+        dem.scene().total_weight().to_bits()
+    );
+}
+
+#[test]
+fn motions_of_the_explicit_driver_are_checked() {
+    let refused = |from: &str, to: &str| -> String {
+        let text = std::fs::read_to_string(scenarios().join("dem_incline_and_plate.toml"))
+            .unwrap()
+            .replacen(from, to, 1);
+        match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let sine = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"sine\", amplitude = 0.1, frequency = 1.0 }",
+    );
+    assert!(
+        sine.contains("`driver.kind` and `bodies[0].motion.kind`"),
+        "{sine}"
+    );
+    let density = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"fixed\" }\ndensity = 2000.0",
+    );
+    assert!(
+        density.contains("`bodies[0].density` and `bodies[0].motion.kind`"),
+        "{density}"
+    );
+    assert!(density.contains("infinite mass"), "{density}");
+    let moving = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"fixed\" }\nvelocity = [1.0, 0.0]",
+    );
+    assert!(
+        moving.contains("`bodies[0].velocity` and `bodies[0].motion.kind`"),
+        "{moving}"
+    );
+    let force = refused(
+        "gravity = [0.0, -9.81]",
+        "gravity = [0.0, -9.81]\nforces = [{ body = 6, force = [1.0, 0.0] }]",
+    );
+    assert!(
+        force.contains("`loads.forces[0].body` and `bodies[6].motion.kind`"),
+        "{force}"
+    );
+    let unknown = refused("kind = \"constant-velocity\"", "kind = \"constant-speed\"");
+    assert!(
+        unknown.contains("unknown variant `constant-speed`"),
+        "{unknown}"
+    );
+    // The implicit driver refuses a constant velocity, naming both keys.
+    let text = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml"))
+        .unwrap()
+        .replacen(
+            "kind = \"sine\", amplitude = 0.06863101004005262, frequency = 2.0",
+            "kind = \"constant-velocity\"",
+            1,
+        );
+    match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => {
+            let m = located.to_string();
+            assert!(
+                m.contains("`driver.kind` and `bodies[0].motion.kind`"),
+                "{m}"
+            );
+        }
+        other => panic!("{:?}", other.err()),
+    }
 }

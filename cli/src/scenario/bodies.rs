@@ -49,15 +49,29 @@ pub enum PlaneSpec {
     Strain,
 }
 
-/// A prescribed motion of a body (implicit driver): `kind` = `fixed` or
-/// `sine`.
+/// A prescribed motion of a body: `kind` = `fixed` (either driver),
+/// `sine` (implicit driver) or `constant-velocity` (explicit driver).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MotionSpec {
-    /// Every unknown held at zero.
+    /// At rest for the whole run (every unknown held at zero).
     Fixed(FixedSpec),
     /// A translation `u(t) = amplitude · direction · sin(2π frequency t)`.
     Sine(SineSpec),
+    /// The body's `velocity` and `angular_velocity` kept for the whole
+    /// run (explicit driver: [`dismech::scene::Particle::prescribed`]).
+    ConstantVelocity(FixedSpec),
+}
+
+impl MotionSpec {
+    /// The `kind` as written.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Fixed(_) => "fixed",
+            Self::Sine(_) => "sine",
+            Self::ConstantVelocity(_) => "constant-velocity",
+        }
+    }
 }
 
 /// No parameters.

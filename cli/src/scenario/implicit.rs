@@ -473,6 +473,16 @@ fn single<const N: usize>(
         None => None,
         Some(MotionSpec::Fixed(_)) => Some(Prescribed::fixed()),
         Some(MotionSpec::Sine(s)) => Some(sine(source, &path.key("motion"), s)?),
+        Some(MotionSpec::ConstantVelocity(_)) => {
+            return Err(combination(
+                source,
+                &[
+                    &KeyPath::root("driver").key("kind"),
+                    &path.key("motion").key("kind"),
+                ],
+                "a constant velocity drives the explicit driver's bodies; the implicit driver's are `fixed` or `sine`",
+            ))
+        }
     };
     Ok(body)
 }
