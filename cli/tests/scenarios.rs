@@ -878,3 +878,69 @@ fn motions_of_the_explicit_driver_are_checked() {
         other => panic!("{:?}", other.err()),
     }
 }
+
+/// The cross-composition of a rectangle sliding on an incline from its
+/// file: the same displacement down the slope and rotation, to the bit,
+/// as `compositions::polygon_incline::run_block_on_incline` for the
+/// default block.
+#[test]
+fn polygon_incline_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::math::perp;
+    use dismech_cli::compositions::polygon_incline::{run_block_on_incline, BlockOnIncline};
+    let summary = run("polygon_incline.toml", Overrides::default());
+    let setup = BlockOnIncline::default();
+    let expected = run_block_on_incline(&setup).unwrap();
+    // The composition's start, as it computes it.
+    let beta = setup.slope;
+    let downhill = Vec2::new(beta.cos(), -beta.sin());
+    let top = Point::new(0.0, 15.0 * setup.width * beta.sin());
+    let centre = top + downhill * (3.0 * setup.width) + perp(&downhill) * (0.5 * setup.height);
+    let block = &summary["bodies"][0];
+    let at = Point::new(
+        block["centre"][0].as_f64().unwrap(),
+        block["centre"][1].as_f64().unwrap(),
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(50_000));
+    let displacement = (at - centre).dot(&downhill);
+    assert_eq!(displacement.to_bits(), expected.displacement.to_bits());
+    let rotation = block["angle"].as_f64().unwrap() + beta;
+    assert_eq!(rotation.to_bits(), expected.rotation.to_bits());
+    // It slid: about half of g (sin b - cos b tan phi) t^2 in 1 s.
+    let exact = 0.5 * expected.exact_acceleration;
+    assert!(
+        (displacement / exact - 1.0).abs() < 0.05,
+        "{displacement} vs {exact}"
+    );
+}
+
+/// The cross-composition of a DDA disc rolling down an incline from its
+/// file: the same turn (travel over radius), to the bit, as
+/// `compositions::affine_disc::run_rolling_disc` for the default disc.
+#[test]
+fn affine_disc_scenario_equals_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::affine_disc::{run_rolling_disc, RollingDisc};
+    let summary = run("affine_disc.toml", Overrides::default());
+    let setup = RollingDisc::default();
+    let expected = run_rolling_disc(&setup).unwrap();
+    let (s, c) = setup.slope.sin_cos();
+    let downhill = Vec2::new(c, -s);
+    let normal = Vec2::new(s, c);
+    let mass = setup.density * std::f64::consts::PI * setup.radius.powi(2);
+    let sink = mass * setup.gravity * c / setup.penalty;
+    let start = Point::origin() + normal * (setup.radius - sink);
+    let disc = &summary["bodies"][0];
+    let at = Point::new(
+        disc["centroid"][0].as_f64().unwrap(),
+        disc["centroid"][1].as_f64().unwrap(),
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(2000));
+    let turn = (at - start).dot(&downhill) / setup.radius;
+    assert_eq!(turn.to_bits(), expected.turn.to_bits());
+    assert_eq!(
+        summary["outcome"]["halvings"].as_u64(),
+        Some(expected.reductions as u64)
+    );
+    // It rolled: about half of (2/3) g sin b t^2 in 0.5 s.
+    let exact = 0.5 * expected.exact_acceleration * 0.25 / setup.radius;
+    assert!((turn / exact - 1.0).abs() < 0.1, "{turn} vs {exact}");
+}
