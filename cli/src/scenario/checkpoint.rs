@@ -338,10 +338,10 @@ pub(crate) fn plan(
         "must be at least 1 (leave the key out for no checkpoints)",
     )?;
     match model {
-        Model::Limit(_) => return Err(check::combination(
+        Model::Limit(_) | Model::Hpm(_) => return Err(check::combination(
             source,
             &[&KeyPath::root("driver").key("kind"), &every_key],
-            "a limit analysis takes no steps: checkpoints serve the explicit and implicit drivers",
+            "a limit or HPM analysis takes no steps: checkpoints serve the explicit and implicit drivers",
         )),
         Model::Explicit(m) => {
             if let ExplicitPlan::ToRest(c) = m.plan {

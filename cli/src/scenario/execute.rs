@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use dismech::checkpoint::CheckpointProblem;
 use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
+use dismech::hpm::HpmSolver;
 use dismech::implicit::ImplicitDynamics;
 use dismech::integrate::ExplicitEuler;
 use dismech::io::write_atomically;
@@ -18,7 +19,7 @@ use dismech::limit::{analyse, LimitStatus};
 use dismech::linsolve::SparseLu;
 use dismech::observe::Event;
 use dismech::scene::Scene;
-use dismech::vtk::{implicit_frame, limit_frame, DemFrames, PvdSeries, VtkFrame};
+use dismech::vtk::{hpm_frame, implicit_frame, limit_frame, DemFrames, PvdSeries, VtkFrame};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -29,6 +30,7 @@ use super::checkpoint::{
 };
 
 use super::explicit::{ExplicitDem, ExplicitPlan};
+use super::hpm::HpmPlan;
 use super::implicit::{ImplicitDriver, Scheme};
 use super::limit::LimitPlan;
 use super::{Model, Prepared, ScenarioError};
@@ -305,10 +307,10 @@ fn run(
                 }
                 resumed = Some(counters);
             }
-            Model::Limit(_) => {
+            Model::Limit(_) | Model::Hpm(_) => {
                 return Err(ScenarioError::Option(format!(
-                    "--resume {origin}: a limit analysis takes no steps and has no checkpoints"
-                )))
+                "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
+            )))
             }
         }
     }
@@ -318,7 +320,7 @@ fn run(
         dt_bits: match &model {
             Model::Explicit(m) => m.dt.to_bits(),
             Model::Implicit(m) => m.dt.to_bits(),
-            Model::Limit(_) => 0,
+            Model::Limit(_) | Model::Hpm(_) => 0,
         },
         settings: match &model {
             Model::Explicit(m) => fingerprint(&m.settings),
@@ -388,6 +390,13 @@ fn run(
                 }
             }
             .map_err(run_error)?;
+            bar.finish_and_clear();
+            (value, None)
+        }
+        Model::Hpm(plan) => {
+            let bar = bar(1, "solve");
+            bar.set_message("solving the HPM's elastic equations");
+            let value = run_hpm(*plan, &dir).map_err(run_error)?;
             bar.finish_and_clear();
             (value, None)
         }
@@ -662,4 +671,26 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
         object.extend(limit_summary(&result, plan.lattice.plate_length()));
     }
     Ok((value, result.status))
+}
+
+/// Solve the HPM's elastic equations and write the columns (one frame at
+/// time 0).
+fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
+    let HpmPlan { model, seismic } = plan;
+    let mut solver = HpmSolver::new(&model)?;
+    let result = solver.elastic(&model, &seismic)?;
+    let safety_factor = result.safety_factor(&model)?;
+    let sliding = result.sliding_safety_factor(&model)?;
+    let mut series = PvdSeries::new(dir)?;
+    series.write_frame(0.0, &hpm_frame(&model, &result)?)?;
+    Ok(json!({
+        "outcome": { "status": "Elastic" },
+        "safety_factor": safety_factor,
+        "sliding_safety_factor": sliding,
+        "seismic_coefficient": seismic.coefficient,
+        "columns": model.columns.len(),
+        "elements": model.elements.len(),
+        "layers": model.settings.layers,
+        "frames": series.frames(),
+    }))
 }

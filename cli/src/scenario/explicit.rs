@@ -125,11 +125,11 @@ pub fn stepping_law(source: &Source<'_>, spec: &ScenarioSpec) -> Result<Stepping
             };
             SteppingLaw::Penalty(law.map_err(with)?)
         }
-        LawSpec::RigidPlastic(_) => {
+        LawSpec::RigidPlastic(_) | LawSpec::Hpm(_) => {
             return Err(combination(
                 source,
                 &[&KeyPath::root("driver").key("kind"), &table.key("kind")],
-                "a rigid-plastic strength has no stiffness: it serves the limit driver only; a time-stepping driver takes `katsuki`, `spring-dashpot-coulomb` or `penalty-coulomb`",
+                "a rigid-plastic strength serves the limit driver, the `hpm` soil the HPM driver; a time-stepping driver takes `katsuki`, `spring-dashpot-coulomb` or `penalty-coulomb`",
             ))
         }
     })
@@ -175,6 +175,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
             "the explicit driver solves no system: remove this table",
         )?;
     }
+    refuse_beside_driver(
+        source,
+        spec.loads.seismic.is_some(),
+        KeyPath::root("loads").key("seismic"),
+        "a seismic coefficient loads the HPM driver's columns",
+    )?;
     refuse_beside_driver(
         source,
         !spec.loads.tractions.is_empty(),
@@ -650,10 +656,10 @@ fn add_body(
             (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
         }
         BodySpec::CircleRows(rows) => return add_rows(source, scene, rows, path),
-        BodySpec::Wall(_) | BodySpec::Lattice(_) => return Err(combination(
+        BodySpec::Wall(_) | BodySpec::Lattice(_) | BodySpec::GridColumns(_) => return Err(combination(
             source,
             &[kind, &path.key("kind")],
-            "the explicit driver's walls are the `[boundary]`; a lattice serves the limit driver",
+            "the explicit driver's walls are the `[boundary]`; a lattice serves the limit driver, grid columns the HPM driver",
         )),
     };
     let index = if motion.is_some() {

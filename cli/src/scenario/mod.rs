@@ -16,7 +16,7 @@
 //! | the `kind` tag moved out so that values keep their spans | `retag.rs` |
 //! | the tables, one file each | `driver.rs`, `bodies.rs`, `boundary.rs`, `law.rs`, `solvers.rs`, `loads.rs`, `run.rs`, `output.rs` |
 //! | values checked and library errors named by their keys | `check.rs` |
-//! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs` |
+//! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs`, `hpm.rs` |
 //! | the run: progress, frames, summary, the folder written whole | `execute.rs` |
 //! | checkpoints of a run and its resumption | `checkpoint.rs` |
 
@@ -28,6 +28,7 @@ pub mod driver;
 mod execute;
 mod explicit;
 pub mod fuzz;
+mod hpm;
 mod implicit;
 pub mod law;
 mod limit;
@@ -200,6 +201,8 @@ pub enum Model {
     Implicit(implicit::ImplicitModel),
     /// Limit analysis.
     Limit(Box<limit::LimitPlan>),
+    /// The HPM on grid columns.
+    Hpm(Box<hpm::HpmPlan>),
 }
 
 /// Parse, build and check the scenario `text` read from `file`, with the
@@ -241,6 +244,9 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
             Model::Implicit(implicit::build(&source, &spec, settings, overrides)?)
         }
         driver::DriverSpec::Limit(_) => Model::Limit(Box::new(limit::build(&source, &spec)?)),
+        driver::DriverSpec::Hpm(settings) => {
+            Model::Hpm(Box::new(hpm::build(&source, &spec, settings, file)?))
+        }
     };
     let checkpoints = checkpoint::plan(&source, &spec, &model)?;
     Ok(Prepared {
