@@ -1057,3 +1057,31 @@ fn hpm_keys_are_checked() {
         Ok(_) => panic!("a seismic load beside the implicit driver"),
     }
 }
+
+/// The cross-composition of ellipses settled by the implicit driver from
+/// its file: run for the steps the composition took to rest, the same
+/// time, sub-steps, halvings and centres, to the bit, as
+/// `compositions::implicit_ellipses::settle` for the default box.
+#[test]
+fn implicit_ellipses_scenario_equals_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::implicit_ellipses::{settle, EllipseBox};
+    let summary = run("implicit_ellipses.toml", Overrides::default());
+    let settled = settle(&EllipseBox::default()).unwrap();
+    assert!(settled.at_rest);
+    assert_eq!(summary["steps"].as_u64(), Some(settled.steps as u64));
+    assert_eq!(bits(&summary["time"]), settled.time.to_bits());
+    assert_eq!(
+        summary["outcome"]["substeps"].as_u64(),
+        Some(settled.substeps as u64)
+    );
+    assert_eq!(
+        summary["outcome"]["halvings"].as_u64(),
+        Some(settled.reductions as u64)
+    );
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), settled.ellipses.len() + 3);
+    for (b, (centre, _, _)) in bodies.iter().zip(&settled.ellipses) {
+        assert_eq!(bits(&b["centroid"][0]), centre.x.to_bits());
+        assert_eq!(bits(&b["centroid"][1]), centre.y.to_bits());
+    }
+}
