@@ -28,6 +28,20 @@
 //! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --shape ellipse
 //! ```
 //!
+//! `--observer` measures what an observer costs: after the settling, the
+//! timed steps go in rounds of `--block` steps taken alternately by
+//! `step()` and by `run_steps_observed` with the observer named
+//! (`unobserved`: `dismech::observe::Unobserved`; `every100`: a closure
+//! under `dismech::observe::every(100, …)` that reads the driver's time at
+//! every hundredth step, as a progress bar does; `every-step`: a closure
+//! called at every step, reading the time), and the median rate of each
+//! is printed with their ratio. Interleaved rounds see the same packing
+//! and the same load on a shared machine.
+//!
+//! ```text
+//! cargo run --release --example dem_throughput -- --nx 100 --ny 100 --settle 5000 --steps 10000 --observer every-step
+//! ```
+//!
 //! The random numbers are not LAMMPS' (a different generator), so the
 //! packing is of the same kind, not the same disks.
 //!
@@ -69,6 +83,17 @@ enum Numbering {
     Local,
 }
 
+/// The observer of `--observer`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum ObserverChoice {
+    /// `dismech::observe::Unobserved`.
+    Unobserved,
+    /// A closure under `every(100, …)` reading the time.
+    Every100,
+    /// A closure at every step reading the time.
+    EveryStep,
+}
+
 /// DEM particle-steps per second on the LAMMPS anchor's setup.
 #[derive(Debug, Parser)]
 struct Args {
@@ -106,6 +131,12 @@ struct Args {
     /// (`ExplicitDynamics::time_phases`).
     #[arg(long)]
     phases: bool,
+    /// Time the steps with and without this observer, in alternate rounds.
+    #[arg(long, value_enum)]
+    observer: Option<ObserverChoice>,
+    /// Steps of a round of `--observer`.
+    #[arg(long, default_value_t = 500)]
+    block: u64,
 }
 
 const PITCH: f64 = 0.14;
@@ -213,6 +244,9 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     if args.phases {
         sim.time_phases();
     }
+    if let Some(choice) = args.observer {
+        return compare_observer(&mut sim, args, choice, n);
+    }
     let timed = Instant::now();
     for _ in 0..args.steps {
         sim.step()?;
@@ -243,5 +277,67 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     if let Some(phases) = sim.phase_times() {
         print!("{phases}");
     }
+    Ok(())
+}
+
+type Sim = DemSimulation<SpringDashpotCoulomb>;
+
+/// The median of `rates`.
+fn median(mut rates: Vec<f64>) -> f64 {
+    rates.sort_by(f64::total_cmp);
+    let k = rates.len() / 2;
+    if rates.len() % 2 == 1 {
+        rates[k]
+    } else {
+        0.5 * (rates[k - 1] + rates[k])
+    }
+}
+
+/// `--observer`: rounds of `block` steps, alternately plain and observed,
+/// and the median rate of each.
+fn compare_observer(
+    sim: &mut Sim,
+    args: &Args,
+    choice: ObserverChoice,
+    n: usize,
+) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+    use dismech::observe::{every, Event, Unobserved};
+    let block = args.block.max(1);
+    let rounds = (args.steps / (2 * block)).max(1);
+    let mut latest = 0.0;
+    let mut read = |sim: &Sim, _: &Event<'_>| -> dismech::error::Result<()> {
+        latest = sim.time();
+        Ok(())
+    };
+    let (mut plain, mut observed) = (Vec::new(), Vec::new());
+    let rate = |seconds: f64| n as f64 * block as f64 / seconds;
+    for _ in 0..rounds {
+        let t = Instant::now();
+        for _ in 0..block {
+            sim.step()?;
+        }
+        plain.push(rate(t.elapsed().as_secs_f64()));
+        let t = Instant::now();
+        match choice {
+            ObserverChoice::Unobserved => sim.run_steps_observed(block, &mut Unobserved)?,
+            ObserverChoice::Every100 => {
+                sim.run_steps_observed(block, &mut every(100, &mut read))?
+            }
+            ObserverChoice::EveryStep => sim.run_steps_observed(block, &mut read)?,
+        }
+        observed.push(rate(t.elapsed().as_secs_f64()));
+    }
+    let (plain, observed) = (median(plain), median(observed));
+    println!(
+        "{:?} n={n} threads={} settle={} rounds={rounds} of {block} steps each way: \
+         step() {plain:.4e} particle-steps/s, run_steps_observed with {choice:?} {observed:.4e} particle-steps/s \
+         (medians); observed / plain = {:.4} (time at the end {:.4} s)",
+        args.shape,
+        args.threads,
+        args.settle,
+        observed / plain,
+        sim.time(),
+    );
+    let _ = latest;
     Ok(())
 }

@@ -69,6 +69,11 @@ enum Command {
         /// or written).
         #[arg(long)]
         check: bool,
+        /// Resume the run from this checkpoint (written by the same
+        /// scenario's `output.checkpoint_every`), to the same bits as the
+        /// run never stopped.
+        #[arg(long, value_name = "CHECKPOINT")]
+        resume: Option<PathBuf>,
     },
     /// Limit load of a lattice of rigid circles by LP (paper 002's U- and
     /// L-models; R = 1, C_p = 1).
@@ -204,6 +209,7 @@ fn run_command(
     progress: bool,
     overrides: Overrides,
     check: bool,
+    resume: Option<&Path>,
 ) -> Exit {
     use dismech_cli::scenario::{self, ScenarioError};
     let outcome = scenario::load(file, overrides).and_then(|prepared| {
@@ -212,7 +218,11 @@ fn run_command(
             return Ok(None);
         }
         let out = out.map_or_else(|| scenario::default_output(file), Path::to_path_buf);
-        scenario::execute(prepared, file, &out, progress).map(Some)
+        match resume {
+            Some(checkpoint) => scenario::resume(prepared, file, &out, progress, checkpoint),
+            None => scenario::execute(prepared, file, &out, progress),
+        }
+        .map(Some)
     });
     match outcome {
         Ok(None) => Exit::Success,
@@ -286,6 +296,7 @@ fn main() -> ExitCode {
             max_steps,
             end_time,
             check,
+            resume,
         } => run_command(
             &file,
             out.as_deref(),
@@ -295,6 +306,7 @@ fn main() -> ExitCode {
                 end_time,
             },
             check,
+            resume.as_deref(),
         ),
     };
     exit.into()

@@ -74,7 +74,7 @@ fn every_scenario_runs_at_reduced_size_and_writes_its_series() {
                 .unwrap();
         let frames = summary["frames"].as_u64().unwrap();
         assert!(frames >= 1, "{file:?}: {summary}");
-        if summary["driver"] != "limit" {
+        if summary["driver"] != "limit" && summary["driver"] != "hpm" {
             assert_eq!(summary["steps"].as_u64(), Some(60), "{file:?}");
             assert!(frames >= 2, "{file:?}: the start and the end");
         }
@@ -113,6 +113,18 @@ fn every_scenario_runs_at_reduced_size_and_writes_its_series() {
             .count();
         assert_eq!(leftovers, 0);
         std::fs::remove_dir_all(&out).unwrap();
+        // A scenario that saves checkpoints wrote the one of its end.
+        let ckpts = out.with_file_name(format!(
+            "{}.checkpoints",
+            out.file_name().unwrap().to_string_lossy()
+        ));
+        if std::fs::read_to_string(&file)
+            .unwrap()
+            .contains("checkpoint_every")
+        {
+            assert!(ckpts.join("step-0000000060.ckpt").is_file(), "{file:?}");
+            std::fs::remove_dir_all(&ckpts).unwrap();
+        }
     }
 }
 
@@ -319,7 +331,7 @@ fn refusals_name_the_file_line_column_key_and_value() {
     );
     assert_eq!(
         refusal("kind = \"katsuki\"", "kind = \"katsuk\""),
-        "model.toml:38:8: `law.kind` = \"katsuk\": unknown variant `katsuk`, expected one of `katsuki`, `spring-dashpot-coulomb`, `penalty-coulomb`, `rigid-plastic`"
+        "model.toml:38:8: `law.kind` = \"katsuk\": unknown variant `katsuk`, expected one of `katsuki`, `spring-dashpot-coulomb`, `penalty-coulomb`, `rigid-plastic`, `hpm`"
     );
     assert_eq!(
         refusal("count = 179", ""),
@@ -392,6 +404,7 @@ fn mutated_scenarios_are_refused_by_key_without_a_panic() {
         "katsuki_example1.toml",
         "dda_sliding_block.toml",
         "lp_bearing_capacity.toml",
+        "dem_incline_and_plate.toml",
     ] {
         seeds.push((
             name.to_string(),
@@ -399,9 +412,676 @@ fn mutated_scenarios_are_refused_by_key_without_a_panic() {
         ));
     }
     let tally = fuzz::run(&seeds, 1000, 7);
-    assert_eq!(tally.files, 3000);
+    assert_eq!(tally.files, 4000);
     assert!(tally.panics.is_empty(), "{:?}", tally.panics.first());
     assert!(tally.unnamed.is_empty(), "{:?}", tally.unnamed.first());
-    assert!(tally.refused > 2000, "{tally:?}");
+    assert!(tally.refused > 3000, "{tally:?}");
     assert!(tally.valid > 0, "{tally:?}");
+}
+
+/// The scenario `name` with `extra` appended (to its last table,
+/// `[output]`), written as `model.toml` into the folder `dir`.
+fn variant(name: &str, extra: &str, dir: &Path) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+    assert!(text
+        .trim_end()
+        .ends_with(&text[text.rfind("[output]").unwrap()..].trim_end()));
+    let file = dir.join("model.toml");
+    std::fs::write(&file, format!("{text}\n{extra}\n")).unwrap();
+    file
+}
+
+/// Run `file` into `dir/out`, from the start or from `resume`; the text
+/// of its summary without the keys a resumed run writes otherwise (its
+/// frames, and where it resumed from).
+fn run_file(file: &Path, out: &str, max_steps: Option<u64>, resume: Option<&Path>) -> String {
+    let overrides = Overrides {
+        max_steps,
+        end_time: None,
+    };
+    let prepared = scenario::load(file, overrides).unwrap();
+    let out = file.with_file_name(out);
+    let finished = match resume {
+        Some(c) => scenario::resume(prepared, file, &out, false, c),
+        None => scenario::execute(prepared, file, &out, false),
+    }
+    .unwrap();
+    let mut summary = finished.summary;
+    let map = summary.as_object_mut().unwrap();
+    assert_eq!(map.remove("resumed_from").is_some(), resume.is_some());
+    map.remove("frames");
+    serde_json::to_string(&summary).unwrap()
+}
+
+/// The checkpoints in `dir`, by name (a file being written is hidden).
+fn checkpoints(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    names.sort();
+    names
+}
+
+/// Every checkpoint the resumed run wrote is, byte for byte, the one the
+/// run that never stopped wrote at that step.
+fn same_checkpoints(straight: &Path, resumed: &Path) -> usize {
+    let names = checkpoints(resumed);
+    for name in &names {
+        assert_eq!(
+            std::fs::read(straight.join(name)).unwrap(),
+            std::fs::read(resumed.join(name)).unwrap(),
+            "{name}"
+        );
+    }
+    names.len()
+}
+
+/// Katsuki's Example 1 run to rest in one go, and stopped at step 3 000
+/// (particles still falling and sliding) then resumed from its
+/// checkpoint in a new run: the same summary, to the last digit of every
+/// number, and the same checkpoints.
+#[test]
+fn an_explicit_run_stopped_and_resumed_ends_in_the_same_bits() {
+    let dir = scratch("resume-explicit");
+    let file = variant("katsuki_example1.toml", "checkpoint_every = 500", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    assert!(straight.contains("\"AtRest\""), "{straight}");
+    let stopped = run_file(&file, "stopped", Some(3000), None);
+    assert!(stopped.contains("\"StepLimit\""), "{stopped}");
+    assert_eq!(
+        checkpoints(&dir.join("stopped.checkpoints")),
+        (1..=6)
+            .map(|k| format!("step-{:010}.ckpt", 500 * k))
+            .collect::<Vec<_>>()
+    );
+    let from = dir.join("stopped.checkpoints/step-0000003000.ckpt");
+    let resumed = run_file(&file, "resumed", None, Some(&from));
+    assert_eq!(resumed, straight);
+    assert!(
+        same_checkpoints(
+            &dir.join("straight.checkpoints"),
+            &dir.join("resumed.checkpoints")
+        ) >= 10
+    );
+    // A run stopped at step 3 000 by `--max-steps` and resumed with
+    // `--max-steps 4000` ends as the run stopped at 4 000.
+    let to_4000 = run_file(&file, "to4000", Some(4000), None);
+    let resumed_4000 = run_file(&file, "resumed4000", Some(4000), Some(&from));
+    assert_eq!(resumed_4000, to_4000);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The DDA sliding block run in one go, and stopped at step 700 (the
+/// block sliding on the shaken base) then resumed: the same summary and
+/// checkpoints.
+#[test]
+fn an_implicit_run_stopped_and_resumed_ends_in_the_same_bits() {
+    let dir = scratch("resume-implicit");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 100", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    run_file(&file, "stopped", Some(700), None);
+    let from = dir.join("stopped.checkpoints/step-0000000700.ckpt");
+    let resumed = run_file(&file, "resumed", None, Some(&from));
+    assert_eq!(resumed, straight);
+    assert_eq!(
+        same_checkpoints(
+            &dir.join("straight.checkpoints"),
+            &dir.join("resumed.checkpoints")
+        ),
+        8
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `dismech run` killed while it runs, then resumed from the last
+/// checkpoint it wrote, ends as the run never killed.
+#[test]
+fn a_killed_run_resumes_from_its_last_checkpoint() {
+    let dir = scratch("resume-killed");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 20", &dir);
+    let straight = run_file(&file, "straight", None, None);
+    let ckpts = dir.join("killed.checkpoints");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(&file)
+        .args(["--quiet", "--out"])
+        .arg(dir.join("killed"))
+        .spawn()
+        .unwrap();
+    // Kill it once it has written a checkpoint, at a step the scheduler
+    // chooses.
+    while !ckpts.is_dir() || checkpoints(&ckpts).is_empty() {
+        if let Some(status) = child.try_wait().unwrap() {
+            assert!(
+                ckpts.is_dir(),
+                "the run ended ({status}) without a checkpoint"
+            );
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    let _ = child.kill();
+    child.wait().unwrap();
+    // The last checkpoint before the end (a killed run may have finished).
+    let last = checkpoints(&ckpts)
+        .into_iter()
+        .rfind(|n| n != "step-0000001500.ckpt")
+        .unwrap();
+    let resumed = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(&file)
+        .args(["--quiet", "--out"])
+        .arg(dir.join("resumed"))
+        .arg("--resume")
+        .arg(ckpts.join(&last))
+        .output()
+        .unwrap();
+    assert_eq!(
+        resumed.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    let mut summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("resumed/summary.json")).unwrap())
+            .unwrap();
+    let map = summary.as_object_mut().unwrap();
+    assert!(map.remove("resumed_from").is_some());
+    map.remove("frames");
+    assert_eq!(serde_json::to_string(&summary).unwrap(), straight);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The error of resuming `file` from `checkpoint`.
+fn resume_refusal(file: &Path, checkpoint: &Path, max_steps: Option<u64>) -> String {
+    let overrides = Overrides {
+        max_steps,
+        end_time: None,
+    };
+    let prepared = scenario::load(file, overrides).unwrap();
+    let out = file.with_file_name("refused");
+    match scenario::resume(prepared, file, &out, false, checkpoint) {
+        Ok(_) => panic!("resumed from {checkpoint:?}"),
+        Err(e) => {
+            assert!(!out.exists());
+            e.to_string()
+        }
+    }
+}
+
+#[test]
+fn a_checkpoint_of_another_run_or_damaged_is_refused_by_name() {
+    let dir = scratch("resume-refused");
+    let dem = variant(
+        "katsuki_example1.toml",
+        "checkpoint_every = 100",
+        &dir.join("dem"),
+    );
+    let dda = variant(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 10",
+        &dir.join("dda"),
+    );
+    run_file(&dem, "a", Some(200), None);
+    run_file(&dda, "a", Some(20), None);
+    let dem_ckpt = dir.join("dem/a.checkpoints/step-0000000200.ckpt");
+    let dda_ckpt = dir.join("dda/a.checkpoints/step-0000000020.ckpt");
+    let refused = resume_refusal(&dem, &dda_ckpt, None);
+    assert!(
+        refused.contains("a checkpoint of the implicit driver, restored into the explicit driver"),
+        "{refused}"
+    );
+    let refused = resume_refusal(&dda, &dem_ckpt, None);
+    assert!(
+        refused.contains("a checkpoint of the explicit driver"),
+        "{refused}"
+    );
+    // Past the run's end.
+    let refused = resume_refusal(&dda, &dda_ckpt, Some(20));
+    assert!(
+        refused.contains("at or past the run's end at step 20"),
+        "{refused}"
+    );
+    // Another model: the bodies' density, the law's penalty, the step.
+    let edit = |file: &Path, from: &str, to: &str| {
+        let text = std::fs::read_to_string(file).unwrap();
+        assert!(text.contains(from));
+        let edited = file.with_file_name("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        edited
+    };
+    let refused = resume_refusal(
+        &edit(&dem, "density = 2690.0000000000005", "density = 2691"),
+        &dem_ckpt,
+        None,
+    );
+    assert!(refused.contains("body 0's mass"), "{refused}");
+    let refused = resume_refusal(&edit(&dem, "\ndt = 1e-4", "\ndt = 0.5e-4"), &dem_ckpt, None);
+    assert!(refused.contains("driver.dt"), "{refused}");
+    let refused = resume_refusal(
+        &edit(&dda, "penalty = 2e9", "penalty = 3e9"),
+        &dda_ckpt,
+        None,
+    );
+    assert!(refused.contains("contact laws parameters"), "{refused}");
+    // Damaged: cut short, a byte changed, not a checkpoint, missing.
+    let bytes = std::fs::read(&dem_ckpt).unwrap();
+    let damaged = dir.join("damaged.ckpt");
+    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    let refused = resume_refusal(&dem, &damaged, None);
+    assert!(refused.contains("damaged.ckpt: truncated"), "{refused}");
+    let mut flipped = bytes.clone();
+    flipped[bytes.len() / 2] ^= 1;
+    std::fs::write(&damaged, &flipped).unwrap();
+    let refused = resume_refusal(&dem, &damaged, None);
+    assert!(refused.contains("damaged.ckpt: corrupt"), "{refused}");
+    let refused = resume_refusal(&dem, &dem, None);
+    assert!(refused.contains("not a dismech checkpoint"), "{refused}");
+    let refused = resume_refusal(&dem, &dir.join("none.ckpt"), None);
+    assert!(refused.contains("none.ckpt: cannot be read"), "{refused}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn checkpoint_keys_are_checked() {
+    let refused = |name: &str, extra: &str| -> String {
+        let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+        let text = if text.contains("[output]") {
+            format!("{text}\n{extra}\n")
+        } else {
+            format!("{text}\n[output]\n{extra}\n")
+        };
+        match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {extra}"),
+        }
+    };
+    let zero = refused("dda_sliding_block.toml", "checkpoint_every = 0");
+    assert!(
+        zero.contains("`output.checkpoint_every` = 0: 0 is refused"),
+        "{zero}"
+    );
+    let alone = refused("dda_sliding_block.toml", "checkpoint_dir = \"ck\"");
+    assert!(
+        alone.contains("`output.checkpoint_dir` and `output.checkpoint_every`"),
+        "{alone}"
+    );
+    let empty = refused(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 5\ncheckpoint_dir = \"\"",
+    );
+    assert!(empty.contains("`output.checkpoint_dir` = \"\""), "{empty}");
+    let rest = refused("katsuki_example1.toml", "checkpoint_every = 150");
+    assert!(
+        rest.contains("`output.checkpoint_every` and `run.check_every`"),
+        "{rest}"
+    );
+    let limit = refused("lp_bearing_capacity.toml", "checkpoint_every = 1");
+    assert!(
+        limit.contains("`driver.kind` and `output.checkpoint_every`"),
+        "{limit}"
+    );
+    let negative = refused("dda_sliding_block.toml", "checkpoint_every = -1");
+    assert!(
+        negative.contains("`output.checkpoint_every` = -1"),
+        "{negative}"
+    );
+}
+
+/// Fixed and driven bodies of any shape in the explicit driver: the
+/// scenario of a fixed wedge, a fixed disc and a plate at a constant
+/// velocity ends in the same bits as the scene built in Rust with
+/// `Particle::fixed` and `Particle::prescribed`.
+#[test]
+fn fixed_and_driven_bodies_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::law::{Damping, NormalStiffness};
+    use dismech::math::Pose2;
+    use dismech::scene::{Frame, Particle, Scene};
+    use dismech::shape::{Circle, Polygon};
+    let summary = run("dem_incline_and_plate.toml", Overrides::default());
+    let mut scene = Scene::new(Frame::open_box(2.0, 1.0).unwrap(), Vec2::new(0.0, -9.81)).unwrap();
+    let wedge = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 0.5),
+    ];
+    let (wedge, centroid) = Polygon::from_world(&wedge, 0).unwrap();
+    scene.particles.push(Particle::fixed(
+        wedge.into(),
+        Pose2::new(centroid.x, centroid.y, 0.0),
+    ));
+    for (x, y) in [(0.2, 0.48), (0.35, 0.405), (0.5, 0.33)] {
+        scene.add_circle(Point::new(x, y), 0.05, 2600.0).unwrap();
+    }
+    scene.particles.push(Particle::fixed(
+        Circle::new(0.03).unwrap().into(),
+        Pose2::new(1.15, 0.0, 0.0),
+    ));
+    scene
+        .add_rectangle(Point::new(1.4, 0.0505), 0.1, 0.1, 0.0, 2000.0)
+        .unwrap();
+    scene.particles.push(Particle::prescribed(
+        Polygon::rectangle(0.04, 0.3).unwrap().into(),
+        Pose2::new(1.6, 0.16, 0.0),
+        Vec2::new(-0.4, 0.0),
+        0.0,
+    ));
+    let law =
+        SpringDashpotCoulomb::new(NormalStiffness::Constant(1e6), 0.25, 0.5, Damping::Critical)
+            .unwrap();
+    let settings = DemSettings {
+        dt: 1e-4,
+        ..DemSettings::default()
+    };
+    let mut dem = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
+    for _ in 0..8000 {
+        dem.step().unwrap();
+    }
+    assert_eq!(summary["steps"].as_u64(), Some(8000));
+    assert_eq!(bits(&summary["time"]), dem.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 7);
+    for (b, p) in bodies.iter().zip(&dem.scene().particles) {
+        assert_eq!(bits(&b["centre"][0]), p.pose.position.x.to_bits());
+        assert_eq!(bits(&b["centre"][1]), p.pose.position.y.to_bits());
+        assert_eq!(bits(&b["angle"]), p.pose.angle.to_bits());
+        assert_eq!(bits(&b["velocity"][0]), p.velocity.x.to_bits());
+        assert_eq!(bits(&b["velocity"][1]), p.velocity.y.to_bits());
+        assert_eq!(bits(&b["angular_velocity"]), p.angular_velocity.to_bits());
+    }
+    // The wedge and the bump did not move; the plate kept its velocity
+    // and pushed the block; the discs came down the wedge.
+    assert_eq!(
+        bodies[0]["centre"],
+        serde_json::json!([1.0 / 3.0, 0.5 / 3.0])
+    );
+    assert_eq!(bodies[4]["velocity"], serde_json::json!([0.0, 0.0]));
+    assert_eq!(bodies[6]["velocity"], serde_json::json!([-0.4, 0.0]));
+    assert!(bodies[5]["velocity"][0].as_f64().unwrap() < -0.1);
+    assert!(bodies[1]["centre"][0].as_f64().unwrap() > 0.9);
+    assert_eq!(
+        bits(&summary["weight"]),
+        dem.scene().total_weight().to_bits()
+    );
+}
+
+#[test]
+fn motions_of_the_explicit_driver_are_checked() {
+    let refused = |from: &str, to: &str| -> String {
+        let text = std::fs::read_to_string(scenarios().join("dem_incline_and_plate.toml"))
+            .unwrap()
+            .replacen(from, to, 1);
+        match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let sine = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"sine\", amplitude = 0.1, frequency = 1.0 }",
+    );
+    assert!(
+        sine.contains("`driver.kind` and `bodies[0].motion.kind`"),
+        "{sine}"
+    );
+    let density = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"fixed\" }\ndensity = 2000.0",
+    );
+    assert!(
+        density.contains("`bodies[0].density` and `bodies[0].motion.kind`"),
+        "{density}"
+    );
+    assert!(density.contains("infinite mass"), "{density}");
+    let moving = refused(
+        "motion = { kind = \"fixed\" }",
+        "motion = { kind = \"fixed\" }\nvelocity = [1.0, 0.0]",
+    );
+    assert!(
+        moving.contains("`bodies[0].velocity` and `bodies[0].motion.kind`"),
+        "{moving}"
+    );
+    let force = refused(
+        "gravity = [0.0, -9.81]",
+        "gravity = [0.0, -9.81]\nforces = [{ body = 6, force = [1.0, 0.0] }]",
+    );
+    assert!(
+        force.contains("`loads.forces[0].body` and `bodies[6].motion.kind`"),
+        "{force}"
+    );
+    let unknown = refused("kind = \"constant-velocity\"", "kind = \"constant-speed\"");
+    assert!(
+        unknown.contains("unknown variant `constant-speed`"),
+        "{unknown}"
+    );
+    // The implicit driver refuses a constant velocity, naming both keys.
+    let text = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml"))
+        .unwrap()
+        .replacen(
+            "kind = \"sine\", amplitude = 0.06863101004005262, frequency = 2.0",
+            "kind = \"constant-velocity\"",
+            1,
+        );
+    match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => {
+            let m = located.to_string();
+            assert!(
+                m.contains("`driver.kind` and `bodies[0].motion.kind`"),
+                "{m}"
+            );
+        }
+        other => panic!("{:?}", other.err()),
+    }
+}
+
+/// The cross-composition of a rectangle sliding on an incline from its
+/// file: the same displacement down the slope and rotation, to the bit,
+/// as `compositions::polygon_incline::run_block_on_incline` for the
+/// default block.
+#[test]
+fn polygon_incline_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::math::perp;
+    use dismech_cli::compositions::polygon_incline::{run_block_on_incline, BlockOnIncline};
+    let summary = run("polygon_incline.toml", Overrides::default());
+    let setup = BlockOnIncline::default();
+    let expected = run_block_on_incline(&setup).unwrap();
+    // The composition's start, as it computes it.
+    let beta = setup.slope;
+    let downhill = Vec2::new(beta.cos(), -beta.sin());
+    let top = Point::new(0.0, 15.0 * setup.width * beta.sin());
+    let centre = top + downhill * (3.0 * setup.width) + perp(&downhill) * (0.5 * setup.height);
+    let block = &summary["bodies"][0];
+    let at = Point::new(
+        block["centre"][0].as_f64().unwrap(),
+        block["centre"][1].as_f64().unwrap(),
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(50_000));
+    let displacement = (at - centre).dot(&downhill);
+    assert_eq!(displacement.to_bits(), expected.displacement.to_bits());
+    let rotation = block["angle"].as_f64().unwrap() + beta;
+    assert_eq!(rotation.to_bits(), expected.rotation.to_bits());
+    // It slid: about half of g (sin b - cos b tan phi) t^2 in 1 s.
+    let exact = 0.5 * expected.exact_acceleration;
+    assert!(
+        (displacement / exact - 1.0).abs() < 0.05,
+        "{displacement} vs {exact}"
+    );
+}
+
+/// The cross-composition of a DDA disc rolling down an incline from its
+/// file: the same turn (travel over radius), to the bit, as
+/// `compositions::affine_disc::run_rolling_disc` for the default disc.
+#[test]
+fn affine_disc_scenario_equals_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::affine_disc::{run_rolling_disc, RollingDisc};
+    let summary = run("affine_disc.toml", Overrides::default());
+    let setup = RollingDisc::default();
+    let expected = run_rolling_disc(&setup).unwrap();
+    let (s, c) = setup.slope.sin_cos();
+    let downhill = Vec2::new(c, -s);
+    let normal = Vec2::new(s, c);
+    let mass = setup.density * std::f64::consts::PI * setup.radius.powi(2);
+    let sink = mass * setup.gravity * c / setup.penalty;
+    let start = Point::origin() + normal * (setup.radius - sink);
+    let disc = &summary["bodies"][0];
+    let at = Point::new(
+        disc["centroid"][0].as_f64().unwrap(),
+        disc["centroid"][1].as_f64().unwrap(),
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(2000));
+    let turn = (at - start).dot(&downhill) / setup.radius;
+    assert_eq!(turn.to_bits(), expected.turn.to_bits());
+    assert_eq!(
+        summary["outcome"]["halvings"].as_u64(),
+        Some(expected.reductions as u64)
+    );
+    // It rolled: about half of (2/3) g sin b t^2 in 0.5 s.
+    let exact = 0.5 * expected.exact_acceleration * 0.25 / setup.radius;
+    assert!((turn / exact - 1.0).abs() < 0.1, "{turn} vs {exact}");
+}
+
+/// Paper 001's HPM example from its files: the representative slope's
+/// elastic Fs, static and seismic, are the numbers `dismech reproduce
+/// yamaguchi-hpm` reports (`slope.fs.elastic.*` and
+/// `slope.fs_sliding.elastic.*`, written here as the f64s it printed), and
+/// those the library gives for the reproduction's material and settings
+/// on the same grids.
+#[test]
+fn yamaguchi_hpm_scenarios_equal_the_reproduction_bit_for_bit() {
+    use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, HpmSolver, Seismic, SlopeGrids};
+    let grids = SlopeGrids::read(
+        &scenarios().join("yamaguchi_hpm/ground.asc"),
+        &scenarios().join("yamaguchi_hpm/slip.asc"),
+        None,
+    )
+    .unwrap();
+    let model = HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()).unwrap();
+    let toe = 270f64.to_radians();
+    for (name, seismic, fs, sliding) in [
+        (
+            "yamaguchi_hpm.toml",
+            Seismic::none(),
+            1.2757176078478898,
+            1.8106037943834912,
+        ),
+        (
+            "yamaguchi_hpm_seismic.toml",
+            Seismic {
+                coefficient: 0.15,
+                direction: (toe.cos(), toe.sin()),
+            },
+            0.9218122874622943,
+            1.0715385969964661,
+        ),
+    ] {
+        let summary = run(name, Overrides::default());
+        let result = HpmSolver::new(&model)
+            .unwrap()
+            .elastic(&model, &seismic)
+            .unwrap();
+        let expected = result.safety_factor(&model).unwrap();
+        let expected_sliding = result.sliding_safety_factor(&model).unwrap();
+        assert_eq!(
+            bits(&summary["safety_factor"]),
+            expected.to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            bits(&summary["sliding_safety_factor"]),
+            expected_sliding.to_bits(),
+            "{name}"
+        );
+        assert_eq!(expected.to_bits(), f64::to_bits(fs), "{name}");
+        assert_eq!(expected_sliding.to_bits(), f64::to_bits(sliding), "{name}");
+        assert_eq!(
+            summary["columns"].as_u64(),
+            Some(model.columns.len() as u64)
+        );
+        assert_eq!(summary["frames"].as_u64(), Some(1));
+    }
+}
+
+#[test]
+fn hpm_keys_are_checked() {
+    let refused = |from: &str, to: &str| -> String {
+        let file = scenarios().join("yamaguchi_hpm.toml");
+        let text = std::fs::read_to_string(&file)
+            .unwrap()
+            .replacen(from, to, 1);
+        match scenario::prepare(&file, &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let nu = refused("poisson_ratio = 0.2", "poisson_ratio = 0.5");
+    assert!(nu.contains("`law.poisson_ratio` = 0.5"), "{nu}");
+    let layers = refused("layers = 3", "layers = 2");
+    assert!(layers.contains("`driver.layers` = 2"), "{layers}");
+    let missing = refused(
+        "slip = \"yamaguchi_hpm/slip.asc\"",
+        "slip = \"nowhere.asc\"",
+    );
+    assert!(
+        missing.contains("`bodies[0].slip` = \"nowhere.asc\""),
+        "{missing}"
+    );
+    assert!(missing.contains("not a readable file"), "{missing}");
+    let swapped = refused(
+        "slip = \"yamaguchi_hpm/slip.asc\"",
+        "slip = \"../katsuki_example1.toml\"",
+    );
+    assert!(swapped.contains("`bodies[0].slip`"), "{swapped}");
+    let run = refused("[law]", "[run]\nkind = \"steps\"\nsteps = 3\n\n[law]");
+    assert!(run.contains("`driver.kind` and `run`"), "{run}");
+    let seismic = refused(
+        "[law]",
+        "[loads]\nseismic = { coefficient = -0.1, direction = [0.0, -1.0] }\n\n[law]",
+    );
+    assert!(seismic.contains("`loads.seismic.coefficient`"), "{seismic}");
+    let law = refused("kind = \"hpm\"\nyoungs", "kind = \"katsuki\"\nyoungs");
+    assert!(law.contains("`law"), "{law}");
+    // The other drivers refuse the HPM's pieces by both keys.
+    let text = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap()
+        + "\n[loads.seismic]\ncoefficient = 0.1\ndirection = [1.0, 0.0]\n";
+    match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+        Err(e) => {
+            let m = e.to_string();
+            assert!(m.contains("loads"), "{m}");
+        }
+        Ok(_) => panic!("a seismic load beside the implicit driver"),
+    }
+}
+
+/// The cross-composition of ellipses settled by the implicit driver from
+/// its file: run for the steps the composition took to rest, the same
+/// time, sub-steps, halvings and centres, to the bit, as
+/// `compositions::implicit_ellipses::settle` for the default box.
+#[test]
+fn implicit_ellipses_scenario_equals_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::implicit_ellipses::{settle, EllipseBox};
+    let summary = run("implicit_ellipses.toml", Overrides::default());
+    let settled = settle(&EllipseBox::default()).unwrap();
+    assert!(settled.at_rest);
+    assert_eq!(summary["steps"].as_u64(), Some(settled.steps as u64));
+    assert_eq!(bits(&summary["time"]), settled.time.to_bits());
+    assert_eq!(
+        summary["outcome"]["substeps"].as_u64(),
+        Some(settled.substeps as u64)
+    );
+    assert_eq!(
+        summary["outcome"]["halvings"].as_u64(),
+        Some(settled.reductions as u64)
+    );
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), settled.ellipses.len() + 3);
+    for (b, (centre, _, _)) in bodies.iter().zip(&settled.ellipses) {
+        assert_eq!(bits(&b["centroid"][0]), centre.x.to_bits());
+        assert_eq!(bits(&b["centroid"][1]), centre.y.to_bits());
+    }
 }

@@ -22,6 +22,9 @@ pub enum BodySpec {
     CircleRows(CircleRowsSpec),
     /// Paper 002's lattice of rigid circles ([`dismech::limit::lattice::Lattice`]).
     Lattice(LatticeSpec),
+    /// Paper 001's grid columns between a ground and a slip surface
+    /// ([`dismech::hpm::SlopeGrids`]).
+    GridColumns(GridColumnsSpec),
 }
 
 impl BodySpec {
@@ -35,6 +38,7 @@ impl BodySpec {
             Self::Wall(_) => "wall",
             Self::CircleRows(_) => "circle-rows",
             Self::Lattice(_) => "lattice",
+            Self::GridColumns(_) => "grid-columns",
         }
     }
 }
@@ -49,15 +53,29 @@ pub enum PlaneSpec {
     Strain,
 }
 
-/// A prescribed motion of a body (implicit driver): `kind` = `fixed` or
-/// `sine`.
+/// A prescribed motion of a body: `kind` = `fixed` (either driver),
+/// `sine` (implicit driver) or `constant-velocity` (explicit driver).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MotionSpec {
-    /// Every unknown held at zero.
+    /// At rest for the whole run (every unknown held at zero).
     Fixed(FixedSpec),
     /// A translation `u(t) = amplitude · direction · sin(2π frequency t)`.
     Sine(SineSpec),
+    /// The body's `velocity` and `angular_velocity` kept for the whole
+    /// run (explicit driver: [`dismech::scene::Particle::prescribed`]).
+    ConstantVelocity(FixedSpec),
+}
+
+impl MotionSpec {
+    /// The `kind` as written.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Fixed(_) => "fixed",
+            Self::Sine(_) => "sine",
+            Self::ConstantVelocity(_) => "constant-velocity",
+        }
+    }
 }
 
 /// No parameters.
@@ -287,7 +305,21 @@ impl BodySpec {
             Self::Ellipse(b) => Some(b.common()),
             Self::Polygon(b) => Some(b.common()),
             Self::Rectangle(b) => Some(b.common()),
-            Self::Wall(_) | Self::CircleRows(_) | Self::Lattice(_) => None,
+            Self::Wall(_) | Self::CircleRows(_) | Self::Lattice(_) | Self::GridColumns(_) => None,
         }
     }
+}
+
+/// The columns of a slope: ESRI ASCII grids of the ground, the slip
+/// surface and, optionally, the water table, on one lattice.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridColumnsSpec {
+    /// The ground's elevations (a path relative to the scenario file's
+    /// folder).
+    pub ground: String,
+    /// The slip surface's elevations.
+    pub slip: String,
+    /// The water table's elevations.
+    pub water: Option<String>,
 }

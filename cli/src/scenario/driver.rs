@@ -3,7 +3,7 @@
 use serde::Deserialize;
 
 /// The driver and its settings (`kind` = `explicit`, `implicit` or
-/// `limit`).
+/// `limit`, `hpm`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DriverSpec {
@@ -13,6 +13,9 @@ pub enum DriverSpec {
     Implicit(ImplicitSpec),
     /// Rigid-plastic limit analysis by LP: [`dismech::limit::analyse`].
     Limit(LimitSpec),
+    /// The hybrid penalty method on grid columns (paper 001):
+    /// [`dismech::hpm::HpmSolver::elastic`].
+    Hpm(HpmSpec),
 }
 
 impl DriverSpec {
@@ -22,6 +25,7 @@ impl DriverSpec {
             Self::Explicit(_) => "explicit",
             Self::Implicit(_) => "implicit",
             Self::Limit(_) => "limit",
+            Self::Hpm(_) => "hpm",
         }
     }
 }
@@ -89,3 +93,13 @@ pub enum PredictorSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LimitSpec {}
+
+/// Settings of the HPM ([`dismech::hpm::HpmSettings`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HpmSpec {
+    /// Layers per column (≥ 3); 3 by default.
+    pub layers: Option<usize>,
+    /// Penalty factor p between elements; 100 by default.
+    pub penalty: Option<f64>,
+}

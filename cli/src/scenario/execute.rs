@@ -5,9 +5,12 @@
 
 use std::path::{Path, PathBuf};
 
+use dismech::checkpoint::CheckpointProblem;
 use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
+use dismech::hpm::HpmSolver;
 use dismech::implicit::ImplicitDynamics;
+use dismech::integrate::ExplicitEuler;
 use dismech::io::write_atomically;
 use dismech::kinematics::{Advance, Kinematics};
 use dismech::kinematics::{PlacedEllipse, PlacedPolygon};
@@ -15,11 +18,19 @@ use dismech::law::{BoundedStiffness, ContactLaw, TangentLaw};
 use dismech::limit::{analyse, LimitStatus};
 use dismech::linsolve::SparseLu;
 use dismech::observe::Event;
-use dismech::vtk::{implicit_frame, limit_frame, DemFrames, PvdSeries, VtkFrame};
+use dismech::scene::Scene;
+use dismech::vtk::{hpm_frame, implicit_frame, limit_frame, DemFrames, PvdSeries, VtkFrame};
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
 use serde_json::{json, Value};
 
+use super::checkpoint::{
+    self, decode, encode, file_name, fingerprint, from_file, mismatch, Driver, RunCounters,
+};
+
 use super::explicit::{ExplicitDem, ExplicitPlan};
+use super::hpm::HpmPlan;
 use super::implicit::{ImplicitDriver, Scheme};
 use super::limit::LimitPlan;
 use super::{Model, Prepared, ScenarioError};
@@ -55,13 +66,268 @@ pub fn execute(
     out: &Path,
     progress: bool,
 ) -> std::result::Result<Finished, ScenarioError> {
+    run(prepared, file, out, progress, None)
+}
+
+/// [`execute`] from the scenario's checkpoint `checkpoint` (written by a
+/// run of the same scenario with `output.checkpoint_every`): the model is
+/// built from the file, its state replaced by the checkpoint's, and the
+/// run goes on to the end of its `[run]` (and the command line's limits,
+/// counted from the start of the run), as if it had never stopped.
+///
+/// # Errors
+/// Those of [`execute`]; [`ScenarioError::Run`] with
+/// [`DismechError::Checkpoint`] naming the checkpoint's path when it
+/// cannot be read, is damaged, is another driver's or another model's;
+/// [`ScenarioError::Option`] when it lies at or past the run's end.
+pub fn resume(
+    prepared: Prepared,
+    file: &Path,
+    out: &Path,
+    progress: bool,
+    checkpoint: &Path,
+) -> std::result::Result<Finished, ScenarioError> {
+    run(prepared, file, out, progress, Some(checkpoint))
+}
+
+/// Where a run writes its checkpoints, and what it writes beside the
+/// driver's state.
+struct Saver {
+    dir: PathBuf,
+    every: u64,
+    dt_bits: u64,
+    settings: u64,
+    /// The step of the last checkpoint written or resumed from.
+    last: Option<u64>,
+}
+
+impl Saver {
+    /// Write `driver` (a driver's checkpoint) as the checkpoint of
+    /// `counters.step`, unless one of that step is written already.
+    fn save(&mut self, driver: Checkpoint, step: u64, substeps: u64, halvings: u64) -> Result<()> {
+        if self.last == Some(step) {
+            return Ok(());
+        }
+        let counters = RunCounters {
+            driver: driver.0,
+            step,
+            substeps,
+            halvings,
+            dt_bits: self.dt_bits,
+            settings: self.settings,
+        };
+        let bytes = encode(&counters, &driver.1?);
+        write_atomically(&file_name(&self.dir, step), &bytes)?;
+        self.last = Some(step);
+        Ok(())
+    }
+}
+
+/// A driver's checkpoint, or why it could not be made.
+struct Checkpoint(Driver, Result<Vec<u8>>);
+
+/// The bytes of the checkpoint at `path`.
+fn read_checkpoint(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| DismechError::Checkpoint {
+        origin: path.display().to_string(),
+        problem: CheckpointProblem::Unreadable(e.to_string()),
+    })
+}
+
+/// Refuse a resumed scene whose bodies, walls or gravity are not those
+/// `fresh` was built with from the file.
+fn same_scene(restored: &Scene, fresh: &Scene, origin: &str) -> Result<()> {
+    if restored.particles.len() != fresh.particles.len() {
+        return Err(mismatch(
+            origin,
+            "number of bodies",
+            restored.particles.len(),
+            fresh.particles.len(),
+        ));
+    }
+    for (k, (a, b)) in restored.particles.iter().zip(&fresh.particles).enumerate() {
+        if a.shape != b.shape {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s shape"),
+                format!("{:?}", a.shape),
+                format!("{:?}", b.shape),
+            ));
+        }
+        let bits = |p: &dismech::scene::Particle| {
+            [
+                p.mass.to_bits(),
+                p.inertia.to_bits(),
+                p.external_force.x.to_bits(),
+                p.external_force.y.to_bits(),
+            ]
+        };
+        if bits(a) != bits(b) {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s mass, inertia or external force"),
+                format!("{}, {}, {:?}", a.mass, a.inertia, a.external_force),
+                format!("{}, {}, {:?}", b.mass, b.inertia, b.external_force),
+            ));
+        }
+    }
+    if restored.frame != fresh.frame {
+        return Err(mismatch(origin, "walls", "other walls", "the file's walls"));
+    }
+    if restored.gravity.x.to_bits() != fresh.gravity.x.to_bits()
+        || restored.gravity.y.to_bits() != fresh.gravity.y.to_bits()
+    {
+        return Err(mismatch(
+            origin,
+            "gravity",
+            format!("{:?}", restored.gravity),
+            format!("{:?}", fresh.gravity),
+        ));
+    }
+    Ok(())
+}
+
+/// The explicit driver of `fresh`'s law resumed from `payload` (a
+/// driver's checkpoint read from `origin`), its scene checked against
+/// `fresh`'s.
+fn resume_dem<L>(
+    fresh: &DemSimulation<L>,
+    payload: &[u8],
+    origin: &str,
+) -> Result<Box<DemSimulation<L>>>
+where
+    L: ContactLaw<2> + BoundedStiffness<2> + Serialize + Copy,
+    L::State: Serialize + DeserializeOwned,
+{
+    let restored = DemSimulation::restore(*fresh.law(), ExplicitEuler, payload)
+        .map_err(|e| from_file(e, origin))?;
+    same_scene(restored.scene(), fresh.scene(), origin)?;
+    Ok(Box::new(restored))
+}
+
+/// Refuse counters whose `dt` or settings are not the file's.
+fn same_step(counters: &RunCounters, dt: f64, settings: u64, origin: &str) -> Result<()> {
+    if counters.dt_bits != dt.to_bits() {
+        return Err(mismatch(
+            origin,
+            "driver.dt",
+            f64::from_bits(counters.dt_bits),
+            dt,
+        ));
+    }
+    if counters.settings != settings {
+        return Err(mismatch(
+            origin,
+            "driver settings",
+            "the settings it was written with",
+            "other settings",
+        ));
+    }
+    Ok(())
+}
+
+fn run(
+    prepared: Prepared,
+    file: &Path,
+    out: &Path,
+    progress: bool,
+    resume: Option<&Path>,
+) -> std::result::Result<Finished, ScenarioError> {
     let run_error = |error: DismechError| ScenarioError::Run {
         file: file.display().to_string(),
         error: Box::new(error),
     };
-    let Prepared { spec, model } = prepared;
+    let Prepared {
+        spec,
+        mut model,
+        checkpoints,
+    } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
     let every = spec.output.frames_every.unwrap_or(DEFAULT_FRAMES_EVERY);
+    let mut resumed: Option<RunCounters> = None;
+    if let Some(path) = resume {
+        let origin = path.display().to_string();
+        let bytes = read_checkpoint(path).map_err(run_error)?;
+        let past_end = |step: u64, end: u64| {
+            ScenarioError::Option(format!(
+                "--resume {origin}: the checkpoint of step {step} lies at or past the run's end at step {end}; nothing is left to run"
+            ))
+        };
+        match &mut model {
+            Model::Explicit(m) => {
+                let (counters, payload) =
+                    decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
+                same_step(&counters, m.dt, fingerprint(&m.settings), &origin).map_err(run_error)?;
+                m.dem = match &m.dem {
+                    ExplicitDem::Spring(d) => {
+                        ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
+                    }
+                    ExplicitDem::Penalty(d) => {
+                        ExplicitDem::Penalty(resume_dem(d, payload, &origin).map_err(run_error)?)
+                    }
+                };
+                let k = counters.step;
+                match &mut m.plan {
+                    ExplicitPlan::Steps(n) => {
+                        if k >= *n {
+                            return Err(past_end(k, *n));
+                        }
+                    }
+                    ExplicitPlan::ToRest(c) => {
+                        if k >= c.max_steps {
+                            return Err(past_end(k, c.max_steps));
+                        }
+                        if k % c.check_every.max(1) != 0 {
+                            return Err(run_error(mismatch(
+                                &origin,
+                                "step, a multiple of run.check_every",
+                                k,
+                                c.check_every,
+                            )));
+                        }
+                        // The criterion counts the steps of the call.
+                        c.max_steps -= k;
+                    }
+                }
+                resumed = Some(counters);
+            }
+            Model::Implicit(m) => {
+                let (counters, payload) =
+                    decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
+                same_step(&counters, m.dt, 0, &origin).map_err(run_error)?;
+                let restored = match &mut m.driver {
+                    ImplicitDriver::RigidSpring(d) => d.restore(payload),
+                    ImplicitDriver::RigidPenalty(d) => d.restore(payload),
+                    ImplicitDriver::AffineSpring(d) => d.restore(payload),
+                    ImplicitDriver::AffinePenalty(d) => d.restore(payload),
+                };
+                restored.map_err(|e| run_error(from_file(e, &origin)))?;
+                if counters.step >= m.steps {
+                    return Err(past_end(counters.step, m.steps));
+                }
+                resumed = Some(counters);
+            }
+            Model::Limit(_) | Model::Hpm(_) => {
+                return Err(ScenarioError::Option(format!(
+                "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
+            )))
+            }
+        }
+    }
+    let mut saver = checkpoints.map(|plan| Saver {
+        dir: checkpoint::folder(file, out, plan.dir.as_deref()),
+        every: plan.every,
+        dt_bits: match &model {
+            Model::Explicit(m) => m.dt.to_bits(),
+            Model::Implicit(m) => m.dt.to_bits(),
+            Model::Limit(_) | Model::Hpm(_) => 0,
+        },
+        settings: match &model {
+            Model::Explicit(m) => fingerprint(&m.settings),
+            _ => 0,
+        },
+        last: resumed.map(|c| c.step),
+    });
     let folder = StagedFolder::new_replacing_runs(out, "summary.json").map_err(run_error)?;
     let dir = folder.path().to_path_buf();
     let bar = |len: u64, unit: &str| -> ProgressBar {
@@ -90,10 +356,10 @@ pub fn execute(
             let bar = bar(steps, "steps");
             let value = match m.dem {
                 ExplicitDem::Spring(mut d) => {
-                    run_explicit(&mut d, m.plan, &dir, every, segments, &bar)
+                    run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
                 }
                 ExplicitDem::Penalty(mut d) => {
-                    run_explicit(&mut d, m.plan, &dir, every, segments, &bar)
+                    run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
                 }
             }
             .map_err(run_error)?;
@@ -102,21 +368,35 @@ pub fn execute(
         }
         Model::Implicit(m) => {
             let bar = bar(m.steps, "steps");
+            let plan = ImplicitRun {
+                dt: m.dt,
+                steps: m.steps,
+                every,
+                segments,
+                resumed,
+            };
             let value = match m.driver {
                 ImplicitDriver::RigidSpring(mut d) => {
-                    run_implicit(&mut d, m.dt, m.steps, &dir, every, segments, &bar)
+                    run_implicit(&mut d, &plan, &dir, &bar, saver.as_mut())
                 }
                 ImplicitDriver::RigidPenalty(mut d) => {
-                    run_implicit(&mut d, m.dt, m.steps, &dir, every, segments, &bar)
+                    run_implicit(&mut d, &plan, &dir, &bar, saver.as_mut())
                 }
                 ImplicitDriver::AffineSpring(mut d) => {
-                    run_implicit(&mut d, m.dt, m.steps, &dir, every, segments, &bar)
+                    run_implicit(&mut d, &plan, &dir, &bar, saver.as_mut())
                 }
                 ImplicitDriver::AffinePenalty(mut d) => {
-                    run_implicit(&mut d, m.dt, m.steps, &dir, every, segments, &bar)
+                    run_implicit(&mut d, &plan, &dir, &bar, saver.as_mut())
                 }
             }
             .map_err(run_error)?;
+            bar.finish_and_clear();
+            (value, None)
+        }
+        Model::Hpm(plan) => {
+            let bar = bar(1, "solve");
+            bar.set_message("solving the HPM's elastic equations");
+            let value = run_hpm(*plan, &dir).map_err(run_error)?;
             bar.finish_and_clear();
             (value, None)
         }
@@ -133,6 +413,12 @@ pub fn execute(
         map.insert("title".into(), json!(spec.title));
         map.insert("driver".into(), json!(spec.driver.kind()));
         map.insert("law".into(), json!(spec.law.kind()));
+        if let (Some(path), Some(counters)) = (resume, resumed) {
+            map.insert(
+                "resumed_from".into(),
+                json!({ "checkpoint": path.display().to_string(), "step": counters.step }),
+            );
+        }
     }
     let text = serde_json::to_string_pretty(&result).map_err(|e| {
         run_error(DismechError::Output {
@@ -156,6 +442,14 @@ fn steps_to(time: f64, dt: f64) -> u64 {
 
 /// Run the explicit driver to its plan, writing a frame every `every`
 /// steps (and at the start and the end).
+///
+/// With `saver`, a checkpoint is written every `saver.every` steps of the
+/// driver's count and at the end. A run to rest is saved only at its rest
+/// checks whose test failed (the count of passed checks in a row, which
+/// the driver keeps inside the call, is then zero, as a resumed run
+/// starts it): at the first such check at or after each due step, and at
+/// the end where the last check failed.
+#[allow(clippy::too_many_arguments)]
 fn run_explicit<L>(
     dem: &mut DemSimulation<L>,
     plan: ExplicitPlan,
@@ -163,30 +457,65 @@ fn run_explicit<L>(
     every: u64,
     segments: usize,
     bar: &ProgressBar,
+    mut saver: Option<&mut Saver>,
 ) -> Result<Value>
 where
-    L: ContactLaw<2> + BoundedStiffness<2>,
+    L: ContactLaw<2> + BoundedStiffness<2> + Serialize,
+    L::State: Serialize + DeserializeOwned,
 {
     let mut frames = DemFrames::new(dir, segments)?;
     frames.write(dem)?;
     let start = dem.steps();
+    let rest = match plan {
+        ExplicitPlan::ToRest(c) => Some(c),
+        ExplicitPlan::Steps(_) => None,
+    };
+    // A run to rest: whether the last check passed; the next due step.
+    let mut calm = false;
+    let mut due = saver
+        .as_ref()
+        .map_or(u64::MAX, |s| (start / s.every + 1).saturating_mul(s.every));
     let mut observer = |dem: &DemSimulation<L>, event: &Event<'_>| -> Result<()> {
+        let snapshot = |dem: &DemSimulation<L>| Checkpoint(Driver::Explicit, dem.checkpoint());
         match *event {
             Event::Step { step, .. } => {
                 let taken = step - start;
                 if taken % 100 == 0 {
                     bar.set_position(taken);
                 }
-                if every > 0 && taken % every == 0 {
+                if every > 0 && step % every == 0 {
                     frames.write(dem)?;
+                }
+                if let Some(saver) = saver.as_deref_mut() {
+                    if rest.is_none() && step % saver.every == 0 {
+                        saver.save(snapshot(dem), step, 0, 0)?;
+                    }
                 }
             }
             Event::Check { rest_ratio, .. } => {
-                bar.set_message(format!("KE/released = {rest_ratio:.2e}"))
+                bar.set_message(format!("KE/released = {rest_ratio:.2e}"));
+                if let (Some(c), Some(saver)) = (rest, saver.as_deref_mut()) {
+                    calm = rest_ratio < c.kinetic_to_released_ratio
+                        && dem.unbalanced_force_ratio() < c.unbalanced_force_ratio;
+                    let step = dem.steps();
+                    if !calm && step >= due && step % c.check_every.max(1) == 0 {
+                        saver.save(snapshot(dem), step, 0, 0)?;
+                        due = (step / saver.every + 1).saturating_mul(saver.every);
+                    }
+                }
             }
-            Event::Finished { time, .. } => {
+            Event::Finished { time, step } => {
                 if frames.series().last_time() != Some(time) {
                     frames.write(dem)?;
+                }
+                if let Some(saver) = saver.as_deref_mut() {
+                    let resumable = match rest {
+                        None => true,
+                        Some(c) => !calm && step % c.check_every.max(1) == 0,
+                    };
+                    if resumable {
+                        saver.save(snapshot(dem), step, 0, 0)?;
+                    }
                 }
             }
             Event::SubStep { .. } | Event::Halved { .. } => {}
@@ -205,7 +534,7 @@ where
             })
         }
         ExplicitPlan::Steps(n) => {
-            dem.run_steps_observed(n, &mut observer)?;
+            dem.run_steps_observed(n - start, &mut observer)?;
             json!({ "status": "Steps", "kinetic_energy": dem.kinetic_energy() })
         }
     };
@@ -231,7 +560,7 @@ where
         .collect();
     Ok(json!({
         "outcome": status,
-        "steps": dem.steps() - start,
+        "steps": dem.steps(),
         "time": dem.time(),
         "weight": scene.total_weight(),
         "contacts": dem.contacts().len(),
@@ -241,21 +570,38 @@ where
     }))
 }
 
-/// Run the implicit driver for `steps` calls of `advance(dt)`, writing a
-/// frame every `every` calls (and at the start and the end).
-fn run_implicit<const N: usize, K, L>(
-    model: &mut ImplicitDynamics<N, K, L, Scheme, SparseLu>,
+/// How an implicit run goes: `steps` calls of `advance(dt)`, a frame
+/// every `every` calls (and at the start and the end), from the start or
+/// from the counters of a checkpoint.
+struct ImplicitRun {
     dt: f64,
     steps: u64,
-    dir: &Path,
     every: u64,
     segments: usize,
+    resumed: Option<RunCounters>,
+}
+
+/// Run the implicit driver to the end of `run`, writing its frames and,
+/// with `saver`, a checkpoint every `saver.every` calls and at the end.
+fn run_implicit<const N: usize, K, L>(
+    model: &mut ImplicitDynamics<N, K, L, Scheme, SparseLu>,
+    run: &ImplicitRun,
+    dir: &Path,
     bar: &ProgressBar,
+    mut saver: Option<&mut Saver>,
 ) -> Result<Value>
 where
     K: Kinematics<N> + Advance<PlacedPolygon, N> + Advance<PlacedEllipse, N>,
-    L: TangentLaw<2>,
+    L: TangentLaw<2> + Serialize,
+    L::State: Serialize + DeserializeOwned,
 {
+    let ImplicitRun {
+        dt,
+        steps,
+        every,
+        segments,
+        resumed,
+    } = *run;
     let mut series = PvdSeries::new(dir)?;
     let write = |series: &mut PvdSeries,
                  model: &ImplicitDynamics<N, K, L, Scheme, SparseLu>|
@@ -264,14 +610,21 @@ where
         series.write_frame(model.time(), &frame)
     };
     write(&mut series, model)?;
-    let (mut substeps, mut halvings) = (0usize, 0usize);
-    for step in 1..=steps {
+    let (start, mut substeps, mut halvings) =
+        resumed.map_or((0, 0, 0), |c| (c.step, c.substeps, c.halvings));
+    for step in start + 1..=steps {
         let report = model.advance(dt)?;
-        substeps += report.substeps;
-        halvings += report.reductions;
+        substeps += report.substeps as u64;
+        halvings += report.reductions as u64;
         bar.set_position(step);
         if (every > 0 && step % every == 0) || step == steps {
             write(&mut series, model)?;
+        }
+        if let Some(saver) = saver.as_deref_mut() {
+            if step % saver.every == 0 || step == steps {
+                let driver = Checkpoint(Driver::Implicit, model.checkpoint());
+                saver.save(driver, step, substeps, halvings)?;
+            }
         }
     }
     let bodies: Vec<Value> = model
@@ -318,4 +671,26 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
         object.extend(limit_summary(&result, plan.lattice.plate_length()));
     }
     Ok((value, result.status))
+}
+
+/// Solve the HPM's elastic equations and write the columns (one frame at
+/// time 0).
+fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
+    let HpmPlan { model, seismic } = plan;
+    let mut solver = HpmSolver::new(&model)?;
+    let result = solver.elastic(&model, &seismic)?;
+    let safety_factor = result.safety_factor(&model)?;
+    let sliding = result.sliding_safety_factor(&model)?;
+    let mut series = PvdSeries::new(dir)?;
+    series.write_frame(0.0, &hpm_frame(&model, &result)?)?;
+    Ok(json!({
+        "outcome": { "status": "Elastic" },
+        "safety_factor": safety_factor,
+        "sliding_safety_factor": sliding,
+        "seismic_coefficient": seismic.coefficient,
+        "columns": model.columns.len(),
+        "elements": model.elements.len(),
+        "layers": model.settings.layers,
+        "frames": series.frames(),
+    }))
 }

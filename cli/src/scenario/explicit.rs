@@ -7,10 +7,10 @@ use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{PenaltyCoulomb, SpringDashpotCoulomb};
 use dismech::math::{Point, Pose2, Vec2};
-use dismech::scene::{CircleRows, Frame, Scene};
-use dismech::shape::{Circle, Ellipse, Polygon};
+use dismech::scene::{CircleRows, Frame, Particle, Scene};
+use dismech::shape::{AnyShape2, Circle, Ellipse, Polygon};
 
-use super::bodies::BodySpec;
+use super::bodies::{BodySpec, MotionSpec};
 use super::boundary::BoundarySpec;
 use super::check::{
     self, combination, count, finite2, named, non_negative, positive, refuse_beside_driver, Refusal,
@@ -61,6 +61,8 @@ pub struct ExplicitModel {
     pub plan: ExplicitPlan,
     /// The time step (s).
     pub dt: f64,
+    /// The driver's settings.
+    pub settings: DemSettings,
 }
 
 /// The law of `[law]` for a time-stepping driver: a spring–dashpot law
@@ -123,11 +125,11 @@ pub fn stepping_law(source: &Source<'_>, spec: &ScenarioSpec) -> Result<Stepping
             };
             SteppingLaw::Penalty(law.map_err(with)?)
         }
-        LawSpec::RigidPlastic(_) => {
+        LawSpec::RigidPlastic(_) | LawSpec::Hpm(_) => {
             return Err(combination(
                 source,
                 &[&KeyPath::root("driver").key("kind"), &table.key("kind")],
-                "a rigid-plastic strength has no stiffness: it serves the limit driver only; a time-stepping driver takes `katsuki`, `spring-dashpot-coulomb` or `penalty-coulomb`",
+                "a rigid-plastic strength serves the limit driver, the `hpm` soil the HPM driver; a time-stepping driver takes `katsuki`, `spring-dashpot-coulomb` or `penalty-coulomb`",
             ))
         }
     })
@@ -173,6 +175,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
             "the explicit driver solves no system: remove this table",
         )?;
     }
+    refuse_beside_driver(
+        source,
+        spec.loads.seismic.is_some(),
+        KeyPath::root("loads").key("seismic"),
+        "a seismic coefficient loads the HPM driver's columns",
+    )?;
     refuse_beside_driver(
         source,
         !spec.loads.tractions.is_empty(),
@@ -224,6 +232,7 @@ pub fn build(
         dem,
         plan,
         dt: dem_settings_dt,
+        settings: dem_settings,
     })
 }
 
@@ -469,6 +478,17 @@ fn scene(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(Scene, Vec<usize>)
             0,
             scene.particles.len() - 1,
         )?;
+        if scene.particles[force.body].is_prescribed() {
+            let entry = KeyPath::root("bodies").index(entry_of[force.body]);
+            return Err(combination(
+                source,
+                &[&path.key("body"), &entry.key("motion").key("kind")],
+                &format!(
+                    "body {} is fixed or moves at a constant velocity: forces do not act on it",
+                    force.body
+                ),
+            ));
+        }
         let f = finite2(source, &path.key("force"), force.force)?;
         scene
             .set_external_force(force.body, Vec2::new(f[0], f[1]))
@@ -528,17 +548,59 @@ fn add_body(
             (common.youngs_modulus.is_some(), "youngs_modulus"),
             (common.poisson_ratio.is_some(), "poisson_ratio"),
             (common.plane.is_some(), "plane"),
-            (common.motion.is_some(), "motion"),
         ] {
             if given {
                 return Err(combination(
                     source,
                     &[kind, &path.key(key)],
-                    "the explicit driver's bodies are rigid and free: this key serves the implicit driver",
+                    "the explicit driver's bodies are rigid: this key serves the implicit driver",
                 ));
             }
         }
     }
+    let motion = body.common().and_then(|c| c.motion);
+    let motion_kind = path.key("motion").key("kind");
+    match motion {
+        Some(MotionSpec::Sine(_)) => {
+            return Err(combination(
+                source,
+                &[kind, &motion_kind],
+                "the explicit driver's bodies are `fixed` or move at a `constant-velocity`; a `sine` motion serves the implicit driver",
+            ))
+        }
+        Some(m) => {
+            if body.common().and_then(|c| c.density).is_some() {
+                return Err(combination(
+                    source,
+                    &[&path.key("density"), &motion_kind],
+                    &format!(
+                        "a {} body has an infinite mass: leave out its density",
+                        m.kind()
+                    ),
+                ));
+            }
+            if let MotionSpec::Fixed(_) = m {
+                for (given, key) in [
+                    (body.common().and_then(|c| c.velocity).is_some(), "velocity"),
+                    (
+                        body.common().and_then(|c| c.angular_velocity).is_some(),
+                        "angular_velocity",
+                    ),
+                ] {
+                    if given {
+                        return Err(combination(
+                            source,
+                            &[&path.key(key), &motion_kind],
+                            "a fixed body is at rest: give `constant-velocity` to move it",
+                        ));
+                    }
+                }
+            }
+        }
+        None => {}
+    }
+    // A free body's density; a prescribed one's shape and pose are pushed
+    // as a prescribed particle.
     let density = |d: Option<f64>| -> Result<f64, Refusal> {
         match d {
             Some(d) => positive(source, &path.key("density"), d),
@@ -551,11 +613,11 @@ fn add_body(
     };
     let shape_error =
         |names: check::Names<'static>| move |e: DismechError| named(source, path, names, e);
-    let index = match body {
+    let (shape, pose, given_density): (AnyShape2, Pose2, Option<f64>) = match body {
         BodySpec::Circle(b) => {
             let shape = Circle::new(b.radius).map_err(shape_error(&[("radius", "radius")]))?;
             let c = centre(b.centre)?;
-            scene.add_shape(shape, Pose2::new(c.x, c.y, 0.0), density(b.density)?)
+            (shape.into(), Pose2::new(c.x, c.y, 0.0), b.density)
         }
         BodySpec::Ellipse(b) => {
             let shape = Ellipse::new(b.semi_major, b.semi_minor).map_err(shape_error(&[
@@ -565,7 +627,7 @@ fn add_body(
             ]))?;
             let c = centre(b.centre)?;
             let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            scene.add_shape(shape, Pose2::new(c.x, c.y, angle), density(b.density)?)
+            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
         }
         BodySpec::Polygon(b) => {
             count(
@@ -578,10 +640,10 @@ fn add_body(
             let vertices: Vec<Point> = b.vertices.iter().map(|v| Point::new(v[0], v[1])).collect();
             let (polygon, centroid) = Polygon::from_world(&vertices, scene.particles.len())
                 .map_err(|e| Box::new(source.at_key(&path.key("vertices"), e.to_string())))?;
-            scene.add_shape(
-                polygon,
+            (
+                polygon.into(),
                 Pose2::new(centroid.x, centroid.y, 0.0),
-                density(b.density)?,
+                b.density,
             )
         }
         BodySpec::Rectangle(b) => {
@@ -591,16 +653,25 @@ fn add_body(
             ]))?;
             let c = centre(b.centre)?;
             let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            scene.add_shape(shape, Pose2::new(c.x, c.y, angle), density(b.density)?)
+            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
         }
         BodySpec::CircleRows(rows) => return add_rows(source, scene, rows, path),
-        BodySpec::Wall(_) | BodySpec::Lattice(_) => return Err(combination(
+        BodySpec::Wall(_) | BodySpec::Lattice(_) | BodySpec::GridColumns(_) => return Err(combination(
             source,
             &[kind, &path.key("kind")],
-            "the explicit driver's walls are the `[boundary]`; a lattice serves the limit driver",
+            "the explicit driver's walls are the `[boundary]`; a lattice serves the limit driver, grid columns the HPM driver",
         )),
-    }
-    .map_err(|e| Box::new(source.at_key(path, e.to_string())))?;
+    };
+    let index = if motion.is_some() {
+        // Infinite mass and moment of inertia: its velocities, set below,
+        // are kept for the whole run.
+        scene.particles.push(Particle::fixed(shape, pose));
+        scene.particles.len() - 1
+    } else {
+        scene
+            .add_shape(shape, pose, density(given_density)?)
+            .map_err(|e| Box::new(source.at_key(path, e.to_string())))?
+    };
     let Some(common) = body.common() else {
         return Ok(());
     };

@@ -233,6 +233,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
     )?;
     refuse_beside_driver(
         source,
+        spec.loads.seismic.is_some(),
+        KeyPath::root("loads").key("seismic"),
+        "a seismic coefficient loads the HPM driver's columns",
+    )?;
+    refuse_beside_driver(
+        source,
         !spec.loads.forces.is_empty(),
         KeyPath::root("loads").key("forces"),
         "the implicit driver takes loads as edge tractions (`loads.tractions`)",
@@ -360,7 +366,7 @@ fn bodies<const N: usize>(
                 let segment = Segment::new(Point::new(start[0], start[1]), Point::new(end[0], end[1]));
                 Body::wall(segment, k).map_err(|e| Box::new(source.at_key(&path, e.to_string())))?
             }
-            BodySpec::CircleRows(_) | BodySpec::Lattice(_) => {
+            BodySpec::CircleRows(_) | BodySpec::Lattice(_) | BodySpec::GridColumns(_) => {
                 return Err(combination(
                     source,
                     &[&driver_kind, &path.key("kind")],
@@ -473,6 +479,16 @@ fn single<const N: usize>(
         None => None,
         Some(MotionSpec::Fixed(_)) => Some(Prescribed::fixed()),
         Some(MotionSpec::Sine(s)) => Some(sine(source, &path.key("motion"), s)?),
+        Some(MotionSpec::ConstantVelocity(_)) => {
+            return Err(combination(
+                source,
+                &[
+                    &KeyPath::root("driver").key("kind"),
+                    &path.key("motion").key("kind"),
+                ],
+                "a constant velocity drives the explicit driver's bodies; the implicit driver's are `fixed` or `sine`",
+            ))
+        }
     };
     Ok(body)
 }

@@ -3,7 +3,7 @@
 use serde::Deserialize;
 
 /// The contact law (`kind` = `katsuki`, `spring-dashpot-coulomb`,
-/// `penalty-coulomb` or `rigid-plastic`).
+/// `penalty-coulomb`, `rigid-plastic` or `hpm`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LawSpec {
@@ -15,6 +15,8 @@ pub enum LawSpec {
     PenaltyCoulomb(PenaltySpec),
     /// A rigid-plastic strength for limit analysis ([`dismech::law::RigidPlastic`]).
     RigidPlastic(RigidPlasticSpec),
+    /// The soil and slip surface of the HPM ([`dismech::hpm::HpmMaterial`]).
+    Hpm(HpmLawSpec),
 }
 
 impl LawSpec {
@@ -25,6 +27,7 @@ impl LawSpec {
             Self::SpringDashpotCoulomb(_) => "spring-dashpot-coulomb",
             Self::PenaltyCoulomb(_) => "penalty-coulomb",
             Self::RigidPlastic(_) => "rigid-plastic",
+            Self::Hpm(_) => "hpm",
         }
     }
 }
@@ -110,4 +113,31 @@ pub struct RigidPlasticSpec {
     pub friction_angle: Option<f64>,
     /// No tension: the contact may open (false by default).
     pub unilateral: Option<bool>,
+}
+
+/// The soil and the slip surface of the HPM.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HpmLawSpec {
+    /// Young's modulus E of the soil (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson's ratio ν, in [0, 0.5).
+    pub poisson_ratio: f64,
+    /// Cohesion c on the slip surface (Pa).
+    pub cohesion: f64,
+    /// Friction coefficient μ = tan φ on the slip surface (or
+    /// `friction_angle`).
+    pub friction: Option<f64>,
+    /// Friction angle φ (degrees) (or `friction`).
+    pub friction_angle: Option<f64>,
+    /// Unit weight γ_t above the water table (N/m³).
+    pub unit_weight: f64,
+    /// Submerged unit weight γ_sub below the water table (N/m³); γ_t by
+    /// default.
+    pub submerged_unit_weight: Option<f64>,
+    /// Modulus E_slip of the slip-surface springs (Pa); E by default.
+    pub slip_modulus: Option<f64>,
+    /// Shear stiffness of the slip-surface springs (Pa/m); eq. (30) by
+    /// default.
+    pub slip_shear_stiffness: Option<f64>,
 }

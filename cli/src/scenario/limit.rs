@@ -36,6 +36,7 @@ pub fn build(source: &Source<'_>, spec: &ScenarioSpec) -> Result<LimitPlan, Refu
         (spec.loads.gravity.is_some(), "loads"),
         (!spec.loads.forces.is_empty(), "loads"),
         (!spec.loads.tractions.is_empty(), "loads"),
+        (spec.loads.seismic.is_some(), "loads"),
     ] {
         if present {
             return Err(combination(

@@ -1,4 +1,5 @@
-//! `[loads]`: gravity, forces on bodies, tractions on polygon edges.
+//! `[loads]`: gravity, forces on bodies, tractions on polygon edges, a
+//! seismic coefficient.
 
 use serde::Deserialize;
 
@@ -14,6 +15,18 @@ pub struct LoadsSpec {
     /// Uniform tractions on polygon edges (implicit driver).
     #[serde(default)]
     pub tractions: Vec<TractionSpec>,
+    /// A horizontal seismic coefficient (HPM driver).
+    pub seismic: Option<SeismicSpec>,
+}
+
+/// A horizontal seismic load `k_h W` ([`dismech::hpm::Seismic`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeismicSpec {
+    /// The seismic coefficient k_h.
+    pub coefficient: f64,
+    /// The horizontal direction of the force (x, y), normalised.
+    pub direction: [f64; 2],
 }
 
 /// A constant force at a body's centre.

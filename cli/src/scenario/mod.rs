@@ -16,16 +16,19 @@
 //! | the `kind` tag moved out so that values keep their spans | `retag.rs` |
 //! | the tables, one file each | `driver.rs`, `bodies.rs`, `boundary.rs`, `law.rs`, `solvers.rs`, `loads.rs`, `run.rs`, `output.rs` |
 //! | values checked and library errors named by their keys | `check.rs` |
-//! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs` |
+//! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs`, `hpm.rs` |
 //! | the run: progress, frames, summary, the folder written whole | `execute.rs` |
+//! | checkpoints of a run and its resumption | `checkpoint.rs` |
 
 pub mod bodies;
 pub mod boundary;
 mod check;
+pub mod checkpoint;
 pub mod driver;
 mod execute;
 mod explicit;
 pub mod fuzz;
+mod hpm;
 mod implicit;
 pub mod law;
 mod limit;
@@ -41,7 +44,7 @@ use std::path::{Path, PathBuf};
 use dismech::error::DismechError;
 use serde::Deserialize;
 
-pub use execute::{execute, Finished};
+pub use execute::{execute, resume, Finished};
 pub use source::{KeyPath, Located, Source};
 
 /// A scenario file as read: one field per table.
@@ -186,6 +189,8 @@ pub struct Prepared {
     pub spec: ScenarioSpec,
     /// The model of its driver.
     pub model: Model,
+    /// The checkpoints it writes.
+    pub checkpoints: Option<checkpoint::Plan>,
 }
 
 /// The model of one driver, built from a scenario.
@@ -196,6 +201,8 @@ pub enum Model {
     Implicit(implicit::ImplicitModel),
     /// Limit analysis.
     Limit(Box<limit::LimitPlan>),
+    /// The HPM on grid columns.
+    Hpm(Box<hpm::HpmPlan>),
 }
 
 /// Parse, build and check the scenario `text` read from `file`, with the
@@ -237,8 +244,16 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
             Model::Implicit(implicit::build(&source, &spec, settings, overrides)?)
         }
         driver::DriverSpec::Limit(_) => Model::Limit(Box::new(limit::build(&source, &spec)?)),
+        driver::DriverSpec::Hpm(settings) => {
+            Model::Hpm(Box::new(hpm::build(&source, &spec, settings, file)?))
+        }
     };
-    Ok(Prepared { spec, model })
+    let checkpoints = checkpoint::plan(&source, &spec, &model)?;
+    Ok(Prepared {
+        spec,
+        model,
+        checkpoints,
+    })
 }
 
 /// Read the scenario `file` and [`prepare`] it.

@@ -12,4 +12,10 @@ pub struct OutputSpec {
     /// Sides of the polygons that draw circles and ellipses (≥ 3); 32 by
     /// default.
     pub segments: Option<usize>,
+    /// Write a checkpoint every this many steps (and at the end of the
+    /// run), to resume with `--resume`; none by default.
+    pub checkpoint_every: Option<u64>,
+    /// The folder of the checkpoints, relative to the scenario file's
+    /// folder; beside the output folder by default.
+    pub checkpoint_dir: Option<String>,
 }

@@ -1,0 +1,207 @@
+//! The HPM driver's model: paper 001's columns between a ground and a slip
+//! surface read from ESRI ASCII grids, the soil and slip-surface springs
+//! of `[law] kind = "hpm"`, and a static or seismic elastic analysis.
+
+use std::path::Path;
+
+use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, Seismic, SlopeGrids};
+
+use super::bodies::{BodySpec, GridColumnsSpec};
+use super::check::{self, combination, count, named, Refusal};
+use super::driver::HpmSpec;
+use super::law::LawSpec;
+use super::source::{KeyPath, Source};
+use super::ScenarioSpec;
+
+/// An HPM analysis ready to run.
+pub struct HpmPlan {
+    /// The columns and their springs.
+    pub model: HpmModel,
+    /// The seismic load (none by default).
+    pub seismic: Seismic,
+}
+
+/// The library's names of the material's and the settings' values and
+/// the keys that give them.
+const NAMES: check::Names<'static> = &[
+    ("Young's modulus E", "youngs_modulus"),
+    ("Poisson's ratio nu", "poisson_ratio"),
+    ("cohesion c", "cohesion"),
+    ("friction coefficient mu = tan(phi)", "friction"),
+    ("cohesion c (with friction coefficient mu = 0)", "cohesion"),
+    ("unit weight gamma_t", "unit_weight"),
+    ("submerged unit weight gamma_sub", "submerged_unit_weight"),
+    ("slip-surface modulus E_slip", "slip_modulus"),
+    ("slip-surface shear stiffness k_s", "slip_shear_stiffness"),
+];
+
+/// Build the HPM analysis of `spec`, read from `file` (the grids' paths
+/// are relative to its folder).
+pub fn build(
+    source: &Source<'_>,
+    spec: &ScenarioSpec,
+    settings: &HpmSpec,
+    file: &Path,
+) -> Result<HpmPlan, Refusal> {
+    let kind = KeyPath::root("driver").key("kind");
+    for (present, table) in [
+        (spec.kinematics.is_some(), "kinematics"),
+        (spec.boundary.is_some(), "boundary"),
+        (spec.integrator.is_some(), "integrator"),
+        (spec.linear_solver.is_some(), "linear_solver"),
+        (spec.lp_solver.is_some(), "lp_solver"),
+        (spec.run.is_some(), "run"),
+        (spec.loads.gravity.is_some(), "loads"),
+        (!spec.loads.forces.is_empty(), "loads"),
+        (!spec.loads.tractions.is_empty(), "loads"),
+    ] {
+        if present {
+            return Err(combination(
+                source,
+                &[&kind, &KeyPath::root(table)],
+                "the HPM driver analyses grid columns under their weight (and `loads.seismic`) in one elastic solve: it takes `[[bodies]]` (one `grid-columns`), `[law]` (`hpm`), `[loads] seismic` and `[output]`; remove this table",
+            ));
+        }
+    }
+    let bodies = KeyPath::root("bodies");
+    count(source, &bodies, spec.bodies.len(), 1, 1).map_err(|_| {
+        Box::new(source.at_key(
+            &bodies,
+            "the HPM driver takes exactly one `[[bodies]]` table, of kind = \"grid-columns\"",
+        ))
+    })?;
+    let path = bodies.index(0);
+    let BodySpec::GridColumns(columns) = &spec.bodies[0] else {
+        return Err(combination(
+            source,
+            &[&kind, &path.key("kind")],
+            "the HPM driver takes one `[[bodies]]` table of kind = \"grid-columns\" (ground and slip-surface grids)",
+        ));
+    };
+    let law = KeyPath::root("law");
+    let LawSpec::Hpm(soil) = &spec.law else {
+        return Err(combination(
+            source,
+            &[&kind, &law.key("kind")],
+            "the HPM driver needs the soil and its slip surface: `[law] kind = \"hpm\"`",
+        ));
+    };
+    let grids = grids(source, columns, &path, file)?;
+    let mu = check::friction(source, &law, soil.friction, soil.friction_angle, None)?;
+    let submerged = match (soil.submerged_unit_weight, &columns.water) {
+        (Some(g), _) => g,
+        (None, Some(_)) => {
+            return Err(combination(
+                source,
+                &[&path.key("water"), &law.key("submerged_unit_weight")],
+                "below a water table the soil weighs its submerged unit weight: give `submerged_unit_weight`",
+            ))
+        }
+        // Without a water table it is not used.
+        (None, None) => soil.unit_weight,
+    };
+    let material = HpmMaterial {
+        youngs_modulus: soil.youngs_modulus,
+        poisson_ratio: soil.poisson_ratio,
+        cohesion: soil.cohesion,
+        friction_coefficient: mu,
+        unit_weight: soil.unit_weight,
+        submerged_unit_weight: submerged,
+        slip_modulus: soil.slip_modulus.unwrap_or(soil.youngs_modulus),
+        slip_shear_stiffness: soil.slip_shear_stiffness,
+    };
+    material
+        .validate()
+        .map_err(|e| named(source, &law, NAMES, e))?;
+    let driver = KeyPath::root("driver");
+    let defaults = HpmSettings::default();
+    let hpm_settings = HpmSettings {
+        layers: count(
+            source,
+            &driver.key("layers"),
+            settings.layers.unwrap_or(defaults.layers),
+            3,
+            1000,
+        )?,
+        penalty: match settings.penalty {
+            Some(p) => check::positive(source, &driver.key("penalty"), p)?,
+            None => defaults.penalty,
+        },
+        ..defaults
+    };
+    let seismic = match &spec.loads.seismic {
+        None => Seismic::none(),
+        Some(s) => {
+            let table = KeyPath::root("loads").key("seismic");
+            let direction = check::finite2(source, &table.key("direction"), s.direction)?;
+            let seismic = Seismic {
+                coefficient: s.coefficient,
+                direction: (direction[0], direction[1]),
+            };
+            seismic.validate().map_err(|e| {
+                let key = if e.to_string().contains("direction") {
+                    "direction"
+                } else {
+                    "coefficient"
+                };
+                Box::new(source.at_key(&table.key(key), e.to_string()))
+            })?;
+            seismic
+        }
+    };
+    let model = HpmModel::new(&grids, &material, &hpm_settings)
+        .map_err(|e| combination(source, &[&path, &law, &driver], &e.to_string()))?;
+    Ok(HpmPlan { model, seismic })
+}
+
+/// The grids of a `grid-columns` entry, read from their files.
+fn grids(
+    source: &Source<'_>,
+    columns: &GridColumnsSpec,
+    path: &KeyPath,
+    file: &Path,
+) -> Result<SlopeGrids, Refusal> {
+    let folder = file.parent().unwrap_or(Path::new(""));
+    let mut paths = Vec::new();
+    for (key, given) in [
+        ("ground", Some(&columns.ground)),
+        ("slip", Some(&columns.slip)),
+        ("water", columns.water.as_ref()),
+    ] {
+        let Some(given) = given else {
+            paths.push(None);
+            continue;
+        };
+        if given.is_empty() || given.contains('\0') {
+            return Err(Box::new(source.at_key(
+                &path.key(key),
+                "give the path of an ESRI ASCII grid (relative to the scenario file's folder)",
+            )));
+        }
+        let at = folder.join(given);
+        if !at.is_file() {
+            return Err(Box::new(source.at_key(
+                &path.key(key),
+                format!("{} is not a readable file", at.display()),
+            )));
+        }
+        paths.push(Some(at));
+    }
+    let (Some(ground), Some(slip)) = (&paths[0], &paths[1]) else {
+        return Err(Box::new(source.at_key(path, "no ground or slip grid")));
+    };
+    SlopeGrids::read(ground, slip, paths[2].as_deref()).map_err(|e| {
+        let message = e.to_string();
+        let key = if paths[2]
+            .as_ref()
+            .is_some_and(|w| message.contains(&w.display().to_string()))
+        {
+            "water"
+        } else if message.contains(&slip.display().to_string()) {
+            "slip"
+        } else {
+            "ground"
+        };
+        Box::new(source.at_key(&path.key(key), message))
+    })
+}
