@@ -166,9 +166,29 @@ fn unequal_lattices_solve_or_report_locked() {
     let r = solve(&Lattice::u_model(4, 8, 1, true).build().unwrap());
     assert_eq!(r.status, LimitStatus::Collapse);
     assert!(r.load.unwrap() > 0.0);
-    let locked = solve(&Lattice::u_model(8, 4, 1, true).build().unwrap());
+    let model = Lattice::u_model(8, 4, 1, true).build().unwrap();
+    let locked = solve(&model);
     assert_eq!(locked.status, LimitStatus::Locked);
     assert_eq!(locked.load, None);
+    // A locked analysis has no mechanism to test for uniqueness; the
+    // error carries the status, to be matched on.
+    match dismech::limit::mechanism_uniqueness(&model, &mut LinearProgramSolver::default(), &locked)
+    {
+        Err(err @ DismechError::NoLimitLoad { .. }) => {
+            assert!(
+                matches!(
+                    err,
+                    DismechError::NoLimitLoad {
+                        status: LimitStatus::Locked,
+                        ..
+                    }
+                ),
+                "{err}"
+            );
+            assert!(err.to_string().contains("status Locked"), "{err}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// A single non-rolling element of weight W on a rough floor (cohesion C,
@@ -279,10 +299,14 @@ fn limit_model_bad_input_is_a_typed_error() {
         Vec2::new(-1.0, 0.0),
     )
     .unwrap();
-    assert!(matches!(
-        analyse(&m, &mut LinearProgramSolver::default()),
-        Err(DismechError::PlateTouchesNothing(_))
-    ));
+    let plate = m.supports().len() - 1;
+    match analyse(&m, &mut LinearProgramSolver::default()) {
+        Err(DismechError::PlateTouchesNothing { support, ref name }) => {
+            assert_eq!(support, plate);
+            assert_eq!(name, "plate");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// DEM → LP: a disc settled by the DEM into the corner of a box under a

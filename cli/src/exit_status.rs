@@ -123,7 +123,7 @@ impl Exit {
             | E::FrameNotClosed { .. }
             | E::DegenerateWall { .. }
             | E::ContactNotTouching { .. }
-            | E::PlateTouchesNothing(_)
+            | E::PlateTouchesNothing { .. }
             | E::DrivingSupportCount(_)
             | E::NoDeadLoads
             | E::GridFormat { .. }
