@@ -489,7 +489,7 @@ pub enum DismechError {
         /// ([`crate::hpm::HpmModel::memory_estimate`]) and the part of the
         /// linear solver being made (for the sparse Cholesky, the entries
         /// of its factor once the symbolic analysis has counted them).
-        what: String,
+        what: crate::hpm::MemoryParts,
         /// The memory counted.
         bytes: u128,
         /// The budget it is over ([`crate::hpm::HpmSettings::memory_budget`]);
@@ -515,8 +515,8 @@ pub enum DismechError {
     /// meaningless against a direction up the slope).
     #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}, or a driving force so small beside the resisting one that their ratio overflows), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
     NothingDrivesSliding {
-        /// Which safety factor, and along which direction.
-        what: String,
+        /// Which safety factor, and the force that drives it.
+        what: crate::hpm::SafetyFactorTerm,
         /// The driving force along the slip direction (N).
         driving: f64,
         /// The weight of the slide (N).
@@ -536,8 +536,8 @@ pub enum DismechError {
     /// along it.
     #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
     SlipSurfaceInTension {
-        /// Which safety factor, and along which direction.
-        what: String,
+        /// Which safety factor, and the force that drives it.
+        what: crate::hpm::SafetyFactorTerm,
         /// The slip surface's strength `Σ (c + σ tan φ) A` (N).
         strength: f64,
         /// The driving force it is set against (N).
