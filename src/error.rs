@@ -151,8 +151,8 @@ pub enum DismechError {
         contact: usize,
         /// The element.
         body: usize,
-        /// What it was declared against, in words.
-        partner: String,
+        /// What it was declared against (its Display says it in words).
+        partner: crate::limit::NamedPartner,
         /// Distance between the surfaces.
         gap: f64,
         /// Accepted distance.
@@ -460,8 +460,8 @@ pub enum DismechError {
         existing: usize,
         /// The element.
         body: usize,
-        /// What it was declared against, in words.
-        partner: String,
+        /// What it was declared against (its Display says it in words).
+        partner: crate::limit::NamedPartner,
     },
     /// A lattice with more elements than the limit.
     #[error("lattice of m = {m} columns × n = {n} elements exceeds the limit of {limit} elements (each needs about 13 kB for the LP and its factor); use a smaller m or n")]

@@ -4,7 +4,7 @@
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
 use dismech::limit::lattice::Lattice;
-use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
+use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, NamedPartner, Partner};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
 use dismech::reference::lattice_limit_load::{eq32, eq38};
@@ -475,7 +475,14 @@ fn duplicate_contact_is_refused() {
             ..
         }) => {
             assert_eq!((contact, existing, body), (4, 0, e1));
-            assert_eq!(partner, "support `left wall`");
+            assert_eq!(
+                partner,
+                NamedPartner::Support {
+                    support: 0,
+                    name: "left wall".into(),
+                }
+            );
+            assert_eq!(partner.to_string(), "support `left wall`");
         }
         other => panic!("{other:?}"),
     }
@@ -484,6 +491,13 @@ fn duplicate_contact_is_refused() {
     assert!(matches!(
         m.add_contact(e2, Partner::Body(e1), law),
         Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    assert!(matches!(
+        m.add_contact(e2, Partner::Body(e1), law),
+        Err(DismechError::DuplicateContact {
+            partner: NamedPartner::Element(0),
+            ..
+        })
     ));
     let point = m.contacts()[2].point;
     let normal = m.contacts()[2].normal;
