@@ -613,12 +613,13 @@ pub enum DismechError {
         message: String,
     },
     /// A pore-pressure ratio r_u outside `[0, 1)` ([`crate::slope::PoreRatio`]).
-    #[error("pore-pressure ratio r_u = {} from {source_name} at {location}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value))]
+    #[error("pore-pressure ratio r_u = {} from {source_name} at {}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value), cell_name(cell))]
     PoreRatioOutOfRange {
         /// The constant, or the raster's file.
         source_name: String,
-        /// `every cell` for a constant, `row R, column C` for a raster cell.
-        location: String,
+        /// The raster's cell `(row, column)`, from 0 at the top left;
+        /// `None` for a constant (every cell).
+        cell: Option<(usize, usize)>,
         /// The value given.
         value: f64,
     },
@@ -712,6 +713,14 @@ pub enum PenaltyRefusal {
 /// one, or nothing.
 fn overlap_note(overlap: &Option<crate::explicit::OverlapReached>) -> String {
     overlap.map(|o| format!(" at {o}")).unwrap_or_default()
+}
+
+/// `row R, column C` for a raster's cell, `every cell` for none.
+fn cell_name(cell: &Option<(usize, usize)>) -> String {
+    match cell {
+        Some((row, column)) => format!("row {row}, column {column}"),
+        None => "every cell".to_string(),
+    }
 }
 
 /// The messages of `items`, separated by semicolons.
