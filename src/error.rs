@@ -92,14 +92,18 @@ pub enum DismechError {
         reason: &'static str,
     },
     /// The time step is above the stable limit of the explicit scheme.
-    #[error("time step {dt:.3e} s exceeds the stable limit {limit:.3e} s ({governing}); use dt <= {limit:.3e} s, or lower the contact stiffness")]
+    #[error("time step {dt:.3e} s exceeds the stable limit {limit:.3e} s ({governing}{}); use dt <= {limit:.3e} s, or lower the contact stiffness", overlap_note(overlap))]
     UnstableTimeStep {
         /// The time step requested.
         dt: f64,
         /// The estimated stable limit.
         limit: f64,
         /// Which mode governs the limit.
-        governing: String,
+        governing: crate::explicit::GoverningMode,
+        /// Where a run's overlap outgrew the one the step was checked at
+        /// and the limit was estimated again there; `None` for the check
+        /// before a run.
+        overlap: Option<crate::explicit::OverlapReached>,
     },
     /// The run produced a NaN or an infinite value.
     #[error("non-finite {quantity} of particle {body} at step {step} (t = {time:.6} s); reduce the time step or check the contact stiffness")]
@@ -147,16 +151,21 @@ pub enum DismechError {
         contact: usize,
         /// The element.
         body: usize,
-        /// What it was declared against, in words.
-        partner: String,
+        /// What it was declared against (its Display says it in words).
+        partner: crate::limit::NamedPartner,
         /// Distance between the surfaces.
         gap: f64,
         /// Accepted distance.
         tolerance: f64,
     },
     /// A driving plate has no contact.
-    #[error("the moving support `{0}` touches no element")]
-    PlateTouchesNothing(String),
+    #[error("the moving support `{name}` (support {support}) touches no element")]
+    PlateTouchesNothing {
+        /// Index of the support.
+        support: usize,
+        /// Its name.
+        name: String,
+    },
     /// A limit analysis needs exactly one driver: one moving support, or a
     /// live load or the dead loads' multiplier and no moving support.
     #[error("a limit analysis needs exactly one driver: one moving support (plate), or a live load (set_live_load) or the dead loads' multiplier (multiply_dead_loads) and no moving support; found {0} moving supports")]
@@ -289,7 +298,7 @@ pub enum DismechError {
         /// The edge index given.
         edge: usize,
         /// What is wrong, with the body's edge count where that is it.
-        reason: String,
+        reason: crate::implicit::EdgeTractionProblem,
     },
     /// A time step too small for the clock: added to the time reached it
     /// changes nothing, or its smallest sub-step underflows.
@@ -299,8 +308,8 @@ pub enum DismechError {
         dt: f64,
         /// The time reached (s).
         time: f64,
-        /// Why it cannot be taken, and what to change.
-        reason: String,
+        /// Why it cannot be taken (its Display says what to change).
+        reason: crate::implicit::StepTooSmall,
     },
     /// Two DDA blocks overlap at the start by more than the tolerance.
     #[error("vertex {vertex} of block {vertex_block} lies {depth:.3e} m inside block {edge_block} at the start, more than the tolerance {tolerance:.3e} m")]
@@ -345,7 +354,7 @@ pub enum DismechError {
     },
     /// A limit-analysis model that has no penalty counterpart.
     #[error("the limit model cannot be turned into a penalty model: {0}")]
-    PenaltyModel(String),
+    PenaltyModel(PenaltyRefusal),
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),
@@ -451,8 +460,8 @@ pub enum DismechError {
         existing: usize,
         /// The element.
         body: usize,
-        /// What it was declared against, in words.
-        partner: String,
+        /// What it was declared against (its Display says it in words).
+        partner: crate::limit::NamedPartner,
     },
     /// A lattice with more elements than the limit.
     #[error("lattice of m = {m} columns × n = {n} elements exceeds the limit of {limit} elements (each needs about 13 kB for the LP and its factor); use a smaller m or n")]
@@ -480,7 +489,7 @@ pub enum DismechError {
         /// ([`crate::hpm::HpmModel::memory_estimate`]) and the part of the
         /// linear solver being made (for the sparse Cholesky, the entries
         /// of its factor once the symbolic analysis has counted them).
-        what: String,
+        what: crate::hpm::MemoryParts,
         /// The memory counted.
         bytes: u128,
         /// The budget it is over ([`crate::hpm::HpmSettings::memory_budget`]);
@@ -506,8 +515,8 @@ pub enum DismechError {
     /// meaningless against a direction up the slope).
     #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}, or a driving force so small beside the resisting one that their ratio overflows), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
     NothingDrivesSliding {
-        /// Which safety factor, and along which direction.
-        what: String,
+        /// Which safety factor, and the force that drives it.
+        what: crate::hpm::SafetyFactorTerm,
         /// The driving force along the slip direction (N).
         driving: f64,
         /// The weight of the slide (N).
@@ -527,8 +536,8 @@ pub enum DismechError {
     /// along it.
     #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
     SlipSurfaceInTension {
-        /// Which safety factor, and along which direction.
-        what: String,
+        /// Which safety factor, and the force that drives it.
+        what: crate::hpm::SafetyFactorTerm,
         /// The slip surface's strength `Σ (c + σ tan φ) A` (N).
         strength: f64,
         /// The driving force it is set against (N).
@@ -544,10 +553,10 @@ pub enum DismechError {
         area_share: f64,
     },
     /// A limit analysis without a limit load was asked for one.
-    #[error("the limit analysis has no limit load (status {status}): {what} needs a collapse")]
+    #[error("the limit analysis has no limit load (status {status:?}): {what} needs a collapse")]
     NoLimitLoad {
         /// The analysis' status.
-        status: String,
+        status: crate::limit::LimitStatus,
         /// What needed the load.
         what: &'static str,
     },
@@ -604,12 +613,13 @@ pub enum DismechError {
         message: String,
     },
     /// A pore-pressure ratio r_u outside `[0, 1)` ([`crate::slope::PoreRatio`]).
-    #[error("pore-pressure ratio r_u = {} from {source_name} at {location}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value))]
+    #[error("pore-pressure ratio r_u = {} from {source_name} at {}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value), cell_name(cell))]
     PoreRatioOutOfRange {
         /// The constant, or the raster's file.
         source_name: String,
-        /// `every cell` for a constant, `row R, column C` for a raster cell.
-        location: String,
+        /// The raster's cell `(row, column)`, from 0 at the top left;
+        /// `None` for a constant (every cell).
+        cell: Option<(usize, usize)>,
         /// The value given.
         value: f64,
     },
@@ -642,6 +652,75 @@ pub enum DismechError {
         /// What is wrong.
         problem: crate::checkpoint::CheckpointProblem,
     },
+}
+
+/// Why a limit-analysis model has no penalty counterpart
+/// ([`DismechError::PenaltyModel`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PenaltyRefusal {
+    /// A contact that may open has cohesion; the penalty law has none.
+    #[error("a contact that may open has cohesion {cohesion}; the penalty law has none")]
+    CohesiveOpening {
+        /// The contact's cohesion.
+        cohesion: f64,
+    },
+    /// A support that no contact touches.
+    #[error("support {support} ({name}) has no contact")]
+    SupportWithoutContact {
+        /// Index of the support.
+        support: usize,
+        /// Its name.
+        name: String,
+    },
+    /// An element that is not a circle.
+    #[error("element {element} is not a circle")]
+    NotACircle {
+        /// Index of the element.
+        element: usize,
+    },
+    /// Not exactly one moving support (plate).
+    #[error("{count} supports move; a pushover needs exactly one plate")]
+    MovingSupports {
+        /// Number of moving supports.
+        count: usize,
+    },
+    /// Two contacts of one pair of groups with different strengths.
+    #[error("contact {contact} has strength c = {cohesion}, tan phi = {friction}, unlike another contact of the same kind (c = {other_cohesion}, tan phi = {other_friction})")]
+    UnlikeStrengths {
+        /// Index of the contact.
+        contact: usize,
+        /// Its cohesion.
+        cohesion: f64,
+        /// Its friction coefficient tan φ.
+        friction: f64,
+        /// The cohesion of the contact of the same kind met first.
+        other_cohesion: f64,
+        /// Its friction coefficient tan φ.
+        other_friction: f64,
+    },
+    /// A limit model without contacts.
+    #[error("the limit model has no contact")]
+    NoContact,
+    /// The limit analysis found no collapse to compare with.
+    #[error("the LP found no collapse ({status:?})")]
+    NoCollapse {
+        /// The analysis' status.
+        status: crate::limit::LimitStatus,
+    },
+}
+
+/// ` at the overlap reached …` where a run's overlap outgrew the checked
+/// one, or nothing.
+fn overlap_note(overlap: &Option<crate::explicit::OverlapReached>) -> String {
+    overlap.map(|o| format!(" at {o}")).unwrap_or_default()
+}
+
+/// `row R, column C` for a raster's cell, `every cell` for none.
+fn cell_name(cell: &Option<(usize, usize)>) -> String {
+    match cell {
+        Some((row, column)) => format!("row {row}, column {column}"),
+        None => "every cell".to_string(),
+    }
 }
 
 /// The messages of `items`, separated by semicolons.

@@ -6,6 +6,7 @@ mod dda_common;
 use dda_common::{material, rect};
 use dismech::dda::{Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed};
 use dismech::error::DismechError;
+use dismech::implicit::{EdgeTractionProblem, StepTooSmall};
 use dismech::math::{Point, Vec2};
 
 fn base() -> Block {
@@ -204,6 +205,16 @@ fn subnormal_time_step_is_refused_not_halved_forever() {
         matches!(err, DismechError::TimeStepTooSmall { dt, .. } if dt == 5e-324),
         "{err}"
     );
+    assert!(
+        matches!(
+            err,
+            DismechError::TimeStepTooSmall {
+                reason: StepTooSmall::SubStepNotNormal { smallest },
+                ..
+            } if !smallest.is_normal()
+        ),
+        "{err}"
+    );
     assert!(err.to_string().contains("not a normal number"), "{err}");
 }
 
@@ -218,6 +229,17 @@ fn time_step_lost_in_the_clock_is_refused() {
         matches!(err, DismechError::TimeStepTooSmall { time, .. } if time > 0.0),
         "{err}"
     );
+    assert!(
+        matches!(
+            err,
+            DismechError::TimeStepTooSmall {
+                reason: StepTooSmall::ClockUnchanged,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert!(err.to_string().contains("unchanged"), "{err}");
     // A small step the clock can resolve is still taken.
     model.advance(1e-9).unwrap();
 }
@@ -267,11 +289,32 @@ fn edge_traction_on_an_edge_the_block_lacks_is_refused() {
             matches!(err, DismechError::InvalidEdgeTraction { body: 1, edge: e, .. } if e == edge),
             "{err}"
         );
+        assert!(
+            matches!(
+                err,
+                DismechError::InvalidEdgeTraction {
+                    reason: EdgeTractionProblem::NoSuchEdge { edges: 4 },
+                    ..
+                }
+            ),
+            "{err}"
+        );
         assert!(err.to_string().contains("has 4 edges"), "{err}");
     }
     let mut block = Block::new(&rect(-0.5, 0.0, 0.5, 0.5), material(), 1).unwrap();
     block.edge_tractions.push((3, Vec2::new(f64::NAN, 0.0)));
     let err = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DismechError::InvalidEdgeTraction {
+                body: 1,
+                edge: 3,
+                reason: EdgeTractionProblem::NotFinite { x, y },
+            } if x.is_nan() && y == 0.0
+        ),
+        "{err}"
+    );
     assert!(err.to_string().contains("not finite"), "{err}");
 }
 
@@ -287,6 +330,16 @@ fn edge_traction_on_a_disc_is_refused() {
             DismechError::InvalidEdgeTraction {
                 body: 1,
                 edge: 0,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert!(
+        matches!(
+            err,
+            DismechError::InvalidEdgeTraction {
+                reason: EdgeTractionProblem::NotAPolygon,
                 ..
             }
         ),

@@ -6,7 +6,9 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
-use dismech::explicit::{critical_time_step_at, DemSettings, RestCriterion, RunStatus};
+use dismech::explicit::{
+    critical_time_step_at, DemSettings, GoverningMode, OverlapReached, RestCriterion, RunStatus,
+};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{
     BoundedStiffness, ContactInput, ContactLaw, ContactResponse, Damping, NormalStiffness,
@@ -87,7 +89,26 @@ fn the_stable_step_of_a_hertzian_law_falls_as_the_overlap_to_the_minus_one_quart
     };
     assert!(DemSimulation::new(drop(), law, ExplicitEuler, settings(0.99 * limit)).is_ok());
     match DemSimulation::new(drop(), law, ExplicitEuler, settings(1.01 * limit)) {
-        Err(DismechError::UnstableTimeStep { limit: l, .. }) => assert_eq!(l, limit),
+        Err(DismechError::UnstableTimeStep {
+            limit: l,
+            governing,
+            overlap,
+            ..
+        }) => {
+            assert_eq!(l, limit);
+            // Checked before the run: the mode of the estimate, no overlap
+            // reached yet.
+            assert_eq!(
+                governing,
+                critical_time_step_at(&drop(), &law, DemSettings::default().stability_overlap)
+                    .governing
+            );
+            assert!(
+                matches!(governing, GoverningMode::Particle { particle: 0, .. }),
+                "{governing}"
+            );
+            assert_eq!(overlap, None);
+        }
         other => panic!("{other:?}"),
     }
     for bad in [0.0, -0.1, 1.5, f64::NAN] {
@@ -128,19 +149,37 @@ fn a_run_whose_overlaps_outgrow_the_checked_one_is_stopped_naming_the_overlap() 
         ..DemSettings::default()
     };
     let mut sim = DemSimulation::new(drop(), law, ExplicitEuler, settings).unwrap();
-    match sim.run_to_rest(&criterion, |_, _| {}) {
+    let result = sim.run_to_rest(&criterion, |_, _| {});
+    let message = result.as_ref().err().map(ToString::to_string);
+    match result {
         Err(DismechError::UnstableTimeStep {
             dt: taken,
             limit,
             governing,
+            overlap: Some(reached),
         }) => {
             assert_eq!(taken, dt);
-            let (ratio, particle, _) = sim.largest_overlap_ratio().unwrap();
+            let (ratio, particle, target) = sim.largest_overlap_ratio().unwrap();
             assert_eq!(particle, 0);
             assert!(ratio > low, "{ratio}");
             assert_eq!(limit, critical_time_step_at(sim.scene(), &law, ratio).dt);
             assert!(limit < dt);
-            assert!(governing.contains("stability_overlap"), "{governing}");
+            assert_eq!(
+                governing,
+                critical_time_step_at(sim.scene(), &law, ratio).governing
+            );
+            assert_eq!(
+                reached,
+                OverlapReached {
+                    step: sim.steps(),
+                    particle,
+                    target,
+                    ratio,
+                    stability_overlap: low,
+                }
+            );
+            let message = message.unwrap();
+            assert!(message.contains("stability_overlap"), "{message}");
         }
         other => panic!("{other:?}"),
     }

@@ -252,8 +252,9 @@ fn hpm_memory_budget_is_a_setting_named_in_a_refusal() {
             elements,
             bytes,
             budget: Some(1000),
-            ..
+            what,
         }) => {
+            assert_eq!(*what, MemoryParts::Model);
             assert_eq!((*c, *elements), (columns, 3 * columns as u128));
             assert_eq!(*bytes, HpmModel::memory_estimate(columns, 3));
         }
@@ -288,8 +289,12 @@ fn hpm_memory_budget_is_a_setting_named_in_a_refusal() {
     let refused = HpmSolver::new(&m);
     match &refused {
         Err(DismechError::HpmModelTooLarge {
-            bytes, budget: b, ..
+            bytes,
+            budget: b,
+            what,
+            ..
         }) => {
+            assert_eq!(*what, MemoryParts::CholeskyOrdering);
             assert_eq!((*bytes, *b), (analysis, Some(budget)));
         }
         other => panic!("{other:?}"),
@@ -360,6 +365,8 @@ fn hpm_cholesky_refused_after_its_symbolic_analysis_names_the_factor() {
             ..
         }) => {
             assert_eq!((bytes, b), (direct, Some(budget)));
+            assert_eq!(what, MemoryParts::CholeskyFactor { entries });
+            let what = what.to_string();
             assert!(
                 what.contains(&format!("its factor of {entries} entries")),
                 "{what}"
@@ -434,6 +441,8 @@ fn hpm_iterative_column_blocks_beyond_memory_budget_are_refused() {
                 HpmModel::memory_estimate(4, 2000) + HpmModel::column_blocks_estimate(4, 2000)
             );
             assert_eq!(budget, Some(FOUR_GIB));
+            assert_eq!(what, MemoryParts::ColumnBlocks);
+            let what = what.to_string();
             assert!(what.contains("column blocks"), "{what}");
         }
         other => panic!("{other:?}"),
@@ -629,10 +638,42 @@ fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
         nothing_drives(r.sliding_safety_factor(&m), &m);
         nothing_drives(r.safety_factor_along(&m, (0.0, -1.0)), &m);
         assert_eq!(r.sliding_direction(&m), None);
+        // No horizontal resultant: the sliding direction is refused as
+        // such, naming the factor asked for.
+        for (result, factor) in [
+            (r.safety_factor(&m), SafetyFactorKind::StressRatio),
+            (
+                r.sliding_safety_factor(&m),
+                SafetyFactorKind::SlidingDirection,
+            ),
+        ] {
+            match result {
+                Err(DismechError::NothingDrivesSliding { what, .. }) => assert_eq!(
+                    what,
+                    SafetyFactorTerm {
+                        factor,
+                        force: DrivingForce::ResultantShear,
+                    }
+                ),
+                other => panic!("{other:?}"),
+            }
+        }
     }
     let hov = hovland(&m, &Seismic::none(), towards_deg(270.0));
     let driving = match &hov {
-        Err(DismechError::NothingDrivesSliding { driving, .. }) => *driving,
+        Err(DismechError::NothingDrivesSliding { driving, what, .. }) => {
+            assert!(
+                matches!(
+                    what,
+                    SafetyFactorTerm {
+                        factor: SafetyFactorKind::Hovland { towards_deg },
+                        force: DrivingForce::ColumnDriving,
+                    } if (towards_deg - 270.0).abs() < 1e-9
+                ),
+                "{what:?}"
+            );
+            *driving
+        }
         other => panic!("{other:?}"),
     };
     assert!(driving.abs() < 1e-9 * m.total_weight(), "{driving}");
@@ -878,7 +919,15 @@ fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
         .elastic(&m, &Seismic::none())
         .unwrap();
     match result.safety_factor(&m) {
-        Err(DismechError::NothingDrivesSliding { .. }) => {}
+        Err(DismechError::NothingDrivesSliding { what, .. }) => assert_eq!(
+            what,
+            // The resultant drives it; the ratio to the springs' shear
+            // overflows.
+            SafetyFactorTerm {
+                factor: SafetyFactorKind::StressRatio,
+                force: DrivingForce::SpringShear,
+            }
+        ),
         other => panic!("{other:?}"),
     }
     match hovland(&m, &Seismic::none(), towards_deg(270.0)) {
@@ -998,6 +1047,40 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
         assert!(!cells.is_empty() && columns == 12, "{cells:?}");
         assert!(share > 0.5 && share <= 1.0, "{share}");
     }
+    // Each refusal names its factor and the force set against no strength.
+    let what = |result: Result<f64, DismechError>| match result {
+        Err(DismechError::SlipSurfaceInTension { what, .. }) => what,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        what(elastic.safety_factor(&m)),
+        SafetyFactorTerm {
+            factor: SafetyFactorKind::StressRatio,
+            force: DrivingForce::SpringShear,
+        }
+    );
+    let along = what(elastic.safety_factor_along(&m, (0.0, -2.0)));
+    assert!(
+        matches!(
+            along,
+            SafetyFactorTerm {
+                factor: SafetyFactorKind::AlongDirection { x, y },
+                force: DrivingForce::ShearAlong,
+            } if x == 0.0 && y == -1.0
+        ),
+        "{along:?}"
+    );
+    let hov = what(hovland(&m, &seismic, towards_deg(270.0)).map(|h| h.safety_factor));
+    assert!(
+        matches!(
+            hov,
+            SafetyFactorTerm {
+                factor: SafetyFactorKind::Hovland { towards_deg },
+                force: DrivingForce::ColumnDriving,
+            } if (towards_deg - 270.0).abs() < 1e-9
+        ),
+        "{hov:?}"
+    );
     let local = elastic.local_safety_factors(&m);
     assert!(local.iter().all(|f| *f >= 0.0), "{local:?}");
     assert!(local.contains(&0.0), "{local:?}");

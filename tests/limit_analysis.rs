@@ -4,7 +4,7 @@
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
 use dismech::limit::lattice::Lattice;
-use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, Partner};
+use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, NamedPartner, Partner};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
 use dismech::reference::lattice_limit_load::{eq32, eq38};
@@ -166,9 +166,29 @@ fn unequal_lattices_solve_or_report_locked() {
     let r = solve(&Lattice::u_model(4, 8, 1, true).build().unwrap());
     assert_eq!(r.status, LimitStatus::Collapse);
     assert!(r.load.unwrap() > 0.0);
-    let locked = solve(&Lattice::u_model(8, 4, 1, true).build().unwrap());
+    let model = Lattice::u_model(8, 4, 1, true).build().unwrap();
+    let locked = solve(&model);
     assert_eq!(locked.status, LimitStatus::Locked);
     assert_eq!(locked.load, None);
+    // A locked analysis has no mechanism to test for uniqueness; the
+    // error carries the status, to be matched on.
+    match dismech::limit::mechanism_uniqueness(&model, &mut LinearProgramSolver::default(), &locked)
+    {
+        Err(err @ DismechError::NoLimitLoad { .. }) => {
+            assert!(
+                matches!(
+                    err,
+                    DismechError::NoLimitLoad {
+                        status: LimitStatus::Locked,
+                        ..
+                    }
+                ),
+                "{err}"
+            );
+            assert!(err.to_string().contains("status Locked"), "{err}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// A single non-rolling element of weight W on a rough floor (cohesion C,
@@ -279,10 +299,14 @@ fn limit_model_bad_input_is_a_typed_error() {
         Vec2::new(-1.0, 0.0),
     )
     .unwrap();
-    assert!(matches!(
-        analyse(&m, &mut LinearProgramSolver::default()),
-        Err(DismechError::PlateTouchesNothing(_))
-    ));
+    let plate = m.supports().len() - 1;
+    match analyse(&m, &mut LinearProgramSolver::default()) {
+        Err(DismechError::PlateTouchesNothing { support, ref name }) => {
+            assert_eq!(support, plate);
+            assert_eq!(name, "plate");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// DEM → LP: a disc settled by the DEM into the corner of a box under a
@@ -451,7 +475,14 @@ fn duplicate_contact_is_refused() {
             ..
         }) => {
             assert_eq!((contact, existing, body), (4, 0, e1));
-            assert_eq!(partner, "support `left wall`");
+            assert_eq!(
+                partner,
+                NamedPartner::Support {
+                    support: 0,
+                    name: "left wall".into(),
+                }
+            );
+            assert_eq!(partner.to_string(), "support `left wall`");
         }
         other => panic!("{other:?}"),
     }
@@ -460,6 +491,13 @@ fn duplicate_contact_is_refused() {
     assert!(matches!(
         m.add_contact(e2, Partner::Body(e1), law),
         Err(DismechError::DuplicateContact { existing: 2, .. })
+    ));
+    assert!(matches!(
+        m.add_contact(e2, Partner::Body(e1), law),
+        Err(DismechError::DuplicateContact {
+            partner: NamedPartner::Element(0),
+            ..
+        })
     ));
     let point = m.contacts()[2].point;
     let normal = m.contacts()[2].normal;

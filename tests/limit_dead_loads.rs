@@ -10,7 +10,8 @@ mod heyman_arch;
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
 use dismech::limit::{
-    admissibility, analyse, analyse_static, LimitModel, LimitStatus, LoadDriver, Partner,
+    admissibility, analyse, analyse_static, LimitModel, LimitStatus, LoadDriver, NamedPartner,
+    Partner,
 };
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Pose2, Vec2};
@@ -177,14 +178,25 @@ fn outlines_apart_are_refused_with_their_gap() {
         .unwrap();
     let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     match model.add_contacts(low, Partner::Support(floor), joint) {
-        Err(DismechError::ContactNotTouching { gap, .. }) => {
+        Err(DismechError::ContactNotTouching { gap, partner, .. }) => {
             assert!((gap - 1e-3).abs() < 1e-12, "gap {gap}");
+            assert!(
+                matches!(partner, NamedPartner::Support { support, .. } if support == floor),
+                "{partner:?}"
+            );
         }
         other => panic!("{other:?}"),
     }
     assert!(matches!(
         model.add_contacts(low, Partner::Body(high), joint),
         Err(DismechError::ContactNotTouching { .. })
+    ));
+    assert!(matches!(
+        model.add_contacts(low, Partner::Body(high), joint),
+        Err(DismechError::ContactNotTouching {
+            partner: NamedPartner::Element(j),
+            ..
+        }) if j == high
     ));
     assert!(matches!(
         model.add_contacts(low, Partner::Body(low), joint),

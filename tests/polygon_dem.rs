@@ -2,7 +2,9 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
-use dismech::explicit::{critical_time_step, ContactTarget, DemSettings};
+use dismech::explicit::{
+    critical_time_step, ContactTarget, DemSettings, GoverningMode, ModePartner, OscillationMode,
+};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
 use dismech::math::{Point, Vec2};
@@ -192,6 +194,58 @@ fn polygon_stable_step_is_a_safe_bound_for_a_face_on_a_wall() {
         floor_reaction(&sim).y,
         sim.scene().total_weight(),
         max_relative = 1e-6
+    );
+}
+
+/// A time step above a polygon's stable limit is refused before the run,
+/// naming the face mode that governs: the normal mode of a face on a face
+/// of an identical polygon (half the wall's mass, and the normal spring is
+/// the stiffer one).
+#[test]
+fn a_time_step_above_a_polygon_face_limit_names_the_face_mode() {
+    let mut scene = floor_scene();
+    scene
+        .add_rectangle(Point::new(1.0, 0.05 + 1e-4), 0.2, 0.1, 0.0, DENSITY)
+        .unwrap();
+    let damped = law(1e7, Damping::Critical);
+    let limit = critical_time_step(&scene, &damped);
+    let settings = DemSettings {
+        dt: 2.0 * limit.dt,
+        ..DemSettings::default()
+    };
+    let err = DemSimulation::new(scene, damped, ExplicitEuler, settings).unwrap_err();
+    match err {
+        DismechError::UnstableTimeStep {
+            dt,
+            limit: l,
+            governing,
+            overlap: None,
+        } => {
+            assert_eq!(dt, 2.0 * limit.dt);
+            assert_eq!(l, limit.dt);
+            assert_eq!(governing, limit.governing);
+            match governing {
+                GoverningMode::PolygonFace {
+                    polygon: 0,
+                    mode: OscillationMode::NormalRotation,
+                    partner: ModePartner::Identical,
+                    stiffness_per_point,
+                    mass,
+                } => {
+                    assert_eq!(stiffness_per_point, 1e7);
+                    assert!(mass > 0.0 && mass.is_finite(), "{mass}");
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        ref other => panic!("{other:?}"),
+    }
+    let message = err.to_string();
+    assert!(
+        message.contains(
+            "normal-rotation mode of a face of polygon 0 (two points) against an identical polygon"
+        ),
+        "{message}"
     );
 }
 

@@ -474,8 +474,9 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
             .with_pore_ratio(PoreRatio::Constant(v))
             .unwrap_err()
         {
-            DismechError::PoreRatioOutOfRange { value, .. } => {
-                assert!(value.to_bits() == v.to_bits())
+            DismechError::PoreRatioOutOfRange { value, cell, .. } => {
+                assert!(value.to_bits() == v.to_bits());
+                assert_eq!(cell, None);
             }
             e => panic!("{e}"),
         }
@@ -487,17 +488,18 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
         })
         .unwrap(),
     );
-    match Ground::from(soil())
+    let err = Ground::from(soil())
         .with_pore_ratio(PoreRatio::Raster(bad))
-        .unwrap_err()
-    {
+        .unwrap_err();
+    assert!(err.to_string().contains("at row 0, column 25:"), "{err}");
+    match err {
         DismechError::PoreRatioOutOfRange {
             source_name,
-            location,
+            cell,
             value,
         } => {
             assert_eq!(source_name, "ru.asc");
-            assert_eq!(location, "row 0, column 25");
+            assert_eq!(cell, Some((0, 25)));
             assert_eq!(value, 1.2);
         }
         e => panic!("{e}"),

@@ -123,7 +123,7 @@ impl Exit {
             | E::FrameNotClosed { .. }
             | E::DegenerateWall { .. }
             | E::ContactNotTouching { .. }
-            | E::PlateTouchesNothing(_)
+            | E::PlateTouchesNothing { .. }
             | E::DrivingSupportCount(_)
             | E::NoDeadLoads
             | E::GridFormat { .. }
@@ -194,10 +194,18 @@ mod tests {
         assert_eq!(Exit::of_limit(&LimitStatus::Collapse), Exit::Success);
     }
 
+    /// Hovland's factor towards 270°, driven by `Σ T`.
+    fn hovland_term() -> dismech::hpm::SafetyFactorTerm {
+        dismech::hpm::SafetyFactorTerm {
+            factor: dismech::hpm::SafetyFactorKind::Hovland { towards_deg: 270.0 },
+            force: dismech::hpm::DrivingForce::ColumnDriving,
+        }
+    }
+
     #[test]
     fn a_slide_nothing_drives_exits_as_locked_and_a_model_too_large_as_bad_input() {
         let nothing = DismechError::NothingDrivesSliding {
-            what: "Hovland".into(),
+            what: hovland_term(),
             driving: 0.0,
             weight: 1.0,
             ratio: 1e-6,
@@ -207,7 +215,7 @@ mod tests {
             columns: 1,
             layers: usize::MAX,
             elements: u128::from(u64::MAX),
-            what: "its elements".into(),
+            what: dismech::hpm::MemoryParts::Model,
             bytes: u128::MAX,
             budget: Some(1),
         };
@@ -223,7 +231,7 @@ mod tests {
     #[test]
     fn a_slip_surface_in_tension_exits_as_unbounded() {
         let lifted = DismechError::SlipSurfaceInTension {
-            what: "Hovland".into(),
+            what: hovland_term(),
             strength: -1.0,
             driving: 1.0,
             cells: vec![(0, 0)],

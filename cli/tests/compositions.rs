@@ -357,3 +357,43 @@ fn implicit_ellipses_come_to_rest_on_the_walls() {
         settled.reaction_ratio()
     );
 }
+
+/// A limit model the penalty pushover cannot take is refused with a reason
+/// to match on: an element that is not a circle, or no moving support.
+#[test]
+fn a_limit_model_without_a_penalty_counterpart_is_refused_with_a_typed_reason() {
+    use dismech::error::{DismechError, PenaltyRefusal};
+    use dismech::limit::LimitModel;
+    use dismech::math::{Point, Pose2};
+    use dismech::shape::Polygon;
+    use dismech_cli::compositions::penalty_vs_lp::pushover_model;
+
+    let mut discs = LimitModel::new(1e-9).unwrap();
+    discs.add_body(Point::new(0.0, 1.0), 1.0, true).unwrap();
+    match pushover_model(&discs, 1e6, 0.1) {
+        Err(err @ DismechError::PenaltyModel(PenaltyRefusal::MovingSupports { count: 0 })) => {
+            assert!(err.to_string().contains("0 supports move"), "{err}");
+        }
+        Err(other) => panic!("{other:?}"),
+        Ok(_) => panic!("a model without a plate was accepted"),
+    }
+    let mut blocks = LimitModel::new(1e-9).unwrap();
+    blocks.add_body(Point::new(0.0, 1.0), 1.0, true).unwrap();
+    blocks
+        .add_shape(
+            Polygon::rectangle(1.0, 1.0).unwrap().into(),
+            Pose2::new(3.0, 1.0, 0.0),
+            true,
+        )
+        .unwrap();
+    match pushover_model(&blocks, 1e6, 0.1) {
+        Err(err @ DismechError::PenaltyModel(PenaltyRefusal::NotACircle { element: 1 })) => {
+            assert!(
+                err.to_string().contains("element 1 is not a circle"),
+                "{err}"
+            );
+        }
+        Err(other) => panic!("{other:?}"),
+        Ok(_) => panic!("a polygon element was accepted"),
+    }
+}

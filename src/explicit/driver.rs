@@ -15,7 +15,9 @@ use super::pair_bodies::PairBody;
 use super::pair_forces::PairContext;
 use super::phases::{PhaseClock, PhaseTimes};
 use super::skin::Skin;
-use super::stability::{critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP};
+use super::stability::{
+    critical_time_step_at, OverlapReached, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
+};
 use crate::broad_phase::CellGrid;
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
@@ -453,6 +455,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 dt: settings.dt,
                 limit: limit.dt,
                 governing: limit.governing,
+                overlap: None,
             });
         }
         let mut sim = Self::build(scene, law, integrator, settings)?;
@@ -739,10 +742,14 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         Err(DismechError::UnstableTimeStep {
             dt: self.settings.dt,
             limit: limit.dt,
-            governing: format!(
-                "{} at the overlap reached at step {} by particle {a} against {target:?}, {ratio:.3e} of its bounding radius, above stability_overlap = {:e} (the law stiffens with the overlap: lower dt, or raise stability_overlap so that the step is checked there from the start)",
-                limit.governing, self.step, self.settings.stability_overlap
-            ),
+            governing: limit.governing,
+            overlap: Some(OverlapReached {
+                step: self.step,
+                particle: a,
+                target,
+                ratio,
+                stability_overlap: self.settings.stability_overlap,
+            }),
         })
     }
 

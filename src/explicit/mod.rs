@@ -108,5 +108,6 @@ pub use driver::{
 };
 pub use phases::PhaseTimes;
 pub use stability::{
-    critical_time_step, critical_time_step_at, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
+    critical_time_step, critical_time_step_at, GoverningMode, ModePartner, OscillationMode,
+    OverlapReached, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
 };

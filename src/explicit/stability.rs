@@ -1,16 +1,155 @@
 //! The stable time step of the explicit scheme.
 
+use super::driver::ContactTarget;
 use crate::law::{BoundedStiffness, PairProperties};
 use crate::scene::Scene;
 use crate::shape::{AnyShape2, Shape2};
 
 /// The estimated stable limit and the mode that governs it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StabilityLimit {
     /// Largest stable time step (s).
     pub dt: f64,
-    /// Which contact mode governs, in words.
-    pub governing: String,
+    /// Which contact mode governs (its [`Display`](std::fmt::Display)
+    /// says it in words).
+    pub governing: GoverningMode,
+}
+
+/// The contact mode whose oscillation limits the stable time step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GoverningMode {
+    /// No free particle has a contact mode: the limit is infinite.
+    NoContactMode,
+    /// A single-contact mode of a particle that is not a polygon (a
+    /// circle, an ellipse…) against an identical particle or a wall.
+    Particle {
+        /// The particle.
+        particle: usize,
+        /// The mode.
+        mode: OscillationMode,
+        /// What the particle is in contact with.
+        partner: ModePartner,
+        /// The mode's stiffness (N/m).
+        stiffness: f64,
+        /// The mode's relative (or effective) mass (kg).
+        mass: f64,
+    },
+    /// A face-on-face mode of a polygon (two vertex points) against an
+    /// identical polygon or a wall.
+    PolygonFace {
+        /// The polygon.
+        polygon: usize,
+        /// The mode.
+        mode: OscillationMode,
+        /// What the face is in contact with.
+        partner: ModePartner,
+        /// The law's stiffness at one of the two points (N/m).
+        stiffness_per_point: f64,
+        /// The effective mass `m*` of the face's mode (kg).
+        mass: f64,
+    },
+}
+
+/// The overlap a run reached beyond the one its time step was checked at
+/// ([`crate::explicit::DemSettings::stability_overlap`]), at which the
+/// stable step was estimated again
+/// ([`crate::explicit::ExplicitDynamics::check_overlap_stability`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OverlapReached {
+    /// The step at which it was found.
+    pub step: u64,
+    /// The particle with the largest overlap.
+    pub particle: usize,
+    /// What it overlaps.
+    pub target: ContactTarget,
+    /// The overlap as a share of the particle's bounding radius (of the
+    /// smaller one for two particles).
+    pub ratio: f64,
+    /// The share the time step was checked at
+    /// ([`crate::explicit::DemSettings::stability_overlap`]).
+    pub stability_overlap: f64,
+}
+
+impl std::fmt::Display for OverlapReached {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the overlap reached at step {} by particle {} against {:?}, {:.3e} of its bounding radius, above stability_overlap = {:e} (the law stiffens with the overlap: lower dt, or raise stability_overlap so that the step is checked there from the start)",
+            self.step, self.particle, self.target, self.ratio, self.stability_overlap
+        )
+    }
+}
+
+/// A mode of oscillation of one contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OscillationMode {
+    /// Along the normal, relative masses only (a particle that is not a
+    /// polygon).
+    Normal,
+    /// Along the normal, with the turn a normal force gives a polygon's
+    /// face at its lever arm.
+    NormalRotation,
+    /// Along the tangent, with the turn the tangential force gives.
+    ShearRotation,
+}
+
+/// What the particle of a [`GoverningMode`] is in contact with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModePartner {
+    /// An identical particle (or polygon).
+    Identical,
+    /// A wall (an infinite mass).
+    Wall,
+}
+
+impl std::fmt::Display for OscillationMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Normal => "normal",
+            Self::NormalRotation => "normal-rotation",
+            Self::ShearRotation => "shear-rotation",
+        })
+    }
+}
+
+impl std::fmt::Display for GoverningMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Self::NoContactMode => f.write_str("no contact mode"),
+            Self::Particle {
+                particle,
+                mode,
+                partner,
+                stiffness,
+                mass,
+            } => {
+                let partner = match partner {
+                    ModePartner::Identical => "an identical particle",
+                    ModePartner::Wall => "a wall",
+                };
+                write!(
+                    f,
+                    "{mode} mode of particle {particle} against {partner}, k = {stiffness:.3e} N/m, m = {mass:.3e} kg"
+                )
+            }
+            Self::PolygonFace {
+                polygon,
+                mode,
+                partner,
+                stiffness_per_point,
+                mass,
+            } => {
+                let partner = match partner {
+                    ModePartner::Identical => "an identical polygon",
+                    ModePartner::Wall => "a wall",
+                };
+                write!(
+                    f,
+                    "{mode} mode of a face of polygon {polygon} (two points) against {partner}, k = {stiffness_per_point:.3e} N/m per point, m* = {mass:.3e} kg"
+                )
+            }
+        }
+    }
 }
 
 /// Stable limit of semi-implicit Euler for a damped oscillator of
@@ -67,7 +206,7 @@ pub fn critical_time_step_at<L: BoundedStiffness<2>>(
 ) -> StabilityLimit {
     let mut best = StabilityLimit {
         dt: f64::INFINITY,
-        governing: "no contact mode".into(),
+        governing: GoverningMode::NoContactMode,
     };
     for (i, p) in scene.particles.iter().enumerate() {
         // A prescribed particle does not respond: to a free one it is a
@@ -100,14 +239,14 @@ pub fn critical_time_step_at<L: BoundedStiffness<2>>(
         let shear_mass_one = 1.0 / (1.0 / p.mass + r * r / p.inertia);
         for (partner, partner_radius, partner_mass, rel_mass, rel_shear_mass) in [
             (
-                "an identical particle",
+                ModePartner::Identical,
                 curvature,
                 p.mass,
                 0.5 * p.mass,
                 0.5 * shear_mass_one,
             ),
             (
-                "a wall",
+                ModePartner::Wall,
                 f64::INFINITY,
                 f64::INFINITY,
                 p.mass,
@@ -132,16 +271,30 @@ pub fn critical_time_step_at<L: BoundedStiffness<2>>(
                 bound.shear + bound.rolling / (r * r)
             };
             for (mode, k, m, eta) in [
-                ("normal", bound.normal, rel_mass, bound.normal_damping),
-                ("shear-rotation", shear, rel_shear_mass, bound.shear_damping),
+                (
+                    OscillationMode::Normal,
+                    bound.normal,
+                    rel_mass,
+                    bound.normal_damping,
+                ),
+                (
+                    OscillationMode::ShearRotation,
+                    shear,
+                    rel_shear_mass,
+                    bound.shear_damping,
+                ),
             ] {
                 let dt = oscillator_limit(k, m, eta);
                 if dt < best.dt {
                     best = StabilityLimit {
                         dt,
-                        governing: format!(
-                            "{mode} mode of particle {i} against {partner}, k = {k:.3e} N/m, m = {m:.3e} kg"
-                        ),
+                        governing: GoverningMode::Particle {
+                            particle: i,
+                            mode,
+                            partner,
+                            stiffness: k,
+                            mass: m,
+                        },
                     };
                 }
             }
@@ -164,8 +317,8 @@ fn polygon_limit<L: BoundedStiffness<2>>(
 ) {
     let turning_mass = 1.0 / (1.0 / m + r * r / inertia);
     for (partner, partner_mass, rel_mass) in [
-        ("an identical polygon", m, 0.5 * turning_mass),
-        ("a wall", f64::INFINITY, turning_mass),
+        (ModePartner::Identical, m, 0.5 * turning_mass),
+        (ModePartner::Wall, f64::INFINITY, turning_mass),
     ] {
         let pair = PairProperties {
             curvature_radius_a: 0.0,
@@ -176,8 +329,16 @@ fn polygon_limit<L: BoundedStiffness<2>>(
         };
         let bound = law.stiffness_bound(&pair, overlap_ratio * r);
         for (mode, k, eta) in [
-            ("normal-rotation", bound.normal, bound.normal_damping),
-            ("shear-rotation", bound.shear, bound.shear_damping),
+            (
+                OscillationMode::NormalRotation,
+                bound.normal,
+                bound.normal_damping,
+            ),
+            (
+                OscillationMode::ShearRotation,
+                bound.shear,
+                bound.shear_damping,
+            ),
         ] {
             let dt = if k.is_finite() && eta.is_finite() {
                 oscillator_limit(2.0 * k, rel_mass, 2.0 * eta)
@@ -187,9 +348,13 @@ fn polygon_limit<L: BoundedStiffness<2>>(
             if dt < best.dt {
                 *best = StabilityLimit {
                     dt,
-                    governing: format!(
-                        "{mode} mode of a face of polygon {i} (two points) against {partner}, k = {k:.3e} N/m per point, m* = {rel_mass:.3e} kg"
-                    ),
+                    governing: GoverningMode::PolygonFace {
+                        polygon: i,
+                        mode,
+                        partner,
+                        stiffness_per_point: k,
+                        mass: rel_mass,
+                    },
                 };
             }
         }

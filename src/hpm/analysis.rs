@@ -89,7 +89,7 @@ use nalgebra::Vector3;
 
 use super::conditioning::IllConditioning;
 use super::material::Seismic;
-use super::model::{HpmModel, SlipSpring};
+use super::model::{HpmModel, MemoryParts, SlipSpring};
 use super::stiffness::BlockMatrix;
 use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
@@ -201,10 +201,89 @@ impl Tension {
     }
 }
 
+/// Which safety factor of a slide a refusal concerns
+/// ([`DismechError::NothingDrivesSliding`],
+/// [`DismechError::SlipSurfaceInTension`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SafetyFactorKind {
+    /// HPM's stress ratio `Σ(c + σ tan φ)A / Σ|τ|A`
+    /// ([`HpmResult::safety_factor`]).
+    StressRatio,
+    /// HPM's factor along the sliding direction,
+    /// `Σ(c + σ tan φ)A / Σ(τ·d_i)A` ([`HpmResult::sliding_safety_factor`]).
+    SlidingDirection,
+    /// HPM's factor along a given plan direction
+    /// ([`HpmResult::safety_factor_along`]).
+    AlongDirection {
+        /// The direction's unit x component.
+        x: f64,
+        /// Its unit y component.
+        y: f64,
+    },
+    /// Hovland's method ([`crate::hpm::hovland`]), sliding towards an
+    /// azimuth.
+    Hovland {
+        /// The azimuth, in degrees from +x in `[0, 360)`.
+        towards_deg: f64,
+    },
+}
+
+/// The force that drives a safety factor's slide
+/// ([`SafetyFactorTerm::force`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DrivingForce {
+    /// The horizontal part of the slip springs' resultant shear force
+    /// (which gives the sliding direction).
+    ResultantShear,
+    /// The slip springs' shear `Σ|τ|A`.
+    SpringShear,
+    /// The slip springs' shear along the direction, `Σ(τ·d_i)A`.
+    ShearAlong,
+    /// Hovland's sum of the columns' driving forces, `Σ T`.
+    ColumnDriving,
+}
+
+/// A safety factor and the force that drives it, as a refusal names them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SafetyFactorTerm {
+    /// The safety factor asked for.
+    pub factor: SafetyFactorKind,
+    /// The force found too small, or set against no strength.
+    pub force: DrivingForce,
+}
+
+impl std::fmt::Display for SafetyFactorTerm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.factor {
+            SafetyFactorKind::StressRatio => {
+                f.write_str("HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A")?
+            }
+            SafetyFactorKind::SlidingDirection => {
+                f.write_str("HPM along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A")?
+            }
+            SafetyFactorKind::AlongDirection { x, y } => {
+                write!(f, "HPM along the plan direction ({x:.4}, {y:.4})")?
+            }
+            SafetyFactorKind::Hovland { towards_deg } => write!(
+                f,
+                "Hovland's method sliding towards {towards_deg:.1}° from +x"
+            )?,
+        }
+        f.write_str(match self.force {
+            DrivingForce::ResultantShear => {
+                ": the horizontal part of the slip springs' resultant shear force"
+            }
+            DrivingForce::SpringShear => ": the slip springs' shear, Σ|τ|A",
+            DrivingForce::ShearAlong => ": the slip springs' shear along it, Σ(τ·d_i)A",
+            DrivingForce::ColumnDriving => ": Σ T",
+        })
+    }
+}
+
 /// The safety factor `resisting / driving` of a slide of weight `weight`.
 ///
 /// # Errors
-/// [`DismechError::NothingDrivesSliding`] (naming the forces as `what()`
+/// [`DismechError::NothingDrivesSliding`] (naming the forces as `what`
 /// says) where the driving force is not above [`MIN_DRIVING_RATIO`] of the
 /// weight (`>` is false for NaN: a NaN driving force drives nothing) or so
 /// small beside the resisting one that the ratio overflows (a unit weight
@@ -216,13 +295,13 @@ pub(super) fn resisting_over_driving(
     resisting: f64,
     driving: f64,
     weight: f64,
-    what: impl FnOnce() -> String,
+    what: SafetyFactorTerm,
     tension: impl FnOnce() -> Tension,
 ) -> Result<f64> {
     let ratio = resisting / driving;
     if !(driving > MIN_DRIVING_RATIO * weight && ratio.is_finite()) {
         return Err(DismechError::NothingDrivesSliding {
-            what: what(),
+            what,
             driving,
             weight,
             ratio: MIN_DRIVING_RATIO,
@@ -237,7 +316,7 @@ pub(super) fn resisting_over_driving(
             area_share,
         } = tension();
         Err(DismechError::SlipSurfaceInTension {
-            what: what(),
+            what,
             strength: resisting,
             driving,
             cells,
@@ -340,18 +419,6 @@ pub struct HpmSolver<S = SparseCholesky> {
 /// HPM analyses by preconditioned conjugate gradients.
 pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
 
-/// What the sparse Cholesky solver adds to the model, for a refusal.
-fn cholesky_parts(factor: Option<usize>) -> String {
-    let factor = match factor {
-        Some(entries) => format!("its factor of {entries} entries with faer's workspace"),
-        None => "the workspace of its ordering (its factor's fill comes on top)".into(),
-    };
-    format!(
-        "{}, and the sparse Cholesky solver's compressed lower triangle and {factor} (HpmSolver::iterative, conjugate gradients, needs no factor)",
-        super::model::MODEL_PARTS
-    )
-}
-
 impl HpmSolver<SparseCholesky> {
     /// Assemble the elastic stiffness of `model` and factorise it
     /// (sparse Cholesky). The model's memory budget
@@ -375,7 +442,13 @@ impl HpmSolver<SparseCholesky> {
         let budget = model.settings.memory_budget;
         let own = HpmModel::memory_estimate(columns, layers);
         let analysis = own.saturating_add(HpmModel::cholesky_estimate(columns, layers));
-        HpmModel::check_budget(budget, columns, layers, analysis, || cholesky_parts(None))?;
+        HpmModel::check_budget(
+            budget,
+            columns,
+            layers,
+            analysis,
+            MemoryParts::CholeskyOrdering,
+        )?;
         let stiffness = model.stiffness();
         let start = std::time::Instant::now();
         let lower = stiffness
@@ -392,9 +465,13 @@ impl HpmSolver<SparseCholesky> {
         let factor = solver.factor_bytes().unwrap_or(0);
         let factored = own.saturating_add(compressed).saturating_add(factor);
         let entries = solver.factor_entries_analysed();
-        HpmModel::check_budget(budget, columns, layers, factored, || {
-            cholesky_parts(Some(entries))
-        })?;
+        HpmModel::check_budget(
+            budget,
+            columns,
+            layers,
+            factored,
+            MemoryParts::CholeskyFactor { entries },
+        )?;
         // The analysis' workspace may outweigh a small factor.
         let estimate = analysis.max(factored);
         LinearSolver::<crate::linsolve::SparseMatrix>::factor(&mut solver, &lower)
@@ -445,12 +522,7 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
             columns,
             layers,
             estimate,
-            || {
-                format!(
-                    "{}, and the conjugate gradients' dense column blocks, (12 × layers)² numbers a column",
-                    super::model::MODEL_PARTS
-                )
-            },
+            MemoryParts::ColumnBlocks,
         )?;
         let groups = model
             .columns
@@ -785,14 +857,16 @@ impl HpmResult {
     /// `c / tan φ`, as under a large seismic coefficient), so that the
     /// ratio would be zero or negative.
     pub fn safety_factor(&self, model: &HpmModel) -> Result<f64> {
-        let what = "HPM stress ratio Σ(c + σ tan φ)A / Σ|τ|A";
-        self.driven(model, what)?;
+        self.driven(model, SafetyFactorKind::StressRatio)?;
         let (num, den) = self.strength_and_shear(model);
         resisting_over_driving(
             num.iter().sum(),
             den.iter().sum(),
             model.total_weight(),
-            || format!("{what}: the slip springs' shear, Σ|τ|A"),
+            SafetyFactorTerm {
+                factor: SafetyFactorKind::StressRatio,
+                force: DrivingForce::SpringShear,
+            },
             || self.tension(model),
         )
     }
@@ -824,7 +898,7 @@ impl HpmResult {
     /// The plan direction of the resultant shear force, or the
     /// [`DismechError::NothingDrivesSliding`] of `what` when its horizontal
     /// part is not above [`MIN_DRIVING_RATIO`] of the weight.
-    fn driven(&self, model: &HpmModel, what: &str) -> Result<(f64, f64)> {
+    fn driven(&self, model: &HpmModel, factor: SafetyFactorKind) -> Result<(f64, f64)> {
         let resultant = self.resultant_shear(model);
         let plan = resultant.x.hypot(resultant.y);
         let weight = model.total_weight();
@@ -833,9 +907,10 @@ impl HpmResult {
             Ok((resultant.x / plan, resultant.y / plan))
         } else {
             Err(DismechError::NothingDrivesSliding {
-                what: format!(
-                    "{what}: the horizontal part of the slip springs' resultant shear force"
-                ),
+                what: SafetyFactorTerm {
+                    factor,
+                    force: DrivingForce::ResultantShear,
+                },
                 driving: plan,
                 weight,
                 ratio: MIN_DRIVING_RATIO,
@@ -849,7 +924,7 @@ impl HpmResult {
     /// sliding: the resultant's horizontal part is not above
     /// [`MIN_DRIVING_RATIO`] of the slide's weight.
     pub fn sliding_direction(&self, model: &HpmModel) -> Option<(f64, f64)> {
-        self.driven(model, "").ok()
+        self.driven(model, SafetyFactorKind::SlidingDirection).ok()
     }
 
     /// Global safety factor along the sliding direction,
@@ -866,10 +941,7 @@ impl HpmResult {
     /// [`DismechError::SlipSurfaceInTension`] when the springs' strength is
     /// not positive (see [`HpmResult::safety_factor_along`]).
     pub fn sliding_safety_factor(&self, model: &HpmModel) -> Result<f64> {
-        let plan = self.driven(
-            model,
-            "HPM along the sliding direction, Σ(c + σ tan φ)A / Σ(τ·d_i)A",
-        )?;
+        let plan = self.driven(model, SafetyFactorKind::SlidingDirection)?;
         self.safety_factor_along(model, plan)
     }
 
@@ -911,12 +983,12 @@ impl HpmResult {
             num,
             den,
             model.total_weight(),
-            || {
-                format!(
-                "HPM along the plan direction ({:.4}, {:.4}): the slip springs' shear along it, Σ(τ·d_i)A",
-                plan.0 / length,
-                plan.1 / length
-            )
+            SafetyFactorTerm {
+                factor: SafetyFactorKind::AlongDirection {
+                    x: plan.0 / length,
+                    y: plan.1 / length,
+                },
+                force: DrivingForce::ShearAlong,
             },
             || self.tension(model),
         )

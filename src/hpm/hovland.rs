@@ -29,7 +29,9 @@
 
 use nalgebra::Vector3;
 
-use super::analysis::{resisting_over_driving, Tension};
+use super::analysis::{
+    resisting_over_driving, DrivingForce, SafetyFactorKind, SafetyFactorTerm, Tension,
+};
 use super::material::{horizontal_unit, Seismic};
 use super::model::HpmModel;
 use crate::error::Result;
@@ -105,11 +107,11 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
         resisting,
         driving,
         model.total_weight(),
-        || {
-            format!(
-                "Hovland's method sliding towards {:.1}° from +x: Σ T",
-                dy.atan2(dx).to_degrees().rem_euclid(360.0)
-            )
+        SafetyFactorTerm {
+            factor: SafetyFactorKind::Hovland {
+                towards_deg: dy.atan2(dx).to_degrees().rem_euclid(360.0),
+            },
+            force: DrivingForce::ColumnDriving,
         },
         || {
             Tension::of(

@@ -71,8 +71,9 @@ pub use crate::kinematics::affine3::{
     ELEMENT_DOF,
 };
 pub use analysis::{
-    Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
-    SurfacePoint, EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
+    Convergence, DrivingForce, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings,
+    SafetyFactorKind, SafetyFactorTerm, SpringTraction, SurfacePoint, EQUILIBRIUM_TOLERANCE,
+    MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
@@ -80,7 +81,9 @@ pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use maps::{ColumnMaps, HOVLAND_MAP_NAMES, HPM_MAP_NAMES};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
-pub use model::{Element, GridColumn, HpmModel, Interface, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY};
+pub use model::{
+    Element, GridColumn, HpmModel, Interface, MemoryParts, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY,
+};
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
     strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,

@@ -141,7 +141,50 @@ fn per_columns(
 }
 
 /// What [`HpmModel::memory_estimate`] counts, for a refusal.
-pub(super) const MODEL_PARTS: &str = "its elements, springs, block stiffness and solution vectors";
+const MODEL_PARTS: &str = "its elements, springs, block stiffness and solution vectors";
+
+/// What the memory of an HPM model refused for its size counts
+/// ([`DismechError::HpmModelTooLarge`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MemoryParts {
+    /// The model: its elements, springs, block stiffness and solution
+    /// vectors ([`HpmModel::memory_estimate`]).
+    Model,
+    /// The model, and the sparse Cholesky solver's compressed lower
+    /// triangle and the workspace of its ordering, before the factor's
+    /// fill is known ([`HpmModel::cholesky_estimate`]).
+    CholeskyOrdering,
+    /// The model, and the sparse Cholesky solver's compressed lower
+    /// triangle and its factor, counted by the symbolic analysis.
+    CholeskyFactor {
+        /// Entries of the factor.
+        entries: usize,
+    },
+    /// The model, and the conjugate gradients' dense column blocks
+    /// ([`HpmModel::column_blocks_estimate`]).
+    ColumnBlocks,
+}
+
+impl std::fmt::Display for MemoryParts {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        const NO_FACTOR: &str = "(HpmSolver::iterative, conjugate gradients, needs no factor)";
+        match self {
+            Self::Model => f.write_str(MODEL_PARTS),
+            Self::CholeskyOrdering => write!(
+                f,
+                "{MODEL_PARTS}, and the sparse Cholesky solver's compressed lower triangle and the workspace of its ordering (its factor's fill comes on top) {NO_FACTOR}"
+            ),
+            Self::CholeskyFactor { entries } => write!(
+                f,
+                "{MODEL_PARTS}, and the sparse Cholesky solver's compressed lower triangle and its factor of {entries} entries with faer's workspace {NO_FACTOR}"
+            ),
+            Self::ColumnBlocks => write!(
+                f,
+                "{MODEL_PARTS}, and the conjugate gradients' dense column blocks, (12 × layers)² numbers a column"
+            ),
+        }
+    }
+}
 
 /// Mean of four corner heights (eqs. 5–7).
 fn mean(z: &[f64; 4]) -> f64 {
@@ -228,7 +271,7 @@ impl HpmModel {
             .saturating_mul(columns as u128)
     }
 
-    /// Refuse `bytes` (the model's and what a solver adds, as `what()`
+    /// Refuse `bytes` (the model's and what a solver adds, as `what`
     /// says) when they are over the model's memory budget `budget`
     /// ([`HpmSettings::memory_budget`]), or, with no budget set, when the
     /// system's allocator will not give them: they are asked for and given
@@ -239,7 +282,7 @@ impl HpmModel {
         columns: usize,
         layers: usize,
         bytes: u128,
-        what: impl FnOnce() -> String,
+        what: MemoryParts,
     ) -> Result<()> {
         // Beyond the address space nothing fits, whatever the budget.
         let fits = usize::try_from(bytes).is_ok_and(|len| match budget {
@@ -253,7 +296,7 @@ impl HpmModel {
             columns,
             layers,
             elements: columns as u128 * layers as u128,
-            what: what(),
+            what,
             bytes,
             budget,
         })
@@ -297,7 +340,7 @@ impl HpmModel {
             valid.len(),
             layers,
             Self::memory_estimate(valid.len(), layers),
-            || MODEL_PARTS.into(),
+            MemoryParts::Model,
         )?;
         // Within the budget, so these products are far below usize::MAX.
         let mut columns = Vec::with_capacity(valid.len());

@@ -435,15 +435,14 @@ impl<const N: usize> Body<N> {
         let edges = self.vertex_count();
         for &(edge, traction) in &self.edge_tractions {
             let reason = if self.polygon().is_none() {
-                "the body is not a polygon and has no edges; apply a load to a polygon's edge"
-                    .to_string()
+                EdgeTractionProblem::NotAPolygon
             } else if edge >= edges {
-                format!("the block has {edges} edges, numbered 0 to {}", edges - 1)
+                EdgeTractionProblem::NoSuchEdge { edges }
             } else if !(traction.x.is_finite() && traction.y.is_finite()) {
-                format!(
-                    "the traction ({}, {}) Pa is not finite",
-                    traction.x, traction.y
-                )
+                EdgeTractionProblem::NotFinite {
+                    x: traction.x,
+                    y: traction.y,
+                }
             } else {
                 continue;
             };
@@ -462,4 +461,27 @@ impl<const N: usize> Body<N> {
             .as_ref()
             .is_some_and(|p| p.mask.iter().all(|m| *m))
     }
+}
+
+/// What is wrong with an edge traction
+/// ([`crate::error::DismechError::InvalidEdgeTraction`]).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum EdgeTractionProblem {
+    /// The body is not a polygon: it has no edge to load.
+    #[error("the body is not a polygon and has no edges; apply a load to a polygon's edge")]
+    NotAPolygon,
+    /// The edge index is at or beyond the polygon's edge count.
+    #[error("the block has {edges} edges, numbered 0 to {}", .edges - 1)]
+    NoSuchEdge {
+        /// The polygon's number of edges.
+        edges: usize,
+    },
+    /// A component of the traction is not finite.
+    #[error("the traction ({x}, {y}) Pa is not finite")]
+    NotFinite {
+        /// The traction's x component (Pa).
+        x: f64,
+        /// Its y component (Pa).
+        y: f64,
+    },
 }

@@ -9,7 +9,7 @@ use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
 use super::laws::ContactLaws;
 use super::motion;
-use super::report::{ContactReport, Halvings, StepFailure, StepReport};
+use super::report::{ContactReport, Halvings, StepFailure, StepReport, StepTooSmall};
 use super::settings::{ImplicitSettings, Predictor};
 use super::step::{body_dofs, Parts, StepData, Trial};
 use crate::broad_phase::CellGrid;
@@ -665,20 +665,16 @@ where
     ) -> Result<StepReport> {
         require_positive("time step dt", dt)?;
         let smallest = dt * self.settings.min_dt_ratio;
-        let too_small = |reason: String| DismechError::TimeStepTooSmall {
+        let too_small = |reason: StepTooSmall| DismechError::TimeStepTooSmall {
             dt,
             time: self.time,
             reason,
         };
         if !smallest.is_normal() {
-            return Err(too_small(format!(
-                "its smallest sub-step dt × min_dt_ratio = {smallest:e} s is not a normal number; take a larger dt or min_dt_ratio"
-            )));
+            return Err(too_small(StepTooSmall::SubStepNotNormal { smallest }));
         }
         if self.time + dt == self.time {
-            return Err(too_small(
-                "added to the time reached it leaves it unchanged in double precision; take a larger dt".into(),
-            ));
+            return Err(too_small(StepTooSmall::ClockUnchanged));
         }
         if self.requested_dt != Some(dt) {
             self.requested_dt = Some(dt);

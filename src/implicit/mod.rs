@@ -105,11 +105,13 @@ mod report;
 mod settings;
 mod step;
 
-pub use body::{Body, BodyGeometry, BodyMaterial, Motion, PlaneState, Prescribed};
+pub use body::{
+    Body, BodyGeometry, BodyMaterial, EdgeTractionProblem, Motion, PlaneState, Prescribed,
+};
 pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
 pub use laws::ContactLaws;
-pub use report::{ContactReport, Halvings, StepFailure, StepReport};
+pub use report::{ContactReport, Halvings, StepFailure, StepReport, StepTooSmall};
 pub use settings::{ImplicitSettings, Predictor, MIN_DT_RATIO_FLOOR};
 
 #[cfg(test)]

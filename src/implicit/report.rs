@@ -240,3 +240,22 @@ mod tests {
         assert_eq!(failure.to_string(), body.to_string());
     }
 }
+
+/// Why a time step is too small for the implicit driver's clock
+/// ([`crate::error::DismechError::TimeStepTooSmall`]).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum StepTooSmall {
+    /// Its smallest sub-step `dt × min_dt_ratio` is not a normal number:
+    /// the halving would never end.
+    #[error("its smallest sub-step dt × min_dt_ratio = {smallest:e} s is not a normal number; take a larger dt or min_dt_ratio")]
+    SubStepNotNormal {
+        /// The smallest sub-step `dt × min_dt_ratio` (s).
+        smallest: f64,
+    },
+    /// Added to the time reached, it leaves the clock unchanged in double
+    /// precision.
+    #[error(
+        "added to the time reached it leaves it unchanged in double precision; take a larger dt"
+    )]
+    ClockUnchanged,
+}

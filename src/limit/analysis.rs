@@ -394,9 +394,10 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
         .iter()
         .any(|c| c.partner == Partner::Support(plate))
     {
-        return Err(DismechError::PlateTouchesNothing(
-            model.supports()[plate].name.clone(),
-        ));
+        return Err(DismechError::PlateTouchesNothing {
+            support: plate,
+            name: model.supports()[plate].name.clone(),
+        });
     }
     Ok(Driver::Plate {
         plate,
@@ -502,7 +503,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
     result: &LimitResult,
 ) -> Result<Uniqueness> {
     let kinematic = result.kinematic_load.ok_or(DismechError::NoLimitLoad {
-        status: format!("{:?}", result.status),
+        status: result.status,
         what: "the uniqueness test of the mechanism",
     })?;
     let KinematicLp {

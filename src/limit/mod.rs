@@ -50,7 +50,8 @@ pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniq
 pub use equilibrium::{admissibility, Admissibility};
 pub use from_dem::{model_from_packing, PackingLimitSettings};
 pub use model::{
-    LimitBody, LimitContact, LimitModel, LiveLoad, LoadDriver, Partner, PlasticContact, Support,
+    LimitBody, LimitContact, LimitModel, LiveLoad, LoadDriver, NamedPartner, Partner,
+    PlasticContact, Support,
 };
 pub use static_lp::analyse_static;
 pub use verdict::CERTIFICATE_TOLERANCE;

@@ -190,6 +190,31 @@ pub enum Partner {
     Support(usize),
 }
 
+/// What a refused contact was declared against, with the support's name
+/// ([`crate::error::DismechError::ContactNotTouching`],
+/// [`crate::error::DismechError::DuplicateContact`]).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum NamedPartner {
+    /// Another element.
+    Element(usize),
+    /// A support.
+    Support {
+        /// Index of the support.
+        support: usize,
+        /// Its name.
+        name: String,
+    },
+}
+
+impl std::fmt::Display for NamedPartner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Element(j) => write!(f, "element {j}"),
+            Self::Support { name, .. } => write!(f, "support `{name}`"),
+        }
+    }
+}
+
 /// A contact of element `body` with `partner`, with its geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LimitContact {
@@ -338,7 +363,7 @@ impl LimitModel {
     fn push_contact(
         &mut self,
         contact: LimitContact,
-        partner_name: String,
+        partner_name: NamedPartner,
         one_point: bool,
     ) -> Result<usize> {
         let index = self.contacts.len();
@@ -527,7 +552,7 @@ impl LimitModel {
                     a.centre + normal * radius_a,
                     normal,
                     distance - radius_a - radius_b,
-                    format!("element {j}"),
+                    NamedPartner::Element(j),
                 )
             }
             Partner::Support(s) => {
@@ -540,7 +565,10 @@ impl LimitModel {
                     a.centre - support.normal * radius_a,
                     -support.normal,
                     distance - radius_a,
-                    format!("support `{}`", support.name),
+                    NamedPartner::Support {
+                        support: s,
+                        name: support.name.clone(),
+                    },
                 )
             }
         };
@@ -611,7 +639,7 @@ impl LimitModel {
             Partner::Body(j) if j >= count => {
                 return Err(DismechError::NoSuchBody { index: j, count });
             }
-            Partner::Body(j) => format!("element {j}"),
+            Partner::Body(j) => NamedPartner::Element(j),
             Partner::Support(s) => {
                 let support = self.supports.get(s).ok_or(DismechError::NoSuchBody {
                     index: s,
@@ -619,7 +647,10 @@ impl LimitModel {
                 })?;
                 let gap = (point - support.point).dot(&support.normal);
                 let facing = normal.dot(&support.normal) < 0.0;
-                let name = format!("support `{}`", support.name);
+                let name = NamedPartner::Support {
+                    support: s,
+                    name: support.name.clone(),
+                };
                 if gap.abs() > self.tolerance || !facing {
                     return Err(DismechError::ContactNotTouching {
                         contact: index,
@@ -746,7 +777,7 @@ impl LimitModel {
                 if points.is_empty() {
                     apart = Some((b.centre - a.centre).norm());
                 }
-                format!("element {j}")
+                NamedPartner::Element(j)
             }
             Partner::Support(s) => {
                 let support = self
@@ -791,7 +822,10 @@ impl LimitModel {
                 if points.is_empty() {
                     apart = heights.iter().map(|p| p.1).reduce(f64::min);
                 }
-                format!("support `{}`", support.name)
+                NamedPartner::Support {
+                    support: s,
+                    name: support.name.clone(),
+                }
             }
         };
         if let Some(gap) = apart {

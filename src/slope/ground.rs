@@ -79,7 +79,7 @@ impl PoreRatio {
         match self {
             PoreRatio::Constant(v) if bad(*v) => Err(DismechError::PoreRatioOutOfRange {
                 source_name: "the constant".to_string(),
-                location: "every cell".to_string(),
+                cell: None,
                 value: *v,
             }),
             PoreRatio::Constant(_) => Ok(()),
@@ -89,7 +89,7 @@ impl PoreRatio {
                     if let Some(v) = v.filter(|v| bad(*v)) {
                         return Err(DismechError::PoreRatioOutOfRange {
                             source_name: r.name.clone(),
-                            location: format!("row {}, column {}", i / columns, i % columns),
+                            cell: Some((i / columns, i % columns)),
                             value: v,
                         });
                     }

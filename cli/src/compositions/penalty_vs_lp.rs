@@ -27,7 +27,7 @@
 //! limit load, up to the change of geometry over the plate's travel.
 //! [`penalty_vs_lp`] does this for paper 002's rolling U-model.
 
-use dismech::error::{require_positive, DismechError, Result};
+use dismech::error::{require_positive, DismechError, PenaltyRefusal, Result};
 use dismech::implicit::{
     Body, BodyMaterial, ContactLaws, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
     Prescribed, StepReport,
@@ -98,7 +98,7 @@ impl PushoverModel {
     }
 }
 
-fn refuse(reason: String) -> DismechError {
+fn refuse(reason: PenaltyRefusal) -> DismechError {
     DismechError::PenaltyModel(reason)
 }
 
@@ -106,10 +106,9 @@ fn refuse(reason: String) -> DismechError {
 fn penalty_law(law: &PlasticContact, penalty: f64) -> Result<PenaltyCoulomb> {
     if law.is_unilateral() {
         if law.cohesion() > 0.0 {
-            return Err(refuse(format!(
-                "a contact that may open has cohesion {}; the penalty law has none",
-                law.cohesion()
-            )));
+            return Err(refuse(PenaltyRefusal::CohesiveOpening {
+                cohesion: law.cohesion(),
+            }));
         }
         PenaltyCoulomb::new(penalty, law.friction(), FrictionIntegration::ReturnMapping)
     } else {
@@ -139,10 +138,10 @@ fn support_wall(limit: &LimitModel, k: usize, index: usize) -> Result<Body<3>> {
             (lo.min(t), hi.max(t))
         });
     if !lo.is_finite() {
-        return Err(refuse(format!(
-            "support {k} ({}) has no contact",
-            support.name
-        )));
+        return Err(refuse(PenaltyRefusal::SupportWithoutContact {
+            support: k,
+            name: support.name.clone(),
+        }));
     }
     let at = |t: f64| support.point + along * t;
     Body::wall(Segment::new(at(lo - margin), at(hi + margin)), index)
@@ -170,7 +169,7 @@ pub fn pushover_model(limit: &LimitModel, penalty: f64, search: f64) -> Result<P
     let mut bodies = Vec::with_capacity(n + limit.supports().len());
     for (i, b) in limit.bodies().iter().enumerate() {
         let AnyShape2::Circle(circle) = &b.shape else {
-            return Err(refuse(format!("element {i} is not a circle")));
+            return Err(refuse(PenaltyRefusal::NotACircle { element: i }));
         };
         let mut body = Body::circle(b.centre, circle.radius(), material, i)?;
         if !b.rotates {
@@ -185,10 +184,9 @@ pub fn pushover_model(limit: &LimitModel, penalty: f64, search: f64) -> Result<P
         .filter(|&k| limit.supports()[k].velocity.norm() > 0.0)
         .collect();
     let [plate_support] = moving[..] else {
-        return Err(refuse(format!(
-            "{} supports move; a pushover needs exactly one plate",
-            moving.len()
-        )));
+        return Err(refuse(PenaltyRefusal::MovingSupports {
+            count: moving.len(),
+        }));
     };
     for k in 0..limit.supports().len() {
         let mut wall = support_wall(limit, k, n + k)?;
@@ -258,20 +256,20 @@ fn group_laws(
         };
         match table.iter().find(|(g, _)| *g == groups) {
             Some((_, law)) if *law != c.law => {
-                return Err(refuse(format!(
-                    "contact {index} has strength c = {}, tan phi = {}, unlike another contact of the same kind (c = {}, tan phi = {})",
-                    c.law.cohesion(),
-                    c.law.friction(),
-                    law.cohesion(),
-                    law.friction()
-                )))
+                return Err(refuse(PenaltyRefusal::UnlikeStrengths {
+                    contact: index,
+                    cohesion: c.law.cohesion(),
+                    friction: c.law.friction(),
+                    other_cohesion: law.cohesion(),
+                    other_friction: law.friction(),
+                }))
             }
             Some(_) => {}
             None => table.push((groups, c.law)),
         }
     }
     let Some(((_, _), first)) = table.first() else {
-        return Err(refuse("the limit model has no contact".into()));
+        return Err(refuse(PenaltyRefusal::NoContact));
     };
     let mut laws = ContactLaws::uniform(penalty_law(first, penalty)?);
     for ((a, b), law) in &table {
@@ -445,9 +443,11 @@ pub fn penalty_vs_lp(setup: &UModelPushover) -> Result<PenaltyVsLp> {
     }
     let limit = setup.lattice.build()?;
     let result = analyse(&limit, &mut LinearProgramSolver::default())?;
-    let lp_load = result
-        .load
-        .ok_or_else(|| refuse(format!("the LP found no collapse ({:?})", result.status)))?;
+    let lp_load = result.load.ok_or_else(|| {
+        refuse(PenaltyRefusal::NoCollapse {
+            status: result.status,
+        })
+    })?;
     let curves = setup
         .penalties
         .iter()
