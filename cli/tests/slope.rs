@@ -790,3 +790,121 @@ fn layers_and_ru_are_those_of_the_library_search() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--hpm 2 --hpm-nonlinear`: the two most critical surfaces re-analysed by
+/// HPM. The slip surface written (`hpm_slip.asc`) is the library's raster
+/// of the library search's most critical surface bit for bit; HPM run
+/// directly on it and the DEM, read from their files, gives the Fs of
+/// summary.json and critical.csv and the maps `hpm_*.asc` bit for bit;
+/// the third surface, not re-analysed, has empty HPM columns; `--hpm` with
+/// layered ground is refused naming `--hpm`.
+#[test]
+fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
+    use dismech::hpm::{
+        HpmMaterial, HpmModel, HpmSettings, HpmSolver, NonlinearSettings, Seismic, SlopeGrids,
+    };
+    let dir = scratch("hpm");
+    let out = dir.join("run");
+    let mut args = vec!["--search", "ellipsoids", "--count", "5000", "--seed", "11"];
+    args.extend_from_slice(&["--keep", "3", "--hpm", "2", "--hpm-nonlinear"]);
+    let run = slope(&out, &args);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let terrain = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem), None).unwrap();
+    let lib = search(
+        &terrain,
+        &material(),
+        &SlopeLoads::default(),
+        &ellipsoids_5000(),
+        &SearchSettings::default(),
+        |_, _| {},
+    )
+    .unwrap();
+    let worst = lib.lowest().unwrap();
+    let slip = read_esri_ascii(&out.join("hpm_slip.asc")).unwrap();
+    let expected = dismech::slope::surface_raster(&terrain, &worst.surface).unwrap();
+    assert_eq!(bits(&slip), bits(&expected));
+
+    let grids = SlopeGrids::read(&terrain_file(), &out.join("hpm_slip.asc"), None).unwrap();
+    let hpm_material = HpmMaterial {
+        cohesion: 20e3,
+        friction_coefficient: friction_from_degrees(30.0).unwrap(),
+        unit_weight: 20e3,
+        submerged_unit_weight: 20e3 - 9810.0,
+        ..HpmMaterial::paper()
+    };
+    let model = HpmModel::new(&grids, &hpm_material, &HpmSettings::default()).unwrap();
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.0,
+        direction: worst.result.direction,
+    };
+    let elastic = solver.elastic(&model, &seismic).unwrap();
+    let plastic = solver
+        .nonlinear(&model, &seismic, 1.0, &NonlinearSettings::default())
+        .unwrap();
+    let elastic_fs = elastic.sliding_safety_factor(&model).unwrap();
+    let plastic_fs = plastic.sliding_safety_factor(&model).unwrap();
+
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let first = &summary["hpm"]["results"][0];
+    assert_eq!(first["trial"], worst.trial);
+    assert_eq!(first["columns"], model.columns.len());
+    assert_eq!(
+        first["elastic"]["fs"].as_f64().unwrap().to_bits(),
+        elastic_fs.to_bits()
+    );
+    assert_eq!(
+        first["nonlinear"]["fs"].as_f64().unwrap().to_bits(),
+        plastic_fs.to_bits()
+    );
+    assert_eq!(
+        first["hovland_fs"].as_f64().unwrap().to_bits(),
+        worst.result.safety_factor.to_bits()
+    );
+    assert_eq!(summary["hpm"]["results"].as_array().unwrap().len(), 2);
+
+    let csv = std::fs::read_to_string(out.join("critical.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let column = |name: &str| rows[0].iter().position(|h| *h == name).unwrap();
+    let (e, n) = (column("hpm_elastic_fs"), column("hpm_nonlinear_fs"));
+    assert_eq!(rows.len(), 4);
+    assert_eq!(
+        rows[1][e].parse::<f64>().unwrap().to_bits(),
+        elastic_fs.to_bits()
+    );
+    assert_eq!(
+        rows[1][n].parse::<f64>().unwrap().to_bits(),
+        plastic_fs.to_bits()
+    );
+    assert!(!rows[2][e].is_empty() && !rows[2][n].is_empty());
+    assert_eq!((rows[3][e], rows[3][n]), ("", ""));
+
+    for (prefix, result) in [("hpm", &elastic), ("hpm_nonlinear", &plastic)] {
+        for (name, raster) in result.maps(&model, &grids).unwrap().maps {
+            let written = read_esri_ascii(&out.join(format!("{prefix}_{name}.asc"))).unwrap();
+            assert_eq!(bits(&written), bits(&raster), "{prefix}_{name}");
+        }
+    }
+
+    // Layered ground: refused before the search, naming --hpm.
+    let layer = format!("soft:{}:5e3:20:18e3", dir.join("any.asc").display());
+    let refused = slope(
+        &dir.join("layered"),
+        &["--search", "spheres", "--hpm", "1", "--layer", &layer],
+    );
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--hpm 1") && stderr.contains("layered"),
+        "{stderr}"
+    );
+    assert!(!dir.join("layered").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
