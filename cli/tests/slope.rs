@@ -908,3 +908,61 @@ fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
     assert!(!dir.join("layered").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--bedrock`: the map equals the library's search over the terrain with
+/// the same bedrock bit for bit, and differs from the run without it; a
+/// bedrock on another grid is refused naming `--bedrock` and the file.
+#[test]
+fn a_bedrock_is_that_of_the_library_search() {
+    let dir = scratch("bedrock");
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let (x0, y0) = dem.lower_left();
+    let values = dem.values().iter().map(|v| v.map(|z| z - 30.0)).collect();
+    let rock = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+    let rock_path = dir.join("rock.asc");
+    dismech::grid::write_esri_ascii(&rock_path, &rock).unwrap();
+    let with = fs_map_of(
+        &dir.join("with"),
+        &["--bedrock", rock_path.to_str().unwrap()],
+    );
+    let without = fs_map_of(&dir.join("without"), &[]);
+    let terrain = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem.clone()), None)
+        .unwrap()
+        .with_bedrock(dismech::hpm::NamedRaster::new("rock", rock))
+        .unwrap();
+    let lib = search(
+        &terrain,
+        &material(),
+        &SlopeLoads::default(),
+        &ellipsoids_5000(),
+        &SearchSettings::default(),
+        |_, _| {},
+    )
+    .unwrap();
+    assert_eq!(bits(&with), bits(&lib.safety_factor_raster().unwrap()));
+    assert_ne!(bits(&with), bits(&without));
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("with").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(summary["bedrock"], rock_path.display().to_string());
+
+    let small = dir.join("small.asc");
+    std::fs::write(
+        &small,
+        "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 75\n1 2 3\n4 5 6\n7 8 9\n",
+    )
+    .unwrap();
+    let refused = slope(
+        &dir.join("refused"),
+        &["--search", "spheres", "--bedrock", small.to_str().unwrap()],
+    );
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(&format!("--bedrock {}", small.display())),
+        "{stderr}"
+    );
+    assert!(!dir.join("refused").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

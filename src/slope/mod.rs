@@ -12,7 +12,7 @@
 //!
 //! | concept | items | file |
 //! |---|---|---|
-//! | the ground | [`Terrain`] (DEM and optional water table), [`Terrain::fall_line`] | `terrain.rs` |
+//! | the ground | [`Terrain`] (DEM, optional water table and bedrock: [`Terrain::with_bedrock`] truncates the trial surfaces), [`Terrain::fall_line`] | `terrain.rs` |
 //! | strength and loads | [`SlopeMaterial`] (c, μ = tan φ, γ), [`SlopeLoads`] (k_h, γ_w) | `material.rs` |
 //! | layered ground, r_u | [`Ground`] (strength [`Layer`]s bounded by elevation rasters, Scoops3D's convention), [`PoreRatio`] (Bishop & Morgenstern's r_u), [`ColumnGround`] | `ground.rs` |
 //! | trial surfaces | [`TrialSurface`]: [`Sphere`], [`Ellipsoid`]; [`surface_columns`], [`SlipColumn`], [`SurfaceLimits`], [`Refusal`] | `surface.rs` |

@@ -91,7 +91,9 @@ impl HpmStiffness {
 /// A trial surface as a slip-surface raster on the DEM's grid: its lower
 /// half at each cell centre of its plan footprint where the DEM has data
 /// (also where it lies above the ground: HPM's valid columns are those
-/// where it lies below, §5), no data elsewhere.
+/// where it lies below, §5), raised to the bedrock where it would go below
+/// it ([`Terrain::with_bedrock`], as [`super::surface_columns`] does), no
+/// data elsewhere.
 ///
 /// # Errors
 /// Those of [`Raster::new`] (none for a terrain's grid).
@@ -105,7 +107,11 @@ pub fn surface_raster<S: TrialSurface>(terrain: &Terrain, surface: &S) -> Result
                 continue;
             }
             let (x, y) = dem.cell_centre(r, c);
-            values[r * columns + c] = surface.base(x, y).map(|(z, _)| z);
+            let rock = terrain.bedrock_at(r, c).map(|(z, _)| z);
+            values[r * columns + c] = surface.base(x, y).map(|(z, _)| match rock {
+                Some(rock) if z < rock => rock,
+                _ => z,
+            });
         }
     }
     let (x0, y0) = dem.lower_left();

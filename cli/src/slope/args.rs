@@ -95,6 +95,12 @@ pub struct SlopeArgs {
     /// grid (or GeoTIFF) on the DEM's grid. Without it the ground is dry.
     #[arg(long, value_name = "FILE")]
     pub water: Option<PathBuf>,
+    /// Bedrock: elevations (m) of a surface no slip surface goes below, an
+    /// ESRI ASCII grid (or GeoTIFF) on the DEM's grid. A trial surface
+    /// that would go deeper follows it (Scoops3D's and r.slope.stability's
+    /// truncation); no column where it lies above the ground.
+    #[arg(long, value_name = "FILE")]
+    pub bedrock: Option<PathBuf>,
     /// Pore-pressure ratio r_u (Bishop & Morgenstern 1960): the pore
     /// pressure on a base is u = r_u σ_v, with σ_v = Σ γ_i t_i the vertical
     /// stress of the ground above it. A constant in [0, 1) or an ESRI ASCII

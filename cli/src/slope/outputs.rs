@@ -300,6 +300,7 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
     serde_json::json!({
         "dem": args.dem.display().to_string(),
         "water": args.water.as_ref().map(|w| w.display().to_string()),
+        "bedrock": args.bedrock.as_ref().map(|b| b.display().to_string()),
         "grid": {
             "rows": dem.rows(),
             "columns": dem.columns(),
