@@ -126,6 +126,17 @@ fn check_geotiff_grid(tif: &Path, header: &[(String, f64)]) {
         String::from_utf8_lossy(&out.stderr)
     );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The DEM's coordinate system (its `.prj`), as GDAL reads it beside
+    // the DEM, is the GeoTIFF's.
+    let dem = Command::new("gdalinfo")
+        .arg("-json")
+        .arg(terrain_file())
+        .output()
+        .unwrap();
+    let dem: serde_json::Value = serde_json::from_slice(&dem.stdout).unwrap();
+    let crs = |v: &serde_json::Value| v["coordinateSystem"]["wkt"].as_str().unwrap().to_string();
+    assert!(crs(&dem).contains("UTM zone 16N"), "{}", crs(&dem));
+    assert_eq!(crs(&json), crs(&dem), "{tif:?}");
     let size: Vec<f64> = json["size"]
         .as_array()
         .unwrap()

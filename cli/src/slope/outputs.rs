@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
-use dismech::grid::{write_rasters, RasterFormat};
+use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
 use dismech::slope::{surface_columns, SearchCounts, SearchResult, Terrain, TrialSurface};
 
 use super::args::SlopeArgs;
@@ -178,24 +178,45 @@ pub fn write<S: TrialSurface + Copy>(
     let mut files = Vec::new();
     let name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
     // ESRI ASCII grids and GeoTIFF beside them, on the DEM's grid.
-    let mut rasters = result.write_maps_as(dir, MAP_PREFIX, &RasterFormat::ALL)?;
+    // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
+    // beside it, copied from the DEM's; a GeoTIFF carries it inside (GDAL
+    // ignores a `.prj` beside a GeoTIFF).
+    let prj = args.dem.with_extension("prj");
+    let wkt = if prj.is_file() {
+        let text = std::fs::read_to_string(&prj).map_err(|e| {
+            SlopeError::argument(
+                "--dem",
+                &args.dem.display().to_string(),
+                DismechError::GridFormat {
+                    file: prj.display().to_string(),
+                    line: 0,
+                    column: 0,
+                    message: format!(
+                        "the coordinate system beside the DEM cannot be read as text: {e}"
+                    ),
+                },
+            )
+        })?;
+        Some(text)
+    } else {
+        None
+    };
+    let wkt = wkt.as_deref();
+    let all = &RasterFormat::ALL;
+    let mut rasters = result.write_maps_with_crs(dir, MAP_PREFIX, all, wkt)?;
     if let Some(worst) = &hpm.worst {
         let slip = [("slip", &worst.grids.slip().raster)];
-        rasters.extend(write_rasters(dir, HPM_PREFIX, &slip, &RasterFormat::ALL)?);
-        rasters.extend(
-            worst
-                .elastic_maps()?
-                .write(dir, HPM_PREFIX, &RasterFormat::ALL)?,
-        );
-        if let Some(maps) = worst.nonlinear_maps()? {
-            rasters.extend(maps.write(dir, HPM_NONLINEAR_PREFIX, &RasterFormat::ALL)?);
+        rasters.extend(write_rasters_with_crs(dir, HPM_PREFIX, &slip, all, wkt)?);
+        let maps = [
+            (HPM_PREFIX, Some(worst.elastic_maps()?)),
+            (HPM_NONLINEAR_PREFIX, worst.nonlinear_maps()?),
+        ];
+        for (prefix, maps) in maps {
+            let Some(maps) = maps else { continue };
+            let list: Vec<(&str, &Raster)> = maps.maps.iter().map(|(n, r)| (*n, r)).collect();
+            rasters.extend(write_rasters_with_crs(dir, prefix, &list, all, wkt)?);
         }
     }
-    // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
-    // beside it. (A GeoTIFF carries its origin and cell size inside, but
-    // not the DEM's coordinate system, which an ESRI grid does not give:
-    // GDAL ignores a `.prj` beside a GeoTIFF.)
-    let prj = args.dem.with_extension("prj");
     for raster in &rasters {
         files.extend(name(raster));
         if prj.is_file() && RasterFormat::of_path(raster) == RasterFormat::EsriAscii {
