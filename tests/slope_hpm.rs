@@ -188,3 +188,58 @@ fn reanalysis_refuses_layered_ground_and_pore_ratio() {
         );
     }
 }
+
+/// Over a bedrock the slip raster follows the truncated surface: at every
+/// cell of the footprint the larger of the surface and the bedrock, so
+/// that HPM's columns are the search's columns, with the same bases.
+#[test]
+fn reanalysis_follows_the_bedrock() {
+    let dem = valley_dem();
+    let rock = dem.values().iter().map(|v| v.map(|g| g - 3.0)).collect();
+    let (x0, y0) = dem.lower_left();
+    let rock = Raster::new(48, 40, x0, y0, 2.0, rock).unwrap();
+    let terrain = Terrain::new(NamedRaster::new("valley", dem.clone()), None)
+        .unwrap()
+        .with_bedrock(NamedRaster::new("rock", rock.clone()))
+        .unwrap();
+    let result = searched(&terrain);
+    let worst = result.lowest().unwrap();
+    let s = worst.surface;
+    let slip = surface_raster(&terrain, &s).unwrap();
+    let mut truncated = 0;
+    for r in 0..40 {
+        for c in 0..48 {
+            let (x, y) = dem.cell_centre(r, c);
+            let expected = s.base(x, y).map(|(z, _)| {
+                let b = rock.get(r, c).unwrap();
+                if z < b {
+                    truncated += 1;
+                    b
+                } else {
+                    z
+                }
+            });
+            assert_eq!(slip.get(r, c), expected, "cell ({r}, {c})");
+        }
+    }
+    assert!(truncated > 0);
+    let mut columns = Vec::new();
+    surface_columns(&terrain, &s, &mut columns).unwrap();
+    let re = hpm_reanalysis(
+        &terrain,
+        &soil(),
+        &SlopeLoads::default(),
+        &s,
+        &worst.result,
+        &HpmStiffness::default(),
+        &HpmSettings::default(),
+        None,
+    )
+    .unwrap();
+    let cells: Vec<(usize, usize)> = re.model.columns.iter().map(|c| c.cell).collect();
+    let expected: Vec<(usize, usize)> = columns.iter().map(|k| (k.row, k.column)).collect();
+    assert_eq!(cells, expected);
+    for k in &columns {
+        assert_eq!(slip.get(k.row, k.column), Some(k.base));
+    }
+}
