@@ -604,8 +604,8 @@ pub enum DismechError {
         message: String,
     },
     /// Ground that an HPM re-analysis of a trial surface
-    /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM holds one
-    /// material for the whole slide and pore water from a water table.
+    /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold
+    /// one unit weight and it takes pore water from a water table.
     #[error("HPM re-analysis cannot take this ground: {reason}")]
     HpmGround {
         /// What the ground has that HPM cannot take.

@@ -145,8 +145,12 @@ fn reanalysis_equals_a_direct_hpm_run_on_the_surface_raster_bit_for_bit() {
     assert_eq!(model.columns.len(), worst.result.columns);
 }
 
+/// Layered ground of one unit weight: each HPM column's slip springs take
+/// the strength of the layer the surface crosses at its cell centre (a
+/// weak layer 2 m thick over the soil), and the Fs falls below the single
+/// soil's; layers of different unit weights and r_u are refused.
 #[test]
-fn reanalysis_refuses_layered_ground_and_pore_ratio() {
+fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
     let dem = valley_dem();
     let terrain = Terrain::new(NamedRaster::new("valley", dem.clone()), None).unwrap();
     let result = searched(&terrain);
@@ -154,24 +158,28 @@ fn reanalysis_refuses_layered_ground_and_pore_ratio() {
     let shallow = dem.values().iter().map(|v| v.map(|g| g - 2.0)).collect();
     let (x0, y0) = dem.lower_left();
     let bottom = Raster::new(48, 40, x0, y0, 2.0, shallow).unwrap();
-    let layered = Ground::layered(vec![
-        Layer {
-            name: "topsoil".into(),
-            bottom: Some(NamedRaster::new("topsoil.asc", bottom)),
-            material: soil(),
-        },
-        Layer {
-            name: "rock".into(),
-            bottom: None,
-            material: soil(),
-        },
-    ])
-    .unwrap();
-    let ratio = Ground::from(soil())
-        .with_pore_ratio(PoreRatio::Constant(0.2))
-        .unwrap();
-    for (ground, words) in [(&layered, "topsoil, rock"), (&ratio, "r_u")] {
-        let e = hpm_reanalysis(
+    let weak = SlopeMaterial {
+        cohesion: 2e3,
+        friction_coefficient: 20f64.to_radians().tan(),
+        unit_weight: 19e3,
+    };
+    let layered = |top: SlopeMaterial| {
+        Ground::layered(vec![
+            Layer {
+                name: "topsoil".into(),
+                bottom: Some(NamedRaster::new("topsoil.asc", bottom.clone())),
+                material: top,
+            },
+            Layer {
+                name: "rock".into(),
+                bottom: None,
+                material: soil(),
+            },
+        ])
+        .unwrap()
+    };
+    let run = |ground: &Ground| {
+        hpm_reanalysis(
             &terrain,
             ground,
             &SlopeLoads::default(),
@@ -181,7 +189,38 @@ fn reanalysis_refuses_layered_ground_and_pore_ratio() {
             &HpmSettings::default(),
             None,
         )
-        .unwrap_err();
+    };
+    let one = run(&Ground::from(soil())).unwrap();
+    let two = run(&layered(weak)).unwrap();
+    let strengths = two.model.column_strengths();
+    let (mut in_weak, mut in_soil) = (0, 0);
+    for (k, column) in two.model.columns.iter().enumerate() {
+        let (r, c) = column.cell;
+        let base = two.grids.slip().raster.get(r, c).unwrap();
+        let expected = if base > bottom.get(r, c).unwrap() {
+            in_weak += 1;
+            weak
+        } else {
+            in_soil += 1;
+            soil()
+        };
+        assert_eq!(strengths[k].cohesion, expected.cohesion, "({r}, {c})");
+        assert_eq!(strengths[k].friction, expected.friction_coefficient);
+    }
+    assert!(in_weak > 0 && in_soil > 0, "{in_weak} {in_soil}");
+    let fs = |re: &HpmReanalysis| re.elastic.sliding_safety_factor(&re.model).unwrap();
+    assert!(fs(&two) < fs(&one), "{} {}", fs(&two), fs(&one));
+    assert_eq!(one.elastic.displacements, two.elastic.displacements);
+
+    let heavy = SlopeMaterial {
+        unit_weight: 18e3,
+        ..weak
+    };
+    let ratio = Ground::from(soil())
+        .with_pore_ratio(PoreRatio::Constant(0.2))
+        .unwrap();
+    for (ground, words) in [(&layered(heavy), "topsoil 18000"), (&ratio, "r_u")] {
+        let e = run(ground).unwrap_err();
         assert!(
             matches!(&e, DismechError::HpmGround { reason } if reason.contains(words)),
             "{e}"

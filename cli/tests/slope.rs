@@ -917,6 +917,33 @@ fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
         "{stderr}"
     );
     assert!(!dir.join("layered").exists());
+    // A layer of the same unit weight: taken, each column's springs the
+    // strength of the layer they cross; a weak colluvium 40 m thick
+    // lowers HPM's Fs of the worst surface.
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let (x0, y0) = dem.lower_left();
+    let values = dem.values().iter().map(|v| v.map(|z| z - 40.0)).collect();
+    let bottom = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+    let bottom_path = dir.join("colluvium.asc");
+    dismech::grid::write_esri_ascii(&bottom_path, &bottom).unwrap();
+    let layer = format!("colluvium:{}:5e3:22:20e3", bottom_path.display());
+    let mut layered_args = args.clone();
+    layered_args.extend_from_slice(&["--layer", &layer]);
+    let taken = slope(&dir.join("layered_same"), &layered_args);
+    assert_eq!(
+        taken.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&taken.stderr)
+    );
+    let layered_summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("layered_same").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    let layered_fs = layered_summary["hpm"]["results"][0]["elastic"]["fs"]
+        .as_f64()
+        .unwrap();
+    assert!(layered_fs < elastic_fs, "{layered_fs} {elastic_fs}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -12,11 +12,13 @@
 //! cell-centre values (eq. 23). A re-analysis is therefore the same as an
 //! HPM run on that raster read from a file, bit for bit.
 //!
-//! **Ground.** HPM holds one material for the whole slide (§3: averaged
-//! values of c, φ, γ): its slip springs share one strength and its
-//! elements one unit weight. A re-analysis takes the search's ground only
-//! where it is one material without a pore-pressure ratio; layered ground
-//! or r_u is refused ([`DismechError::HpmGround`]). The water table of the
+//! **Ground.** HPM's elements hold one unit weight (§3: averaged values);
+//! its slip springs take the strength of the layer the slip surface
+//! crosses at each column's cell centre
+//! ([`HpmModel::set_column_strength`], as the search's Hovland takes it).
+//! Layered ground is therefore taken where its layers share one unit
+//! weight; layers of different unit weights, or a pore-pressure ratio, are
+//! refused ([`DismechError::HpmGround`]). The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
 //! weight `γ − γ_w` (eqs. 8–10), where Hovland's method of the search
 //! keeps the total weight and takes the pore pressure `γ_w h_p` off the
@@ -30,8 +32,9 @@ use crate::hpm::{
     ColumnMaps, HpmMaterial, HpmModel, HpmResult, HpmSettings, HpmSolver, NamedRaster,
     NonlinearSettings, Seismic, SlopeGrids,
 };
+use crate::law::Strength;
 
-use super::ground::ToGround;
+use super::ground::{Ground, ToGround};
 use super::hovland::SurfaceFs;
 use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::TrialSurface;
@@ -155,8 +158,10 @@ impl HpmReanalysis {
     }
 }
 
-/// The one material of `ground`, or why HPM cannot take it.
-fn one_material(ground: &(impl ToGround + ?Sized)) -> Result<SlopeMaterial> {
+/// The material HPM's model is built with and, for layered ground, the
+/// ground its slip springs take their strength from; or why HPM cannot
+/// take `ground`.
+fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Option<Ground>)> {
     let ground = ground.to_ground();
     if let Some(ratio) = ground.pore_ratio() {
         return Err(DismechError::HpmGround {
@@ -166,31 +171,38 @@ fn one_material(ground: &(impl ToGround + ?Sized)) -> Result<SlopeMaterial> {
             ),
         });
     }
-    match ground.layers() {
-        [one] => Ok(one.material),
-        layers => Err(DismechError::HpmGround {
+    let layers = ground.layers();
+    let first = layers[0].material;
+    if layers.len() == 1 {
+        return Ok((first, None));
+    }
+    if layers
+        .iter()
+        .any(|l| l.material.unit_weight != first.unit_weight)
+    {
+        return Err(DismechError::HpmGround {
             reason: format!(
-                "the ground has {} layers ({}); HPM holds one material for the whole slide (paper 001, §3)",
-                layers.len(),
+                "the layered ground's unit weights differ ({}); HPM's elements hold one unit weight (paper 001, §3), its slip springs the strength of the layer they cross",
                 layers
                     .iter()
-                    .map(|l| l.name.as_str())
+                    .map(|l| format!("{} {} N/m³", l.name, l.material.unit_weight))
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-        }),
+        });
     }
+    Ok((first, Some(ground)))
 }
 
 /// Re-analyse `surface` (a surface of a search over `terrain`, with
 /// Hovland's result `hovland` giving its sliding direction) by HPM:
 /// elastic always, nonlinear where `nonlinear` is given, on the ground
-/// `ground` (one material) under `loads`, with the stiffness `stiffness`
+/// `ground` (one material, or layers of one unit weight) under `loads`, with the stiffness `stiffness`
 /// and the discretisation `settings` (see the module's documentation).
 ///
 /// # Errors
-/// [`DismechError::HpmGround`] for layered ground or a pore-pressure
-/// ratio; those of [`HpmStiffness::material`], [`Seismic::validate`],
+/// [`DismechError::HpmGround`] for layers of different unit weights, a
+/// pore-pressure ratio or a layer's bottom without data under a column; those of [`HpmStiffness::material`], [`Seismic::validate`],
 /// [`SlopeGrids::new`] (a surface that stays above the ground:
 /// [`DismechError::NoValidColumn`]), [`HpmModel::new`], [`HpmSolver::new`]
 /// and of the analyses.
@@ -205,7 +217,8 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     settings: &HpmSettings,
     nonlinear: Option<&NonlinearSettings>,
 ) -> Result<HpmReanalysis> {
-    let material = stiffness.material(&one_material(ground)?, loads)?;
+    let (material, layered) = hpm_ground(ground)?;
+    let material = stiffness.material(&material, loads)?;
     let seismic = Seismic {
         coefficient: loads.seismic_coefficient,
         direction: hovland.direction,
@@ -213,7 +226,32 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     seismic.validate()?;
     let slip = NamedRaster::new("slip surface", surface_raster(terrain, surface)?);
     let grids = SlopeGrids::new(terrain.dem().clone(), slip, terrain.water().cloned())?;
-    let model = HpmModel::new(&grids, &material, settings)?;
+    let mut model = HpmModel::new(&grids, &material, settings)?;
+    if let Some(layered) = &layered {
+        // Each column's springs: the layer the slip surface crosses at the
+        // cell centre, as the search's Hovland takes it.
+        for k in 0..model.columns.len() {
+            let (r, c) = model.columns[k].cell;
+            let at = terrain
+                .ground(r, c)
+                .zip(grids.slip().raster.get(r, c))
+                .and_then(|(g, z)| layered.column(r, c, g, z));
+            let Some(at) = at else {
+                return Err(DismechError::HpmGround {
+                    reason: format!(
+                        "a layer's bottom has no data at cell (row {r}, column {c}), a column of the slide"
+                    ),
+                });
+            };
+            model.set_column_strength(
+                k,
+                Strength {
+                    cohesion: at.cohesion,
+                    friction: at.friction_coefficient,
+                },
+            )?;
+        }
+    }
     let mut solver = HpmSolver::new(&model)?;
     let elastic = solver.elastic(&model, &seismic)?;
     let nonlinear = nonlinear

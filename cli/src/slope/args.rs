@@ -199,7 +199,9 @@ pub struct SlopeArgs {
     /// elastic, and nonlinear with --hpm-nonlinear; their Fs go into
     /// critical.csv and summary.json, the maps of the most critical one
     /// (local Fs, displacement, strains) and its slip surface into
-    /// `hpm_*.asc`/`.tif`. One material only (no --layer, no --ru).
+    /// `hpm_*.asc`/`.tif`. HPM holds one unit weight: a --layer must have
+    /// that of --unit-weight (its slip springs take the strength of the
+    /// layer they cross); no --ru.
     #[arg(long, value_name = "K", default_value_t = 0, value_parser = parse_keep, help_heading = "HPM re-analysis")]
     pub hpm: usize,
     /// Also run HPM's nonlinear analysis (Mohr–Coulomb slip springs, no

@@ -132,24 +132,40 @@ pub struct HpmRuns {
 ///
 /// # Errors
 /// [`SlopeError::Argument`] naming `--hpm` with
-/// [`DismechError::HpmGround`] for `--layer` or `--ru`.
+/// [`DismechError::HpmGround`] for `--ru`, or a `--layer` whose unit
+/// weight is not that of `--unit-weight`.
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     if args.hpm == 0 {
         return Ok(());
     }
-    let reason = if !args.layers.is_empty() {
-        "--layer gives layered ground; HPM holds one material for the whole slide (paper 001, §3)"
-    } else if args.ru.is_some() {
+    let reason = if args.ru.is_some() {
         "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only"
+            .to_string()
+    } else if args
+        .layers
+        .iter()
+        .any(|l| l.unit_weight != args.unit_weight)
+    {
+        let weights: Vec<String> = args
+            .layers
+            .iter()
+            .map(|l| format!("{} {}", l.name, l.unit_weight))
+            .chain(std::iter::once(format!(
+                "--unit-weight {}",
+                args.unit_weight
+            )))
+            .collect();
+        format!(
+            "--layer gives layered ground of different unit weights ({} N/m³); HPM's elements hold one unit weight (paper 001, §3), its slip springs take the strength of the layer they cross",
+            weights.join(", ")
+        )
     } else {
         return Ok(());
     };
     Err(SlopeError::argument(
         "--hpm",
         &args.hpm.to_string(),
-        DismechError::HpmGround {
-            reason: reason.to_string(),
-        },
+        DismechError::HpmGround { reason },
     ))
 }
 
