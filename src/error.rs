@@ -612,6 +612,14 @@ pub enum DismechError {
         /// What is wrong, with the offending file or value.
         message: String,
     },
+    /// Ground that an HPM re-analysis of a trial surface
+    /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold
+    /// one unit weight and it takes pore water from a water table.
+    #[error("HPM re-analysis cannot take this ground: {reason}")]
+    HpmGround {
+        /// What the ground has that HPM cannot take.
+        reason: String,
+    },
     /// A pore-pressure ratio r_u outside `[0, 1)` ([`crate::slope::PoreRatio`]).
     #[error("pore-pressure ratio r_u = {} from {source_name} at {}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value), cell_name(cell))]
     PoreRatioOutOfRange {

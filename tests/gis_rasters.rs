@@ -448,3 +448,51 @@ fn gdal_files_a_raster_cannot_hold_are_refused_naming_the_tag() {
         "{e}"
     );
 }
+
+/// A GeoTIFF written with the coordinate system of a `.prj` (the shipped
+/// terrain's, an ESRI WKT of UTM zone 16N) has, as `gdalinfo -json`
+/// reports it, the coordinate system GDAL reads from the ESRI ASCII grid
+/// with that `.prj` beside it, and its grid and values unchanged; a WKT a
+/// GeoTIFF's key cannot hold is refused naming the file, which is then not
+/// there.
+#[test]
+fn a_geotiff_carries_the_coordinate_system_of_a_prj() {
+    let dir = folder("crs");
+    let dem =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data/terrain/jacksboro_fault.asc");
+    let wkt = std::fs::read_to_string(dem.with_extension("prj")).unwrap();
+    let raster = read_esri_ascii(&dem).unwrap();
+    let tif = dir.join("dem.tif");
+    dismech::grid::write_geotiff_with_crs(&tif, &raster, Some(&wkt)).unwrap();
+    let info = gdalinfo(&tif);
+    let expected = gdalinfo(&dem);
+    let crs = |v: &Value| v["coordinateSystem"]["wkt"].as_str().unwrap().to_string();
+    assert!(
+        crs(&expected).starts_with("PROJCRS[\"WGS 84 / UTM zone 16N\""),
+        "{}",
+        crs(&expected)
+    );
+    assert_eq!(crs(&info), crs(&expected));
+    assert_georeferenced(&info, &raster, "Float64", Some(GEOTIFF_NODATA));
+    assert_eq!(read_geotiff(&tif).unwrap(), raster);
+    assert_eq!(gdal_values(&tif, &dir), raster);
+    // Without one, the CRS stays user-defined, not UTM.
+    let plain = dir.join("plain.tif");
+    write_geotiff(&plain, &raster).unwrap();
+    assert!(!crs(&gdalinfo(&plain)).contains("UTM"));
+
+    for bad in [
+        "PROJCS[\"a|b\"]".to_string(),
+        "PROJCS[\"é\"]".to_string(),
+        "P".repeat(2400),
+    ] {
+        let path = dir.join("bad.tif");
+        let e = dismech::grid::write_geotiff_with_crs(&path, &raster, Some(&bad)).unwrap_err();
+        assert!(
+            matches!(&e, dismech::error::DismechError::Output { path: p, .. } if p.ends_with("bad.tif")),
+            "{e}"
+        );
+        assert!(!path.exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -161,7 +161,8 @@ impl Exit {
             | E::Checkpoint { .. }
             | E::InvalidLayer { .. }
             | E::PoreRatioOutOfRange { .. }
-            | E::PorePressureTwice { .. } => Exit::BadInput,
+            | E::PorePressureTwice { .. }
+            | E::HpmGround { .. } => Exit::BadInput,
         }
     }
 }

@@ -126,6 +126,17 @@ fn check_geotiff_grid(tif: &Path, header: &[(String, f64)]) {
         String::from_utf8_lossy(&out.stderr)
     );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The DEM's coordinate system (its `.prj`), as GDAL reads it beside
+    // the DEM, is the GeoTIFF's.
+    let dem = Command::new("gdalinfo")
+        .arg("-json")
+        .arg(terrain_file())
+        .output()
+        .unwrap();
+    let dem: serde_json::Value = serde_json::from_slice(&dem.stdout).unwrap();
+    let crs = |v: &serde_json::Value| v["coordinateSystem"]["wkt"].as_str().unwrap().to_string();
+    assert!(crs(&dem).contains("UTM zone 16N"), "{}", crs(&dem));
+    assert_eq!(crs(&json), crs(&dem), "{tif:?}");
     let size: Vec<f64> = json["size"]
         .as_array()
         .unwrap()
@@ -788,5 +799,208 @@ fn layers_and_ru_are_those_of_the_library_search() {
         assert!(!err.contains("panicked"), "{err}");
         assert!(!out.exists());
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--hpm 2 --hpm-nonlinear`: the two most critical surfaces re-analysed by
+/// HPM. The slip surface written (`hpm_slip.asc`) is the library's raster
+/// of the library search's most critical surface bit for bit; HPM run
+/// directly on it and the DEM, read from their files, gives the Fs of
+/// summary.json and critical.csv and the maps `hpm_*.asc` bit for bit;
+/// the third surface, not re-analysed, has empty HPM columns; `--hpm` with
+/// layered ground is refused naming `--hpm`.
+#[test]
+fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
+    use dismech::hpm::{
+        HpmMaterial, HpmModel, HpmSettings, HpmSolver, NonlinearSettings, Seismic, SlopeGrids,
+    };
+    let dir = scratch("hpm");
+    let out = dir.join("run");
+    let mut args = vec!["--search", "ellipsoids", "--count", "5000", "--seed", "11"];
+    args.extend_from_slice(&["--keep", "3", "--hpm", "2", "--hpm-nonlinear"]);
+    let run = slope(&out, &args);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let terrain = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem), None).unwrap();
+    let lib = search(
+        &terrain,
+        &material(),
+        &SlopeLoads::default(),
+        &ellipsoids_5000(),
+        &SearchSettings::default(),
+        |_, _| {},
+    )
+    .unwrap();
+    let worst = lib.lowest().unwrap();
+    let slip = read_esri_ascii(&out.join("hpm_slip.asc")).unwrap();
+    let expected = dismech::slope::surface_raster(&terrain, &worst.surface).unwrap();
+    assert_eq!(bits(&slip), bits(&expected));
+
+    let grids = SlopeGrids::read(&terrain_file(), &out.join("hpm_slip.asc"), None).unwrap();
+    let hpm_material = HpmMaterial {
+        cohesion: 20e3,
+        friction_coefficient: friction_from_degrees(30.0).unwrap(),
+        unit_weight: 20e3,
+        submerged_unit_weight: 20e3 - 9810.0,
+        ..HpmMaterial::paper()
+    };
+    let model = HpmModel::new(&grids, &hpm_material, &HpmSettings::default()).unwrap();
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.0,
+        direction: worst.result.direction,
+    };
+    let elastic = solver.elastic(&model, &seismic).unwrap();
+    let plastic = solver
+        .nonlinear(&model, &seismic, 1.0, &NonlinearSettings::default())
+        .unwrap();
+    let elastic_fs = elastic.sliding_safety_factor(&model).unwrap();
+    let plastic_fs = plastic.sliding_safety_factor(&model).unwrap();
+
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let first = &summary["hpm"]["results"][0];
+    assert_eq!(first["trial"], worst.trial);
+    assert_eq!(first["columns"], model.columns.len());
+    assert_eq!(
+        first["elastic"]["fs"].as_f64().unwrap().to_bits(),
+        elastic_fs.to_bits()
+    );
+    assert_eq!(
+        first["nonlinear"]["fs"].as_f64().unwrap().to_bits(),
+        plastic_fs.to_bits()
+    );
+    assert_eq!(
+        first["hovland_fs"].as_f64().unwrap().to_bits(),
+        worst.result.safety_factor.to_bits()
+    );
+    assert_eq!(summary["hpm"]["results"].as_array().unwrap().len(), 2);
+
+    let csv = std::fs::read_to_string(out.join("critical.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let column = |name: &str| rows[0].iter().position(|h| *h == name).unwrap();
+    let (e, n) = (column("hpm_elastic_fs"), column("hpm_nonlinear_fs"));
+    assert_eq!(rows.len(), 4);
+    assert_eq!(
+        rows[1][e].parse::<f64>().unwrap().to_bits(),
+        elastic_fs.to_bits()
+    );
+    assert_eq!(
+        rows[1][n].parse::<f64>().unwrap().to_bits(),
+        plastic_fs.to_bits()
+    );
+    assert!(!rows[2][e].is_empty() && !rows[2][n].is_empty());
+    assert_eq!((rows[3][e], rows[3][n]), ("", ""));
+
+    for (prefix, result) in [("hpm", &elastic), ("hpm_nonlinear", &plastic)] {
+        for (name, raster) in result.maps(&model, &grids).unwrap().maps {
+            let written = read_esri_ascii(&out.join(format!("{prefix}_{name}.asc"))).unwrap();
+            assert_eq!(bits(&written), bits(&raster), "{prefix}_{name}");
+        }
+    }
+
+    // Layered ground: refused before the search, naming --hpm.
+    let layer = format!("soft:{}:5e3:20:18e3", dir.join("any.asc").display());
+    let refused = slope(
+        &dir.join("layered"),
+        &["--search", "spheres", "--hpm", "1", "--layer", &layer],
+    );
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--hpm 1") && stderr.contains("layered"),
+        "{stderr}"
+    );
+    assert!(!dir.join("layered").exists());
+    // A layer of the same unit weight: taken, each column's springs the
+    // strength of the layer they cross; a weak colluvium 40 m thick
+    // lowers HPM's Fs of the worst surface.
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let (x0, y0) = dem.lower_left();
+    let values = dem.values().iter().map(|v| v.map(|z| z - 40.0)).collect();
+    let bottom = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+    let bottom_path = dir.join("colluvium.asc");
+    dismech::grid::write_esri_ascii(&bottom_path, &bottom).unwrap();
+    let layer = format!("colluvium:{}:5e3:22:20e3", bottom_path.display());
+    let mut layered_args = args.clone();
+    layered_args.extend_from_slice(&["--layer", &layer]);
+    let taken = slope(&dir.join("layered_same"), &layered_args);
+    assert_eq!(
+        taken.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&taken.stderr)
+    );
+    let layered_summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("layered_same").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    let layered_fs = layered_summary["hpm"]["results"][0]["elastic"]["fs"]
+        .as_f64()
+        .unwrap();
+    assert!(layered_fs < elastic_fs, "{layered_fs} {elastic_fs}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--bedrock`: the map equals the library's search over the terrain with
+/// the same bedrock bit for bit, and differs from the run without it; a
+/// bedrock on another grid is refused naming `--bedrock` and the file.
+#[test]
+fn a_bedrock_is_that_of_the_library_search() {
+    let dir = scratch("bedrock");
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let (x0, y0) = dem.lower_left();
+    let values = dem.values().iter().map(|v| v.map(|z| z - 30.0)).collect();
+    let rock = Raster::new(dem.columns(), dem.rows(), x0, y0, dem.cell_size(), values).unwrap();
+    let rock_path = dir.join("rock.asc");
+    dismech::grid::write_esri_ascii(&rock_path, &rock).unwrap();
+    let with = fs_map_of(
+        &dir.join("with"),
+        &["--bedrock", rock_path.to_str().unwrap()],
+    );
+    let without = fs_map_of(&dir.join("without"), &[]);
+    let terrain = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem.clone()), None)
+        .unwrap()
+        .with_bedrock(dismech::hpm::NamedRaster::new("rock", rock))
+        .unwrap();
+    let lib = search(
+        &terrain,
+        &material(),
+        &SlopeLoads::default(),
+        &ellipsoids_5000(),
+        &SearchSettings::default(),
+        |_, _| {},
+    )
+    .unwrap();
+    assert_eq!(bits(&with), bits(&lib.safety_factor_raster().unwrap()));
+    assert_ne!(bits(&with), bits(&without));
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("with").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(summary["bedrock"], rock_path.display().to_string());
+
+    let small = dir.join("small.asc");
+    std::fs::write(
+        &small,
+        "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 75\n1 2 3\n4 5 6\n7 8 9\n",
+    )
+    .unwrap();
+    let refused = slope(
+        &dir.join("refused"),
+        &["--search", "spheres", "--bedrock", small.to_str().unwrap()],
+    );
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(&format!("--bedrock {}", small.display())),
+        "{stderr}"
+    );
+    assert!(!dir.join("refused").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{read_esri_ascii, read_geotiff, write_esri_ascii, write_geotiff, Raster};
+use super::{read_esri_ascii, read_geotiff, write_esri_ascii, write_geotiff_with_crs, Raster};
 use crate::error::Result;
 
 /// A raster file format.
@@ -12,7 +12,7 @@ pub enum RasterFormat {
     /// ESRI ASCII grid, `.asc` ([`write_esri_ascii`]): text, the format
     /// of Scoops3D and of the input grids.
     EsriAscii,
-    /// GeoTIFF, `.tif` ([`write_geotiff`]): one band of 64-bit floats with
+    /// GeoTIFF, `.tif` ([`super::write_geotiff`]): one band of 64-bit floats with
     /// the grid's georeferencing, what a GIS opens first.
     GeoTiff,
 }
@@ -58,9 +58,20 @@ impl RasterFormat {
     /// [`crate::error::DismechError::Output`] naming the path when the file
     /// cannot be written (it is then not there).
     pub fn write(self, path: &Path, raster: &Raster) -> Result<()> {
+        self.write_with_crs(path, raster, None)
+    }
+
+    /// [`Self::write`], a GeoTIFF with the coordinate system `wkt` (an ESRI
+    /// WKT, [`write_geotiff_with_crs`]) where given. An ESRI ASCII grid has
+    /// no place for it: a GIS reads it from a `.prj` file beside the grid,
+    /// which is the caller's to write.
+    ///
+    /// # Errors
+    /// As [`Self::write`]; for GeoTIFF those of [`write_geotiff_with_crs`].
+    pub fn write_with_crs(self, path: &Path, raster: &Raster, wkt: Option<&str>) -> Result<()> {
         match self {
             RasterFormat::EsriAscii => write_esri_ascii(path, raster),
-            RasterFormat::GeoTiff => write_geotiff(path, raster),
+            RasterFormat::GeoTiff => write_geotiff_with_crs(path, raster, wkt),
         }
     }
 }
@@ -90,11 +101,26 @@ pub fn write_rasters(
     rasters: &[(&str, &Raster)],
     formats: &[RasterFormat],
 ) -> Result<Vec<PathBuf>> {
+    write_rasters_with_crs(folder, prefix, rasters, formats, None)
+}
+
+/// [`write_rasters`], the GeoTIFF files with the coordinate system `wkt`
+/// where given ([`RasterFormat::write_with_crs`]).
+///
+/// # Errors
+/// As [`write_rasters`].
+pub fn write_rasters_with_crs(
+    folder: &Path,
+    prefix: &str,
+    rasters: &[(&str, &Raster)],
+    formats: &[RasterFormat],
+    wkt: Option<&str>,
+) -> Result<Vec<PathBuf>> {
     let mut paths = Vec::with_capacity(rasters.len() * formats.len());
     for (name, raster) in rasters {
         for format in formats {
             let path = folder.join(format!("{prefix}_{name}.{}", format.extension()));
-            format.write(&path, raster)?;
+            format.write_with_crs(&path, raster, wkt)?;
             paths.push(path);
         }
     }

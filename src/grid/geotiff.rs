@@ -30,6 +30,10 @@ mod geokey {
     pub const RASTER_TYPE: u16 = 1025;
     /// `ProjectedCSTypeGeoKey` (`ProjectedCRSGeoKey` in GeoTIFF 1.1).
     pub const PROJECTED_CRS: u16 = 3072;
+    /// `PCSCitationGeoKey` (`ProjectedCitationGeoKey` in GeoTIFF 1.1).
+    pub const PROJECTED_CITATION: u16 = 3073;
+    /// The `GeoAsciiParamsTag` (34737), where ASCII keys keep their text.
+    pub const ASCII_PARAMS: u16 = 34737;
     /// `ProjLinearUnitsGeoKey`.
     pub const LINEAR_UNITS: u16 = 3076;
     /// `ModelTypeProjected`.
@@ -42,33 +46,61 @@ mod geokey {
     pub const METRE: u16 = 9001;
 }
 
-/// The `GeoKeyDirectory` of every file written: a header (directory
-/// version 1, key revision 1.1, four keys), then each key as
-/// `(id, location 0 = the value itself, count 1, value)`, ids ascending.
-fn geokey_directory() -> [u16; 20] {
+/// The `GeoKeyDirectory` of a file written: a header (directory version
+/// 1, key revision 1.1, the number of keys), then each key as
+/// `(id, location, count, value)`, ids ascending: a short's value in the
+/// key itself (location 0), a text as `count` characters from `value` in
+/// the `GeoAsciiParamsTag`. Without a coordinate system: a projected model
+/// with a user-defined projected CRS in metres. With one (`citation`, the
+/// length of the text `ESRI PE String = <wkt>|`): the model user-defined
+/// and `PCSCitationGeoKey` pointing at that text, as ArcGIS writes it and
+/// where GDAL reads an ESRI WKT (its `gt_wkt_srs.cpp` looks there for a
+/// model that is neither projected, geographic nor geocentric).
+fn geokey_directory(citation: Option<u16>) -> Vec<u16> {
     use geokey::*;
-    [
-        1,
-        1,
-        1,
-        4,
-        MODEL_TYPE,
-        0,
-        1,
-        PROJECTED,
-        RASTER_TYPE,
-        0,
-        1,
-        PIXEL_IS_AREA,
-        PROJECTED_CRS,
-        0,
-        1,
-        USER_DEFINED,
-        LINEAR_UNITS,
-        0,
-        1,
-        METRE,
-    ]
+    let model = if citation.is_some() {
+        USER_DEFINED
+    } else {
+        PROJECTED
+    };
+    let mut keys = vec![
+        [MODEL_TYPE, 0, 1, model],
+        [RASTER_TYPE, 0, 1, PIXEL_IS_AREA],
+        [PROJECTED_CRS, 0, 1, USER_DEFINED],
+    ];
+    if let Some(length) = citation {
+        keys.push([PROJECTED_CITATION, ASCII_PARAMS, length, 0]);
+    }
+    keys.push([LINEAR_UNITS, 0, 1, METRE]);
+    let mut directory = vec![1, 1, 1, keys.len() as u16];
+    directory.extend(keys.into_iter().flatten());
+    directory
+}
+
+/// The longest citation text GDAL reads whole: it reads
+/// `PCSCitationGeoKey` into 2 400 bytes with the terminating zero.
+pub const MAX_CRS_CITATION: usize = 2399;
+
+/// The `GeoAsciiParamsTag` text for an ESRI WKT: `ESRI PE String = <wkt>|`
+/// (`|` ends each key's text), or why it cannot be written: a WKT with
+/// `|` or a character outside printable ASCII, or a text longer than
+/// [`MAX_CRS_CITATION`].
+fn esri_citation(wkt: &str) -> std::result::Result<String, String> {
+    let wkt = wkt.trim();
+    if let Some(bad) = wkt.chars().find(|&c| !(' '..='~').contains(&c) || c == '|') {
+        return Err(format!(
+            "the coordinate system's WKT holds {bad:?}, which a GeoTIFF's ASCII key cannot keep (printable ASCII other than `|` only)"
+        ));
+    }
+    let text = format!("ESRI PE String = {wkt}|");
+    if text.len() > MAX_CRS_CITATION {
+        return Err(format!(
+            "the coordinate system's WKT is {} characters long; GDAL reads at most {} of the citation `ESRI PE String = <wkt>|`",
+            wkt.len(),
+            MAX_CRS_CITATION
+        ));
+    }
+    Ok(text)
 }
 
 /// The no-data value for `raster`: [`GEOTIFF_NODATA`], or NaN where a cell
@@ -100,7 +132,8 @@ fn nodata_text(nodata: f64) -> String {
 /// # Errors
 /// The encoder's, as text (none for a [`Raster`], whose sides fit TIFF's
 /// 32-bit sizes and whose values fit its 4 GiB).
-fn encode(raster: &Raster) -> std::result::Result<Vec<u8>, String> {
+fn encode(raster: &Raster, wkt: Option<&str>) -> std::result::Result<Vec<u8>, String> {
+    let citation = wkt.map(esri_citation).transpose()?;
     let columns = u32::try_from(raster.columns()).map_err(|e| e.to_string())?;
     let rows = u32::try_from(raster.rows()).map_err(|e| e.to_string())?;
     let nodata = nodata_for(raster);
@@ -122,8 +155,13 @@ fn encode(raster: &Raster) -> std::result::Result<Vec<u8>, String> {
         .map_err(|e| e.to_string())?;
     tags.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, x0, top, 0.0][..])
         .map_err(|e| e.to_string())?;
-    tags.write_tag(Tag::GeoKeyDirectoryTag, &geokey_directory()[..])
+    let length = citation.as_ref().map(|c| c.len() as u16);
+    tags.write_tag(Tag::GeoKeyDirectoryTag, &geokey_directory(length)[..])
         .map_err(|e| e.to_string())?;
+    if let Some(text) = &citation {
+        tags.write_tag(Tag::GeoAsciiParamsTag, text.as_str())
+            .map_err(|e| e.to_string())?;
+    }
     tags.write_tag(Tag::GdalNodata, nodata_text(nodata).as_str())
         .map_err(|e| e.to_string())?;
     image.write_data(&values).map_err(|e| e.to_string())?;
@@ -139,7 +177,20 @@ fn encode(raster: &Raster) -> std::result::Result<Vec<u8>, String> {
 /// encoded or written, or its folder created (see
 /// [`crate::io::write_atomically`]); the file is then not there.
 pub fn write_geotiff(path: &Path, raster: &Raster) -> Result<()> {
-    let bytes = encode(raster).map_err(|message| DismechError::Output {
+    write_geotiff_with_crs(path, raster, None)
+}
+
+/// [`write_geotiff`], with the coordinate system `wkt` where given: an
+/// ESRI WKT, as a `.prj` beside an ESRI ASCII grid holds it, kept in the
+/// GeoTIFF's citation keys as `ESRI PE String = <wkt>`, where GDAL reads
+/// it (`gdalinfo` then shows that coordinate system).
+///
+/// # Errors
+/// As [`write_geotiff`]; [`DismechError::Output`] naming the path also for
+/// a WKT that a GeoTIFF's ASCII key cannot hold (a character outside
+/// printable ASCII, or `|`); the file is then not there.
+pub fn write_geotiff_with_crs(path: &Path, raster: &Raster, wkt: Option<&str>) -> Result<()> {
+    let bytes = encode(raster, wkt).map_err(|message| DismechError::Output {
         path: path.display().to_string(),
         message: format!("cannot encode the GeoTIFF: {message}"),
     })?;
@@ -572,7 +623,7 @@ mod tests {
     #[test]
     fn geotiff_holds_the_values_georeferencing_and_nodata() {
         let raster = sample();
-        let bytes = encode(&raster).unwrap();
+        let bytes = encode(&raster, None).unwrap();
         let mut decoder = Decoder::new(Cursor::new(bytes)).unwrap();
         assert_eq!(decoder.dimensions().unwrap(), (4, 3));
         let scale = decoder.get_tag_f64_vec(Tag::ModelPixelScaleTag).unwrap();
@@ -580,7 +631,7 @@ mod tests {
         let tie = decoder.get_tag_f64_vec(Tag::ModelTiepointTag).unwrap();
         assert_eq!(tie, [0.0, 0.0, 0.0, 1000.0, 2007.5, 0.0]);
         let keys = decoder.get_tag_u16_vec(Tag::GeoKeyDirectoryTag).unwrap();
-        assert_eq!(keys, geokey_directory());
+        assert_eq!(keys, geokey_directory(None));
         assert_eq!(
             decoder.get_tag_ascii_string(Tag::GdalNodata).unwrap(),
             "-9999"
@@ -600,7 +651,7 @@ mod tests {
     #[test]
     fn a_cell_holding_minus_9999_makes_the_nodata_nan() {
         let raster = Raster::new(2, 1, 0.0, 0.0, 1.0, vec![Some(-9999.0), None]).unwrap();
-        let mut decoder = Decoder::new(Cursor::new(encode(&raster).unwrap())).unwrap();
+        let mut decoder = Decoder::new(Cursor::new(encode(&raster, None).unwrap())).unwrap();
         assert_eq!(
             decoder.get_tag_ascii_string(Tag::GdalNodata).unwrap(),
             "nan"
@@ -625,9 +676,20 @@ mod tests {
     }
 
     #[test]
+    fn a_coordinate_system_adds_its_citation_key_in_order() {
+        let keys = geokey_directory(Some(40));
+        assert_eq!(keys[..4], [1, 1, 1, 5]);
+        let ids: Vec<u16> = keys[4..].chunks_exact(4).map(|k| k[0]).collect();
+        assert_eq!(ids, [1024, 1025, 3072, 3073, 3076]);
+        assert_eq!(keys[4..8], [1024, 0, 1, geokey::USER_DEFINED]);
+        assert_eq!(keys[16..20], [3073, 34737, 40, 0]);
+        assert_eq!(pixel_is_point(&keys), Ok(false));
+    }
+
+    #[test]
     fn the_raster_type_key_is_found_and_a_damaged_directory_named() {
-        assert_eq!(pixel_is_point(&geokey_directory()), Ok(false));
-        let mut point = geokey_directory();
+        assert_eq!(pixel_is_point(&geokey_directory(None)), Ok(false));
+        let mut point = geokey_directory(None);
         point[11] = 2;
         assert_eq!(pixel_is_point(&point), Ok(true));
         point[11] = 7;
@@ -642,7 +704,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("dismech-geotiff-{}", std::process::id()));
         let path = dir.join("fs.tif");
         write_geotiff(&path, &sample()).unwrap();
-        assert_eq!(std::fs::read(&path).unwrap(), encode(&sample()).unwrap());
+        assert_eq!(
+            std::fs::read(&path).unwrap(),
+            encode(&sample(), None).unwrap()
+        );
         let names: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert_eq!(names.len(), 1);
         // A folder where the file should go: nothing is written, the path is named.

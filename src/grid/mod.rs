@@ -19,6 +19,7 @@
 //! | `ModelPixelScale` (33550) | `(cellsize, cellsize, 0)` |
 //! | `ModelTiepoint` (33922) | raster point `(0, 0, 0)`, the upper-left corner of the upper-left cell, at model point `(xllcorner, yllcorner + nrows × cellsize, 0)` |
 //! | `GeoKeyDirectory` (34735) | version 1.1.1; `GTModelTypeGeoKey` = 1 (projected), `GTRasterTypeGeoKey` = 1 (`RasterPixelIsArea`), `ProjectedCSTypeGeoKey` = 32767 (user-defined), `ProjLinearUnitsGeoKey` = 9001 (metre) |
+//! | `GeoAsciiParams` (34737) | only with a coordinate system ([`write_geotiff_with_crs`]): `ESRI PE String = <wkt>\|`, the text of `PCSCitationGeoKey` |
 //! | `GDAL_NODATA` (42113) | the no-data value in text: [`GEOTIFF_NODATA`] (−9999, as the ESRI ASCII grids), or `nan` where a cell holds −9999 itself |
 //!
 //! An ESRI ASCII grid gives the lower-left corner of its grid and lists
@@ -35,7 +36,12 @@
 //! projected (plane) coordinates in metres — and leaves the projection
 //! user-defined (32767), which GDAL reads as a local, engineering
 //! coordinate system in metres; a GIS user assigns the projection of the
-//! input DEM (as for the input itself) and the map falls on it.
+//! input DEM (as for the input itself) and the map falls on it. Where the
+//! coordinate system is known as an ESRI WKT (the `.prj` beside an ESRI
+//! grid), [`write_geotiff_with_crs`] keeps it as ArcGIS does:
+//! `GTModelTypeGeoKey` = 32767 (user-defined) and `PCSCitationGeoKey` =
+//! `ESRI PE String = <wkt>`, which GDAL reads as that coordinate system
+//! (at most [`MAX_CRS_CITATION`] characters, what GDAL reads of the key).
 //!
 //! [`read_geotiff`] reads a GeoTIFF DEM back into a [`Raster`]: the
 //! first image of the file, one band of any integer or floating-point
@@ -61,8 +67,9 @@ pub use esri_ascii::{
     parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii, MAX_BYTES_PER_VALUE,
     MAX_HEADER_BYTES,
 };
-pub use format::{read_raster, write_rasters, RasterFormat};
+pub use format::{read_raster, write_rasters, write_rasters_with_crs, RasterFormat};
 pub use geotiff::{
-    parse_geotiff, read_geotiff, write_geotiff, GEOTIFF_NODATA, MAX_GEOTIFF_EXPANSION,
+    parse_geotiff, read_geotiff, write_geotiff, write_geotiff_with_crs, GEOTIFF_NODATA,
+    MAX_CRS_CITATION, MAX_GEOTIFF_EXPANSION,
 };
 pub use raster::{Raster, MAX_GRID_CELLS};

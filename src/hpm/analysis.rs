@@ -634,14 +634,18 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         seismic.validate()?;
         settings.validate()?;
         crate::error::require_positive("strength reduction factor", reduction)?;
-        let strength = Strength {
-            cohesion: model.material.cohesion / reduction,
-            friction: model.material.friction() / reduction,
-        };
+        // Each spring's own strength (the material's, or its column's
+        // layer: HpmModel::set_column_strength), divided by the factor.
         let laws: Vec<MohrCoulombSpring> = model
             .slip
             .iter()
-            .map(|s| s.law.with_strength(strength))
+            .map(|s| {
+                let own = s.law.strength();
+                s.law.with_strength(Strength {
+                    cohesion: own.cohesion / reduction,
+                    friction: own.friction / reduction,
+                })
+            })
             .collect();
         let f = model.loads(seismic);
         let f_norm = norm(&f);
@@ -874,14 +878,16 @@ impl HpmResult {
     /// Where the slip springs' strength `c + σ tan φ` is negative: the
     /// columns and the share of the slip surface's area.
     fn tension(&self, model: &HpmModel) -> Tension {
-        let (c, mu) = (model.material.cohesion, model.material.friction());
         Tension::of(
             model,
-            model
-                .slip
-                .iter()
-                .zip(&self.tractions)
-                .map(|(s, t)| (s.column, s.point.point.area, c + t.normal * mu)),
+            model.slip.iter().zip(&self.tractions).map(|(s, t)| {
+                let own = s.law.strength();
+                (
+                    s.column,
+                    s.point.point.area,
+                    own.cohesion + t.normal * own.friction,
+                )
+            }),
         )
     }
 
@@ -967,7 +973,6 @@ impl HpmResult {
                 requirement: "must be a finite, non-zero horizontal vector",
             });
         }
-        let (c, mu) = (model.material.cohesion, model.material.friction());
         // The vertical plane through `plan` has normal m = ĥ × e_z.
         let m = Vector3::new(plan.1, -plan.0, 0.0);
         let h = Vector3::new(plan.0, plan.1, 0.0);
@@ -976,7 +981,8 @@ impl HpmResult {
             let a = s.point.point.area;
             let along = s.point.point.normal.cross(&m);
             let along = along.normalize() * along.dot(&h).signum();
-            num += (c + t.normal * mu) * a;
+            let own = s.law.strength();
+            num += (own.cohesion + t.normal * own.friction) * a;
             den += shear_vector(s, t).dot(&along) * a;
         }
         resisting_over_driving(
@@ -1020,10 +1026,10 @@ impl HpmResult {
     fn strength_and_shear(&self, model: &HpmModel) -> (Vec<f64>, Vec<f64>) {
         let mut num = vec![0.0; model.columns.len()];
         let mut den = vec![0.0; model.columns.len()];
-        let (c, mu) = (model.material.cohesion, model.material.friction());
         for (s, t) in model.slip.iter().zip(&self.tractions) {
             let a = s.point.point.area;
-            num[s.column] += (c + t.normal * mu) * a;
+            let own = s.law.strength();
+            num[s.column] += (own.cohesion + t.normal * own.friction) * a;
             den[s.column] += t.shear_magnitude() * a;
         }
         (num, den)

@@ -73,7 +73,7 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
     seismic.validate()?;
     let (dx, dy) = horizontal_unit("sliding direction (length)", towards)?;
     let (sx, sy) = seismic.unit();
-    let (c, mu) = (model.material.cohesion, model.material.friction());
+    let strengths = model.column_strengths();
     let d = model.grid.2;
     let columns: Vec<HovlandColumn> = model
         .columns
@@ -101,7 +101,11 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
             }
         })
         .collect();
-    let resisting: f64 = columns.iter().map(|k| c * k.area + k.normal * mu).sum();
+    let resisting: f64 = columns
+        .iter()
+        .zip(&strengths)
+        .map(|(k, s)| s.cohesion * k.area + k.normal * s.friction)
+        .sum();
     let driving: f64 = columns.iter().map(|k| k.driving).sum();
     let safety_factor = resisting_over_driving(
         resisting,
@@ -116,10 +120,10 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
         || {
             Tension::of(
                 model,
-                columns
-                    .iter()
-                    .enumerate()
-                    .map(|(k, t)| (k, t.area, c * t.area + t.normal * mu)),
+                columns.iter().enumerate().map(|(k, t)| {
+                    let s = &strengths[k];
+                    (k, t.area, s.cohesion * t.area + t.normal * s.friction)
+                }),
             )
         },
     )?;

@@ -209,10 +209,11 @@ impl Hovland {
             });
         }
         let cells = column_cells(model, grids)?;
-        let (c, mu) = (model.material.cohesion, model.material.friction());
+        let strengths = model.column_strengths();
         let local = |k: usize| {
             let t = &self.columns[k];
-            let strength = c * t.area + t.normal * mu;
+            let s = &strengths[k];
+            let strength = s.cohesion * t.area + t.normal * s.friction;
             if t.driving <= 0.0 {
                 None
             } else if strength <= 0.0 {

@@ -20,7 +20,7 @@ use super::material::{HpmMaterial, HpmSettings, Seismic};
 use super::stiffness::BlockMatrix;
 use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
-use crate::law::MohrCoulombSpring;
+use crate::law::{MohrCoulombSpring, Strength};
 use crate::shape::Column;
 
 /// Gauss points of a face (2 × 2).
@@ -300,6 +300,47 @@ impl HpmModel {
             bytes,
             budget,
         })
+    }
+
+    /// The strength of each column's slip springs, in the order of
+    /// [`Self::columns`]: the material's, unless
+    /// [`Self::set_column_strength`] gave the column its own.
+    pub fn column_strengths(&self) -> Vec<Strength> {
+        let own = Strength {
+            cohesion: self.material.cohesion,
+            friction: self.material.friction(),
+        };
+        let mut strengths = vec![own; self.columns.len()];
+        for spring in &self.slip {
+            strengths[spring.column] = spring.law.strength();
+        }
+        strengths
+    }
+
+    /// Give the slip springs under column `column` (an index into
+    /// [`Self::columns`]) the strength `strength` in place of the
+    /// material's: the strength of the layer the slip surface crosses
+    /// there, on layered ground. Every safety factor, local factor and the
+    /// nonlinear analysis take each spring's own strength.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a column the model does not
+    /// have, or a cohesion or friction coefficient that is negative or not
+    /// finite.
+    pub fn set_column_strength(&mut self, column: usize, strength: Strength) -> Result<()> {
+        if column >= self.columns.len() {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM column index",
+                value: column as f64,
+                requirement: "must be below the model's number of columns",
+            });
+        }
+        crate::error::require_non_negative("cohesion c", strength.cohesion)?;
+        crate::error::require_non_negative("friction coefficient tan(phi)", strength.friction)?;
+        for spring in self.slip.iter_mut().filter(|s| s.column == column) {
+            spring.law = spring.law.with_strength(strength);
+        }
+        Ok(())
     }
 
     /// Build the model; validates the material and settings.

@@ -80,6 +80,11 @@ impl MohrCoulombSpring {
         }
     }
 
+    /// Its strength: cohesion c (Pa) and friction coefficient `tan φ`.
+    pub fn strength(&self) -> Strength {
+        self.strength
+    }
+
     /// The same spring with its strength replaced (strength reduction).
     pub fn with_strength(self, strength: Strength) -> Self {
         Self { strength, ..self }

@@ -12,17 +12,19 @@
 //!
 //! | concept | items | file |
 //! |---|---|---|
-//! | the ground | [`Terrain`] (DEM and optional water table), [`Terrain::fall_line`] | `terrain.rs` |
+//! | the ground | [`Terrain`] (DEM, optional water table and bedrock: [`Terrain::with_bedrock`] truncates the trial surfaces), [`Terrain::fall_line`] | `terrain.rs` |
 //! | strength and loads | [`SlopeMaterial`] (c, μ = tan φ, γ), [`SlopeLoads`] (k_h, γ_w) | `material.rs` |
 //! | layered ground, r_u | [`Ground`] (strength [`Layer`]s bounded by elevation rasters, Scoops3D's convention), [`PoreRatio`] (Bishop & Morgenstern's r_u), [`ColumnGround`] | `ground.rs` |
 //! | trial surfaces | [`TrialSurface`]: [`Sphere`], [`Ellipsoid`]; [`surface_columns`], [`SlipColumn`], [`SurfaceLimits`], [`Refusal`] | `surface.rs` |
 //! | Hovland per surface | [`hovland_columns`], [`hovland_ground`], [`Evaluator`], [`SurfaceFs`] | `hovland.rs` |
 //! | families | [`TrialFamily`]: [`SphereGrid`] (Scoops3D), [`SphereRandom`], [`EllipsoidRandom`] (r.slope.stability); [`Steps`] | `family.rs` |
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
+//! | HPM re-analysis of a surface (paper 001) | [`hpm_reanalysis`], [`HpmReanalysis`], [`HpmStiffness`], [`surface_raster`] | `reanalysis.rs` |
 //! | outputs | rasters on the DEM's grid (ESRI ASCII, GeoTIFF), [`SearchResult::write_maps`], [`SearchResult::write_maps_as`], [`SearchResult::write_critical_csv`] | `output.rs` |
 //!
-//! No HPM model is built per surface (that would be far too slow for
-//! thousands of surfaces): the columns are the DEM cells themselves, the
+//! No HPM model is built per surface of the search (that would be far
+//! too slow for thousands of surfaces; the few most critical are
+//! re-analysed by HPM afterwards, [`hpm_reanalysis`]): the columns are the DEM cells themselves, the
 //! base the trial surface at each cell centre.
 //!
 //! ```no_run
@@ -48,6 +50,7 @@ mod ground;
 mod hovland;
 mod material;
 mod output;
+mod reanalysis;
 mod search;
 mod surface;
 mod terrain;
@@ -57,6 +60,7 @@ pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
 pub use hovland::{hovland_columns, hovland_ground, Evaluator, SurfaceFs};
 pub use material::{SlopeLoads, SlopeMaterial, WATER_UNIT_WEIGHT};
 pub use output::MAP_NAMES;
+pub use reanalysis::{hpm_reanalysis, surface_raster, HpmReanalysis, HpmStiffness};
 pub use search::{
     search, CellMinimum, CriticalSurface, SearchCounts, SearchResult, SearchSettings,
 };

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
-use crate::grid::{write_rasters, Raster, RasterFormat};
+use crate::grid::{write_rasters_with_crs, Raster, RasterFormat};
 use crate::io::write_atomically;
 
 use super::search::{CellMinimum, SearchResult};
@@ -82,7 +82,7 @@ impl<S> SearchResult<S> {
     /// and/or `{prefix}_{name}.tif` in `folder` (created if needed), in
     /// each of `formats` (e.g. [`RasterFormat::ALL`] for the ESRI ASCII
     /// grids and GeoTIFF beside them), each file atomically
-    /// ([`write_rasters`]); returns their paths, map by map and format by
+    /// ([`crate::grid::write_rasters`]); returns their paths, map by map and format by
     /// format.
     ///
     /// # Errors
@@ -94,6 +94,23 @@ impl<S> SearchResult<S> {
         prefix: &str,
         formats: &[RasterFormat],
     ) -> Result<Vec<PathBuf>> {
+        self.write_maps_with_crs(folder, prefix, formats, None)
+    }
+
+    /// [`Self::write_maps_as`], the GeoTIFF files with the coordinate
+    /// system `wkt` (an ESRI WKT, as the DEM's `.prj` holds it) where
+    /// given ([`write_rasters_with_crs`]).
+    ///
+    /// # Errors
+    /// As [`Self::write_maps_as`]; a WKT a GeoTIFF cannot hold
+    /// ([`crate::grid::write_geotiff_with_crs`]).
+    pub fn write_maps_with_crs(
+        &self,
+        folder: &Path,
+        prefix: &str,
+        formats: &[RasterFormat],
+        wkt: Option<&str>,
+    ) -> Result<Vec<PathBuf>> {
         let rasters = [
             self.safety_factor_raster()?,
             self.volume_raster()?,
@@ -101,7 +118,7 @@ impl<S> SearchResult<S> {
             self.depth_raster()?,
         ];
         let named: Vec<(&str, &Raster)> = MAP_NAMES.iter().copied().zip(&rasters).collect();
-        write_rasters(folder, prefix, &named, formats)
+        write_rasters_with_crs(folder, prefix, &named, formats, wkt)
     }
 }
 

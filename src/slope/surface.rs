@@ -327,12 +327,14 @@ impl Refusal {
 }
 
 /// The columns the trial surface cuts out of the terrain, into `columns`
-/// (cleared first), in grid order (row by row from the top).
+/// (cleared first), in grid order (row by row from the top). Over a
+/// bedrock ([`Terrain::with_bedrock`]) a base below it is raised to it and
+/// takes its gradient ([`Terrain::bedrock_at`]).
 ///
 /// # Errors
 /// (A refusal, not a [`crate::error::DismechError`].)
 /// [`Refusal::NoData`] when a cell of the footprint has no ground data or a
-/// column has no water-table data; [`Refusal::LeavesDem`] when a column lies
+/// column has no water-table or bedrock data; [`Refusal::LeavesDem`] when a column lies
 /// on the grid's edge.
 pub fn surface_columns<S: TrialSurface>(
     terrain: &Terrain,
@@ -342,6 +344,7 @@ pub fn surface_columns<S: TrialSurface>(
     columns.clear();
     let dem = &terrain.dem().raster;
     let water = terrain.water().map(|w| &w.raster);
+    let bedrock = terrain.bedrock().is_some();
     let (rows, cols) = (dem.rows(), dem.columns());
     let (x0, y0) = dem.lower_left();
     let d = dem.cell_size();
@@ -364,7 +367,7 @@ pub fn surface_columns<S: TrialSurface>(
     for r in r_lo..=r_hi {
         for c in c_lo..=c_hi {
             let (x, y) = dem.cell_centre(r, c);
-            let Some((base, gradient)) = surface.base(x, y) else {
+            let Some((mut base, mut gradient)) = surface.base(x, y) else {
                 continue;
             };
             let Some(ground) = dem.get(r, c) else {
@@ -372,6 +375,17 @@ pub fn surface_columns<S: TrialSurface>(
             };
             if base >= ground {
                 continue;
+            }
+            if bedrock {
+                let Some((rock, slope)) = terrain.bedrock_at(r, c) else {
+                    return Err(Refusal::NoData);
+                };
+                if base < rock {
+                    (base, gradient) = (rock, slope);
+                    if base >= ground {
+                        continue;
+                    }
+                }
             }
             if r == 0 || c == 0 || r + 1 == rows || c + 1 == cols {
                 return Err(Refusal::LeavesDem);

@@ -1,5 +1,6 @@
-//! The ground a slope search runs over: a digital elevation model and an
-//! optional water table on the same grid, checked once.
+//! The ground a slope search runs over: a digital elevation model, an
+//! optional water table and an optional bedrock on the same grid, checked
+//! once.
 
 use std::path::Path;
 
@@ -24,6 +25,7 @@ pub const MIN_DEM_SIDE: usize = 3;
 pub struct Terrain {
     dem: NamedRaster,
     water: Option<NamedRaster>,
+    bedrock: Option<NamedRaster>,
 }
 
 impl Terrain {
@@ -55,7 +57,11 @@ impl Terrain {
         if let Some(w) = &water {
             w.require_grid_of(&dem)?;
         }
-        Ok(Self { dem, water })
+        Ok(Self {
+            dem,
+            water,
+            bedrock: None,
+        })
     }
 
     /// Read the DEM and the water table from ESRI ASCII grid files (or
@@ -70,6 +76,53 @@ impl Terrain {
             NamedRaster::read(dem)?,
             water.map(NamedRaster::read).transpose()?,
         )
+    }
+
+    /// The same terrain over a bedrock: the elevation (m) at each cell
+    /// centre of a surface no slip surface goes below. A trial surface that
+    /// would go deeper follows it (its base there is the bedrock, with the
+    /// bedrock's slope), as Scoops3D truncates its spheres at a weak layer
+    /// (Reid, Christian & Brien, USGS 2015) and r.slope.stability its
+    /// ellipsoids at the base of the soil (Mergili et al., Geosci. Model
+    /// Dev. 7, 2014). Where the bedrock lies above the ground there is no
+    /// column. A bedrock may have no data only where no trial surface has a
+    /// column (a surface with one there is refused,
+    /// [`super::Refusal::NoData`]).
+    ///
+    /// # Errors
+    /// [`DismechError::GridMismatch`] naming both files when the bedrock
+    /// lies on another grid than the DEM.
+    pub fn with_bedrock(mut self, bedrock: NamedRaster) -> Result<Self> {
+        bedrock.require_grid_of(&self.dem)?;
+        self.bedrock = Some(bedrock);
+        Ok(self)
+    }
+
+    /// The bedrock, if any.
+    pub fn bedrock(&self) -> Option<&NamedRaster> {
+        self.bedrock.as_ref()
+    }
+
+    /// The bedrock at cell (row, column): its height and its gradient
+    /// `(∂z/∂x, ∂z/∂y)` from central differences of the neighbouring cells
+    /// (one-sided where a neighbour has no data, 0 along an axis with
+    /// neither); `None` without a bedrock or where it has no data.
+    pub fn bedrock_at(&self, row: usize, column: usize) -> Option<(f64, (f64, f64))> {
+        let b = &self.bedrock.as_ref()?.raster;
+        let z = b.get(row, column)?;
+        let d = self.cell_size();
+        let diff = |lo: Option<f64>, hi: Option<f64>| match (lo, hi) {
+            (Some(a), Some(c)) => (c - a) / (2.0 * d),
+            (None, Some(c)) => (c - z) / d,
+            (Some(a), None) => (z - a) / d,
+            (None, None) => 0.0,
+        };
+        let west = column.checked_sub(1).and_then(|c| b.get(row, c));
+        let east = b.get(row, column + 1);
+        // Row 0 is the top (north): y grows towards smaller rows.
+        let south = b.get(row + 1, column);
+        let north = row.checked_sub(1).and_then(|r| b.get(r, column));
+        Some((z, (diff(west, east), diff(south, north))))
     }
 
     /// The digital elevation model.

@@ -95,6 +95,12 @@ pub struct SlopeArgs {
     /// grid (or GeoTIFF) on the DEM's grid. Without it the ground is dry.
     #[arg(long, value_name = "FILE")]
     pub water: Option<PathBuf>,
+    /// Bedrock: elevations (m) of a surface no slip surface goes below, an
+    /// ESRI ASCII grid (or GeoTIFF) on the DEM's grid. A trial surface
+    /// that would go deeper follows it (Scoops3D's and r.slope.stability's
+    /// truncation); no column where it lies above the ground.
+    #[arg(long, value_name = "FILE")]
+    pub bedrock: Option<PathBuf>,
     /// Pore-pressure ratio r_u (Bishop & Morgenstern 1960): the pore
     /// pressure on a base is u = r_u σ_v, with σ_v = Σ γ_i t_i the vertical
     /// stress of the ground above it. A constant in [0, 1) or an ESRI ASCII
@@ -189,6 +195,26 @@ pub struct SlopeArgs {
     /// How many of the most critical surfaces to list in critical.csv.
     #[arg(long, value_name = "K", default_value_t = 10, value_parser = parse_keep)]
     pub keep: usize,
+    /// Re-analyse the K most critical surfaces by HPM (paper 001):
+    /// elastic, and nonlinear with --hpm-nonlinear; their Fs go into
+    /// critical.csv and summary.json, the maps of the most critical one
+    /// (local Fs, displacement, strains) and its slip surface into
+    /// `hpm_*.asc`/`.tif`. HPM holds one unit weight: a --layer must have
+    /// that of --unit-weight (its slip springs take the strength of the
+    /// layer they cross); no --ru.
+    #[arg(long, value_name = "K", default_value_t = 0, value_parser = parse_keep, help_heading = "HPM re-analysis")]
+    pub hpm: usize,
+    /// Also run HPM's nonlinear analysis (Mohr–Coulomb slip springs, no
+    /// tension) on each surface re-analysed.
+    #[arg(long, requires = "hpm", help_heading = "HPM re-analysis")]
+    pub hpm_nonlinear: bool,
+    /// Young's modulus E of the ground for HPM (Pa); the slip springs'
+    /// modulus E_slip is taken equal (paper 001, eq. 30).
+    #[arg(long, value_name = "PA", default_value_t = 1e9, value_parser = parse_modulus, help_heading = "HPM re-analysis")]
+    pub youngs_modulus: f64,
+    /// Poisson's ratio ν of the ground for HPM, in [0, 0.5).
+    #[arg(long, value_name = "NU", default_value_t = 0.2, value_parser = parse_poisson, help_heading = "HPM re-analysis")]
+    pub poisson_ratio: f64,
     /// Worker threads [default: one per core].
     #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
@@ -308,6 +334,18 @@ fn parse_min_columns(text: &str) -> Result<usize, String> {
 
 fn parse_threads(text: &str) -> Result<usize, String> {
     at_least_one::<u16>(text, "the number of threads").map(usize::from)
+}
+
+fn parse_modulus(text: &str) -> Result<f64, String> {
+    require_positive("Young's modulus E (Pa)", number(text)?).map_err(message)
+}
+
+fn parse_poisson(text: &str) -> Result<f64, String> {
+    let nu = number(text)?;
+    if !(0.0..0.5).contains(&nu) {
+        return Err(format!("Poisson's ratio {nu} must lie in [0, 0.5)"));
+    }
+    Ok(nu)
 }
 
 fn parse_keep(text: &str) -> Result<usize, String> {

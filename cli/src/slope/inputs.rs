@@ -9,12 +9,13 @@ use dismech::slope::{Ground, Layer, PoreRatio, SlopeLoads, SlopeMaterial, Surfac
 use super::args::{RuArg, SlopeArgs, Span};
 use super::error::SlopeError;
 
-/// The DEM and the water table of `args`, read and checked.
+/// The DEM, the water table and the bedrock of `args`, read and checked.
 ///
 /// # Errors
-/// [`SlopeError::Argument`] naming `--dem` or `--water` and the file: a
-/// file that cannot be read or is not an ESRI ASCII grid, a DEM too small
-/// or without data, a water table on another grid.
+/// [`SlopeError::Argument`] naming `--dem`, `--water` or `--bedrock` and
+/// the file: a file that cannot be read or is not an ESRI ASCII grid, a
+/// DEM too small or without data, a water table or bedrock on another
+/// grid.
 pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
     let dem_value = args.dem.display().to_string();
     let dem =
@@ -26,12 +27,21 @@ pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
         ),
         None => None,
     };
-    Terrain::new(dem, water).map_err(|e| match (&e, &args.water) {
+    let terrain = Terrain::new(dem, water).map_err(|e| match (&e, &args.water) {
         (DismechError::GridMismatch { .. }, Some(path)) => {
             SlopeError::argument("--water", &path.display().to_string(), e)
         }
         _ => SlopeError::argument("--dem", &dem_value, e),
-    })
+    })?;
+    match &args.bedrock {
+        None => Ok(terrain),
+        Some(path) => {
+            let value = path.display().to_string();
+            NamedRaster::read(path)
+                .and_then(|rock| terrain.with_bedrock(rock))
+                .map_err(|e| SlopeError::argument("--bedrock", &value, e))
+        }
+    }
 }
 
 /// The material of `args`.

@@ -9,6 +9,7 @@
 //! | the family, defaults from the DEM | [`family::family`], [`family::Family`] | `family.rs` |
 //! | errors naming the option | [`SlopeError`] | `error.rs` |
 //! | the run and its files | [`run`], [`Report`] | `mod.rs`, `outputs.rs` |
+//! | HPM re-analysis of the worst surfaces (`--hpm K`) | [`hpm::reanalyse`], [`hpm::HpmSurface`] | `hpm.rs` |
 //! | the map | [`map::write_slope_map`], [`hillshade::hillshade`], [`footprint`] | `map.rs`, `hillshade.rs`, `footprint.rs` |
 //!
 //! The folder `--out` holds the rasters of the lowest Fs per cell and of
@@ -16,6 +17,10 @@
 //! `slope_volume.asc`, `slope_area.asc`, `slope_depth.asc`, on the DEM's
 //! grid; with a copy of the DEM's `.prj` beside each where it has one),
 //! the most critical surfaces (`critical.csv`), the map (`map.svg`) and
+//! `summary.json`; with `--hpm K`, the HPM maps of the most critical
+//! surface (`hpm_local_fs.asc`, `hpm_displacement.asc`, …, with
+//! `hpm_nonlinear_*` for `--hpm-nonlinear`) and its slip surface
+//! (`hpm_slip.asc`), and the HPM Fs of the K worst in `critical.csv` and
 //! `summary.json`.
 
 mod args;
@@ -23,6 +28,7 @@ mod error;
 pub mod family;
 pub mod footprint;
 pub mod hillshade;
+pub mod hpm;
 pub mod inputs;
 pub mod map;
 mod outputs;
@@ -43,7 +49,7 @@ pub use outputs::{Lowest, Report};
 use family::Family;
 
 /// What a search needs besides its family.
-struct Problem {
+pub struct Problem {
     terrain: Terrain,
     ground: Ground,
     loads: SlopeLoads,
@@ -121,11 +127,11 @@ where
                     )
                 })?;
             threads = n;
-            pool.install(|| run_family(problem, family, args.keep, &bar))?
+            pool.install(|| run_family(problem, family, args.keep.max(args.hpm), &bar))?
         }
         None => {
             threads = rayon::current_num_threads();
-            run_family(problem, family, args.keep, &bar)?
+            run_family(problem, family, args.keep.max(args.hpm), &bar)?
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -139,10 +145,12 @@ where
             counts: Box::new(result.counts),
         });
     }
+    let hpm_runs = hpm::reanalyse(args, problem, &result);
     let report = outputs::write(
         args,
         &problem.terrain,
         &result,
+        &hpm_runs,
         folder.path(),
         outputs::Run {
             family: description,
@@ -165,6 +173,7 @@ where
 /// A [`SlopeError`] naming the option or file at fault; the folder
 /// `--out` is then left as it was.
 pub fn run(args: &SlopeArgs) -> Result<Report, SlopeError> {
+    hpm::check(args)?;
     let terrain = inputs::terrain(args)?;
     let problem = Problem {
         ground: inputs::ground(args, &terrain)?,

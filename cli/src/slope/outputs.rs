@@ -4,12 +4,13 @@
 use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
-use dismech::grid::RasterFormat;
+use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
 use dismech::slope::{surface_columns, SearchCounts, SearchResult, Terrain, TrialSurface};
 
 use super::args::SlopeArgs;
 use super::error::{refusals, SlopeError};
 use super::footprint::{centroid, outline};
+use super::hpm::HpmRuns;
 use super::map::{write_slope_map, SlopeMap};
 
 /// The prefix of the rasters: `slope_fs.asc`, …
@@ -20,6 +21,42 @@ pub const CRITICAL_CSV: &str = "critical.csv";
 pub const MAP_SVG: &str = "map.svg";
 /// The summary.
 pub const SUMMARY_JSON: &str = "summary.json";
+/// The prefix of the HPM maps of the most critical surface (`--hpm`).
+pub const HPM_PREFIX: &str = "hpm";
+/// The prefix of its nonlinear HPM maps (`--hpm-nonlinear`).
+pub const HPM_NONLINEAR_PREFIX: &str = "hpm_nonlinear";
+
+/// `csv` (the critical surfaces) with two columns more,
+/// `hpm_elastic_fs` and `hpm_nonlinear_fs`: HPM's Fs along the sliding
+/// direction of each surface re-analysed, empty where there is none (not
+/// re-analysed, not asked, or refused: summary.json says why).
+fn with_hpm_columns(csv: &str, surfaces: &[super::hpm::HpmSurface]) -> String {
+    let mut out = String::with_capacity(csv.len() + 64 * surfaces.len());
+    for (k, line) in csv.lines().enumerate() {
+        out.push_str(line);
+        if k == 0 {
+            out.push_str(",hpm_elastic_fs,hpm_nonlinear_fs\n");
+            continue;
+        }
+        let number = |v: Option<&Result<f64, String>>| {
+            v.and_then(|r| r.as_ref().ok())
+                .map_or_else(String::new, |f| f.to_string())
+        };
+        let (elastic, nonlinear) = match surfaces.get(k - 1).map(|s| &s.outcome) {
+            Some(Ok((_, e, n))) => (
+                number(Some(&e.sliding_fs)),
+                number(n.as_ref().map(|n| &n.sliding_fs)),
+            ),
+            _ => (String::new(), String::new()),
+        };
+        out.push(',');
+        out.push_str(&elastic);
+        out.push(',');
+        out.push_str(&nonlinear);
+        out.push('\n');
+    }
+    out
+}
 
 /// How the search ran.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,6 +107,8 @@ pub struct Report {
     pub counts: SearchCounts,
     /// How the search ran.
     pub run: Run,
+    /// The HPM re-analyses (`--hpm K`), most critical first.
+    pub hpm: Vec<super::hpm::HpmSurface>,
 }
 
 impl std::fmt::Display for Report {
@@ -132,18 +171,52 @@ pub fn write<S: TrialSurface + Copy>(
     args: &SlopeArgs,
     terrain: &Terrain,
     result: &SearchResult<S>,
+    hpm: &HpmRuns,
     dir: &Path,
     run: Run,
 ) -> Result<Report, SlopeError> {
     let mut files = Vec::new();
     let name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
     // ESRI ASCII grids and GeoTIFF beside them, on the DEM's grid.
-    let rasters = result.write_maps_as(dir, MAP_PREFIX, &RasterFormat::ALL)?;
     // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
-    // beside it. (A GeoTIFF carries its origin and cell size inside, but
-    // not the DEM's coordinate system, which an ESRI grid does not give:
-    // GDAL ignores a `.prj` beside a GeoTIFF.)
+    // beside it, copied from the DEM's; a GeoTIFF carries it inside (GDAL
+    // ignores a `.prj` beside a GeoTIFF).
     let prj = args.dem.with_extension("prj");
+    let wkt = if prj.is_file() {
+        let text = std::fs::read_to_string(&prj).map_err(|e| {
+            SlopeError::argument(
+                "--dem",
+                &args.dem.display().to_string(),
+                DismechError::GridFormat {
+                    file: prj.display().to_string(),
+                    line: 0,
+                    column: 0,
+                    message: format!(
+                        "the coordinate system beside the DEM cannot be read as text: {e}"
+                    ),
+                },
+            )
+        })?;
+        Some(text)
+    } else {
+        None
+    };
+    let wkt = wkt.as_deref();
+    let all = &RasterFormat::ALL;
+    let mut rasters = result.write_maps_with_crs(dir, MAP_PREFIX, all, wkt)?;
+    if let Some(worst) = &hpm.worst {
+        let slip = [("slip", &worst.grids.slip().raster)];
+        rasters.extend(write_rasters_with_crs(dir, HPM_PREFIX, &slip, all, wkt)?);
+        let maps = [
+            (HPM_PREFIX, Some(worst.elastic_maps()?)),
+            (HPM_NONLINEAR_PREFIX, worst.nonlinear_maps()?),
+        ];
+        for (prefix, maps) in maps {
+            let Some(maps) = maps else { continue };
+            let list: Vec<(&str, &Raster)> = maps.maps.iter().map(|(n, r)| (*n, r)).collect();
+            rasters.extend(write_rasters_with_crs(dir, prefix, &list, all, wkt)?);
+        }
+    }
     for raster in &rasters {
         files.extend(name(raster));
         if prj.is_file() && RasterFormat::of_path(raster) == RasterFormat::EsriAscii {
@@ -154,13 +227,15 @@ pub fn write<S: TrialSurface + Copy>(
     }
     let keep = args.keep.min(result.critical.len());
     let csv = dir.join(CRITICAL_CSV);
-    if keep == result.critical.len() {
-        result.write_critical_csv(&csv)?;
+    let mut kept = result.clone();
+    kept.critical.truncate(keep);
+    let text = kept.critical_csv();
+    let text = if args.hpm == 0 {
+        text
     } else {
-        let mut kept = result.clone();
-        kept.critical.truncate(keep);
-        kept.write_critical_csv(&csv)?;
-    }
+        with_hpm_columns(&text, &hpm.surfaces)
+    };
+    dismech::io::write_atomically(&csv, text.as_bytes())?;
     files.push(CRITICAL_CSV.into());
 
     let best = result.lowest().ok_or_else(|| {
@@ -220,6 +295,7 @@ pub fn write<S: TrialSurface + Copy>(
         lowest,
         counts: result.counts,
         run,
+        hpm: hpm.surfaces.clone(),
     };
     let summary = summary_json(args, terrain, &report);
     let text = serde_json::to_string_pretty(&summary)
@@ -245,6 +321,7 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
     serde_json::json!({
         "dem": args.dem.display().to_string(),
         "water": args.water.as_ref().map(|w| w.display().to_string()),
+        "bedrock": args.bedrock.as_ref().map(|b| b.display().to_string()),
         "grid": {
             "rows": dem.rows(),
             "columns": dem.columns(),
@@ -288,6 +365,17 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
             "area_m2": l.area,
             "depth_m": l.depth,
             "direction_deg": l.direction_deg,
+        },
+        "hpm": if args.hpm == 0 {
+            serde_json::Value::Null
+        } else {
+            serde_json::json!({
+                "surfaces": args.hpm,
+                "nonlinear": args.hpm_nonlinear,
+                "youngs_modulus_pa": args.youngs_modulus,
+                "poisson_ratio": args.poisson_ratio,
+                "results": report.hpm.iter().map(super::hpm::HpmSurface::json).collect::<Vec<_>>(),
+            })
         },
         "threads": report.run.threads,
         "seconds": report.run.seconds,

@@ -1,0 +1,220 @@
+//! `--hpm K`: the K most critical surfaces of the search re-analysed by
+//! paper 001's HPM ([`dismech::slope::hpm_reanalysis`]), what each gives
+//! (Fs, displacement, share of the slip surface yielded) for critical.csv
+//! and summary.json, and the maps of the most critical one.
+
+use dismech::error::DismechError;
+use dismech::hpm::{HpmResult, HpmSettings, NonlinearSettings};
+use dismech::slope::{
+    hpm_reanalysis, CriticalSurface, HpmReanalysis, HpmStiffness, SearchResult, TrialSurface,
+};
+
+use super::args::SlopeArgs;
+use super::error::SlopeError;
+use super::Problem;
+
+/// What one HPM analysis (elastic or nonlinear) gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HpmNumbers {
+    /// Fs along the sliding direction (Hovland's assumption,
+    /// [`HpmResult::sliding_safety_factor`]), or why there is none.
+    pub sliding_fs: Result<f64, String>,
+    /// The stress ratio `Σ (c + σ tan φ) A / Σ |τ| A`
+    /// ([`HpmResult::safety_factor`]), or why there is none.
+    pub stress_ratio_fs: Result<f64, String>,
+    /// Whether equilibrium was found.
+    pub converged: bool,
+    /// The relative out-of-balance force.
+    pub residual: f64,
+    /// Iterations (0 for the elastic solve).
+    pub iterations: usize,
+    /// The largest displacement at the top of a column (m).
+    pub max_displacement: f64,
+    /// Share of the slip surface's area slipping or open.
+    pub yielded_fraction: f64,
+}
+
+impl HpmNumbers {
+    fn of(analysis: &HpmReanalysis, result: &HpmResult) -> Self {
+        let model = &analysis.model;
+        let (iterations, residual) = match result.convergence {
+            dismech::hpm::Convergence::Converged {
+                iterations,
+                residual,
+            }
+            | dismech::hpm::Convergence::NotConverged {
+                iterations,
+                residual,
+            } => (iterations, residual),
+        };
+        Self {
+            sliding_fs: result
+                .sliding_safety_factor(model)
+                .map_err(|e| e.to_string()),
+            stress_ratio_fs: result.safety_factor(model).map_err(|e| e.to_string()),
+            converged: result.convergence.converged(),
+            residual,
+            iterations,
+            max_displacement: result
+                .surface(model)
+                .iter()
+                .map(|p| p.displacement.norm())
+                .fold(0.0, f64::max),
+            yielded_fraction: result.yielded_area_fraction(model),
+        }
+    }
+
+    /// As JSON: `fs` and `stress_ratio_fs` (null with `fs_refused` or
+    /// `stress_ratio_refused` naming why), convergence, displacement.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "fs": self.sliding_fs.as_ref().ok(),
+            "fs_refused": self.sliding_fs.as_ref().err(),
+            "stress_ratio_fs": self.stress_ratio_fs.as_ref().ok(),
+            "stress_ratio_refused": self.stress_ratio_fs.as_ref().err(),
+            "converged": self.converged,
+            "residual": self.residual,
+            "iterations": self.iterations,
+            "max_displacement_m": self.max_displacement,
+            "yielded_area_fraction": self.yielded_fraction,
+        })
+    }
+}
+
+/// One surface re-analysed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HpmSurface {
+    /// Its rank among the critical surfaces (1 the most critical).
+    pub rank: usize,
+    /// Its trial index in the family.
+    pub trial: u64,
+    /// Hovland's Fs of the search.
+    pub hovland_fs: f64,
+    /// HPM's columns, elastic and nonlinear numbers, or why the model
+    /// could not be built or solved.
+    pub outcome: Result<(usize, HpmNumbers, Option<HpmNumbers>), String>,
+}
+
+impl HpmSurface {
+    /// As JSON.
+    pub fn json(&self) -> serde_json::Value {
+        match &self.outcome {
+            Ok((columns, elastic, nonlinear)) => serde_json::json!({
+                "rank": self.rank,
+                "trial": self.trial,
+                "hovland_fs": self.hovland_fs,
+                "columns": columns,
+                "elastic": elastic.json(),
+                "nonlinear": nonlinear.as_ref().map(HpmNumbers::json),
+            }),
+            Err(reason) => serde_json::json!({
+                "rank": self.rank,
+                "trial": self.trial,
+                "hovland_fs": self.hovland_fs,
+                "refused": reason,
+            }),
+        }
+    }
+}
+
+/// The re-analyses of a run: each surface's numbers, and the whole
+/// analysis of the most critical one (for its maps), where it could be
+/// made.
+#[derive(Debug, Clone, Default)]
+pub struct HpmRuns {
+    /// Surface by surface, most critical first.
+    pub surfaces: Vec<HpmSurface>,
+    /// The most critical surface's analysis.
+    pub worst: Option<HpmReanalysis>,
+}
+
+/// Refuse `--hpm` with ground HPM cannot take (checked before the search).
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--hpm` with
+/// [`DismechError::HpmGround`] for `--ru`, or a `--layer` whose unit
+/// weight is not that of `--unit-weight`.
+pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
+    if args.hpm == 0 {
+        return Ok(());
+    }
+    let reason = if args.ru.is_some() {
+        "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only"
+            .to_string()
+    } else if args
+        .layers
+        .iter()
+        .any(|l| l.unit_weight != args.unit_weight)
+    {
+        let weights: Vec<String> = args
+            .layers
+            .iter()
+            .map(|l| format!("{} {}", l.name, l.unit_weight))
+            .chain(std::iter::once(format!(
+                "--unit-weight {}",
+                args.unit_weight
+            )))
+            .collect();
+        format!(
+            "--layer gives layered ground of different unit weights ({} N/m³); HPM's elements hold one unit weight (paper 001, §3), its slip springs take the strength of the layer they cross",
+            weights.join(", ")
+        )
+    } else {
+        return Ok(());
+    };
+    Err(SlopeError::argument(
+        "--hpm",
+        &args.hpm.to_string(),
+        DismechError::HpmGround { reason },
+    ))
+}
+
+/// Re-analyse the `args.hpm` most critical surfaces of `result`.
+pub fn reanalyse<S: TrialSurface + Copy>(
+    args: &SlopeArgs,
+    problem: &Problem,
+    result: &SearchResult<S>,
+) -> HpmRuns {
+    let stiffness = HpmStiffness {
+        youngs_modulus: args.youngs_modulus,
+        poisson_ratio: args.poisson_ratio,
+        slip_modulus: args.youngs_modulus,
+        ..HpmStiffness::default()
+    };
+    let nonlinear = NonlinearSettings::default();
+    let mut runs = HpmRuns::default();
+    for (k, c) in result.critical.iter().take(args.hpm).enumerate() {
+        let CriticalSurface {
+            trial,
+            surface,
+            result: fs,
+        } = c;
+        let analysis = hpm_reanalysis(
+            &problem.terrain,
+            &problem.ground,
+            &problem.loads,
+            surface,
+            fs,
+            &stiffness,
+            &HpmSettings::default(),
+            args.hpm_nonlinear.then_some(&nonlinear),
+        );
+        let outcome = analysis.as_ref().map_err(|e| e.to_string()).map(|a| {
+            (
+                a.model.columns.len(),
+                HpmNumbers::of(a, &a.elastic),
+                a.nonlinear.as_ref().map(|r| HpmNumbers::of(a, r)),
+            )
+        });
+        runs.surfaces.push(HpmSurface {
+            rank: k + 1,
+            trial: *trial,
+            hovland_fs: fs.safety_factor,
+            outcome,
+        });
+        if k == 0 {
+            runs.worst = analysis.ok();
+        }
+    }
+    runs
+}

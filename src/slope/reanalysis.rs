@@ -1,0 +1,267 @@
+//! HPM re-analysis of a trial surface found by a search: the surface made
+//! a slip-surface raster on the DEM's grid and analysed by paper 001's
+//! HPM ([`crate::hpm`]), elastic and, if asked, nonlinear, for what a
+//! column method cannot give: the deformation of the slide and the local
+//! Fs along its slip surface (paper 001, §5).
+//!
+//! The slip-surface raster holds the surface's lower half at every cell
+//! centre of its plan footprint where the DEM has data
+//! ([`surface_raster`]), the same heights [`super::surface_columns`] gives
+//! the search's columns; HPM's valid columns are the cells where it lies
+//! below the ground (§5), its corner heights interpolated from these
+//! cell-centre values (eq. 23). A re-analysis is therefore the same as an
+//! HPM run on that raster read from a file, bit for bit.
+//!
+//! **Ground.** HPM's elements hold one unit weight (§3: averaged values);
+//! its slip springs take the strength of the layer the slip surface
+//! crosses at each column's cell centre
+//! ([`HpmModel::set_column_strength`], as the search's Hovland takes it).
+//! Layered ground is therefore taken where its layers share one unit
+//! weight; layers of different unit weights, or a pore-pressure ratio, are
+//! refused ([`DismechError::HpmGround`]). The water table of the
+//! terrain becomes HPM's: the elements below it weigh the submerged unit
+//! weight `γ − γ_w` (eqs. 8–10), where Hovland's method of the search
+//! keeps the total weight and takes the pore pressure `γ_w h_p` off the
+//! base's normal force; under a level water table the two give the same
+//! effective normal force. The seismic coefficient acts along the
+//! surface's sliding direction of Hovland's method (eqs. 11–13).
+
+use crate::error::{DismechError, Result};
+use crate::grid::Raster;
+use crate::hpm::{
+    ColumnMaps, HpmMaterial, HpmModel, HpmResult, HpmSettings, HpmSolver, NamedRaster,
+    NonlinearSettings, Seismic, SlopeGrids,
+};
+use crate::law::Strength;
+
+use super::ground::{Ground, ToGround};
+use super::hovland::SurfaceFs;
+use super::material::{SlopeLoads, SlopeMaterial};
+use super::surface::TrialSurface;
+use super::terrain::Terrain;
+
+/// The stiffness of the ground and of the slip springs, which a limit
+/// equilibrium search does not need and HPM does ([`HpmMaterial`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HpmStiffness {
+    /// Young's modulus E of the soil (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson's ratio ν, in [0, 0.5).
+    pub poisson_ratio: f64,
+    /// Modulus E_slip of the slip springs (eq. 30) (Pa).
+    pub slip_modulus: f64,
+    /// Shear stiffness `k_s = k_t` of the slip springs (Pa/m); `None`
+    /// takes `E_slip / ((1 + ν) h_I)` of eq. (30).
+    pub slip_shear_stiffness: Option<f64>,
+}
+
+impl Default for HpmStiffness {
+    /// Paper 001's §5: E = E_slip = 1 GPa, ν = 0.2, k_s = 100 MPa/m.
+    fn default() -> Self {
+        let paper = HpmMaterial::paper();
+        Self {
+            youngs_modulus: paper.youngs_modulus,
+            poisson_ratio: paper.poisson_ratio,
+            slip_modulus: paper.slip_modulus,
+            slip_shear_stiffness: paper.slip_shear_stiffness,
+        }
+    }
+}
+
+impl HpmStiffness {
+    /// HPM's material of `material` with this stiffness; the submerged unit
+    /// weight is `γ − γ_w`.
+    ///
+    /// # Errors
+    /// Those of [`HpmMaterial::validate`], naming the value; a unit weight
+    /// not above `γ_w` gives a submerged unit weight that is not positive.
+    pub fn material(&self, material: &SlopeMaterial, loads: &SlopeLoads) -> Result<HpmMaterial> {
+        let m = HpmMaterial {
+            youngs_modulus: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
+            cohesion: material.cohesion,
+            friction_coefficient: material.friction_coefficient,
+            unit_weight: material.unit_weight,
+            submerged_unit_weight: material.unit_weight - loads.water_unit_weight,
+            slip_modulus: self.slip_modulus,
+            slip_shear_stiffness: self.slip_shear_stiffness,
+        };
+        m.validate()?;
+        Ok(m)
+    }
+}
+
+/// A trial surface as a slip-surface raster on the DEM's grid: its lower
+/// half at each cell centre of its plan footprint where the DEM has data
+/// (also where it lies above the ground: HPM's valid columns are those
+/// where it lies below, §5), raised to the bedrock where it would go below
+/// it ([`Terrain::with_bedrock`], as [`super::surface_columns`] does), no
+/// data elsewhere.
+///
+/// # Errors
+/// Those of [`Raster::new`] (none for a terrain's grid).
+pub fn surface_raster<S: TrialSurface>(terrain: &Terrain, surface: &S) -> Result<Raster> {
+    let dem = &terrain.dem().raster;
+    let (rows, columns) = (dem.rows(), dem.columns());
+    let mut values = vec![None; rows * columns];
+    for r in 0..rows {
+        for c in 0..columns {
+            if dem.get(r, c).is_none() {
+                continue;
+            }
+            let (x, y) = dem.cell_centre(r, c);
+            let rock = terrain.bedrock_at(r, c).map(|(z, _)| z);
+            values[r * columns + c] = surface.base(x, y).map(|(z, _)| match rock {
+                Some(rock) if z < rock => rock,
+                _ => z,
+            });
+        }
+    }
+    let (x0, y0) = dem.lower_left();
+    Raster::new(columns, rows, x0, y0, dem.cell_size(), values)
+}
+
+/// An HPM re-analysis of one trial surface.
+#[derive(Debug, Clone)]
+pub struct HpmReanalysis {
+    /// Ground (the DEM), slip surface ([`surface_raster`], named
+    /// `slip surface`) and water table.
+    pub grids: SlopeGrids,
+    /// The HPM model on them.
+    pub model: HpmModel,
+    /// The seismic load (k_h along Hovland's sliding direction).
+    pub seismic: Seismic,
+    /// The elastic analysis.
+    pub elastic: HpmResult,
+    /// The nonlinear analysis, where asked.
+    pub nonlinear: Option<HpmResult>,
+}
+
+impl HpmReanalysis {
+    /// The maps of the elastic analysis ([`HpmResult::maps`]).
+    ///
+    /// # Errors
+    /// Those of [`HpmResult::maps`] (none for a re-analysis).
+    pub fn elastic_maps(&self) -> Result<ColumnMaps> {
+        self.elastic.maps(&self.model, &self.grids)
+    }
+
+    /// The maps of the nonlinear analysis, where there is one.
+    ///
+    /// # Errors
+    /// As [`Self::elastic_maps`].
+    pub fn nonlinear_maps(&self) -> Result<Option<ColumnMaps>> {
+        self.nonlinear
+            .as_ref()
+            .map(|r| r.maps(&self.model, &self.grids))
+            .transpose()
+    }
+}
+
+/// The material HPM's model is built with and, for layered ground, the
+/// ground its slip springs take their strength from; or why HPM cannot
+/// take `ground`.
+fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Option<Ground>)> {
+    let ground = ground.to_ground();
+    if let Some(ratio) = ground.pore_ratio() {
+        return Err(DismechError::HpmGround {
+            reason: format!(
+                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only",
+                ratio.describe()
+            ),
+        });
+    }
+    let layers = ground.layers();
+    let first = layers[0].material;
+    if layers.len() == 1 {
+        return Ok((first, None));
+    }
+    if layers
+        .iter()
+        .any(|l| l.material.unit_weight != first.unit_weight)
+    {
+        return Err(DismechError::HpmGround {
+            reason: format!(
+                "the layered ground's unit weights differ ({}); HPM's elements hold one unit weight (paper 001, §3), its slip springs the strength of the layer they cross",
+                layers
+                    .iter()
+                    .map(|l| format!("{} {} N/m³", l.name, l.material.unit_weight))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        });
+    }
+    Ok((first, Some(ground)))
+}
+
+/// Re-analyse `surface` (a surface of a search over `terrain`, with
+/// Hovland's result `hovland` giving its sliding direction) by HPM:
+/// elastic always, nonlinear where `nonlinear` is given, on the ground
+/// `ground` (one material, or layers of one unit weight) under `loads`, with the stiffness `stiffness`
+/// and the discretisation `settings` (see the module's documentation).
+///
+/// # Errors
+/// [`DismechError::HpmGround`] for layers of different unit weights, a
+/// pore-pressure ratio or a layer's bottom without data under a column; those of [`HpmStiffness::material`], [`Seismic::validate`],
+/// [`SlopeGrids::new`] (a surface that stays above the ground:
+/// [`DismechError::NoValidColumn`]), [`HpmModel::new`], [`HpmSolver::new`]
+/// and of the analyses.
+#[allow(clippy::too_many_arguments)]
+pub fn hpm_reanalysis<S: TrialSurface>(
+    terrain: &Terrain,
+    ground: &(impl ToGround + ?Sized),
+    loads: &SlopeLoads,
+    surface: &S,
+    hovland: &SurfaceFs,
+    stiffness: &HpmStiffness,
+    settings: &HpmSettings,
+    nonlinear: Option<&NonlinearSettings>,
+) -> Result<HpmReanalysis> {
+    let (material, layered) = hpm_ground(ground)?;
+    let material = stiffness.material(&material, loads)?;
+    let seismic = Seismic {
+        coefficient: loads.seismic_coefficient,
+        direction: hovland.direction,
+    };
+    seismic.validate()?;
+    let slip = NamedRaster::new("slip surface", surface_raster(terrain, surface)?);
+    let grids = SlopeGrids::new(terrain.dem().clone(), slip, terrain.water().cloned())?;
+    let mut model = HpmModel::new(&grids, &material, settings)?;
+    if let Some(layered) = &layered {
+        // Each column's springs: the layer the slip surface crosses at the
+        // cell centre, as the search's Hovland takes it.
+        for k in 0..model.columns.len() {
+            let (r, c) = model.columns[k].cell;
+            let at = terrain
+                .ground(r, c)
+                .zip(grids.slip().raster.get(r, c))
+                .and_then(|(g, z)| layered.column(r, c, g, z));
+            let Some(at) = at else {
+                return Err(DismechError::HpmGround {
+                    reason: format!(
+                        "a layer's bottom has no data at cell (row {r}, column {c}), a column of the slide"
+                    ),
+                });
+            };
+            model.set_column_strength(
+                k,
+                Strength {
+                    cohesion: at.cohesion,
+                    friction: at.friction_coefficient,
+                },
+            )?;
+        }
+    }
+    let mut solver = HpmSolver::new(&model)?;
+    let elastic = solver.elastic(&model, &seismic)?;
+    let nonlinear = nonlinear
+        .map(|s| solver.nonlinear(&model, &seismic, 1.0, s))
+        .transpose()?;
+    Ok(HpmReanalysis {
+        grids,
+        model,
+        seismic,
+        elastic,
+        nonlinear,
+    })
+}
