@@ -297,6 +297,168 @@ fn lp_bearing_capacity_scenario_equals_lattice_limit_load_bit_for_bit() {
     assert_eq!(summary["frames"].as_u64(), Some(1));
 }
 
+/// The polygon-LP scenarios (the rocking and the sliding block) build the
+/// composition's bodies and contacts and give its limit loads to the bit.
+#[test]
+fn polygon_lp_scenarios_equal_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::polygon_lp::{
+        block_limit, block_limit_model, sliding_block, tipping_block,
+    };
+    for (name, block) in [
+        ("polygon_lp.toml", tipping_block()),
+        ("polygon_lp_sliding.toml", sliding_block()),
+    ] {
+        let expected = block_limit_model(&block).unwrap();
+        let prepared = scenario::load(&scenarios().join(name), Overrides::default()).unwrap();
+        let scenario::Model::Limit(plan) = &prepared.model else {
+            panic!("{name}: not a limit model");
+        };
+        assert_eq!(plan.model.bodies(), expected.bodies(), "{name}");
+        assert_eq!(plan.model.contacts(), expected.contacts(), "{name}");
+        assert_eq!(plan.model.load_driver(), expected.load_driver(), "{name}");
+        assert_eq!(plan.model.supports().len(), 1, "{name}");
+        let limit = block_limit(&block).unwrap();
+        let summary = run(name, Overrides::default());
+        assert_eq!(summary["outcome"]["status"], "Collapse", "{name}");
+        assert_eq!(
+            bits(&summary["load"]),
+            limit.result.load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            bits(&summary["kinematic_load"]),
+            limit.result.kinematic_load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            bits(&summary["static_load"]),
+            limit.result.static_load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(summary["contacts"].as_u64(), Some(2), "{name}");
+        // Within a part in 10^7 of the closed form, rocking or sliding.
+        let ratio = limit.result.load.unwrap() / limit.exact;
+        assert!((ratio - 1.0).abs() < 1e-7, "{name}: {ratio}");
+    }
+}
+
+/// The refusal of `name` (a scenario of `examples/scenarios/`) with `from`
+/// replaced by `to`.
+fn refusal_of(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+    assert!(text.contains(from), "{name}: {from}");
+    let text = text.replacen(from, to, 1);
+    match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => located.to_string(),
+        Err(e) => panic!("not a placed refusal: {e}"),
+        Ok(_) => panic!("accepted: {to}"),
+    }
+}
+
+/// The limit driver's bodies of shapes: values refused by key, and
+/// combinations that cannot compose by both keys.
+#[test]
+fn limit_shapes_refusals_name_their_keys() {
+    let bad = [
+        (
+            "contact_tolerance = 8e-10",
+            "contact_tolerance = -1.0",
+            "`driver.contact_tolerance` = -1.0",
+        ),
+        ("width = 0.4", "width = 0.0", "`bodies[0].width` = 0.0"),
+        (
+            "end = [1.0, 0.0]",
+            "end = [-1.0, 0.0]",
+            "`bodies[1].end` = [-1.0, 0.0]",
+        ),
+        (
+            "body = 0, force = [1.0",
+            "body = 3, force = [1.0",
+            "`loads.live.body` = 3",
+        ),
+        (
+            "force = [1.0, 0.0]",
+            "force = [0.0, 0.0]",
+            "`loads.live.force`",
+        ),
+        (
+            "point = [0.0, 0.8]",
+            "point = [0.0, nan]",
+            "`loads.live.point`",
+        ),
+        (
+            "body = 0, force = [0.0, -1000.0]",
+            "body = 1, force = [0.0, -1000.0]",
+            "`loads.forces[0].body` = 1",
+        ),
+        (
+            "friction_angle = 30.0",
+            "friction_angle = 95.0",
+            "`law.friction_angle` = 95.0",
+        ),
+        (
+            "height = 0.8",
+            "height = 0.8\nvelocity = [1.0, 0.0]",
+            "`driver.kind` and `bodies[0].velocity`",
+        ),
+        (
+            "contact_tolerance = 8e-10",
+            "multiply_dead_loads = true",
+            "`loads.live` and `driver.multiply_dead_loads`",
+        ),
+        (
+            "live = { body = 0, force = [1.0, 0.0], point = [0.0, 0.8] }",
+            "",
+            "`loads`",
+        ),
+        (
+            "live = { body = 0,",
+            "tractions = [{ body = 0, edge = 0, traction = [1.0, 0.0] }]\nlive = { body = 0,",
+            "`driver.kind` and `loads.tractions`",
+        ),
+        (
+            "kind = \"rectangle\"",
+            "kind = \"circle-rows\"",
+            "`bodies[0]",
+        ),
+        (
+            "height = 0.8\n",
+            "height = 0.8\nbogus = 1\n",
+            "`bodies[0].bogus`",
+        ),
+    ];
+    for (from, to, key) in bad {
+        let message = refusal_of("polygon_lp.toml", from, to);
+        assert!(message.starts_with("model.toml:"), "{message}");
+        assert!(message.contains(key), "{to}: {message}");
+    }
+    // Beside a lattice, the keys of bodies of shapes are refused by both.
+    let lattice = refusal_of(
+        "lp_bearing_capacity.toml",
+        "kind = \"limit\"",
+        "kind = \"limit\"\ncontact_tolerance = 1e-9",
+    );
+    assert!(
+        lattice.contains("`bodies[0].kind` and `driver.contact_tolerance`"),
+        "{lattice}"
+    );
+    let mixed = refusal_of(
+        "lp_bearing_capacity.toml",
+        "[law]",
+        "[[bodies]]\nkind = \"circle\"\ncentre = [0.0, 0.0]\nradius = 1.0\n\n[law]",
+    );
+    assert!(
+        mixed.contains("`bodies[0].kind` and `bodies[1].kind`"),
+        "{mixed}"
+    );
+    // A live load is the limit driver's.
+    let explicit = refusal(
+        "[loads]",
+        "[loads]\nlive = { body = 0, force = [1.0, 0.0] }",
+    );
+    assert!(explicit.contains("`loads.live`"), "{explicit}");
+}
+
 /// The refusal of the Katsuki scenario with `from` replaced by `to`.
 fn refusal(from: &str, to: &str) -> String {
     let file = scenarios().join("katsuki_example1.toml");

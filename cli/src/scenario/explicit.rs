@@ -186,6 +186,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
         !spec.loads.tractions.is_empty(),
         KeyPath::root("loads").key("tractions"),
         "edge tractions load the implicit driver's polygons; the explicit driver takes `loads.forces`",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.loads.live.is_some(),
+        KeyPath::root("loads").key("live"),
+        "a live load is the limit driver's; the explicit driver takes `loads.forces`",
     )
 }
 
