@@ -342,6 +342,94 @@ fn polygon_lp_scenarios_equal_the_composition_bit_for_bit() {
     }
 }
 
+/// The block wall by the explicit polygon DEM from its file: the
+/// composition's scene (its blocks, base, law and quarter of the stable
+/// step), stepped as far, ends in the same bits.
+#[test]
+fn block_wall_dem_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::explicit::critical_time_step;
+    use dismech::law::{Damping, NormalStiffness};
+    use dismech::scene::{Frame, Scene};
+    use dismech::shape::Segment;
+    use dismech_cli::compositions::block_wall::{wall_by_dem, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let blocks = wall.blocks().unwrap();
+    let base = Segment::new(Point::new(-0.5, 0.0), Point::new(wall.length() + 0.5, 0.0));
+    let frame = Frame::from_walls(vec![("base".into(), base)]).unwrap();
+    let mut scene = Scene::new(frame, Vec2::new(0.0, -wall.gravity)).unwrap();
+    for b in &blocks {
+        scene.add_polygon(&b.corners, wall.density).unwrap();
+    }
+    let law = SpringDashpotCoulomb::new(
+        NormalStiffness::Constant(wall.contact_stiffness),
+        wall.dem_stiffness_ratio,
+        wall.friction,
+        Damping::Critical,
+    )
+    .unwrap();
+    let dt = 0.25 * critical_time_step(&scene, &law).dt;
+    let text = std::fs::read_to_string(scenarios().join("block_wall_dem.toml")).unwrap();
+    assert!(text.contains(&format!("dt = {dt:?}\n")), "dt = {dt:?}");
+    let steps = 3000;
+    let summary = run(
+        "block_wall_dem.toml",
+        Overrides {
+            max_steps: Some(steps),
+            end_time: None,
+        },
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(steps));
+    let settings = DemSettings {
+        dt,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
+    for _ in 0..steps {
+        sim.step().unwrap();
+    }
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), blocks.len());
+    for (k, p) in sim.scene().particles.iter().enumerate() {
+        assert_eq!(
+            bits(&bodies[k]["centre"][0]),
+            p.pose.position.x.to_bits(),
+            "{k}"
+        );
+        assert_eq!(
+            bits(&bodies[k]["centre"][1]),
+            p.pose.position.y.to_bits(),
+            "{k}"
+        );
+        assert_eq!(bits(&bodies[k]["angle"]), p.pose.angle.to_bits(), "{k}");
+    }
+    // Run to rest, as the composition runs it: the same steps, the same
+    // unbalanced force, and the base carries the weight.
+    let summary = run("block_wall_dem.toml", Overrides::default());
+    let expected = wall_by_dem(&wall).unwrap();
+    assert!(expected.at_rest);
+    assert_eq!(summary["outcome"]["status"], "AtRest");
+    assert_eq!(summary["steps"].as_u64(), Some(expected.steps as u64));
+    assert_eq!(
+        bits(&summary["outcome"]["unbalanced_force_ratio"]),
+        expected.unbalanced.to_bits()
+    );
+    assert_eq!(bits(&summary["weight"]), expected.total_weight.to_bits());
+    let load = &summary["walls"][0]["load"];
+    assert_eq!(bits(&load[0]), (-expected.base_reaction.x).to_bits());
+    assert_eq!(bits(&load[1]), (-expected.base_reaction.y).to_bits());
+    assert!((expected.base_reaction_ratio() - 1.0).abs() < 1e-6);
+    // Blocks must face the flat base: on its right (the base drawn the
+    // other way) or beyond its ends they are refused.
+    for (from, to) in [
+        ("[[-0.5, 0.0], [2.95, 0.0]]", "[[2.95, 0.0], [-0.5, 0.0]]"),
+        ("[[-0.5, 0.0], [2.95, 0.0]]", "[[-0.5, 0.0], [0.1, 0.0]]"),
+    ] {
+        let outside = refusal_of("block_wall_dem.toml", from, to);
+        assert!(outside.contains("` and `boundary`:"), "{outside}");
+        assert!(outside.contains("outside the frame's box"), "{outside}");
+    }
+}
+
 /// The refusal of `name` (a scenario of `examples/scenarios/`) with `from`
 /// replaced by `to`.
 fn refusal_of(name: &str, from: &str, to: &str) -> String {
