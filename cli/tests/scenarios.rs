@@ -430,6 +430,109 @@ fn block_wall_dem_scenario_equals_the_composition_bit_for_bit() {
     }
 }
 
+/// The block wall by the static DDA from its file: the composition's
+/// model (its blocks, fixed base, penalty law, settings and restarted
+/// Newmark) advanced as many steps as the composition takes to rest ends
+/// in the same bits, and its base carries the weight.
+#[test]
+fn block_wall_dda_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::integrate::{Newmark, Restarting};
+    use dismech_cli::compositions::block_wall::{wall_by_dda, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let expected = wall_by_dda(&wall).unwrap();
+    assert!(expected.at_rest);
+    let summary = run(
+        "block_wall_dda.toml",
+        Overrides {
+            max_steps: Some(expected.steps as u64),
+            end_time: None,
+        },
+    );
+    assert_eq!(expected.steps, 4);
+    assert_eq!(summary["steps"].as_u64(), Some(4));
+    assert_eq!(summary["outcome"]["halvings"].as_u64(), Some(0));
+    // The composition's model, as it builds it.
+    let layout = wall.blocks().unwrap();
+    let material = BlockMaterial {
+        density: wall.density,
+        youngs_modulus: wall.youngs_modulus,
+        poisson_ratio: wall.poisson_ratio,
+        plane: PlaneState::Stress,
+    };
+    let mut blocks: Vec<Block> = layout
+        .iter()
+        .enumerate()
+        .map(|(i, b)| Block::new(&b.corners, material, i).unwrap())
+        .collect();
+    let (x0, x1, depth) = (-0.5, wall.length() + 0.5, wall.block_height);
+    let corners = [(x0, -depth), (x1, -depth), (x1, 0.0), (x0, 0.0)];
+    let mut base = Block::new(
+        &corners.map(|(x, y)| Point::new(x, y)),
+        material,
+        layout.len(),
+    )
+    .unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    blocks.push(base);
+    let law = PenaltyCoulomb::new(
+        wall.contact_stiffness,
+        wall.friction,
+        FrictionIntegration::ReturnMapping,
+    )
+    .unwrap();
+    let settings = DdaSettings {
+        gravity: Vec2::new(0.0, -wall.gravity),
+        search_distance: 0.5 * wall.joint,
+        residual_tolerance: 1e-9,
+        ..DdaSettings::default()
+    };
+    let mut model =
+        DdaModel::with_integrator(blocks, law, Restarting(Newmark::dda()), settings).unwrap();
+    for _ in 0..expected.steps {
+        model.advance(0.01).unwrap();
+    }
+    let base_reaction = -model.contact_force_on(layout.len());
+    assert_eq!(
+        base_reaction.x.to_bits(),
+        expected.base_reaction.x.to_bits()
+    );
+    assert_eq!(
+        base_reaction.y.to_bits(),
+        expected.base_reaction.y.to_bits()
+    );
+    assert!((expected.base_reaction_ratio() - 1.0).abs() < 1e-6);
+    assert_eq!(bits(&summary["time"]), model.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), layout.len() + 1);
+    for (k, (b, block)) in bodies.iter().zip(model.blocks()).enumerate() {
+        for d in 0..6 {
+            assert_eq!(
+                bits(&b["displacement"][d]),
+                block.displacement[d].to_bits(),
+                "body {k}, displacement {d}"
+            );
+        }
+        assert_eq!(bits(&b["centroid"][0]), block.centroid().x.to_bits(), "{k}");
+        assert_eq!(bits(&b["centroid"][1]), block.centroid().y.to_bits(), "{k}");
+    }
+    // The file's 200 steps keep the wall where it came to rest.
+    let full = run("block_wall_dda.toml", Overrides::default());
+    assert_eq!(full["steps"].as_u64(), Some(200));
+    for (k, (b, block)) in full["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(model.blocks())
+        .enumerate()
+    {
+        let moved = Vec2::new(
+            b["centroid"][0].as_f64().unwrap() - block.centroid().x,
+            b["centroid"][1].as_f64().unwrap() - block.centroid().y,
+        );
+        assert!(moved.norm() < 1e-8, "{k}: {moved:?}");
+    }
+}
+
 /// The refusal of `name` (a scenario of `examples/scenarios/`) with `from`
 /// replaced by `to`.
 fn refusal_of(name: &str, from: &str, to: &str) -> String {
