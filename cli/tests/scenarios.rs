@@ -533,6 +533,80 @@ fn block_wall_dda_scenario_equals_the_composition_bit_for_bit() {
     }
 }
 
+/// The limit driver finds the contacts of circles and ellipses by the
+/// pair query: a circle on the floor, a circle on it, an ellipse on the
+/// floor beside them, and a circle apart from all, which touches nothing.
+#[test]
+fn limit_shapes_contacts_come_from_the_pair_query() {
+    let text = r#"
+[driver]
+kind = "limit"
+multiply_dead_loads = true
+
+[[bodies]]
+kind = "wall"
+start = [-10.0, 0.0]
+end = [10.0, 0.0]
+
+[[bodies]]
+kind = "circle"
+centre = [0.0, 1.0]
+radius = 1.0
+density = 1000.0
+
+[[bodies]]
+kind = "circle"
+centre = [0.0, 3.0]
+radius = 1.0
+density = 1000.0
+
+[[bodies]]
+kind = "ellipse"
+centre = [5.0, 0.5]
+semi_major = 2.0
+semi_minor = 0.5
+density = 1000.0
+
+[[bodies]]
+kind = "circle"
+centre = [-5.0, 4.0]
+radius = 1.0
+density = 1000.0
+
+[law]
+kind = "rigid-plastic"
+cohesion = 10.0
+"#;
+    let prepared = scenario::prepare(Path::new("model.toml"), text, Overrides::default()).unwrap();
+    let scenario::Model::Limit(plan) = &prepared.model else {
+        panic!("not a limit model");
+    };
+    let model = &plan.model;
+    assert_eq!(model.bodies().len(), 4);
+    assert_eq!(model.supports().len(), 1);
+    let pairs: Vec<(usize, dismech::limit::Partner)> = model
+        .contacts()
+        .iter()
+        .map(|c| (c.body, c.partner))
+        .collect();
+    use dismech::limit::Partner;
+    assert_eq!(
+        pairs,
+        [
+            (0, Partner::Support(0)),
+            (0, Partner::Body(1)),
+            (2, Partner::Support(0)),
+        ]
+    );
+    // Self-weight m g under the default gravity.
+    let weight = 1000.0 * std::f64::consts::PI * 9.81;
+    assert!((model.bodies()[0].load.y + weight).abs() < 1e-9 * weight);
+    assert_eq!(
+        model.load_driver(),
+        Some(&dismech::limit::LoadDriver::DeadLoads)
+    );
+}
+
 /// The refusal of `name` (a scenario of `examples/scenarios/`) with `from`
 /// replaced by `to`.
 fn refusal_of(name: &str, from: &str, to: &str) -> String {
