@@ -297,6 +297,433 @@ fn lp_bearing_capacity_scenario_equals_lattice_limit_load_bit_for_bit() {
     assert_eq!(summary["frames"].as_u64(), Some(1));
 }
 
+/// The polygon-LP scenarios (the rocking and the sliding block) build the
+/// composition's bodies and contacts and give its limit loads to the bit.
+#[test]
+fn polygon_lp_scenarios_equal_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::polygon_lp::{
+        block_limit, block_limit_model, sliding_block, tipping_block,
+    };
+    for (name, block) in [
+        ("polygon_lp.toml", tipping_block()),
+        ("polygon_lp_sliding.toml", sliding_block()),
+    ] {
+        let expected = block_limit_model(&block).unwrap();
+        let prepared = scenario::load(&scenarios().join(name), Overrides::default()).unwrap();
+        let scenario::Model::Limit(plan) = &prepared.model else {
+            panic!("{name}: not a limit model");
+        };
+        assert_eq!(plan.model.bodies(), expected.bodies(), "{name}");
+        assert_eq!(plan.model.contacts(), expected.contacts(), "{name}");
+        assert_eq!(plan.model.load_driver(), expected.load_driver(), "{name}");
+        assert_eq!(plan.model.supports().len(), 1, "{name}");
+        let limit = block_limit(&block).unwrap();
+        let summary = run(name, Overrides::default());
+        assert_eq!(summary["outcome"]["status"], "Collapse", "{name}");
+        assert_eq!(
+            bits(&summary["load"]),
+            limit.result.load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            bits(&summary["kinematic_load"]),
+            limit.result.kinematic_load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            bits(&summary["static_load"]),
+            limit.result.static_load.unwrap().to_bits(),
+            "{name}"
+        );
+        assert_eq!(summary["contacts"].as_u64(), Some(2), "{name}");
+        // Within a part in 10^7 of the closed form, rocking or sliding.
+        let ratio = limit.result.load.unwrap() / limit.exact;
+        assert!((ratio - 1.0).abs() < 1e-7, "{name}: {ratio}");
+    }
+}
+
+/// The block wall by the explicit polygon DEM from its file: the
+/// composition's scene (its blocks, base, law and quarter of the stable
+/// step), stepped as far, ends in the same bits.
+#[test]
+fn block_wall_dem_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::explicit::critical_time_step;
+    use dismech::law::{Damping, NormalStiffness};
+    use dismech::scene::{Frame, Scene};
+    use dismech::shape::Segment;
+    use dismech_cli::compositions::block_wall::{wall_by_dem, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let blocks = wall.blocks().unwrap();
+    let base = Segment::new(Point::new(-0.5, 0.0), Point::new(wall.length() + 0.5, 0.0));
+    let frame = Frame::from_walls(vec![("base".into(), base)]).unwrap();
+    let mut scene = Scene::new(frame, Vec2::new(0.0, -wall.gravity)).unwrap();
+    for b in &blocks {
+        scene.add_polygon(&b.corners, wall.density).unwrap();
+    }
+    let law = SpringDashpotCoulomb::new(
+        NormalStiffness::Constant(wall.contact_stiffness),
+        wall.dem_stiffness_ratio,
+        wall.friction,
+        Damping::Critical,
+    )
+    .unwrap();
+    let dt = 0.25 * critical_time_step(&scene, &law).dt;
+    let text = std::fs::read_to_string(scenarios().join("block_wall_dem.toml")).unwrap();
+    assert!(text.contains(&format!("dt = {dt:?}\n")), "dt = {dt:?}");
+    let steps = 3000;
+    let summary = run(
+        "block_wall_dem.toml",
+        Overrides {
+            max_steps: Some(steps),
+            end_time: None,
+        },
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(steps));
+    let settings = DemSettings {
+        dt,
+        ..DemSettings::default()
+    };
+    let mut sim = DemSimulation::new(scene, law, ExplicitEuler, settings).unwrap();
+    for _ in 0..steps {
+        sim.step().unwrap();
+    }
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), blocks.len());
+    for (k, p) in sim.scene().particles.iter().enumerate() {
+        assert_eq!(
+            bits(&bodies[k]["centre"][0]),
+            p.pose.position.x.to_bits(),
+            "{k}"
+        );
+        assert_eq!(
+            bits(&bodies[k]["centre"][1]),
+            p.pose.position.y.to_bits(),
+            "{k}"
+        );
+        assert_eq!(bits(&bodies[k]["angle"]), p.pose.angle.to_bits(), "{k}");
+    }
+    // Run to rest, as the composition runs it: the same steps, the same
+    // unbalanced force, and the base carries the weight.
+    let summary = run("block_wall_dem.toml", Overrides::default());
+    let expected = wall_by_dem(&wall).unwrap();
+    assert!(expected.at_rest);
+    assert_eq!(summary["outcome"]["status"], "AtRest");
+    assert_eq!(summary["steps"].as_u64(), Some(expected.steps as u64));
+    assert_eq!(
+        bits(&summary["outcome"]["unbalanced_force_ratio"]),
+        expected.unbalanced.to_bits()
+    );
+    assert_eq!(bits(&summary["weight"]), expected.total_weight.to_bits());
+    let load = &summary["walls"][0]["load"];
+    assert_eq!(bits(&load[0]), (-expected.base_reaction.x).to_bits());
+    assert_eq!(bits(&load[1]), (-expected.base_reaction.y).to_bits());
+    assert!((expected.base_reaction_ratio() - 1.0).abs() < 1e-6);
+    // Blocks must face the flat base: on its right (the base drawn the
+    // other way) or beyond its ends they are refused.
+    for (from, to) in [
+        ("[[-0.5, 0.0], [2.95, 0.0]]", "[[2.95, 0.0], [-0.5, 0.0]]"),
+        ("[[-0.5, 0.0], [2.95, 0.0]]", "[[-0.5, 0.0], [0.1, 0.0]]"),
+    ] {
+        let outside = refusal_of("block_wall_dem.toml", from, to);
+        assert!(outside.contains("` and `boundary`:"), "{outside}");
+        assert!(outside.contains("outside the frame's box"), "{outside}");
+    }
+}
+
+/// The block wall by the static DDA from its file: the composition's
+/// model (its blocks, fixed base, penalty law, settings and restarted
+/// Newmark) advanced as many steps as the composition takes to rest ends
+/// in the same bits, and its base carries the weight.
+#[test]
+fn block_wall_dda_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::integrate::{Newmark, Restarting};
+    use dismech_cli::compositions::block_wall::{wall_by_dda, RunningBondWall};
+    let wall = RunningBondWall::default();
+    let expected = wall_by_dda(&wall).unwrap();
+    assert!(expected.at_rest);
+    let summary = run(
+        "block_wall_dda.toml",
+        Overrides {
+            max_steps: Some(expected.steps as u64),
+            end_time: None,
+        },
+    );
+    assert_eq!(expected.steps, 4);
+    assert_eq!(summary["steps"].as_u64(), Some(4));
+    assert_eq!(summary["outcome"]["halvings"].as_u64(), Some(0));
+    // The composition's model, as it builds it.
+    let layout = wall.blocks().unwrap();
+    let material = BlockMaterial {
+        density: wall.density,
+        youngs_modulus: wall.youngs_modulus,
+        poisson_ratio: wall.poisson_ratio,
+        plane: PlaneState::Stress,
+    };
+    let mut blocks: Vec<Block> = layout
+        .iter()
+        .enumerate()
+        .map(|(i, b)| Block::new(&b.corners, material, i).unwrap())
+        .collect();
+    let (x0, x1, depth) = (-0.5, wall.length() + 0.5, wall.block_height);
+    let corners = [(x0, -depth), (x1, -depth), (x1, 0.0), (x0, 0.0)];
+    let mut base = Block::new(
+        &corners.map(|(x, y)| Point::new(x, y)),
+        material,
+        layout.len(),
+    )
+    .unwrap();
+    base.prescribed = Some(Prescribed::fixed());
+    blocks.push(base);
+    let law = PenaltyCoulomb::new(
+        wall.contact_stiffness,
+        wall.friction,
+        FrictionIntegration::ReturnMapping,
+    )
+    .unwrap();
+    let settings = DdaSettings {
+        gravity: Vec2::new(0.0, -wall.gravity),
+        search_distance: 0.5 * wall.joint,
+        residual_tolerance: 1e-9,
+        ..DdaSettings::default()
+    };
+    let mut model =
+        DdaModel::with_integrator(blocks, law, Restarting(Newmark::dda()), settings).unwrap();
+    for _ in 0..expected.steps {
+        model.advance(0.01).unwrap();
+    }
+    let base_reaction = -model.contact_force_on(layout.len());
+    assert_eq!(
+        base_reaction.x.to_bits(),
+        expected.base_reaction.x.to_bits()
+    );
+    assert_eq!(
+        base_reaction.y.to_bits(),
+        expected.base_reaction.y.to_bits()
+    );
+    assert!((expected.base_reaction_ratio() - 1.0).abs() < 1e-6);
+    assert_eq!(bits(&summary["time"]), model.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), layout.len() + 1);
+    for (k, (b, block)) in bodies.iter().zip(model.blocks()).enumerate() {
+        for d in 0..6 {
+            assert_eq!(
+                bits(&b["displacement"][d]),
+                block.displacement[d].to_bits(),
+                "body {k}, displacement {d}"
+            );
+        }
+        assert_eq!(bits(&b["centroid"][0]), block.centroid().x.to_bits(), "{k}");
+        assert_eq!(bits(&b["centroid"][1]), block.centroid().y.to_bits(), "{k}");
+    }
+    // The file's 200 steps keep the wall where it came to rest.
+    let full = run("block_wall_dda.toml", Overrides::default());
+    assert_eq!(full["steps"].as_u64(), Some(200));
+    for (k, (b, block)) in full["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(model.blocks())
+        .enumerate()
+    {
+        let moved = Vec2::new(
+            b["centroid"][0].as_f64().unwrap() - block.centroid().x,
+            b["centroid"][1].as_f64().unwrap() - block.centroid().y,
+        );
+        assert!(moved.norm() < 1e-8, "{k}: {moved:?}");
+    }
+}
+
+/// The limit driver finds the contacts of circles and ellipses by the
+/// pair query: a circle on the floor, a circle on it, an ellipse on the
+/// floor beside them, and a circle apart from all, which touches nothing.
+#[test]
+fn limit_shapes_contacts_come_from_the_pair_query() {
+    let text = r#"
+[driver]
+kind = "limit"
+multiply_dead_loads = true
+
+[[bodies]]
+kind = "wall"
+start = [-10.0, 0.0]
+end = [10.0, 0.0]
+
+[[bodies]]
+kind = "circle"
+centre = [0.0, 1.0]
+radius = 1.0
+density = 1000.0
+
+[[bodies]]
+kind = "circle"
+centre = [0.0, 3.0]
+radius = 1.0
+density = 1000.0
+
+[[bodies]]
+kind = "ellipse"
+centre = [5.0, 0.5]
+semi_major = 2.0
+semi_minor = 0.5
+density = 1000.0
+
+[[bodies]]
+kind = "circle"
+centre = [-5.0, 4.0]
+radius = 1.0
+density = 1000.0
+
+[law]
+kind = "rigid-plastic"
+cohesion = 10.0
+"#;
+    let prepared = scenario::prepare(Path::new("model.toml"), text, Overrides::default()).unwrap();
+    let scenario::Model::Limit(plan) = &prepared.model else {
+        panic!("not a limit model");
+    };
+    let model = &plan.model;
+    assert_eq!(model.bodies().len(), 4);
+    assert_eq!(model.supports().len(), 1);
+    let pairs: Vec<(usize, dismech::limit::Partner)> = model
+        .contacts()
+        .iter()
+        .map(|c| (c.body, c.partner))
+        .collect();
+    use dismech::limit::Partner;
+    assert_eq!(
+        pairs,
+        [
+            (0, Partner::Support(0)),
+            (0, Partner::Body(1)),
+            (2, Partner::Support(0)),
+        ]
+    );
+    // Self-weight m g under the default gravity.
+    let weight = 1000.0 * std::f64::consts::PI * 9.81;
+    assert!((model.bodies()[0].load.y + weight).abs() < 1e-9 * weight);
+    assert_eq!(
+        model.load_driver(),
+        Some(&dismech::limit::LoadDriver::DeadLoads)
+    );
+}
+
+/// The refusal of `name` (a scenario of `examples/scenarios/`) with `from`
+/// replaced by `to`.
+fn refusal_of(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(scenarios().join(name)).unwrap();
+    assert!(text.contains(from), "{name}: {from}");
+    let text = text.replacen(from, to, 1);
+    match scenario::prepare(Path::new("model.toml"), &text, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => located.to_string(),
+        Err(e) => panic!("not a placed refusal: {e}"),
+        Ok(_) => panic!("accepted: {to}"),
+    }
+}
+
+/// The limit driver's bodies of shapes: values refused by key, and
+/// combinations that cannot compose by both keys.
+#[test]
+fn limit_shapes_refusals_name_their_keys() {
+    let bad = [
+        (
+            "contact_tolerance = 8e-10",
+            "contact_tolerance = -1.0",
+            "`driver.contact_tolerance` = -1.0",
+        ),
+        ("width = 0.4", "width = 0.0", "`bodies[0].width` = 0.0"),
+        (
+            "end = [1.0, 0.0]",
+            "end = [-1.0, 0.0]",
+            "`bodies[1].end` = [-1.0, 0.0]",
+        ),
+        (
+            "body = 0, force = [1.0",
+            "body = 3, force = [1.0",
+            "`loads.live.body` = 3",
+        ),
+        (
+            "force = [1.0, 0.0]",
+            "force = [0.0, 0.0]",
+            "`loads.live.force`",
+        ),
+        (
+            "point = [0.0, 0.8]",
+            "point = [0.0, nan]",
+            "`loads.live.point`",
+        ),
+        (
+            "body = 0, force = [0.0, -1000.0]",
+            "body = 1, force = [0.0, -1000.0]",
+            "`loads.forces[0].body` = 1",
+        ),
+        (
+            "friction_angle = 30.0",
+            "friction_angle = 95.0",
+            "`law.friction_angle` = 95.0",
+        ),
+        (
+            "height = 0.8",
+            "height = 0.8\nvelocity = [1.0, 0.0]",
+            "`driver.kind` and `bodies[0].velocity`",
+        ),
+        (
+            "contact_tolerance = 8e-10",
+            "multiply_dead_loads = true",
+            "`loads.live` and `driver.multiply_dead_loads`",
+        ),
+        (
+            "live = { body = 0, force = [1.0, 0.0], point = [0.0, 0.8] }",
+            "",
+            "`loads`",
+        ),
+        (
+            "live = { body = 0,",
+            "tractions = [{ body = 0, edge = 0, traction = [1.0, 0.0] }]\nlive = { body = 0,",
+            "`driver.kind` and `loads.tractions`",
+        ),
+        (
+            "kind = \"rectangle\"",
+            "kind = \"circle-rows\"",
+            "`bodies[0]",
+        ),
+        (
+            "height = 0.8\n",
+            "height = 0.8\nbogus = 1\n",
+            "`bodies[0].bogus`",
+        ),
+    ];
+    for (from, to, key) in bad {
+        let message = refusal_of("polygon_lp.toml", from, to);
+        assert!(message.starts_with("model.toml:"), "{message}");
+        assert!(message.contains(key), "{to}: {message}");
+    }
+    // Beside a lattice, the keys of bodies of shapes are refused by both.
+    let lattice = refusal_of(
+        "lp_bearing_capacity.toml",
+        "kind = \"limit\"",
+        "kind = \"limit\"\ncontact_tolerance = 1e-9",
+    );
+    assert!(
+        lattice.contains("`bodies[0].kind` and `driver.contact_tolerance`"),
+        "{lattice}"
+    );
+    let mixed = refusal_of(
+        "lp_bearing_capacity.toml",
+        "[law]",
+        "[[bodies]]\nkind = \"circle\"\ncentre = [0.0, 0.0]\nradius = 1.0\n\n[law]",
+    );
+    assert!(
+        mixed.contains("`bodies[0].kind` and `bodies[1].kind`"),
+        "{mixed}"
+    );
+    // A live load is the limit driver's.
+    let explicit = refusal(
+        "[loads]",
+        "[loads]\nlive = { body = 0, force = [1.0, 0.0] }",
+    );
+    assert!(explicit.contains("`loads.live`"), "{explicit}");
+}
+
 /// The refusal of the Katsuki scenario with `from` replaced by `to`.
 fn refusal(from: &str, to: &str) -> String {
     let file = scenarios().join("katsuki_example1.toml");

@@ -92,7 +92,14 @@ pub enum PredictorSpec {
 /// Settings of the limit analysis.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct LimitSpec {}
+pub struct LimitSpec {
+    /// Distance within which outlines touch (m), bodies of shapes only;
+    /// 1e-9 by default.
+    pub contact_tolerance: Option<f64>,
+    /// Seek the factor on the dead loads (self-weight and `loads.forces`)
+    /// at collapse instead of a live load's multiplier (false by default).
+    pub multiply_dead_loads: Option<bool>,
+}
 
 /// Settings of the HPM ([`dismech::hpm::HpmSettings`]).
 #[derive(Debug, Clone, Deserialize)]

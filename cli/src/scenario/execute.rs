@@ -668,7 +668,24 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
         "frames": frames,
     });
     if let Some(object) = value.as_object_mut() {
-        object.extend(limit_summary(&result, plan.lattice.plate_length()));
+        match &plan.lattice {
+            Some(lattice) => object.extend(limit_summary(&result, lattice.plate_length())),
+            None => {
+                let mut map = limit_summary(&result, f64::NAN);
+                map.remove("plate_length");
+                for (from, to) in [
+                    ("p_over_cp", "load"),
+                    ("kinematic_p_over_cp", "kinematic_load"),
+                    ("static_p_over_cp", "static_load"),
+                ] {
+                    if let Some(v) = map.remove(from) {
+                        map.insert(to.into(), v);
+                    }
+                }
+                map.insert("supports".into(), json!(plan.model.supports().len()));
+                object.extend(map);
+            }
+        }
     }
     Ok((value, result.status))
 }

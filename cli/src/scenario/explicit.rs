@@ -7,7 +7,7 @@ use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{PenaltyCoulomb, SpringDashpotCoulomb};
 use dismech::math::{Point, Pose2, Vec2};
-use dismech::scene::{CircleRows, Frame, Particle, Scene};
+use dismech::scene::{CircleRows, Frame, Particle, Scene, JOINT_TOLERANCE};
 use dismech::shape::{AnyShape2, Circle, Ellipse, Polygon};
 
 use super::bodies::{BodySpec, MotionSpec};
@@ -186,6 +186,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
         !spec.loads.tractions.is_empty(),
         KeyPath::root("loads").key("tractions"),
         "edge tractions load the implicit driver's polygons; the explicit driver takes `loads.forces`",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.loads.live.is_some(),
+        KeyPath::root("loads").key("live"),
+        "a live load is the limit driver's; the explicit driver takes `loads.forces`",
     )
 }
 
@@ -505,7 +511,10 @@ pub fn gravity(source: &Source<'_>, spec: &ScenarioSpec) -> Result<Vec2, Refusal
 }
 
 /// Refuse a particle added from `path` whose centre lies outside the
-/// frame's bounding box.
+/// frame's bounding box; where the walls lie on one straight line (a flat
+/// or inclined base, whose box holds nothing), one that faces no wall
+/// either (lies on no wall's left, the side of the material, within its
+/// length).
 fn inside_frame(
     source: &Source<'_>,
     scene: &Scene,
@@ -515,18 +524,37 @@ fn inside_frame(
     let Some(bounds) = scene.frame.bounding_box() else {
         return Ok(());
     };
+    let walls = scene.frame.walls();
+    let straight = walls.first().is_some_and(|first| {
+        let along = first.end - first.start;
+        let off = |p: Point| {
+            let d = p - first.start;
+            (along.x * d.y - along.y * d.x).abs() <= JOINT_TOLERANCE * along.norm()
+        };
+        walls.iter().all(|w| off(w.start) && off(w.end))
+    });
+    let faces_a_wall = |c: Point| {
+        straight
+            && walls.iter().any(|w| {
+                let along = w.end - w.start;
+                let length2 = along.norm_squared();
+                let t = (c - w.start).dot(&along);
+                let left = along.x * (c.y - w.start.y) - along.y * (c.x - w.start.x);
+                left > 0.0 && (0.0..=length2).contains(&t)
+            })
+    };
     for (k, p) in scene.particles.iter().enumerate().skip(from) {
         let c = p.pose.position;
         let inside = c.x >= bounds.min.x
             && c.x <= bounds.max.x
             && c.y >= bounds.min.y
             && c.y <= bounds.max.y;
-        if !inside {
+        if !inside && !faces_a_wall(c) {
             return Err(combination(
                 source,
                 &[path, &KeyPath::root("boundary")],
                 &format!(
-                    "body {k} is centred at ({}, {}) m, outside the frame's box [{}, {}] x [{}, {}] m",
+                    "body {k} is centred at ({}, {}) m, outside the frame's box [{}, {}] x [{}, {}] m (walls on one line: and on the left of none)",
                     c.x, c.y, bounds.min.x, bounds.max.x, bounds.min.y, bounds.max.y
                 ),
             ));

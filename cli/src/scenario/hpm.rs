@@ -54,6 +54,7 @@ pub fn build(
         (spec.loads.gravity.is_some(), "loads"),
         (!spec.loads.forces.is_empty(), "loads"),
         (!spec.loads.tractions.is_empty(), "loads"),
+        (spec.loads.live.is_some(), "loads"),
     ] {
         if present {
             return Err(combination(

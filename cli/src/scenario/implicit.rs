@@ -242,6 +242,12 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
         !spec.loads.forces.is_empty(),
         KeyPath::root("loads").key("forces"),
         "the implicit driver takes loads as edge tractions (`loads.tractions`)",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.loads.live.is_some(),
+        KeyPath::root("loads").key("live"),
+        "a live load is the limit driver's; the implicit driver takes loads as edge tractions (`loads.tractions`)",
     )
 }
 

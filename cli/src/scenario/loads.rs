@@ -1,5 +1,5 @@
 //! `[loads]`: gravity, forces on bodies, tractions on polygon edges, a
-//! seismic coefficient.
+//! seismic coefficient, a live load.
 
 use serde::Deserialize;
 
@@ -17,6 +17,21 @@ pub struct LoadsSpec {
     pub tractions: Vec<TractionSpec>,
     /// A horizontal seismic coefficient (HPM driver).
     pub seismic: Option<SeismicSpec>,
+    /// The live load whose multiplier at collapse the limit driver finds.
+    pub live: Option<LiveLoadSpec>,
+}
+
+/// A reference force on a body whose multiplier λ at collapse the limit
+/// driver finds ([`dismech::limit::LimitModel::set_live_load`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiveLoadSpec {
+    /// Index of the body, counted over the `[[bodies]]` that are not walls.
+    pub body: usize,
+    /// Reference force (N per m of thickness).
+    pub force: [f64; 2],
+    /// Point of application (m); the body's centre by default.
+    pub point: Option<[f64; 2]>,
 }
 
 /// A horizontal seismic load `k_h W` ([`dismech::hpm::Seismic`]).

@@ -243,7 +243,9 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
         driver::DriverSpec::Implicit(settings) => {
             Model::Implicit(implicit::build(&source, &spec, settings, overrides)?)
         }
-        driver::DriverSpec::Limit(_) => Model::Limit(Box::new(limit::build(&source, &spec)?)),
+        driver::DriverSpec::Limit(settings) => {
+            Model::Limit(Box::new(limit::build(&source, &spec, settings)?))
+        }
         driver::DriverSpec::Hpm(settings) => {
             Model::Hpm(Box::new(hpm::build(&source, &spec, settings, file)?))
         }
