@@ -71,8 +71,8 @@ pub use crate::kinematics::affine3::{
     ELEMENT_DOF,
 };
 pub use analysis::{
-    Convergence, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings, SpringTraction,
-    SurfacePoint, EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
+    linear_motions, Convergence, HpmIterativeSolver, HpmMultigridSolver, HpmResult, HpmSolver,
+    NonlinearSettings, SpringTraction, SurfacePoint, EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
