@@ -11,7 +11,11 @@
 //! residual of 1e-8, or `tol=1e-6` for another residual; `amg` for
 //! conjugate gradients preconditioned by smoothed-aggregation multigrid,
 //! `amg pcg` for both side by side on the same model, `theta=0.08` for
-//! another strength threshold of the aggregation).
+//! another strength threshold of the aggregation, `modes=12` for all
+//! linear motions as near-null space, `sweeps=2` for two Gauss–Seidel
+//! sweeps a side; `mtx=DIR` writes the stiffness, the load vector and the
+//! rigid motions in Matrix Market files under DIR for
+//! `benches/hpm_pyamg.py` and stops).
 
 use std::time::Instant;
 
@@ -27,6 +31,49 @@ fn peak_memory_mib() -> Option<f64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib / 1024.0)
+}
+
+/// Write the stiffness (`K.mtx`, symmetric, lower triangle), the loads
+/// without earthquake (`b.mtx`) and the rigid motions (`B.mtx`, 6
+/// columns) in Matrix Market coordinate and array formats.
+fn export(model: &HpmModel, dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    use std::io::Write;
+    std::fs::create_dir_all(dir)?;
+    let lower = model.stiffness().lower_triangle()?;
+    let n = lower.dimension();
+    let mut k = std::io::BufWriter::new(std::fs::File::create(dir.join("K.mtx"))?);
+    writeln!(k, "%%MatrixMarket matrix coordinate real symmetric")?;
+    writeln!(k, "{n} {n} {}", lower.values().len())?;
+    let (ptr, rows) = (lower.pattern().col_ptr(), lower.pattern().row_idx());
+    for j in 0..n {
+        for (row, value) in rows[ptr[j]..ptr[j + 1]]
+            .iter()
+            .zip(&lower.values()[ptr[j]..ptr[j + 1]])
+        {
+            writeln!(k, "{} {} {value:e}", row + 1, j + 1)?;
+        }
+    }
+    let array = |name: &str, columns: usize, values: &[f64]| -> std::io::Result<()> {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join(name))?);
+        writeln!(f, "%%MatrixMarket matrix array real general")?;
+        let rows = values.len() / columns;
+        writeln!(f, "{rows} {columns}")?;
+        // Array format is by columns; `values` is by rows.
+        for c in 0..columns {
+            for r in 0..rows {
+                writeln!(f, "{:e}", values[r * columns + c])?;
+            }
+        }
+        Ok(())
+    };
+    array("b.mtx", 1, &model.loads(&Seismic::none()))?;
+    array("B.mtx", 6, &dismech::hpm::linear_motions(model, 6))?;
+    println!(
+        "wrote K.mtx ({n} unknowns, {} entries of the lower triangle), b.mtx, B.mtx to {}",
+        lower.values().len(),
+        dir.display()
+    );
+    Ok(())
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -65,6 +112,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         relative_tolerance,
         max_iterations: 100_000,
     };
+    if let Some(dir) = std::env::args().find_map(|a| a.strip_prefix("mtx=").map(String::from)) {
+        return export(&model, std::path::Path::new(&dir));
+    }
     let amg = std::env::args().any(|a| a == "amg");
     if amg {
         let aggregation = AggregationSettings {
