@@ -8,7 +8,14 @@
 //! Run: `cargo bench --bench hpm_elastic` (optionally `-- 60 3` for a
 //! 60 × 60-column grid with 3 layers; add `pcg` for conjugate gradients
 //! with column blocks instead of the sparse Cholesky factor, to a relative
-//! residual of 1e-8, or `tol=1e-6` for another residual).
+//! residual of 1e-8, or `tol=1e-6` for another residual; `amg` for
+//! conjugate gradients preconditioned by smoothed-aggregation multigrid,
+//! `amg pcg` for both side by side on the same model, `theta=0.08` for
+//! another strength threshold of the aggregation, `modes=12` for all
+//! linear motions as near-null space, `sweeps=2` for two Gauss–Seidel
+//! sweeps a side; `mtx=DIR` writes the stiffness, the load vector and the
+//! rigid motions in Matrix Market files under DIR for
+//! `benches/hpm_pyamg.py` and stops).
 
 use std::time::Instant;
 
@@ -16,7 +23,7 @@ use dismech::grid::Raster;
 use dismech::hpm::{
     HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
 };
-use dismech::linsolve::{CgSettings, LinearSolverInfo};
+use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolverInfo};
 
 /// Peak resident memory (VmHWM) of this process, in MiB, where /proc has it.
 fn peak_memory_mib() -> Option<f64> {
@@ -24,6 +31,49 @@ fn peak_memory_mib() -> Option<f64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib / 1024.0)
+}
+
+/// Write the stiffness (`K.mtx`, symmetric, lower triangle), the loads
+/// without earthquake (`b.mtx`) and the rigid motions (`B.mtx`, 6
+/// columns) in Matrix Market coordinate and array formats.
+fn export(model: &HpmModel, dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    use std::io::Write;
+    std::fs::create_dir_all(dir)?;
+    let lower = model.stiffness().lower_triangle()?;
+    let n = lower.dimension();
+    let mut k = std::io::BufWriter::new(std::fs::File::create(dir.join("K.mtx"))?);
+    writeln!(k, "%%MatrixMarket matrix coordinate real symmetric")?;
+    writeln!(k, "{n} {n} {}", lower.values().len())?;
+    let (ptr, rows) = (lower.pattern().col_ptr(), lower.pattern().row_idx());
+    for j in 0..n {
+        for (row, value) in rows[ptr[j]..ptr[j + 1]]
+            .iter()
+            .zip(&lower.values()[ptr[j]..ptr[j + 1]])
+        {
+            writeln!(k, "{} {} {value:e}", row + 1, j + 1)?;
+        }
+    }
+    let array = |name: &str, columns: usize, values: &[f64]| -> std::io::Result<()> {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join(name))?);
+        writeln!(f, "%%MatrixMarket matrix array real general")?;
+        let rows = values.len() / columns;
+        writeln!(f, "{rows} {columns}")?;
+        // Array format is by columns; `values` is by rows.
+        for c in 0..columns {
+            for r in 0..rows {
+                writeln!(f, "{:e}", values[r * columns + c])?;
+            }
+        }
+        Ok(())
+    };
+    array("b.mtx", 1, &model.loads(&Seismic::none()))?;
+    array("B.mtx", 6, &dismech::hpm::linear_motions(model, 6)?)?;
+    println!(
+        "wrote K.mtx ({n} unknowns, {} entries of the lower triangle), b.mtx, B.mtx to {}",
+        lower.values().len(),
+        dir.display()
+    );
+    Ok(())
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -54,14 +104,54 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t0 = Instant::now();
     let model = HpmModel::new(&grids, &HpmMaterial::paper(), &settings)?;
     let t1 = Instant::now();
-    if std::env::args().any(|a| a == "pcg") {
-        let relative_tolerance = std::env::args()
-            .find_map(|a| a.strip_prefix("tol=").and_then(|t| t.parse().ok()))
-            .unwrap_or(1e-8);
-        let settings = CgSettings {
-            relative_tolerance,
-            max_iterations: 100_000,
+    let model_s = (t1 - t0).as_secs_f64();
+    let relative_tolerance = std::env::args()
+        .find_map(|a| a.strip_prefix("tol=").and_then(|t| t.parse().ok()))
+        .unwrap_or(1e-8);
+    let settings = CgSettings {
+        relative_tolerance,
+        max_iterations: 100_000,
+    };
+    if let Some(dir) = std::env::args().find_map(|a| a.strip_prefix("mtx=").map(String::from)) {
+        return export(&model, std::path::Path::new(&dir));
+    }
+    let amg = std::env::args().any(|a| a == "amg");
+    if amg {
+        let aggregation = AggregationSettings {
+            strength_threshold: std::env::args()
+                .find_map(|a| a.strip_prefix("theta=").and_then(|t| t.parse().ok()))
+                .unwrap_or(0.0),
+            sweeps: std::env::args()
+                .find_map(|a| a.strip_prefix("sweeps=").and_then(|t| t.parse().ok()))
+                .unwrap_or(1),
+            ..AggregationSettings::default()
         };
+        let modes = std::env::args()
+            .find_map(|a| a.strip_prefix("modes=").and_then(|t| t.parse().ok()))
+            .unwrap_or(6);
+        let t1 = Instant::now();
+        let mut solver = HpmSolver::multigrid(&model, settings, aggregation, modes)?;
+        let t2 = Instant::now();
+        let result = solver.elastic(&model, &Seismic::none())?;
+        let t3 = Instant::now();
+        let amg = solver.linear_solver().preconditioner();
+        println!(
+            "HPM elastic by PCG + smoothed aggregation ({modes} modes), {n} x {n} columns, {layers} layers: {} elements, {} DOF; levels {:?} unknowns, operator complexity {:.2}; model {:.2} s; assembly + hierarchy {:.2} s; PCG {:.2} s; setup + PCG {:.2} s; {:?}; Fs = {:.8}; peak resident memory {:?} MiB",
+            model.elements.len(),
+            model.dof(),
+            amg.level_sizes(),
+            amg.operator_complexity(),
+            model_s,
+            (t2 - t1).as_secs_f64(),
+            (t3 - t2).as_secs_f64(),
+            (t3 - t1).as_secs_f64(),
+            result.convergence,
+            result.safety_factor(&model)?,
+            peak_memory_mib()
+        );
+    }
+    if std::env::args().any(|a| a == "pcg") {
+        let t1 = Instant::now();
         let mut solver = HpmSolver::iterative(&model, settings)?;
         let t2 = Instant::now();
         let result = solver.elastic(&model, &Seismic::none())?;
@@ -70,10 +160,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "HPM elastic by PCG, {n} x {n} columns, {layers} layers: {} elements, {} DOF; model {:.2} s; assembly + column blocks {:.2} s; PCG {:.2} s; total {:.2} s; {:?}; Fs = {:.4}; peak resident memory {:?} MiB",
             model.elements.len(),
             model.dof(),
-            (t1 - t0).as_secs_f64(),
+            model_s,
             (t2 - t1).as_secs_f64(),
             (t3 - t2).as_secs_f64(),
-            (t3 - t0).as_secs_f64(),
+            model_s + (t3 - t1).as_secs_f64(),
             result.convergence,
             result.safety_factor(&model)?,
             peak_memory_mib()
@@ -86,6 +176,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "relative tolerance {relative_tolerance:e}; largest |u| = {largest:.6e} m; Fs = {:.8}",
             result.safety_factor(&model)?
         );
+        return Ok(());
+    }
+    if amg {
         return Ok(());
     }
     let t2 = Instant::now();

@@ -5,7 +5,7 @@
 use dismech::error::DismechError;
 use dismech::grid::{parse_esri_ascii, Raster};
 use dismech::hpm::*;
-use dismech::linsolve::{CgSettings, LinearSolver, SparseCholesky};
+use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
 use nalgebra::{Matrix3, Point3, Vector3};
 /// The horizontal unit vector at `deg` degrees counter-clockwise from +x.
@@ -462,6 +462,80 @@ fn pcg_with_column_blocks_reproduces_the_direct_elastic_solution() {
         iterative.safety_factor(&model).unwrap(),
     );
     assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
+}
+
+/// PCG preconditioned by smoothed-aggregation multigrid (rigid motions,
+/// and with the uniform strains) solves the bowl to the displacements of
+/// the sparse Cholesky factor, in fewer iterations than the column blocks.
+#[test]
+fn pcg_with_smoothed_aggregation_reproduces_the_direct_elastic_solution() {
+    let m = HpmMaterial::paper();
+    let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction: towards_deg(270.0),
+    };
+    let direct = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let settings = CgSettings {
+        relative_tolerance: 1e-10,
+        max_iterations: 20_000,
+    };
+    let columns = HpmSolver::iterative(&model, settings)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    // A coarsest level small enough that the bowl has three levels.
+    let aggregation = AggregationSettings {
+        max_coarse: 50,
+        ..AggregationSettings::default()
+    };
+    let size: f64 = direct
+        .displacements
+        .iter()
+        .map(|a| a * a)
+        .sum::<f64>()
+        .sqrt();
+    for modes in [6, 12] {
+        let mut solver = HpmSolver::multigrid(&model, settings, aggregation, modes).unwrap();
+        let levels = solver.linear_solver().preconditioner().level_sizes();
+        assert!(levels.len() >= 2, "{levels:?}");
+        let iterative = solver.elastic(&model, &seismic).unwrap();
+        let (
+            Convergence::Converged {
+                iterations,
+                residual,
+            },
+            Convergence::Converged {
+                iterations: by_columns,
+                ..
+            },
+        ) = (iterative.convergence, columns.convergence)
+        else {
+            panic!("PCG did not converge: {:?}", iterative.convergence);
+        };
+        let difference: f64 = direct
+            .displacements
+            .iter()
+            .zip(&iterative.displacements)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        eprintln!(
+            "{modes} modes, levels {levels:?}: {iterations} iterations (column blocks {by_columns}), residual {residual:e}, relative difference from Cholesky {:e}",
+            difference / size
+        );
+        assert!(residual <= 1e-10, "{residual}");
+        assert!(difference <= 1e-6 * size, "{}", difference / size);
+        assert!(iterations < by_columns, "{iterations} vs {by_columns}");
+        let (a, b) = (
+            direct.safety_factor(&model).unwrap(),
+            iterative.safety_factor(&model).unwrap(),
+        );
+        assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
+    }
 }
 
 /// The nonlinear analysis and the strength reduction by PCG (to a tight

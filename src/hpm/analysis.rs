@@ -95,7 +95,8 @@ use crate::error::{DismechError, Result};
 use crate::kinematics::affine3::{displacement_at, strain_tensor, ElementDofs, ELEMENT_DOF};
 use crate::law::{MohrCoulombSpring, Regime, Strength};
 use crate::linsolve::{
-    BlockJacobi, CgSettings, ConjugateGradient, LinearSolver, SolveStats, SparseCholesky,
+    AggregationSettings, BlockJacobi, CgSettings, ConjugateGradient, LinearSolver,
+    SmoothedAggregation, SolveStats, SparseCholesky,
 };
 
 /// Relative out-of-balance force `‖F − F_int‖ / ‖F‖` accepted as
@@ -419,6 +420,69 @@ pub struct HpmSolver<S = SparseCholesky> {
 /// HPM analyses by preconditioned conjugate gradients.
 pub type HpmIterativeSolver = HpmSolver<ConjugateGradient<BlockJacobi>>;
 
+/// HPM analyses by conjugate gradients preconditioned by smoothed
+/// aggregation multigrid ([`HpmSolver::multigrid`]).
+pub type HpmMultigridSolver = HpmSolver<ConjugateGradient<SmoothedAggregation>>;
+
+/// The linear motions `u(x) = t + G (x − o)` of the whole model in each
+/// element's 12 unknowns, `o` the mean of the centroids: block `e` holds
+/// `12 × modes` numbers by rows. The first 6 modes are the rigid motions
+/// (the translations along x, y, z and the rotations about them: an
+/// element's centroid `c` moves by `t + θ × (c − o)`, its rotation
+/// unknowns are `θ`, its strain 0), the near-null space of the stiffness;
+/// with `modes = 12` the uniform strains follow (`ε_xx, ε_yy, ε_zz, γ_yz,
+/// γ_zx, γ_xy`: the centroid moves by `E (c − o)`), which the elements
+/// represent exactly ([`crate::kinematics::affine3`]).
+///
+/// # Errors
+/// [`DismechError::InvalidParameter`] naming `modes` when it is neither 6
+/// nor 12.
+pub fn linear_motions(model: &HpmModel, modes: usize) -> Result<Vec<f64>> {
+    if modes != 6 && modes != 12 {
+        return Err(DismechError::InvalidParameter {
+            name: "near-null space modes",
+            value: modes as f64,
+            requirement: "must be 6 (the rigid motions) or 12 (with the uniform strains)",
+        });
+    }
+    let n = model.elements.len().max(1) as f64;
+    let origin = model
+        .elements
+        .iter()
+        .fold(Vector3::zeros(), |s, e| s + e.centre.coords)
+        / n;
+    let mut out = vec![0.0; model.elements.len() * ELEMENT_DOF * modes];
+    for (e, element) in model.elements.iter().enumerate() {
+        let block = &mut out[e * ELEMENT_DOF * modes..(e + 1) * ELEMENT_DOF * modes];
+        let r = element.centre.coords - origin;
+        let mut set = |row: usize, col: usize, v: f64| block[row * modes + col] = v;
+        for i in 0..3 {
+            set(i, i, 1.0);
+            // Rotation about axis i: u_c = e_i × r, ω = e_i.
+            let mut axis = Vector3::zeros();
+            axis[i] = 1.0;
+            let u = axis.cross(&r);
+            for k in 0..3 {
+                set(k, 3 + i, u[k]);
+            }
+            set(3 + i, 3 + i, 1.0);
+        }
+        if modes == 12 {
+            for k in 0..6 {
+                let mut dofs = ElementDofs::zeros();
+                dofs[6 + k] = 1.0;
+                let strain = strain_tensor(&dofs);
+                let u = strain * r;
+                for i in 0..3 {
+                    set(i, 6 + k, u[i]);
+                }
+                set(6 + k, 6 + k, 1.0);
+            }
+        }
+    }
+    Ok(out)
+}
+
 impl HpmSolver<SparseCholesky> {
     /// Assemble the elastic stiffness of `model` and factorise it
     /// (sparse Cholesky). The model's memory budget
@@ -534,6 +598,33 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
             .map_err(|e| name_ill_conditioning(model, e))?;
         this.memory_estimate = Some(estimate);
         Ok(this)
+    }
+}
+
+impl HpmSolver<ConjugateGradient<SmoothedAggregation>> {
+    /// Assemble the elastic stiffness of `model` for conjugate gradients
+    /// with the stopping rule `settings`, preconditioned by a
+    /// smoothed-aggregation multigrid V-cycle (Vaněk, Mandel & Brezina
+    /// 1996; [`SmoothedAggregation`]) on the element blocks, whose
+    /// near-null space is the rigid motions, with the uniform strains when
+    /// `modes` is 12 ([`linear_motions`]). No memory
+    /// budget is checked.
+    ///
+    /// # Errors
+    /// Settings out of range ([`CgSettings::validate`]); `modes` neither 6
+    /// nor 12 ([`linear_motions`]); a failed setup of the hierarchy, as for
+    /// [`HpmSolver::new`].
+    pub fn multigrid(
+        model: &HpmModel,
+        settings: CgSettings,
+        aggregation: AggregationSettings,
+        modes: usize,
+    ) -> Result<Self> {
+        settings.validate()?;
+        let preconditioner =
+            SmoothedAggregation::new(aggregation, linear_motions(model, modes)?, modes);
+        let solver = ConjugateGradient::new(settings, preconditioner);
+        Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
     }
 }
 

@@ -71,9 +71,9 @@ pub use crate::kinematics::affine3::{
     ELEMENT_DOF,
 };
 pub use analysis::{
-    Convergence, DrivingForce, HpmIterativeSolver, HpmResult, HpmSolver, NonlinearSettings,
-    SafetyFactorKind, SafetyFactorTerm, SpringTraction, SurfacePoint, EQUILIBRIUM_TOLERANCE,
-    MIN_DRIVING_RATIO,
+    linear_motions, Convergence, DrivingForce, HpmIterativeSolver, HpmMultigridSolver, HpmResult,
+    HpmSolver, NonlinearSettings, SafetyFactorKind, SafetyFactorTerm, SpringTraction, SurfacePoint,
+    EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};

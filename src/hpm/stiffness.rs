@@ -18,8 +18,8 @@ use rayon::prelude::*;
 
 use crate::kinematics::affine3::{Block, ElementDofs, ELEMENT_DOF};
 use crate::linsolve::{
-    DiagonalBlocks, LinearOperator, LinearSolver, SolveError, SolveStats, SparseCholesky,
-    SparseMatrix, SparsePattern,
+    BlockSparse, DiagonalBlocks, LinearOperator, LinearSolver, SolveError, SolveStats,
+    SparseCholesky, SparseMatrix, SparsePattern,
 };
 
 /// A symmetric block-sparse matrix: a diagonal block per element and
@@ -267,6 +267,28 @@ impl LinearOperator for BlockMatrix {
                 }
                 out.copy_from_slice(sum.as_slice());
             });
+    }
+}
+
+impl BlockSparse for BlockMatrix {
+    fn block_size(&self) -> usize {
+        ELEMENT_DOF
+    }
+
+    fn block_count(&self) -> usize {
+        self.diagonal.len()
+    }
+
+    /// The diagonal blocks and each coupling block twice (`K_ab`, `K_ba`).
+    fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64])) {
+        // nalgebra stores by columns: the entries of `Kᵀ` by rows.
+        for (e, d) in self.diagonal.iter().enumerate() {
+            visit(e, e, d.transpose().as_slice());
+        }
+        for (a, b, k) in &self.coupling {
+            visit(*b, *a, k.as_slice());
+            visit(*a, *b, k.transpose().as_slice());
+        }
     }
 }
 

@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | [`SparseLu`] | [`SparseMatrix`] (any square) | unsymmetric tangents (DDA friction); supernodal LU on a symmetric fill-reducing ordering, falling back to faer's partial-pivoting LU |
 //! | [`SparseCholesky`] | [`SparseMatrix`] (lower triangle read), [`crate::hpm::BlockMatrix`] | symmetric positive definite stiffness (HPM) |
-//! | [`ConjugateGradient`] | any [`LinearOperator`] with a [`Preconditioner`] for it ([`BlockJacobi`]) | large SPD systems where a factor does not fit (HPM) |
+//! | [`ConjugateGradient`] | any [`LinearOperator`] with a [`Preconditioner`] for it ([`BlockJacobi`], [`SmoothedAggregation`] multigrid) | large SPD systems where a factor does not fit (HPM) |
 //! | [`LumpedMassSolver`] | a diagonal, as `[f64]` | explicit methods (`M a = f`) |
 //!
 //! # How a driver uses it
@@ -71,6 +71,7 @@ mod lu;
 mod lumped;
 mod partial_pivot_lu;
 mod pattern;
+mod smoothed_aggregation;
 mod supernodal_lu;
 
 pub use block_assembly::{BlockAssembly, BlockSlot};
@@ -82,6 +83,7 @@ pub use conjugate_gradient::{
 pub use lu::{LuPivoting, LuSettings, SparseLu};
 pub use lumped::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
 pub use pattern::{SparseMatrix, SparsePattern};
+pub use smoothed_aggregation::{AggregationSettings, BlockSparse, SmoothedAggregation};
 
 pub use crate::error::SolveError;
 

@@ -1,0 +1,731 @@
+//! Smoothed-aggregation algebraic multigrid (Vaněk, Mandel & Brezina
+//! 1996, "Algebraic multigrid by smoothed aggregation for second and
+//! fourth order elliptic problems", Computing 56: 179–196) as a
+//! preconditioner of the conjugate gradients, for matrices made of dense
+//! square blocks ([`BlockSparse`]).
+//!
+//! # Setup, level by level
+//!
+//! 1. **Strength**: blocks `a ≠ b` are strongly connected when
+//!    `‖A_ab‖_F ≥ θ √(‖A_aa‖_F ‖A_bb‖_F)`
+//!    ([`AggregationSettings::strength_threshold`]).
+//! 2. **Aggregation** of the block graph of strong connections (the three
+//!    passes of Vaněk, Mandel & Brezina): a block whose strong neighbours
+//!    are all free starts an aggregate with them; a block left over joins
+//!    the aggregate of a strong neighbour; what remains forms aggregates
+//!    of its free neighbours.
+//! 3. **Tentative prolongator** `T` from the near-null space `B` (for
+//!    elasticity the rigid motions, given block by block): on each
+//!    aggregate the rows of `B` are factored `B_agg = Q R`; `Q` is the
+//!    aggregate's block column of `T` and the `R` stacked by aggregate
+//!    are the next level's near-null space, so `T B_c = B`.
+//! 4. **Smoothing** of the prolongator by one damped block-Jacobi step,
+//!    `P = (I − ω D⁻¹ A) T`, `ω = 4 / (3 ρ(D⁻¹ A))`, `ρ` estimated by
+//!    power iterations and `D` the diagonal blocks.
+//! 5. **Galerkin** coarse operator `A_c = Pᵀ A P`, formed on the block
+//!    patterns.
+//!
+//! The coarsening stops at [`AggregationSettings::max_coarse`] unknowns
+//! (or [`AggregationSettings::max_levels`]), where the level is factored
+//! by the sparse Cholesky solver ([`super::SparseCholesky`]).
+//!
+//! # Application
+//!
+//! One V-cycle from zero: a forward block Gauss–Seidel sweep before the
+//! restriction `Pᵀ r`, the correction from the coarser level, and a
+//! backward sweep after it. The backward sweep is the adjoint of the
+//! forward one and the coarsest solve is exact, so the cycle is a
+//! symmetric positive definite operator: a valid preconditioner for PCG.
+
+use std::sync::Mutex;
+
+use nalgebra::DMatrix;
+use rayon::prelude::*;
+
+use super::{
+    LinearSolver, LinearSolverInfo, Preconditioner, SolveError, SparseCholesky, SparseMatrix,
+    SparsePattern,
+};
+
+/// A symmetric matrix of dense square blocks, read block by block.
+pub trait BlockSparse {
+    /// Unknowns per block.
+    fn block_size(&self) -> usize;
+    /// Number of block rows.
+    fn block_count(&self) -> usize;
+    /// Call `visit(a, b, values)` for every stored block `A_ab` of both
+    /// triangles and the diagonal, `values` its `block_size²` entries by
+    /// rows; a block visited twice is summed.
+    fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64]));
+}
+
+/// Block compressed rows: block row `i` holds the blocks
+/// `start[i]..start[i + 1]`, of columns `cols[k]` (sorted), each
+/// `rows × cols` numbers by rows at `values[k · rows · cols ..]`.
+#[derive(Debug, Clone, Default)]
+struct Bsr {
+    block_rows: usize,
+    block_cols: usize,
+    rows: usize,
+    cols: usize,
+    start: Vec<usize>,
+    col: Vec<usize>,
+    values: Vec<f64>,
+}
+
+/// `c += a · b` for dense row-major `a` (m × k) and `b` (k × n).
+fn gemm_add(c: &mut [f64], a: &[f64], b: &[f64], m: usize, k: usize, n: usize) {
+    for i in 0..m {
+        let ci = &mut c[i * n..(i + 1) * n];
+        for (p, &aip) in a[i * k..(i + 1) * k].iter().enumerate() {
+            if aip == 0.0 {
+                continue;
+            }
+            for (cij, bpj) in ci.iter_mut().zip(&b[p * n..(p + 1) * n]) {
+                *cij += aip * bpj;
+            }
+        }
+    }
+}
+
+impl Bsr {
+    fn block_len(&self) -> usize {
+        self.rows * self.cols
+    }
+
+    fn block(&self, k: usize) -> &[f64] {
+        let s = self.block_len();
+        &self.values[k * s..(k + 1) * s]
+    }
+
+    fn row(&self, i: usize) -> std::ops::Range<usize> {
+        self.start[i]..self.start[i + 1]
+    }
+
+    /// Assemble from unsorted `(row, col, values)` blocks, summing
+    /// duplicates.
+    fn from_blocks<M: BlockSparse + ?Sized>(matrix: &M) -> Self {
+        let b = matrix.block_size();
+        let n = matrix.block_count();
+        let mut list: Vec<(usize, usize, usize)> = Vec::new();
+        let mut raw: Vec<f64> = Vec::new();
+        matrix.visit_blocks(&mut |i, j, v| {
+            list.push((i, j, raw.len()));
+            raw.extend_from_slice(&v[..b * b]);
+        });
+        list.par_sort_unstable();
+        let mut out = Self {
+            block_rows: n,
+            block_cols: n,
+            rows: b,
+            cols: b,
+            start: vec![0; n + 1],
+            col: Vec::with_capacity(list.len()),
+            values: Vec::with_capacity(raw.len()),
+        };
+        let mut last: Option<(usize, usize)> = None;
+        for &(i, j, offset) in &list {
+            let v = &raw[offset..offset + b * b];
+            if last == Some((i, j)) {
+                let s = out.values.len() - b * b;
+                for (x, y) in out.values[s..].iter_mut().zip(v) {
+                    *x += y;
+                }
+            } else {
+                out.col.push(j);
+                out.values.extend_from_slice(v);
+                out.start[i + 1] += 1;
+                last = Some((i, j));
+            }
+        }
+        for i in 0..n {
+            out.start[i + 1] += out.start[i];
+        }
+        out
+    }
+
+    /// `y = A x` (rows in parallel).
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        let (r, c) = (self.rows, self.cols);
+        y.par_chunks_mut(r).enumerate().for_each(|(i, yi)| {
+            yi.fill(0.0);
+            for k in self.row(i) {
+                let xj = &x[self.col[k] * c..(self.col[k] + 1) * c];
+                gemm_add(yi, self.block(k), xj, r, c, 1);
+            }
+        });
+    }
+
+    /// The transpose.
+    fn transpose(&self) -> Self {
+        let (r, c) = (self.rows, self.cols);
+        let mut start = vec![0; self.block_cols + 1];
+        for &j in &self.col {
+            start[j + 1] += 1;
+        }
+        for j in 0..self.block_cols {
+            start[j + 1] += start[j];
+        }
+        let mut next = start.clone();
+        let mut col = vec![0; self.col.len()];
+        let mut values = vec![0.0; self.values.len()];
+        for i in 0..self.block_rows {
+            for k in self.row(i) {
+                let j = self.col[k];
+                let t = next[j];
+                next[j] += 1;
+                col[t] = i;
+                let src = self.block(k);
+                let dst = &mut values[t * r * c..(t + 1) * r * c];
+                for p in 0..r {
+                    for q in 0..c {
+                        dst[q * r + p] = src[p * c + q];
+                    }
+                }
+            }
+        }
+        Self {
+            block_rows: self.block_cols,
+            block_cols: self.block_rows,
+            rows: c,
+            cols: r,
+            start,
+            col,
+            values,
+        }
+    }
+
+    /// `self · other` on the block patterns (rows in parallel).
+    fn multiply(&self, other: &Self) -> Self {
+        assert_eq!(self.cols, other.rows);
+        let (m, k, n) = (self.rows, self.cols, other.cols);
+        let rows: Vec<(Vec<usize>, Vec<f64>)> = (0..self.block_rows)
+            .into_par_iter()
+            .map(|i| {
+                let mut cols: Vec<usize> = Vec::new();
+                for t in self.row(i) {
+                    for u in other.row(self.col[t]) {
+                        cols.push(other.col[u]);
+                    }
+                }
+                cols.sort_unstable();
+                cols.dedup();
+                let mut values = vec![0.0; cols.len() * m * n];
+                for t in self.row(i) {
+                    let a = self.block(t);
+                    for u in other.row(self.col[t]) {
+                        let j = cols.binary_search(&other.col[u]).unwrap_or(0);
+                        gemm_add(
+                            &mut values[j * m * n..(j + 1) * m * n],
+                            a,
+                            other.block(u),
+                            m,
+                            k,
+                            n,
+                        );
+                    }
+                }
+                (cols, values)
+            })
+            .collect();
+        let mut out = Self {
+            block_rows: self.block_rows,
+            block_cols: other.block_cols,
+            rows: m,
+            cols: n,
+            start: Vec::with_capacity(self.block_rows + 1),
+            col: Vec::new(),
+            values: Vec::new(),
+        };
+        out.start.push(0);
+        for (cols, values) in rows {
+            out.col.extend_from_slice(&cols);
+            out.values.extend_from_slice(&values);
+            out.start.push(out.col.len());
+        }
+        out
+    }
+
+    /// The position of block `(i, j)`.
+    fn find(&self, i: usize, j: usize) -> Option<usize> {
+        let range = self.row(i);
+        self.col[range.clone()]
+            .binary_search(&j)
+            .ok()
+            .map(|k| range.start + k)
+    }
+
+    /// The inverses of the diagonal blocks, by rows.
+    fn diagonal_inverses(&self) -> Result<Vec<f64>, SolveError> {
+        let b = self.rows;
+        let inverses: Result<Vec<Vec<f64>>, SolveError> = (0..self.block_rows)
+            .into_par_iter()
+            .map(|i| {
+                let k = self.find(i, i).ok_or_else(|| {
+                    SolveError::Factorization(format!("block {i} has no diagonal block"))
+                })?;
+                let d = DMatrix::from_row_slice(b, b, self.block(k));
+                let d = (&d + d.transpose()) * 0.5;
+                let factor = d.cholesky().ok_or_else(|| {
+                    SolveError::Factorization(format!(
+                        "diagonal block {i} of a multigrid level is not positive definite"
+                    ))
+                })?;
+                // Symmetric: its column-major entries are its rows.
+                Ok(factor.inverse().as_slice().to_vec())
+            })
+            .collect();
+        Ok(inverses?.concat())
+    }
+
+    /// The lower triangle in compressed columns (the matrix is symmetric).
+    fn lower_triangle(&self) -> Result<SparseMatrix, SolveError> {
+        let b = self.rows;
+        let n = self.block_rows * b;
+        let mut col_ptr = vec![0usize];
+        let mut row_idx = Vec::new();
+        let mut values = Vec::new();
+        for i in 0..self.block_rows {
+            for q in 0..b {
+                let c = i * b + q;
+                for k in self.row(i) {
+                    let j = self.col[k];
+                    if j < i {
+                        continue;
+                    }
+                    let block = self.block(k);
+                    for p in 0..b {
+                        let r = j * b + p;
+                        if r >= c {
+                            row_idx.push(r);
+                            // A_ji[p][q] = A_ij[q][p].
+                            values.push(block[q * b + p]);
+                        }
+                    }
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        SparseMatrix::new(SparsePattern::from_columns(n, col_ptr, row_idx)?, values)
+    }
+}
+
+/// Settings of the hierarchy.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AggregationSettings {
+    /// `θ` of the strength of connection (0: every stored block is strong).
+    pub strength_threshold: f64,
+    /// Unknowns at or below which a level is factored and not coarsened.
+    pub max_coarse: usize,
+    /// The most levels, the coarsest included.
+    pub max_levels: usize,
+    /// Power iterations estimating `ρ(D⁻¹ A)` for the prolongator's damping.
+    pub power_iterations: usize,
+    /// Block Gauss–Seidel sweeps before the coarse correction (forward)
+    /// and after it (backward).
+    pub sweeps: usize,
+}
+
+impl Default for AggregationSettings {
+    /// `θ = 0`, at most 2 000 unknowns on the coarsest level, 10 levels,
+    /// 20 power iterations, one sweep each side.
+    fn default() -> Self {
+        Self {
+            strength_threshold: 0.0,
+            max_coarse: 2000,
+            max_levels: 10,
+            power_iterations: 20,
+            sweeps: 1,
+        }
+    }
+}
+
+/// One level of the hierarchy above the coarsest.
+#[derive(Debug)]
+struct Level {
+    a: Bsr,
+    /// `D⁻¹`, the inverses of the diagonal blocks, by rows.
+    inverses: Vec<f64>,
+    p: Bsr,
+    r: Bsr,
+}
+
+/// A smoothed-aggregation multigrid V-cycle as a PCG preconditioner (see
+/// the module documentation).
+#[derive(Debug, Default)]
+pub struct SmoothedAggregation {
+    /// Settings of the hierarchy.
+    pub settings: AggregationSettings,
+    /// The near-null space, block by block: block `i`'s `block_size × m`
+    /// numbers by rows.
+    near_null: Vec<f64>,
+    /// Near-null vectors `m`.
+    modes: usize,
+    levels: Vec<Level>,
+    coarse: Option<Mutex<SparseCholesky>>,
+    coarse_size: usize,
+}
+
+/// The aggregates of the strong block graph of `a`: the aggregate of each
+/// block and their count.
+fn aggregate(a: &Bsr, theta: f64) -> (Vec<usize>, usize) {
+    let n = a.block_rows;
+    let norm = |k: usize| a.block(k).iter().map(|x| x * x).sum::<f64>().sqrt();
+    let diag: Vec<f64> = (0..n).map(|i| a.find(i, i).map_or(0.0, norm)).collect();
+    let strong: Vec<Vec<usize>> = (0..n)
+        .map(|i| {
+            a.row(i)
+                .filter(|&k| {
+                    let j = a.col[k];
+                    j != i && norm(k) >= theta * (diag[i] * diag[j]).sqrt()
+                })
+                .map(|k| a.col[k])
+                .collect()
+        })
+        .collect();
+    const FREE: usize = usize::MAX;
+    let mut agg = vec![FREE; n];
+    let mut count = 0;
+    // Pass 1: blocks whose strong neighbours are all free.
+    for i in 0..n {
+        if agg[i] == FREE && strong[i].iter().all(|&j| agg[j] == FREE) {
+            agg[i] = count;
+            for &j in &strong[i] {
+                agg[j] = count;
+            }
+            count += 1;
+        }
+    }
+    // Pass 2: join a strong neighbour's aggregate (of pass 1).
+    let first = agg.clone();
+    for i in 0..n {
+        if agg[i] == FREE {
+            if let Some(&j) = strong[i].iter().find(|&&j| first[j] != FREE) {
+                agg[i] = first[j];
+            }
+        }
+    }
+    // Pass 3: what remains, with its free neighbours.
+    for i in 0..n {
+        if agg[i] == FREE {
+            agg[i] = count;
+            for &j in &strong[i] {
+                if agg[j] == FREE {
+                    agg[j] = count;
+                }
+            }
+            count += 1;
+        }
+    }
+    (agg, count)
+}
+
+/// The tentative prolongator of `agg` (block rows `b × m`) and the
+/// coarse near-null space (`m × m` a block), from `near_null` (`b × m` a
+/// block, by rows), by a QR factorization per aggregate.
+fn tentative(
+    agg: &[usize],
+    count: usize,
+    near_null: &[f64],
+    b: usize,
+    m: usize,
+) -> Result<(Bsr, Vec<f64>), SolveError> {
+    let n = agg.len();
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for (i, &g) in agg.iter().enumerate() {
+        members[g].push(i);
+    }
+    let mut values = vec![0.0; n * b * m];
+    let mut coarse = vec![0.0; count * m * m];
+    for (g, list) in members.iter().enumerate() {
+        let rows = list.len() * b;
+        if rows < m {
+            return Err(SolveError::Factorization(format!(
+                "aggregate {g} has {rows} unknowns, fewer than the {m} near-null vectors"
+            )));
+        }
+        let mut local = DMatrix::zeros(rows, m);
+        for (t, &i) in list.iter().enumerate() {
+            for p in 0..b {
+                for q in 0..m {
+                    local[(t * b + p, q)] = near_null[(i * b + p) * m + q];
+                }
+            }
+        }
+        let qr = local.qr();
+        let (q, r) = (qr.q(), qr.r());
+        for (t, &i) in list.iter().enumerate() {
+            for p in 0..b {
+                for c in 0..m {
+                    values[(i * b + p) * m + c] = q[(t * b + p, c)];
+                }
+            }
+        }
+        for p in 0..m {
+            for c in 0..m {
+                coarse[(g * m + p) * m + c] = r[(p, c)];
+            }
+        }
+    }
+    Ok((
+        Bsr {
+            block_rows: n,
+            block_cols: count,
+            rows: b,
+            cols: m,
+            start: (0..=n).collect(),
+            col: agg.to_vec(),
+            values,
+        },
+        coarse,
+    ))
+}
+
+/// `z = D⁻¹ r` block by block.
+fn block_diagonal_apply(inverses: &[f64], b: usize, r: &[f64], z: &mut [f64]) {
+    z.par_chunks_mut(b).enumerate().for_each(|(i, zi)| {
+        zi.fill(0.0);
+        gemm_add(
+            zi,
+            &inverses[i * b * b..(i + 1) * b * b],
+            &r[i * b..(i + 1) * b],
+            b,
+            b,
+            1,
+        );
+    });
+}
+
+/// An estimate of `ρ(D⁻¹ A)` by power iterations from a fixed start.
+fn spectral_radius(a: &Bsr, inverses: &[f64], iterations: usize) -> f64 {
+    let n = a.block_rows * a.rows;
+    let mut x: Vec<f64> = (0..n)
+        .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
+        .collect();
+    let (mut y, mut z) = (vec![0.0; n], vec![0.0; n]);
+    let mut rho = 0.0;
+    for _ in 0..iterations.max(1) {
+        let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        x.iter_mut().for_each(|v| *v /= norm);
+        a.apply(&x, &mut y);
+        block_diagonal_apply(inverses, a.rows, &y, &mut z);
+        rho = z.iter().map(|v| v * v).sum::<f64>().sqrt();
+        std::mem::swap(&mut x, &mut z);
+    }
+    rho
+}
+
+impl SmoothedAggregation {
+    /// A preconditioner for matrices of blocks of `block_size` unknowns
+    /// whose near-null space (for elasticity, the rigid motions) holds
+    /// `modes` vectors, given block by block in `near_null`: block `i`'s
+    /// `block_size × modes` numbers by rows at
+    /// `near_null[i · block_size · modes ..]`.
+    pub fn new(settings: AggregationSettings, near_null: Vec<f64>, modes: usize) -> Self {
+        Self {
+            settings,
+            near_null,
+            modes,
+            ..Self::default()
+        }
+    }
+
+    /// The unknowns of each level, finest first, the coarsest last.
+    pub fn level_sizes(&self) -> Vec<usize> {
+        let mut sizes: Vec<usize> = self
+            .levels
+            .iter()
+            .map(|l| l.a.block_rows * l.a.rows)
+            .collect();
+        sizes.push(self.coarse_size);
+        sizes
+    }
+
+    /// Operator complexity: the stored entries of all levels' matrices
+    /// over those of the finest.
+    pub fn operator_complexity(&self) -> f64 {
+        let fine = self.levels.first().map_or(1, |l| l.a.values.len()) as f64;
+        let coarse = self
+            .coarse
+            .as_ref()
+            .and_then(|c| c.lock().ok().map(|c| c.matrix_entries()))
+            .unwrap_or(0) as f64;
+        (self
+            .levels
+            .iter()
+            .map(|l| l.a.values.len() as f64)
+            .sum::<f64>()
+            + coarse)
+            / fine
+    }
+
+    fn build(&mut self, mut a: Bsr) -> Result<(), SolveError> {
+        self.levels.clear();
+        self.coarse = None;
+        let mut b = a.rows;
+        let mut m = self.modes;
+        if self.near_null.len() != a.block_rows * b * m || m == 0 {
+            return Err(SolveError::DimensionMismatch {
+                what: "near-null space numbers (blocks × block size × modes)",
+                expected: a.block_rows * b * m,
+                found: self.near_null.len(),
+            });
+        }
+        let mut near_null = self.near_null.clone();
+        let s = self.settings;
+        while a.block_rows * b > s.max_coarse && self.levels.len() + 1 < s.max_levels {
+            let inverses = a.diagonal_inverses()?;
+            let (agg, count) = aggregate(&a, s.strength_threshold);
+            if count * m >= a.block_rows * b {
+                break;
+            }
+            let (t, coarse_null) = tentative(&agg, count, &near_null, b, m)?;
+            let rho = spectral_radius(&a, &inverses, s.power_iterations);
+            let omega = 4.0 / (3.0 * rho);
+            // P = T − ω D⁻¹ A T.
+            let at = a.multiply(&t);
+            let mut p = at;
+            let (rb, cb) = (p.rows, p.cols);
+            let starts = p.start.clone();
+            let cols = p.col.clone();
+            let mut values = vec![0.0; p.values.len()];
+            for i in 0..p.block_rows {
+                let dinv = &inverses[i * rb * rb..(i + 1) * rb * rb];
+                for k in starts[i]..starts[i + 1] {
+                    let dst = &mut values[k * rb * cb..(k + 1) * rb * cb];
+                    gemm_add(
+                        dst,
+                        dinv,
+                        &p.values[k * rb * cb..(k + 1) * rb * cb],
+                        rb,
+                        rb,
+                        cb,
+                    );
+                    dst.iter_mut().for_each(|v| *v *= -omega);
+                    if cols[k] == agg[i] {
+                        for (v, tv) in dst.iter_mut().zip(t.block(i)) {
+                            *v += tv;
+                        }
+                    }
+                }
+            }
+            p.values = values;
+            let r = p.transpose();
+            let coarse = r.multiply(&a.multiply(&p));
+            self.levels.push(Level { a, inverses, p, r });
+            a = coarse;
+            b = m;
+            near_null = coarse_null;
+            m = self.modes;
+        }
+        self.coarse_size = a.block_rows * b;
+        let lower = a.lower_triangle()?;
+        let mut solver = SparseCholesky::new();
+        LinearSolver::<SparseMatrix>::factor(&mut solver, &lower)?;
+        self.coarse = Some(Mutex::new(solver));
+        Ok(())
+    }
+
+    /// One V-cycle at `level` from zero: `x ≈ A_level⁻¹ b`.
+    fn cycle(&self, level: usize, rhs: &[f64], x: &mut [f64]) {
+        if level == self.levels.len() {
+            x.copy_from_slice(rhs);
+            if let Some(coarse) = &self.coarse {
+                let mut solver = coarse.lock().unwrap_or_else(|e| e.into_inner());
+                if solver.solve_factored(x).is_err() {
+                    x.fill(0.0);
+                }
+            }
+            return;
+        }
+        let Level { a, inverses, p, r } = &self.levels[level];
+        x.fill(0.0);
+        for _ in 0..self.settings.sweeps {
+            gauss_seidel(a, inverses, rhs, x, false);
+        }
+        let mut residual = vec![0.0; x.len()];
+        a.apply(x, &mut residual);
+        residual
+            .par_iter_mut()
+            .zip(rhs)
+            .for_each(|(ri, bi)| *ri = bi - *ri);
+        let nc = r.block_rows * r.rows;
+        let mut coarse_rhs = vec![0.0; nc];
+        r.apply(&residual, &mut coarse_rhs);
+        let mut coarse_x = vec![0.0; nc];
+        self.cycle(level + 1, &coarse_rhs, &mut coarse_x);
+        p.apply(&coarse_x, &mut residual);
+        x.par_iter_mut()
+            .zip(&residual)
+            .for_each(|(xi, ci)| *xi += ci);
+        for _ in 0..self.settings.sweeps {
+            gauss_seidel(a, inverses, rhs, x, true);
+        }
+    }
+}
+
+/// One block Gauss–Seidel sweep on `A x = b`, forward or backward.
+fn gauss_seidel(a: &Bsr, inverses: &[f64], rhs: &[f64], x: &mut [f64], backward: bool) {
+    let b = a.rows;
+    let mut s = vec![0.0; b];
+    let mut step = |i: usize, x: &mut [f64]| {
+        s.copy_from_slice(&rhs[i * b..(i + 1) * b]);
+        for k in a.row(i) {
+            let j = a.col[k];
+            if j == i {
+                continue;
+            }
+            let block = a.block(k);
+            let xj = &x[j * b..(j + 1) * b];
+            for p in 0..b {
+                let row = &block[p * b..(p + 1) * b];
+                s[p] -= row.iter().zip(xj).map(|(u, v)| u * v).sum::<f64>();
+            }
+        }
+        let xi = &mut x[i * b..(i + 1) * b];
+        xi.fill(0.0);
+        gemm_add(xi, &inverses[i * b * b..(i + 1) * b * b], &s, b, b, 1);
+    };
+    if backward {
+        for i in (0..a.block_rows).rev() {
+            step(i, x);
+        }
+    } else {
+        for i in 0..a.block_rows {
+            step(i, x);
+        }
+    }
+}
+
+impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
+    /// Build the hierarchy (see the module documentation).
+    ///
+    /// # Errors
+    /// [`SolveError::DimensionMismatch`] for a near-null space of another
+    /// size than the matrix's; [`SolveError::Factorization`] for a
+    /// diagonal block that is not positive definite or a coarsest level
+    /// the Cholesky factorization refuses.
+    fn setup(&mut self, matrix: &A) -> Result<(), SolveError> {
+        self.build(Bsr::from_blocks(matrix))
+    }
+
+    fn apply(&self, r: &[f64], z: &mut [f64]) {
+        self.cycle(0, r, z);
+    }
+
+    /// The stored numbers of the levels' matrices, prolongators,
+    /// restrictions and diagonal inverses, and of the coarsest factor.
+    fn entries(&self) -> usize {
+        let levels: usize = self
+            .levels
+            .iter()
+            .map(|l| l.a.values.len() + l.p.values.len() + l.r.values.len() + l.inverses.len())
+            .sum();
+        let coarse = self
+            .coarse
+            .as_ref()
+            .and_then(|c| c.lock().ok().and_then(|c| c.factor_entries()))
+            .unwrap_or(0);
+        levels + coarse
+    }
+}
