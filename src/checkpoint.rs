@@ -327,8 +327,9 @@ impl Driver {
 /// Where a checkpoint in memory comes from, in errors.
 pub(crate) const IN_MEMORY: &str = "bytes";
 
-/// A [`DismechError::Checkpoint`] of `origin`.
-pub(crate) fn refused(origin: &str, problem: CheckpointProblem) -> DismechError {
+/// A [`DismechError::Checkpoint`] of `origin` (the file or the bytes the
+/// checkpoint was read from), for `problem`.
+pub fn refused(origin: &str, problem: CheckpointProblem) -> DismechError {
     DismechError::Checkpoint {
         origin: origin.to_string(),
         problem,
@@ -341,8 +342,9 @@ pub(crate) fn corrupt(origin: &str, reason: impl Into<String>) -> DismechError {
 }
 
 /// A checkpoint of `origin` written from another model: `what` is
-/// `checkpoint` there and `model` here.
-pub(crate) fn mismatch(
+/// `checkpoint` there and `model` here (a program that wraps a driver's
+/// checkpoint in its own file refuses a mismatch of its own data so).
+pub fn mismatch(
     origin: &str,
     what: impl Into<String>,
     checkpoint: impl ToString,

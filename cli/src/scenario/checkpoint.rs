@@ -26,7 +26,8 @@
 
 use std::path::{Path, PathBuf};
 
-use dismech::checkpoint::CheckpointProblem;
+pub use dismech::checkpoint::mismatch;
+use dismech::checkpoint::{refused, CheckpointProblem};
 use dismech::error::DismechError;
 
 use super::check::{self, Refusal};
@@ -126,13 +127,6 @@ pub fn encode(counters: &RunCounters, driver: &[u8]) -> Vec<u8> {
     bytes.extend_from_slice(&sum.to_le_bytes());
     bytes.extend_from_slice(driver);
     bytes
-}
-
-fn refused(origin: &str, problem: CheckpointProblem) -> DismechError {
-    DismechError::Checkpoint {
-        origin: origin.to_string(),
-        problem,
-    }
 }
 
 /// The counters and the driver's checkpoint in `bytes` (read from
@@ -248,24 +242,6 @@ pub fn from_file(error: DismechError, origin: &str) -> DismechError {
         DismechError::Checkpoint { problem, .. } => refused(origin, problem),
         other => other,
     }
-}
-
-/// A checkpoint of `origin` written from another model: `what` is
-/// `checkpoint` there and `model` here.
-pub fn mismatch(
-    origin: &str,
-    what: impl Into<String>,
-    checkpoint: impl ToString,
-    model: impl ToString,
-) -> DismechError {
-    refused(
-        origin,
-        CheckpointProblem::ModelMismatch {
-            what: what.into(),
-            checkpoint: checkpoint.to_string(),
-            model: model.to_string(),
-        },
-    )
 }
 
 /// Where a run writes its checkpoints: `dir` (given as a path relative

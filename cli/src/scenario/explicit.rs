@@ -635,56 +635,11 @@ fn add_body(
             None => Err(Box::new(source.at_key(path, "no `density` (kg/m^3)"))),
         }
     };
-    let centre = |c: [f64; 2]| -> Result<Point, Refusal> {
-        let c = finite2(source, &path.key("centre"), c)?;
-        Ok(Point::new(c[0], c[1]))
-    };
-    let shape_error =
-        |names: check::Names<'static>| move |e: DismechError| named(source, path, names, e);
-    let (shape, pose, given_density): (AnyShape2, Pose2, Option<f64>) = match body {
-        BodySpec::Circle(b) => {
-            let shape = Circle::new(b.radius).map_err(shape_error(&[("radius", "radius")]))?;
-            let c = centre(b.centre)?;
-            (shape.into(), Pose2::new(c.x, c.y, 0.0), b.density)
-        }
-        BodySpec::Ellipse(b) => {
-            let shape = Ellipse::new(b.semi_major, b.semi_minor).map_err(shape_error(&[
-                ("semi-axis a", "semi_major"),
-                ("semi-axis b", "semi_minor"),
-                (ELLIPSE_AXES_SWAPPED, "semi_minor"),
-            ]))?;
-            let c = centre(b.centre)?;
-            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
-        }
-        BodySpec::Polygon(b) => {
-            count(
-                source,
-                &path.key("vertices"),
-                b.vertices.len(),
-                3,
-                MAX_BODIES,
-            )?;
-            let vertices: Vec<Point> = b.vertices.iter().map(|v| Point::new(v[0], v[1])).collect();
-            let (polygon, centroid) = Polygon::from_world(&vertices, scene.particles.len())
-                .map_err(|e| Box::new(source.at_key(&path.key("vertices"), e.to_string())))?;
-            (
-                polygon.into(),
-                Pose2::new(centroid.x, centroid.y, 0.0),
-                b.density,
-            )
-        }
-        BodySpec::Rectangle(b) => {
-            let shape = Polygon::rectangle(b.width, b.height).map_err(shape_error(&[
-                ("rectangle width", "width"),
-                ("rectangle height", "height"),
-            ]))?;
-            let c = centre(b.centre)?;
-            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
-        }
-        BodySpec::CircleRows(rows) => return add_rows(source, scene, rows, path),
-        BodySpec::Wall(_) | BodySpec::Lattice(_) | BodySpec::GridColumns(_) => return Err(combination(
+    let shaped = shape_of(source, path, body, scene.particles.len())?;
+    let (shape, pose, given_density): (AnyShape2, Pose2, Option<f64>) = match (shaped, body) {
+        (Some(shaped), _) => shaped,
+        (None, BodySpec::CircleRows(rows)) => return add_rows(source, scene, rows, path),
+        (None, _) => return Err(combination(
             source,
             &[kind, &path.key("kind")],
             "the explicit driver's walls are the `[boundary]`; a lattice serves the limit driver, grid columns the HPM driver",
@@ -712,6 +667,71 @@ fn add_body(
         particle.angular_velocity = finite(source, &path.key("angular_velocity"), w)?;
     }
     Ok(())
+}
+
+/// The shape, pose and given density of a body of one shape (circle,
+/// ellipse, polygon or rectangle) at `path`, the polygon numbered `index`;
+/// `None` for the other kinds, which each driver refuses or takes in its
+/// own way.
+pub fn shape_of(
+    source: &Source<'_>,
+    path: &KeyPath,
+    body: &BodySpec,
+    index: usize,
+) -> Result<Option<(AnyShape2, Pose2, Option<f64>)>, Refusal> {
+    let centre = |c: [f64; 2]| -> Result<Point, Refusal> {
+        let c = finite2(source, &path.key("centre"), c)?;
+        Ok(Point::new(c[0], c[1]))
+    };
+    let shape_error =
+        |names: check::Names<'static>| move |e: DismechError| named(source, path, names, e);
+    Ok(Some(match body {
+        BodySpec::Circle(b) => {
+            let shape = Circle::new(b.radius).map_err(shape_error(&[("radius", "radius")]))?;
+            let c = centre(b.centre)?;
+            (shape.into(), Pose2::new(c.x, c.y, 0.0), b.density)
+        }
+        BodySpec::Ellipse(b) => {
+            let shape = Ellipse::new(b.semi_major, b.semi_minor).map_err(shape_error(&[
+                ("semi-axis a", "semi_major"),
+                ("semi-axis b", "semi_minor"),
+                (ELLIPSE_AXES_SWAPPED, "semi_minor"),
+            ]))?;
+            let c = centre(b.centre)?;
+            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
+            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
+        }
+        BodySpec::Polygon(b) => {
+            count(
+                source,
+                &path.key("vertices"),
+                b.vertices.len(),
+                3,
+                MAX_BODIES,
+            )?;
+            let vertices: Vec<Point> = b.vertices.iter().map(|v| Point::new(v[0], v[1])).collect();
+            let (polygon, centroid) = Polygon::from_world(&vertices, index)
+                .map_err(|e| Box::new(source.at_key(&path.key("vertices"), e.to_string())))?;
+            (
+                polygon.into(),
+                Pose2::new(centroid.x, centroid.y, 0.0),
+                b.density,
+            )
+        }
+        BodySpec::Rectangle(b) => {
+            let shape = Polygon::rectangle(b.width, b.height).map_err(shape_error(&[
+                ("rectangle width", "width"),
+                ("rectangle height", "height"),
+            ]))?;
+            let c = centre(b.centre)?;
+            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
+            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
+        }
+        BodySpec::CircleRows(_)
+        | BodySpec::Wall(_)
+        | BodySpec::Lattice(_)
+        | BodySpec::GridColumns(_) => return Ok(None),
+    }))
 }
 
 /// A finite value at `path`.

@@ -10,12 +10,12 @@ use dismech::limit::lattice::{Lattice, LatticeKind};
 use dismech::limit::{LimitModel, Partner};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Pose2, Vec2};
-use dismech::shape::{AnyShape2, Circle, Ellipse, Polygon};
+use dismech::shape::AnyShape2;
 
 use super::bodies::{BodySpec, LatticeModel};
-use super::check::{self, combination, count, finite2, named, non_negative, positive, Refusal};
+use super::check::{self, combination, count, finite2, non_negative, positive, Refusal};
 use super::driver::LimitSpec;
-use super::explicit::{finite, gravity, ELLIPSE_AXES_SWAPPED, MAX_BODIES};
+use super::explicit::{gravity, MAX_BODIES};
 use super::law::{LawSpec, RigidPlasticSpec};
 use super::solvers::LpSolverSpec;
 use super::source::{KeyPath, Source};
@@ -376,65 +376,14 @@ fn shape_of(
             positive(source, &path.key("density"), d)?;
         }
     }
-    let centre = |c: [f64; 2]| -> Result<Point, Refusal> {
-        let c = finite2(source, &path.key("centre"), c)?;
-        Ok(Point::new(c[0], c[1]))
-    };
-    let shape_error =
-        |names: check::Names<'static>| move |e: DismechError| named(source, path, names, e);
-    Ok(match body {
-        BodySpec::Circle(b) => {
-            let shape = Circle::new(b.radius).map_err(shape_error(&[("radius", "radius")]))?;
-            let c = centre(b.centre)?;
-            (shape.into(), Pose2::new(c.x, c.y, 0.0), b.density)
-        }
-        BodySpec::Ellipse(b) => {
-            let shape = Ellipse::new(b.semi_major, b.semi_minor).map_err(shape_error(&[
-                ("semi-axis a", "semi_major"),
-                ("semi-axis b", "semi_minor"),
-                (ELLIPSE_AXES_SWAPPED, "semi_minor"),
-            ]))?;
-            let c = centre(b.centre)?;
-            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
-        }
-        BodySpec::Polygon(b) => {
-            count(
-                source,
-                &path.key("vertices"),
-                b.vertices.len(),
-                3,
-                MAX_BODIES,
-            )?;
-            let vertices: Vec<Point> = b.vertices.iter().map(|v| Point::new(v[0], v[1])).collect();
-            let (polygon, centroid) = Polygon::from_world(&vertices, 0)
-                .map_err(|e| Box::new(source.at_key(&path.key("vertices"), e.to_string())))?;
-            (
-                polygon.into(),
-                Pose2::new(centroid.x, centroid.y, 0.0),
-                b.density,
-            )
-        }
-        BodySpec::Rectangle(b) => {
-            let shape = Polygon::rectangle(b.width, b.height).map_err(shape_error(&[
-                ("rectangle width", "width"),
-                ("rectangle height", "height"),
-            ]))?;
-            let c = centre(b.centre)?;
-            let angle = finite(source, &path.key("angle"), b.angle.unwrap_or(0.0))?;
-            (shape.into(), Pose2::new(c.x, c.y, angle), b.density)
-        }
-        BodySpec::Wall(_)
-        | BodySpec::CircleRows(_)
-        | BodySpec::Lattice(_)
-        | BodySpec::GridColumns(_) => {
-            return Err(combination(
-                source,
-                &[kind, &path.key("kind")],
-                "the limit driver takes bodies of kind circle, ellipse, polygon, rectangle and wall, or one lattice alone; circle rows serve the explicit driver, grid columns the HPM driver",
-            ))
-        }
-    })
+    match super::explicit::shape_of(source, path, body, 0)? {
+        Some(shaped) => Ok(shaped),
+        None => Err(combination(
+            source,
+            &[kind, &path.key("kind")],
+            "the limit driver takes bodies of kind circle, ellipse, polygon, rectangle and wall, or one lattice alone; circle rows serve the explicit driver, grid columns the HPM driver",
+        )),
+    }
 }
 
 /// Declare, with `law`, the contacts the pair query finds between every
