@@ -1512,3 +1512,40 @@ fn implicit_ellipses_scenario_equals_the_composition_bit_for_bit() {
         assert_eq!(bits(&b["centroid"][1]), centre.y.to_bits());
     }
 }
+
+/// A prescribed body's motion is the model's: a checkpoint of a run whose
+/// plate was driven at another velocity, or whose bump stood elsewhere, is
+/// refused, naming the body; the unchanged file resumes.
+#[test]
+fn a_checkpoint_of_another_prescribed_motion_is_refused() {
+    let dir = scratch("resume-prescribed");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scenarios().join("dem_incline_and_plate.toml")).unwrap();
+    let file = dir.join("model.toml");
+    std::fs::write(&file, &text).unwrap();
+    run_file(&file, "a", Some(1000), None);
+    let ckpt = dir.join("a.checkpoints/step-0000001000.ckpt");
+    let edit = |from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        let edited = dir.join("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        edited
+    };
+    let refused = resume_refusal(
+        &edit("velocity = [-0.4, 0.0]", "velocity = [0.4, 0.0]"),
+        &ckpt,
+        None,
+    );
+    assert!(
+        refused.contains("body 6's prescribed velocity"),
+        "{refused}"
+    );
+    let refused = resume_refusal(
+        &edit("centre = [1.15, 0.0]", "centre = [1.2, 0.0]"),
+        &ckpt,
+        None,
+    );
+    assert!(refused.contains("body 4's fixed pose"), "{refused}");
+    run_file(&file, "b", Some(2000), Some(&ckpt));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -171,6 +171,30 @@ fn same_scene(restored: &Scene, fresh: &Scene, origin: &str) -> Result<()> {
             ));
         }
     }
+    // A prescribed body keeps its motion: the file's velocity (and a fixed
+    // body's position) is the model's, not the run's state.
+    for (k, (a, b)) in restored.particles.iter().zip(&fresh.particles).enumerate() {
+        if !b.is_prescribed() {
+            continue;
+        }
+        if a.velocity != b.velocity || a.angular_velocity != b.angular_velocity {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s prescribed velocity and angular velocity"),
+                format!("{:?}, {}", a.velocity, a.angular_velocity),
+                format!("{:?}, {}", b.velocity, b.angular_velocity),
+            ));
+        }
+        let fixed = b.velocity == dismech::math::Vec2::zeros() && b.angular_velocity == 0.0;
+        if fixed && a.pose != b.pose {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s fixed pose"),
+                format!("{:?}", a.pose),
+                format!("{:?}", b.pose),
+            ));
+        }
+    }
     if restored.frame != fresh.frame {
         return Err(mismatch(origin, "walls", "other walls", "the file's walls"));
     }
