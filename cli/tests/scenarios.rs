@@ -1549,3 +1549,28 @@ fn a_checkpoint_of_another_prescribed_motion_is_refused() {
     run_file(&file, "b", Some(2000), Some(&ckpt));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The implicit driver's `sine` motion is a function its checkpoint
+/// cannot compare: the scenario's checkpoint refuses another amplitude,
+/// frequency or direction.
+#[test]
+fn a_checkpoint_of_another_sine_motion_is_refused() {
+    let dir = scratch("resume-sine");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 10", &dir);
+    let text = std::fs::read_to_string(&file).unwrap();
+    run_file(&file, "a", Some(20), None);
+    let ckpt = dir.join("a.checkpoints/step-0000000020.ckpt");
+    for (from, to) in [
+        ("frequency = 2.0", "frequency = 3.0"),
+        ("amplitude = 0.06863101004005262", "amplitude = 0.07"),
+        ("frequency = 2.0", "frequency = 2.0, direction = [0.0, 1.0]"),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let edited = dir.join("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        let refused = resume_refusal(&edited, &ckpt, Some(40));
+        assert!(refused.contains("bodies' sine motions"), "{to}: {refused}");
+    }
+    run_file(&file, "b", Some(40), Some(&ckpt));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -229,8 +229,9 @@ where
     Ok(Box::new(restored))
 }
 
-/// Refuse counters whose `dt` or settings are not the file's.
-fn same_step(counters: &RunCounters, dt: f64, settings: u64, origin: &str) -> Result<()> {
+/// Refuse counters whose `dt` or settings (`what`) are not the file's.
+fn same_step(counters: &RunCounters, dt: f64, settings: (&str, u64), origin: &str) -> Result<()> {
+    let (what, settings) = settings;
     if counters.dt_bits != dt.to_bits() {
         return Err(mismatch(
             origin,
@@ -242,9 +243,9 @@ fn same_step(counters: &RunCounters, dt: f64, settings: u64, origin: &str) -> Re
     if counters.settings != settings {
         return Err(mismatch(
             origin,
-            "driver settings",
-            "the settings it was written with",
-            "other settings",
+            what,
+            "those it was written with",
+            "others",
         ));
     }
     Ok(())
@@ -281,7 +282,13 @@ fn run(
             Model::Explicit(m) => {
                 let (counters, payload) =
                     decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
-                same_step(&counters, m.dt, fingerprint(&m.settings), &origin).map_err(run_error)?;
+                same_step(
+                    &counters,
+                    m.dt,
+                    ("driver settings", fingerprint(&m.settings)),
+                    &origin,
+                )
+                .map_err(run_error)?;
                 m.dem = match &m.dem {
                     ExplicitDem::Spring(d) => {
                         ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
@@ -318,7 +325,13 @@ fn run(
             Model::Implicit(m) => {
                 let (counters, payload) =
                     decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
-                same_step(&counters, m.dt, 0, &origin).map_err(run_error)?;
+                same_step(
+                    &counters,
+                    m.dt,
+                    ("bodies' sine motions", m.motions),
+                    &origin,
+                )
+                .map_err(run_error)?;
                 let restored = match &mut m.driver {
                     ImplicitDriver::RigidSpring(d) => d.restore(payload),
                     ImplicitDriver::RigidPenalty(d) => d.restore(payload),
@@ -348,6 +361,7 @@ fn run(
         },
         settings: match &model {
             Model::Explicit(m) => fingerprint(&m.settings),
+            Model::Implicit(m) => m.motions,
             _ => 0,
         },
         last: resumed.map(|c| c.step),
