@@ -282,3 +282,47 @@ fn reanalysis_follows_the_bedrock() {
         assert_eq!(slip.get(k.row, k.column), Some(k.base));
     }
 }
+
+#[test]
+fn dry_ground_lighter_than_water_is_reanalysed() {
+    // Without a water table the submerged unit weight is never taken: a
+    // light dry ground (γ ≤ γ_w) is analysed, not refused; under a water
+    // table its submerged unit weight is not positive and it is refused.
+    let dem = valley_dem();
+    let terrain = Terrain::new(NamedRaster::new("valley", dem.clone()), None).unwrap();
+    let result = searched(&terrain);
+    let worst = result.lowest().unwrap();
+    let light = SlopeMaterial {
+        unit_weight: 9e3,
+        ..soil()
+    };
+    let run = |terrain: &Terrain, m: &SlopeMaterial| {
+        hpm_reanalysis(
+            terrain,
+            m,
+            &SlopeLoads::default(),
+            &worst.surface,
+            &worst.result,
+            &HpmStiffness::default(),
+            &HpmSettings::default(),
+            None,
+        )
+    };
+    let re = run(&terrain, &light).unwrap();
+    let heavy = run(&terrain, &soil()).unwrap();
+    // The same cohesion holds a lighter slide better.
+    let fs = |r: &HpmReanalysis| r.elastic.safety_factor(&r.model).unwrap();
+    assert!(
+        fs(&re).is_finite() && fs(&re) > fs(&heavy),
+        "{} {}",
+        fs(&re),
+        fs(&heavy)
+    );
+    let deep = Raster::from_fn(48, 40, 100.0, 200.0, 2.0, |_, _| Some(-50.0)).unwrap();
+    let wet = Terrain::new(
+        NamedRaster::new("valley", dem),
+        Some(NamedRaster::new("water", deep)),
+    )
+    .unwrap();
+    assert!(run(&wet, &light).is_err());
+}

@@ -1512,3 +1512,65 @@ fn implicit_ellipses_scenario_equals_the_composition_bit_for_bit() {
         assert_eq!(bits(&b["centroid"][1]), centre.y.to_bits());
     }
 }
+
+/// A prescribed body's motion is the model's: a checkpoint of a run whose
+/// plate was driven at another velocity, or whose bump stood elsewhere, is
+/// refused, naming the body; the unchanged file resumes.
+#[test]
+fn a_checkpoint_of_another_prescribed_motion_is_refused() {
+    let dir = scratch("resume-prescribed");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scenarios().join("dem_incline_and_plate.toml")).unwrap();
+    let file = dir.join("model.toml");
+    std::fs::write(&file, &text).unwrap();
+    run_file(&file, "a", Some(1000), None);
+    let ckpt = dir.join("a.checkpoints/step-0000001000.ckpt");
+    let edit = |from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        let edited = dir.join("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        edited
+    };
+    let refused = resume_refusal(
+        &edit("velocity = [-0.4, 0.0]", "velocity = [0.4, 0.0]"),
+        &ckpt,
+        None,
+    );
+    assert!(
+        refused.contains("body 6's prescribed velocity"),
+        "{refused}"
+    );
+    let refused = resume_refusal(
+        &edit("centre = [1.15, 0.0]", "centre = [1.2, 0.0]"),
+        &ckpt,
+        None,
+    );
+    assert!(refused.contains("body 4's fixed pose"), "{refused}");
+    run_file(&file, "b", Some(2000), Some(&ckpt));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The implicit driver's `sine` motion is a function its checkpoint
+/// cannot compare: the scenario's checkpoint refuses another amplitude,
+/// frequency or direction.
+#[test]
+fn a_checkpoint_of_another_sine_motion_is_refused() {
+    let dir = scratch("resume-sine");
+    let file = variant("dda_sliding_block.toml", "checkpoint_every = 10", &dir);
+    let text = std::fs::read_to_string(&file).unwrap();
+    run_file(&file, "a", Some(20), None);
+    let ckpt = dir.join("a.checkpoints/step-0000000020.ckpt");
+    for (from, to) in [
+        ("frequency = 2.0", "frequency = 3.0"),
+        ("amplitude = 0.06863101004005262", "amplitude = 0.07"),
+        ("frequency = 2.0", "frequency = 2.0, direction = [0.0, 1.0]"),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let edited = dir.join("edited.toml");
+        std::fs::write(&edited, text.replacen(from, to, 1)).unwrap();
+        let refused = resume_refusal(&edited, &ckpt, Some(40));
+        assert!(refused.contains("bodies' sine motions"), "{to}: {refused}");
+    }
+    run_file(&file, "b", Some(40), Some(&ckpt));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

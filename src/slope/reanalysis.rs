@@ -218,7 +218,18 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     nonlinear: Option<&NonlinearSettings>,
 ) -> Result<HpmReanalysis> {
     let (material, layered) = hpm_ground(ground)?;
-    let material = stiffness.material(&material, loads)?;
+    let material = if terrain.water().is_some() {
+        stiffness.material(&material, loads)?
+    } else {
+        // Dry ground: no element lies below a water table, so the
+        // submerged unit weight is never taken; a unit weight at or below
+        // γ_w is no reason to refuse.
+        let dry = SlopeLoads {
+            water_unit_weight: 0.0,
+            ..*loads
+        };
+        stiffness.material(&material, &dry)?
+    };
     let seismic = Seismic {
         coefficient: loads.seismic_coefficient,
         direction: hovland.direction,

@@ -171,6 +171,30 @@ fn same_scene(restored: &Scene, fresh: &Scene, origin: &str) -> Result<()> {
             ));
         }
     }
+    // A prescribed body keeps its motion: the file's velocity (and a fixed
+    // body's position) is the model's, not the run's state.
+    for (k, (a, b)) in restored.particles.iter().zip(&fresh.particles).enumerate() {
+        if !b.is_prescribed() {
+            continue;
+        }
+        if a.velocity != b.velocity || a.angular_velocity != b.angular_velocity {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s prescribed velocity and angular velocity"),
+                format!("{:?}, {}", a.velocity, a.angular_velocity),
+                format!("{:?}, {}", b.velocity, b.angular_velocity),
+            ));
+        }
+        let fixed = b.velocity == dismech::math::Vec2::zeros() && b.angular_velocity == 0.0;
+        if fixed && a.pose != b.pose {
+            return Err(mismatch(
+                origin,
+                format!("body {k}'s fixed pose"),
+                format!("{:?}", a.pose),
+                format!("{:?}", b.pose),
+            ));
+        }
+    }
     if restored.frame != fresh.frame {
         return Err(mismatch(origin, "walls", "other walls", "the file's walls"));
     }
@@ -205,8 +229,9 @@ where
     Ok(Box::new(restored))
 }
 
-/// Refuse counters whose `dt` or settings are not the file's.
-fn same_step(counters: &RunCounters, dt: f64, settings: u64, origin: &str) -> Result<()> {
+/// Refuse counters whose `dt` or settings (`what`) are not the file's.
+fn same_step(counters: &RunCounters, dt: f64, settings: (&str, u64), origin: &str) -> Result<()> {
+    let (what, settings) = settings;
     if counters.dt_bits != dt.to_bits() {
         return Err(mismatch(
             origin,
@@ -218,9 +243,9 @@ fn same_step(counters: &RunCounters, dt: f64, settings: u64, origin: &str) -> Re
     if counters.settings != settings {
         return Err(mismatch(
             origin,
-            "driver settings",
-            "the settings it was written with",
-            "other settings",
+            what,
+            "those it was written with",
+            "others",
         ));
     }
     Ok(())
@@ -257,7 +282,13 @@ fn run(
             Model::Explicit(m) => {
                 let (counters, payload) =
                     decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
-                same_step(&counters, m.dt, fingerprint(&m.settings), &origin).map_err(run_error)?;
+                same_step(
+                    &counters,
+                    m.dt,
+                    ("driver settings", fingerprint(&m.settings)),
+                    &origin,
+                )
+                .map_err(run_error)?;
                 m.dem = match &m.dem {
                     ExplicitDem::Spring(d) => {
                         ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
@@ -294,7 +325,13 @@ fn run(
             Model::Implicit(m) => {
                 let (counters, payload) =
                     decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
-                same_step(&counters, m.dt, 0, &origin).map_err(run_error)?;
+                same_step(
+                    &counters,
+                    m.dt,
+                    ("bodies' sine motions", m.motions),
+                    &origin,
+                )
+                .map_err(run_error)?;
                 let restored = match &mut m.driver {
                     ImplicitDriver::RigidSpring(d) => d.restore(payload),
                     ImplicitDriver::RigidPenalty(d) => d.restore(payload),
@@ -324,6 +361,7 @@ fn run(
         },
         settings: match &model {
             Model::Explicit(m) => fingerprint(&m.settings),
+            Model::Implicit(m) => m.motions,
             _ => 0,
         },
         last: resumed.map(|c| c.step),

@@ -82,6 +82,31 @@ pub struct ImplicitModel {
     pub dt: f64,
     /// Calls of `advance`.
     pub steps: u64,
+    /// The hash of the bodies' sine motions ([`motions`]): a motion is a
+    /// function, which the driver's checkpoint cannot compare.
+    pub motions: u64,
+}
+
+/// The FNV-1a hash of each body's sine motion as given (body index,
+/// amplitude, frequency and direction bits; 0 without one).
+pub fn motions(spec: &ScenarioSpec) -> u64 {
+    let mut bytes = Vec::new();
+    for (k, entry) in spec.bodies.iter().enumerate() {
+        if let Some(common) = entry.common() {
+            if let Some(MotionSpec::Sine(s)) = common.motion {
+                let d = s.direction.unwrap_or([1.0, 0.0]);
+                bytes.extend_from_slice(&(k as u64).to_le_bytes());
+                for v in [s.amplitude, s.frequency, d[0], d[1]] {
+                    bytes.extend_from_slice(&v.to_bits().to_le_bytes());
+                }
+            }
+        }
+    }
+    if bytes.is_empty() {
+        0
+    } else {
+        super::checkpoint::fnv(&[&bytes])
+    }
 }
 
 /// Build the implicit model of `spec`.
@@ -144,7 +169,12 @@ pub fn build(
             )?)),
         }
     };
-    Ok(ImplicitModel { driver, dt, steps })
+    Ok(ImplicitModel {
+        driver,
+        dt,
+        steps,
+        motions: motions(spec),
+    })
 }
 
 /// [`ImplicitDynamics::compose`], its errors placed at the keys that gave
