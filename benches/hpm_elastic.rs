@@ -13,9 +13,11 @@
 //! `amg pcg` for both side by side on the same model, `theta=0.08` for
 //! another strength threshold of the aggregation, `modes=12` for all
 //! linear motions as near-null space, `sweeps=2` for two Gauss–Seidel
-//! sweeps a side; `mtx=DIR` writes the stiffness, the load vector and the
-//! rigid motions in Matrix Market files under DIR for
-//! `benches/hpm_pyamg.py` and stops).
+//! sweeps a side; `plan=2` for the column multigrid, whose finest level
+//! solves whole columns and aggregates squares of 2 × 2 columns
+//! (`HpmSolver::column_multigrid`); `mtx=DIR` writes the stiffness, the load vector and the
+//! rigid motions (`B.mtx`; `B12.mtx` with the uniform strains) in Matrix
+//! Market files under DIR for `benches/hpm_pyamg.py` and stops).
 
 use std::time::Instant;
 
@@ -68,6 +70,7 @@ fn export(model: &HpmModel, dir: &std::path::Path) -> Result<(), Box<dyn std::er
     };
     array("b.mtx", 1, &model.loads(&Seismic::none()))?;
     array("B.mtx", 6, &dismech::hpm::linear_motions(model, 6)?)?;
+    array("B12.mtx", 12, &dismech::hpm::linear_motions(model, 12)?)?;
     println!(
         "wrote K.mtx ({n} unknowns, {} entries of the lower triangle), b.mtx, B.mtx to {}",
         lower.values().len(),
@@ -130,7 +133,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .find_map(|a| a.strip_prefix("modes=").and_then(|t| t.parse().ok()))
             .unwrap_or(6);
         let t1 = Instant::now();
-        let mut solver = HpmSolver::multigrid(&model, settings, aggregation, modes)?;
+        let plan: Option<usize> =
+            std::env::args().find_map(|a| a.strip_prefix("plan=").and_then(|t| t.parse().ok()));
+        let mut solver = match plan {
+            Some(plan) => HpmSolver::column_multigrid(&model, settings, aggregation, modes, plan)?,
+            None => HpmSolver::multigrid(&model, settings, aggregation, modes)?,
+        };
         let t2 = Instant::now();
         let result = solver.elastic(&model, &Seismic::none())?;
         let t3 = Instant::now();

@@ -538,6 +538,158 @@ fn pcg_with_smoothed_aggregation_reproduces_the_direct_elastic_solution() {
     }
 }
 
+/// The multigrid whose finest level solves whole grid columns and
+/// aggregates squares of columns reproduces the direct solution, in fewer
+/// iterations than the element-block multigrid and the column blocks alone,
+/// for every side of the aggregates; a side of 0 is refused by name.
+#[test]
+fn pcg_with_column_multigrid_reproduces_the_direct_elastic_solution() {
+    let m = HpmMaterial::paper();
+    let model = HpmModel::new(&bowl(), &m, &HpmSettings::default()).unwrap();
+    let seismic = Seismic {
+        coefficient: 0.15,
+        direction: towards_deg(270.0),
+    };
+    let direct = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let settings = CgSettings {
+        relative_tolerance: 1e-10,
+        max_iterations: 20_000,
+    };
+    let iterations_of = |result: &dismech::hpm::HpmResult| match result.convergence {
+        Convergence::Converged { iterations, .. } => iterations,
+        other => panic!("PCG did not converge: {other:?}"),
+    };
+    let by_columns = iterations_of(
+        &HpmSolver::iterative(&model, settings)
+            .unwrap()
+            .elastic(&model, &seismic)
+            .unwrap(),
+    );
+    let aggregation = AggregationSettings {
+        max_coarse: 50,
+        ..AggregationSettings::default()
+    };
+    let by_elements = iterations_of(
+        &HpmSolver::multigrid(&model, settings, aggregation, 6)
+            .unwrap()
+            .elastic(&model, &seismic)
+            .unwrap(),
+    );
+    let size: f64 = direct
+        .displacements
+        .iter()
+        .map(|a| a * a)
+        .sum::<f64>()
+        .sqrt();
+    for plan in [1, 2, 3] {
+        let mut solver =
+            HpmSolver::column_multigrid(&model, settings, aggregation, 6, plan).unwrap();
+        let levels = solver.linear_solver().preconditioner().level_sizes();
+        let iterative = solver.elastic(&model, &seismic).unwrap();
+        let iterations = iterations_of(&iterative);
+        let difference: f64 = direct
+            .displacements
+            .iter()
+            .zip(&iterative.displacements)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        eprintln!(
+            "plan {plan}, levels {levels:?}: {iterations} iterations (element multigrid {by_elements}, column blocks {by_columns}), relative difference from Cholesky {:e}",
+            difference / size
+        );
+        assert!(levels.len() >= 2, "{levels:?}");
+        assert!(difference <= 1e-6 * size, "{}", difference / size);
+        assert!(iterations < by_elements, "{iterations} vs {by_elements}");
+        assert!(iterations < by_columns, "{iterations} vs {by_columns}");
+        let (a, b) = (
+            direct.safety_factor(&model).unwrap(),
+            iterative.safety_factor(&model).unwrap(),
+        );
+        assert!((a / b - 1.0).abs() < 1e-6, "{a} vs {b}");
+    }
+    let refused = HpmSolver::column_multigrid(&model, settings, aggregation, 6, 0).err();
+    assert!(
+        matches!(
+            &refused,
+            Some(DismechError::InvalidParameter { name, .. }) if name.contains("plan")
+        ),
+        "{refused:?}"
+    );
+}
+
+/// A first multigrid level whose aggregates or lines do not fit the
+/// matrix is refused at setup, naming what is wrong.
+#[test]
+fn a_line_level_that_does_not_fit_the_matrix_is_refused() {
+    use dismech::linsolve::{LineLevel, Preconditioner, SmoothedAggregation, SolveError};
+    let model = HpmModel::new(&bowl(), &HpmMaterial::paper(), &HpmSettings::default()).unwrap();
+    let stiffness = model.stiffness();
+    let elements = model.elements.len();
+    let lines: Vec<_> = model.columns.iter().map(|c| c.elements.clone()).collect();
+    let setup = |first: LineLevel| {
+        let mut amg = SmoothedAggregation::new(
+            AggregationSettings {
+                max_coarse: 50,
+                ..AggregationSettings::default()
+            },
+            linear_motions(&model, 6).unwrap(),
+            6,
+        )
+        .with_lines(first);
+        amg.setup(&stiffness)
+    };
+    let cases = [
+        (
+            LineLevel {
+                aggregates: vec![0; elements - 1],
+                lines: lines.clone(),
+            },
+            "one per block",
+        ),
+        (
+            LineLevel {
+                aggregates: (0..elements).map(|e| if e == 0 { 0 } else { 2 }).collect(),
+                lines: lines.clone(),
+            },
+            "none empty",
+        ),
+        (
+            LineLevel {
+                aggregates: vec![0; elements],
+                lines: lines[1..].to_vec(),
+            },
+            "consecutive",
+        ),
+        (
+            LineLevel {
+                aggregates: vec![0; elements],
+                lines: lines[..lines.len() - 1].to_vec(),
+            },
+            "covered by the lines",
+        ),
+    ];
+    for (first, what) in cases {
+        match setup(first) {
+            Err(SolveError::DimensionMismatch { what: said, .. }) => {
+                assert!(said.contains(what), "{said} (expected: {what})")
+            }
+            other => panic!("{what}: {other:?}"),
+        }
+    }
+    // The same columns as lines, with every column its own aggregate, set up.
+    let aggregates = model
+        .columns
+        .iter()
+        .enumerate()
+        .flat_map(|(g, c)| c.elements.clone().map(move |_| g))
+        .collect();
+    setup(LineLevel { aggregates, lines }).unwrap();
+}
+
 /// The nonlinear analysis and the strength reduction by PCG (to a tight
 /// residual) find the safety factors of the sparse Cholesky factor: the
 /// linear solver is a slot of the analysis, not part of it.

@@ -83,7 +83,7 @@ pub use conjugate_gradient::{
 pub use lu::{LuPivoting, LuSettings, SparseLu};
 pub use lumped::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
 pub use pattern::{SparseMatrix, SparsePattern};
-pub use smoothed_aggregation::{AggregationSettings, BlockSparse, SmoothedAggregation};
+pub use smoothed_aggregation::{AggregationSettings, BlockSparse, LineLevel, SmoothedAggregation};
 
 pub use crate::error::SolveError;
 

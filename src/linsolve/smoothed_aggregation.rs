@@ -29,22 +29,41 @@
 //! (or [`AggregationSettings::max_levels`]), where the level is factored
 //! by the sparse Cholesky solver ([`super::SparseCholesky`]).
 //!
+//! # A first level given by the caller
+//!
+//! Where the caller knows lines of strongly coupled blocks (for HPM the
+//! elements of one grid column, coupled by stiff face springs) it may give
+//! the finest level's aggregates and those lines ([`LineLevel`],
+//! [`SmoothedAggregation::with_lines`]): the aggregates replace steps 1–2
+//! on that level, and its smoother becomes damped block-Jacobi over the
+//! lines, `x ← x + w D_L⁻¹ (b − A x)` with `D_L` the dense diagonal block
+//! of each line and `w = 1 / ρ(D_L⁻¹ A)`. A point (block) smoother leaves
+//! errors that are smooth along the lines and rough across them, which no
+//! coarse space of aggregates represents (the case of anisotropic
+//! problems, where line relaxation is the classical remedy; Trottenberg,
+//! Oosterlee & Schüller, *Multigrid*, 2001, § 5.1). The coarser levels are
+//! aggregated and smoothed as above.
+//!
 //! # Application
 //!
 //! One V-cycle from zero: a forward block Gauss–Seidel sweep before the
 //! restriction `Pᵀ r`, the correction from the coarser level, and a
-//! backward sweep after it. The backward sweep is the adjoint of the
-//! forward one and the coarsest solve is exact, so the cycle is a
-//! symmetric positive definite operator: a valid preconditioner for PCG.
+//! backward sweep after it (on a level with lines: the same number of
+//! line-Jacobi sweeps on each side). The backward sweep is the adjoint of
+//! the forward one, Jacobi is symmetric, and the coarsest solve is exact,
+//! so the cycle is a symmetric positive definite operator: a valid
+//! preconditioner for PCG.
 
 use std::sync::Mutex;
+
+use std::ops::Range;
 
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::{
-    LinearSolver, LinearSolverInfo, Preconditioner, SolveError, SparseCholesky, SparseMatrix,
-    SparsePattern,
+    BlockJacobi, DiagonalBlocks, LinearSolver, LinearSolverInfo, Preconditioner, SolveError,
+    SparseCholesky, SparseMatrix, SparsePattern,
 };
 
 /// A symmetric matrix of dense square blocks, read block by block.
@@ -71,6 +90,33 @@ struct Bsr {
     start: Vec<usize>,
     col: Vec<usize>,
     values: Vec<f64>,
+}
+
+/// `y += a · x` for dense row-major `a` (`y.len()` × `x.len()`): a
+/// product by rows, which the compiler vectorises (the general
+/// [`gemm_add`] with one column does not).
+fn gemv_add(y: &mut [f64], a: &[f64], x: &[f64]) {
+    for (yi, row) in y.iter_mut().zip(a.chunks_exact(x.len())) {
+        *yi += dot(row, x);
+    }
+}
+
+/// `a · b` in four interleaved sums.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut sums = [0.0; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ac.zip(bc) {
+        for l in 0..4 {
+            sums[l] += x[l] * y[l];
+        }
+    }
+    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
 }
 
 /// `c += a · b` for dense row-major `a` (m × k) and `b` (k × n).
@@ -151,7 +197,7 @@ impl Bsr {
             yi.fill(0.0);
             for k in self.row(i) {
                 let xj = &x[self.col[k] * c..(self.col[k] + 1) * c];
-                gemm_add(yi, self.block(k), xj, r, c, 1);
+                gemv_add(yi, self.block(k), xj);
             }
         });
     }
@@ -310,6 +356,123 @@ impl Bsr {
     }
 }
 
+impl DiagonalBlocks for Bsr {
+    /// The dense diagonal blocks over `ranges` of unknowns, each of whole
+    /// blocks.
+    fn diagonal_blocks(&self, ranges: &[Range<usize>]) -> Result<Vec<DMatrix<f64>>, SolveError> {
+        let b = self.rows;
+        ranges
+            .iter()
+            .map(|range| {
+                if range.start % b != 0 || range.end % b != 0 || range.end > self.block_rows * b {
+                    return Err(SolveError::DimensionMismatch {
+                        what: "end of a line of the multigrid's first level (whole blocks, within the matrix)",
+                        expected: self.block_rows * b,
+                        found: range.end,
+                    });
+                }
+                let blocks = range.start / b..range.end / b;
+                let mut dense = DMatrix::zeros(range.len(), range.len());
+                for i in blocks.clone() {
+                    for k in self.row(i) {
+                        let j = self.col[k];
+                        if !blocks.contains(&j) {
+                            continue;
+                        }
+                        let (r0, c0) = (b * (i - blocks.start), b * (j - blocks.start));
+                        for (p, row) in self.block(k).chunks_exact(b).enumerate() {
+                            for (q, &v) in row.iter().enumerate() {
+                                dense[(r0 + p, c0 + q)] = v;
+                            }
+                        }
+                    }
+                }
+                Ok(dense)
+            })
+            .collect()
+    }
+}
+
+/// The finest level as the caller gives it: its aggregates and the lines
+/// of blocks its smoother solves whole (see the module documentation).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LineLevel {
+    /// The aggregate of each block of the finest level, numbered from 0
+    /// with none empty.
+    pub aggregates: Vec<usize>,
+    /// The lines: consecutive ranges of blocks from block 0, covering
+    /// every block.
+    pub lines: Vec<Range<usize>>,
+}
+
+impl LineLevel {
+    /// Check the aggregates and lines against a matrix of `blocks` blocks;
+    /// the number of aggregates.
+    fn validate(&self, blocks: usize) -> Result<usize, SolveError> {
+        if self.aggregates.len() != blocks {
+            return Err(SolveError::DimensionMismatch {
+                what: "aggregates of the multigrid's first level (one per block)",
+                expected: blocks,
+                found: self.aggregates.len(),
+            });
+        }
+        let count = self.aggregates.iter().max().map_or(0, |&g| g + 1);
+        let mut used = vec![false; count];
+        self.aggregates.iter().for_each(|&g| used[g] = true);
+        if let Some(empty) = used.iter().position(|&u| !u) {
+            return Err(SolveError::DimensionMismatch {
+                what: "aggregate numbers of the multigrid's first level (from 0, none empty): the first unused",
+                expected: count,
+                found: empty,
+            });
+        }
+        let mut start = 0;
+        for line in &self.lines {
+            if line.start != start || line.end <= line.start {
+                return Err(SolveError::DimensionMismatch {
+                    what: "start of a line of the multigrid's first level (lines are consecutive, not empty, from block 0)",
+                    expected: start,
+                    found: line.start,
+                });
+            }
+            start = line.end;
+        }
+        if start != blocks {
+            return Err(SolveError::DimensionMismatch {
+                what: "blocks covered by the lines of the multigrid's first level",
+                expected: blocks,
+                found: start,
+            });
+        }
+        Ok(count)
+    }
+}
+
+/// The damped line-Jacobi smoother of a level with lines.
+#[derive(Debug)]
+struct LineSmoother {
+    jacobi: BlockJacobi,
+    /// `w = 1 / ρ(D_L⁻¹ A)`.
+    weight: f64,
+}
+
+impl LineSmoother {
+    /// `x ← x + w D_L⁻¹ (b − A x)`; `x` is zero when `from_zero`.
+    fn sweep(&self, a: &Bsr, rhs: &[f64], x: &mut [f64], from_zero: bool) {
+        let mut residual = rhs.to_vec();
+        if !from_zero {
+            let mut ax = vec![0.0; x.len()];
+            a.apply(x, &mut ax);
+            residual.par_iter_mut().zip(&ax).for_each(|(r, v)| *r -= v);
+        }
+        let mut z = vec![0.0; x.len()];
+        Preconditioner::<SparseMatrix>::apply(&self.jacobi, &residual, &mut z);
+        x.par_iter_mut()
+            .zip(&z)
+            .for_each(|(xi, zi)| *xi += self.weight * zi);
+    }
+}
+
 /// Settings of the hierarchy.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AggregationSettings {
@@ -348,6 +511,8 @@ struct Level {
     inverses: Vec<f64>,
     p: Bsr,
     r: Bsr,
+    /// The line smoother in place of Gauss–Seidel (a level with lines).
+    lines: Option<LineSmoother>,
 }
 
 /// A smoothed-aggregation multigrid V-cycle as a PCG preconditioner (see
@@ -364,6 +529,8 @@ pub struct SmoothedAggregation {
     levels: Vec<Level>,
     coarse: Option<Mutex<SparseCholesky>>,
     coarse_size: usize,
+    /// The finest level's aggregates and lines, where given.
+    first: Option<LineLevel>,
 }
 
 /// The aggregates of the strong block graph of `a`: the aggregate of each
@@ -485,19 +652,24 @@ fn tentative(
 fn block_diagonal_apply(inverses: &[f64], b: usize, r: &[f64], z: &mut [f64]) {
     z.par_chunks_mut(b).enumerate().for_each(|(i, zi)| {
         zi.fill(0.0);
-        gemm_add(
+        gemv_add(
             zi,
             &inverses[i * b * b..(i + 1) * b * b],
             &r[i * b..(i + 1) * b],
-            b,
-            b,
-            1,
         );
     });
 }
 
 /// An estimate of `ρ(D⁻¹ A)` by power iterations from a fixed start.
 fn spectral_radius(a: &Bsr, inverses: &[f64], iterations: usize) -> f64 {
+    power_iterations(a, iterations, |y, z| {
+        block_diagonal_apply(inverses, a.rows, y, z)
+    })
+}
+
+/// An estimate of `ρ(M A)` by power iterations from a fixed start, `M`
+/// applied by `precondition(y, z)`: `z = M y`.
+fn power_iterations(a: &Bsr, iterations: usize, precondition: impl Fn(&[f64], &mut [f64])) -> f64 {
     let n = a.block_rows * a.rows;
     let mut x: Vec<f64> = (0..n)
         .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
@@ -508,7 +680,7 @@ fn spectral_radius(a: &Bsr, inverses: &[f64], iterations: usize) -> f64 {
         let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
         x.iter_mut().for_each(|v| *v /= norm);
         a.apply(&x, &mut y);
-        block_diagonal_apply(inverses, a.rows, &y, &mut z);
+        precondition(&y, &mut z);
         rho = z.iter().map(|v| v * v).sum::<f64>().sqrt();
         std::mem::swap(&mut x, &mut z);
     }
@@ -528,6 +700,14 @@ impl SmoothedAggregation {
             modes,
             ..Self::default()
         }
+    }
+
+    /// The hierarchy with the finest level's aggregates and line smoother
+    /// given by `first` (see the module documentation); checked against
+    /// the matrix at [`Preconditioner::setup`].
+    pub fn with_lines(mut self, first: LineLevel) -> Self {
+        self.first = Some(first);
+        self
     }
 
     /// The unknowns of each level, finest first, the coarsest last.
@@ -575,10 +755,30 @@ impl SmoothedAggregation {
         let s = self.settings;
         while a.block_rows * b > s.max_coarse && self.levels.len() + 1 < s.max_levels {
             let inverses = a.diagonal_inverses()?;
-            let (agg, count) = aggregate(&a, s.strength_threshold);
+            let given = self.first.as_ref().filter(|_| self.levels.is_empty());
+            let (agg, count) = match given {
+                Some(first) => (first.aggregates.clone(), first.validate(a.block_rows)?),
+                None => aggregate(&a, s.strength_threshold),
+            };
             if count * m >= a.block_rows * b {
                 break;
             }
+            let lines = match given {
+                Some(first) => {
+                    let ranges: Vec<Range<usize>> =
+                        first.lines.iter().map(|l| b * l.start..b * l.end).collect();
+                    let mut jacobi = BlockJacobi::new(ranges);
+                    Preconditioner::<Bsr>::setup(&mut jacobi, &a)?;
+                    let rho = power_iterations(&a, s.power_iterations, |y, z| {
+                        Preconditioner::<SparseMatrix>::apply(&jacobi, y, z)
+                    });
+                    Some(LineSmoother {
+                        jacobi,
+                        weight: 1.0 / rho,
+                    })
+                }
+                None => None,
+            };
             let (t, coarse_null) = tentative(&agg, count, &near_null, b, m)?;
             let rho = spectral_radius(&a, &inverses, s.power_iterations);
             let omega = 4.0 / (3.0 * rho);
@@ -612,7 +812,13 @@ impl SmoothedAggregation {
             p.values = values;
             let r = p.transpose();
             let coarse = r.multiply(&a.multiply(&p));
-            self.levels.push(Level { a, inverses, p, r });
+            self.levels.push(Level {
+                a,
+                inverses,
+                p,
+                r,
+                lines,
+            });
             a = coarse;
             b = m;
             near_null = coarse_null;
@@ -638,10 +844,19 @@ impl SmoothedAggregation {
             }
             return;
         }
-        let Level { a, inverses, p, r } = &self.levels[level];
+        let Level {
+            a,
+            inverses,
+            p,
+            r,
+            lines,
+        } = &self.levels[level];
         x.fill(0.0);
-        for _ in 0..self.settings.sweeps {
-            gauss_seidel(a, inverses, rhs, x, false);
+        for sweep in 0..self.settings.sweeps {
+            match lines {
+                Some(lines) => lines.sweep(a, rhs, x, sweep == 0),
+                None => gauss_seidel(a, inverses, rhs, x, false),
+            }
         }
         let mut residual = vec![0.0; x.len()];
         a.apply(x, &mut residual);
@@ -659,7 +874,10 @@ impl SmoothedAggregation {
             .zip(&residual)
             .for_each(|(xi, ci)| *xi += ci);
         for _ in 0..self.settings.sweeps {
-            gauss_seidel(a, inverses, rhs, x, true);
+            match lines {
+                Some(lines) => lines.sweep(a, rhs, x, false),
+                None => gauss_seidel(a, inverses, rhs, x, true),
+            }
         }
     }
 }
@@ -684,7 +902,7 @@ fn gauss_seidel(a: &Bsr, inverses: &[f64], rhs: &[f64], x: &mut [f64], backward:
         }
         let xi = &mut x[i * b..(i + 1) * b];
         xi.fill(0.0);
-        gemm_add(xi, &inverses[i * b * b..(i + 1) * b * b], &s, b, b, 1);
+        gemv_add(xi, &inverses[i * b * b..(i + 1) * b * b], &s);
     };
     if backward {
         for i in (0..a.block_rows).rev() {
@@ -719,7 +937,15 @@ impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
         let levels: usize = self
             .levels
             .iter()
-            .map(|l| l.a.values.len() + l.p.values.len() + l.r.values.len() + l.inverses.len())
+            .map(|l| {
+                l.a.values.len()
+                    + l.p.values.len()
+                    + l.r.values.len()
+                    + l.inverses.len()
+                    + l.lines
+                        .as_ref()
+                        .map_or(0, |s| Preconditioner::<SparseMatrix>::entries(&s.jacobi))
+            })
             .sum();
         let coarse = self
             .coarse
