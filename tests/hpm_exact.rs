@@ -731,6 +731,21 @@ fn nonlinear_fs_and_strength_reduction_by_pcg_match_cholesky() {
         eprintln!("nonlinear Fs: Cholesky {x:.10}, PCG {y:.10}");
         assert!((x / y - 1.0).abs() < 1e-7, "{x} vs {y}");
     }
+    // The column multigrid (two levels): its hierarchy, built once from
+    // the elastic stiffness, serves every iteration of the nonlinear
+    // analysis.
+    let aggregation = AggregationSettings::default();
+    let mut multigrid = HpmSolver::column_multigrid(&model, cg, aggregation, 6, 2).unwrap();
+    let c = multigrid
+        .nonlinear(&model, &Seismic::none(), 1.0, &settings)
+        .unwrap();
+    assert!(c.convergence.converged(), "{:?}", c.convergence);
+    let (x, y) = (
+        a.safety_factor(&model).unwrap(),
+        c.safety_factor(&model).unwrap(),
+    );
+    eprintln!("nonlinear Fs: Cholesky {x:.10}, column multigrid {y:.10}");
+    assert!((x / y - 1.0).abs() < 1e-7, "{x} vs {y}");
     // Strength reduction on the planar slab, whose exact Fs is known
     // (an iteration limit of 300 keeps the failing trials short).
     let (model, exact) = cohesive_planar_slab();

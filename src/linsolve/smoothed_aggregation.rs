@@ -66,6 +66,13 @@ use super::{
     SparseCholesky, SparseMatrix, SparsePattern,
 };
 
+/// Fewest block rows a parallel task takes: below this the threads'
+/// hand-over costs more than the rows (a small level or model).
+const MIN_BLOCKS_A_TASK: usize = 64;
+
+/// Fewest vector entries a parallel task takes.
+const MIN_NUMBERS_A_TASK: usize = 4096;
+
 /// A symmetric matrix of dense square blocks, read block by block.
 pub trait BlockSparse {
     /// Unknowns per block.
@@ -193,13 +200,16 @@ impl Bsr {
     /// `y = A x` (rows in parallel).
     fn apply(&self, x: &[f64], y: &mut [f64]) {
         let (r, c) = (self.rows, self.cols);
-        y.par_chunks_mut(r).enumerate().for_each(|(i, yi)| {
-            yi.fill(0.0);
-            for k in self.row(i) {
-                let xj = &x[self.col[k] * c..(self.col[k] + 1) * c];
-                gemv_add(yi, self.block(k), xj);
-            }
-        });
+        y.par_chunks_mut(r)
+            .with_min_len(MIN_BLOCKS_A_TASK)
+            .enumerate()
+            .for_each(|(i, yi)| {
+                yi.fill(0.0);
+                for k in self.row(i) {
+                    let xj = &x[self.col[k] * c..(self.col[k] + 1) * c];
+                    gemv_add(yi, self.block(k), xj);
+                }
+            });
     }
 
     /// The transpose.
@@ -463,11 +473,16 @@ impl LineSmoother {
         if !from_zero {
             let mut ax = vec![0.0; x.len()];
             a.apply(x, &mut ax);
-            residual.par_iter_mut().zip(&ax).for_each(|(r, v)| *r -= v);
+            residual
+                .par_iter_mut()
+                .with_min_len(MIN_NUMBERS_A_TASK)
+                .zip(&ax)
+                .for_each(|(r, v)| *r -= v);
         }
         let mut z = vec![0.0; x.len()];
         Preconditioner::<SparseMatrix>::apply(&self.jacobi, &residual, &mut z);
         x.par_iter_mut()
+            .with_min_len(MIN_NUMBERS_A_TASK)
             .zip(&z)
             .for_each(|(xi, zi)| *xi += self.weight * zi);
     }
@@ -650,14 +665,17 @@ fn tentative(
 
 /// `z = D⁻¹ r` block by block.
 fn block_diagonal_apply(inverses: &[f64], b: usize, r: &[f64], z: &mut [f64]) {
-    z.par_chunks_mut(b).enumerate().for_each(|(i, zi)| {
-        zi.fill(0.0);
-        gemv_add(
-            zi,
-            &inverses[i * b * b..(i + 1) * b * b],
-            &r[i * b..(i + 1) * b],
-        );
-    });
+    z.par_chunks_mut(b)
+        .with_min_len(MIN_BLOCKS_A_TASK)
+        .enumerate()
+        .for_each(|(i, zi)| {
+            zi.fill(0.0);
+            gemv_add(
+                zi,
+                &inverses[i * b * b..(i + 1) * b * b],
+                &r[i * b..(i + 1) * b],
+            );
+        });
 }
 
 /// An estimate of `ρ(D⁻¹ A)` by power iterations from a fixed start.
@@ -862,6 +880,7 @@ impl SmoothedAggregation {
         a.apply(x, &mut residual);
         residual
             .par_iter_mut()
+            .with_min_len(MIN_NUMBERS_A_TASK)
             .zip(rhs)
             .for_each(|(ri, bi)| *ri = bi - *ri);
         let nc = r.block_rows * r.rows;
@@ -871,6 +890,7 @@ impl SmoothedAggregation {
         self.cycle(level + 1, &coarse_rhs, &mut coarse_x);
         p.apply(&coarse_x, &mut residual);
         x.par_iter_mut()
+            .with_min_len(MIN_NUMBERS_A_TASK)
             .zip(&residual)
             .for_each(|(xi, ci)| *xi += ci);
         for _ in 0..self.settings.sweeps {
