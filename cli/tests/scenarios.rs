@@ -1112,6 +1112,100 @@ fn a_checkpoint_of_another_run_or_damaged_is_refused_by_name() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `dismech run FILE --check --resume CHECKPOINT` checks the resumed
+/// run: a checkpoint that resumes the file passes, naming its step; one
+/// of another model, damaged or past the run's end is refused as `--resume`
+/// refuses it (exit status 2); nothing is run or written either way.
+#[test]
+fn check_with_resume_checks_the_checkpoint_and_writes_nothing() {
+    let dir = scratch("check-resume");
+    let dda = variant("dda_sliding_block.toml", "checkpoint_every = 10", &dir);
+    run_file(&dda, "a", Some(20), None);
+    let good = dir.join("a.checkpoints/step-0000000020.ckpt");
+    let check = |checkpoint: &Path, max_steps: Option<&str>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_dismech"));
+        command
+            .arg("run")
+            .arg(&dda)
+            .args(["--quiet", "--check", "--out"])
+            .arg(dir.join("checked"))
+            .arg("--resume")
+            .arg(checkpoint);
+        if let Some(n) = max_steps {
+            command.args(["--max-steps", n]);
+        }
+        let output = command.output().unwrap();
+        assert!(!dir.join("checked").exists());
+        assert!(!dir.join("checked.checkpoints").exists());
+        (
+            output.status.code(),
+            String::from_utf8_lossy(&output.stdout).into_owned(),
+            String::from_utf8_lossy(&output.stderr).into_owned(),
+        )
+    };
+    let (code, stdout, stderr) = check(&good, None);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stdout.contains("the scenario is valid and resumes from") && stdout.contains("(step 20)"),
+        "{stdout}"
+    );
+    let (code, _, stderr) = check(&good, Some("20"));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("at or past the run's end at step 20"),
+        "{stderr}"
+    );
+    let bytes = std::fs::read(&good).unwrap();
+    let damaged = dir.join("damaged.ckpt");
+    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    let (code, _, stderr) = check(&damaged, None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("damaged.ckpt: truncated"), "{stderr}");
+    let (code, _, stderr) = check(&dir.join("none.ckpt"), None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("none.ckpt: cannot be read"), "{stderr}");
+    // Another model: the law's penalty changed.
+    let text = std::fs::read_to_string(&dda).unwrap();
+    std::fs::write(&dda, text.replacen("penalty = 2e9", "penalty = 3e9", 1)).unwrap();
+    let (code, _, stderr) = check(&good, None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("contact laws parameters"), "{stderr}");
+    // The library's check, in-process.
+    let prepared = scenario::load(&dda, Overrides::default()).unwrap();
+    assert!(scenario::check_resume(prepared, &dda, &good).is_err());
+    std::fs::write(&dda, &text).unwrap();
+    let prepared = scenario::load(&dda, Overrides::default()).unwrap();
+    assert_eq!(scenario::check_resume(prepared, &dda, &good).unwrap(), 20);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `keep_checkpoints = 3`: a run leaves its newest three checkpoints; a
+/// run resumed into the same folder removes the older ones as it writes
+/// newer ones, and its result is the run's that never stopped.
+#[test]
+fn keep_checkpoints_leaves_the_newest() {
+    let dir = scratch("keep-checkpoints");
+    let file = variant(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 100\ncheckpoint_dir = \"ck\"\nkeep_checkpoints = 3",
+        &dir,
+    );
+    let names = |steps: &[u64]| -> Vec<String> {
+        steps.iter().map(|k| format!("step-{k:010}.ckpt")).collect()
+    };
+    run_file(&file, "a", Some(700), None);
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[500, 600, 700]));
+    let from = dir.join("resume-from.ckpt");
+    std::fs::copy(dir.join("ck/step-0000000500.ckpt"), &from).unwrap();
+    let resumed = run_file(&file, "b", Some(900), Some(&from));
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[700, 800, 900]));
+    std::fs::remove_dir_all(dir.join("ck")).unwrap();
+    let straight = run_file(&file, "c", Some(900), None);
+    assert_eq!(resumed, straight);
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[700, 800, 900]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn checkpoint_keys_are_checked() {
     let refused = |name: &str, extra: &str| -> String {
@@ -1151,6 +1245,19 @@ fn checkpoint_keys_are_checked() {
     assert!(
         limit.contains("`driver.kind` and `output.checkpoint_every`"),
         "{limit}"
+    );
+    let keep = refused(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 5\nkeep_checkpoints = 0",
+    );
+    assert!(
+        keep.contains("`output.keep_checkpoints` = 0: 0 is refused: must be at least 1"),
+        "{keep}"
+    );
+    let keep_alone = refused("dda_sliding_block.toml", "keep_checkpoints = 2");
+    assert!(
+        keep_alone.contains("`output.keep_checkpoints` and `output.checkpoint_every`"),
+        "{keep_alone}"
     );
     let negative = refused("dda_sliding_block.toml", "checkpoint_every = -1");
     assert!(

@@ -97,13 +97,16 @@ struct Saver {
     every: u64,
     dt_bits: u64,
     settings: u64,
+    /// Checkpoints to keep (`output.keep_checkpoints`); all when none.
+    keep: Option<usize>,
     /// The step of the last checkpoint written or resumed from.
     last: Option<u64>,
 }
 
 impl Saver {
     /// Write `driver` (a driver's checkpoint) as the checkpoint of
-    /// `counters.step`, unless one of that step is written already.
+    /// `counters.step`, unless one of that step is written already; then,
+    /// with `keep`, remove the older ones beyond it.
     fn save(&mut self, driver: Checkpoint, step: u64, substeps: u64, halvings: u64) -> Result<()> {
         if self.last == Some(step) {
             return Ok(());
@@ -119,6 +122,10 @@ impl Saver {
         let bytes = encode(&counters, &driver.1?);
         write_atomically(&file_name(&self.dir, step), &bytes)?;
         self.last = Some(step);
+        // Older checkpoints go only once the new one is whole on disk.
+        if let Some(keep) = self.keep {
+            checkpoint::prune(&self.dir, step, keep)?;
+        }
         Ok(())
     }
 }
@@ -251,6 +258,120 @@ fn same_step(counters: &RunCounters, dt: f64, settings: (&str, u64), origin: &st
     Ok(())
 }
 
+/// Replace the state of `model` (built from the scenario `file`) by the
+/// checkpoint at `path`, checked against the model: its driver, step,
+/// settings, scene, and a step before the run's end.
+///
+/// # Errors
+/// [`ScenarioError::Run`] with [`DismechError::Checkpoint`] naming `path`
+/// when it cannot be read, is damaged, is another driver's or another
+/// model's; [`ScenarioError::Option`] when it lies at or past the run's
+/// end, or the model is a limit or HPM analysis.
+fn restore(
+    model: &mut Model,
+    file: &Path,
+    path: &Path,
+) -> std::result::Result<RunCounters, ScenarioError> {
+    let run_error = |error: DismechError| ScenarioError::Run {
+        file: file.display().to_string(),
+        error: Box::new(error),
+    };
+    let origin = path.display().to_string();
+    let bytes = read_checkpoint(path).map_err(run_error)?;
+    let past_end = |step: u64, end: u64| {
+        ScenarioError::Option(format!(
+            "--resume {origin}: the checkpoint of step {step} lies at or past the run's end at step {end}; nothing is left to run"
+        ))
+    };
+    match model {
+        Model::Explicit(m) => {
+            let (counters, payload) =
+                decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
+            same_step(
+                &counters,
+                m.dt,
+                ("driver settings", fingerprint(&m.settings)),
+                &origin,
+            )
+            .map_err(run_error)?;
+            m.dem = match &m.dem {
+                ExplicitDem::Spring(d) => {
+                    ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
+                }
+                ExplicitDem::Penalty(d) => {
+                    ExplicitDem::Penalty(resume_dem(d, payload, &origin).map_err(run_error)?)
+                }
+            };
+            let k = counters.step;
+            match &mut m.plan {
+                ExplicitPlan::Steps(n) => {
+                    if k >= *n {
+                        return Err(past_end(k, *n));
+                    }
+                }
+                ExplicitPlan::ToRest(c) => {
+                    if k >= c.max_steps {
+                        return Err(past_end(k, c.max_steps));
+                    }
+                    if k % c.check_every.max(1) != 0 {
+                        return Err(run_error(mismatch(
+                            &origin,
+                            "step, a multiple of run.check_every",
+                            k,
+                            c.check_every,
+                        )));
+                    }
+                    // The criterion counts the steps of the call.
+                    c.max_steps -= k;
+                }
+            }
+            Ok(counters)
+        }
+        Model::Implicit(m) => {
+            let (counters, payload) =
+                decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
+            same_step(
+                &counters,
+                m.dt,
+                ("bodies' sine motions", m.motions),
+                &origin,
+            )
+            .map_err(run_error)?;
+            let restored = match &mut m.driver {
+                ImplicitDriver::RigidSpring(d) => d.restore(payload),
+                ImplicitDriver::RigidPenalty(d) => d.restore(payload),
+                ImplicitDriver::AffineSpring(d) => d.restore(payload),
+                ImplicitDriver::AffinePenalty(d) => d.restore(payload),
+            };
+            restored.map_err(|e| run_error(from_file(e, &origin)))?;
+            if counters.step >= m.steps {
+                return Err(past_end(counters.step, m.steps));
+            }
+            Ok(counters)
+        }
+        Model::Limit(_) | Model::Hpm(_) => Err(ScenarioError::Option(format!(
+            "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
+        ))),
+    }
+}
+
+/// Check that `prepared` (read from `file`) resumes from the checkpoint
+/// `checkpoint` as [`resume`] would, without running it or writing
+/// anything (`dismech run --check --resume`): the step it resumes from.
+///
+/// # Errors
+/// Those of [`resume`] before it runs: the checkpoint unreadable,
+/// damaged, another driver's or another model's, or at or past the run's
+/// end.
+pub fn check_resume(
+    prepared: Prepared,
+    file: &Path,
+    checkpoint: &Path,
+) -> std::result::Result<u64, ScenarioError> {
+    let Prepared { mut model, .. } = prepared;
+    restore(&mut model, file, checkpoint).map(|c| c.step)
+}
+
 fn run(
     prepared: Prepared,
     file: &Path,
@@ -269,91 +390,14 @@ fn run(
     } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
     let every = spec.output.frames_every.unwrap_or(DEFAULT_FRAMES_EVERY);
-    let mut resumed: Option<RunCounters> = None;
-    if let Some(path) = resume {
-        let origin = path.display().to_string();
-        let bytes = read_checkpoint(path).map_err(run_error)?;
-        let past_end = |step: u64, end: u64| {
-            ScenarioError::Option(format!(
-                "--resume {origin}: the checkpoint of step {step} lies at or past the run's end at step {end}; nothing is left to run"
-            ))
-        };
-        match &mut model {
-            Model::Explicit(m) => {
-                let (counters, payload) =
-                    decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
-                same_step(
-                    &counters,
-                    m.dt,
-                    ("driver settings", fingerprint(&m.settings)),
-                    &origin,
-                )
-                .map_err(run_error)?;
-                m.dem = match &m.dem {
-                    ExplicitDem::Spring(d) => {
-                        ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
-                    }
-                    ExplicitDem::Penalty(d) => {
-                        ExplicitDem::Penalty(resume_dem(d, payload, &origin).map_err(run_error)?)
-                    }
-                };
-                let k = counters.step;
-                match &mut m.plan {
-                    ExplicitPlan::Steps(n) => {
-                        if k >= *n {
-                            return Err(past_end(k, *n));
-                        }
-                    }
-                    ExplicitPlan::ToRest(c) => {
-                        if k >= c.max_steps {
-                            return Err(past_end(k, c.max_steps));
-                        }
-                        if k % c.check_every.max(1) != 0 {
-                            return Err(run_error(mismatch(
-                                &origin,
-                                "step, a multiple of run.check_every",
-                                k,
-                                c.check_every,
-                            )));
-                        }
-                        // The criterion counts the steps of the call.
-                        c.max_steps -= k;
-                    }
-                }
-                resumed = Some(counters);
-            }
-            Model::Implicit(m) => {
-                let (counters, payload) =
-                    decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
-                same_step(
-                    &counters,
-                    m.dt,
-                    ("bodies' sine motions", m.motions),
-                    &origin,
-                )
-                .map_err(run_error)?;
-                let restored = match &mut m.driver {
-                    ImplicitDriver::RigidSpring(d) => d.restore(payload),
-                    ImplicitDriver::RigidPenalty(d) => d.restore(payload),
-                    ImplicitDriver::AffineSpring(d) => d.restore(payload),
-                    ImplicitDriver::AffinePenalty(d) => d.restore(payload),
-                };
-                restored.map_err(|e| run_error(from_file(e, &origin)))?;
-                if counters.step >= m.steps {
-                    return Err(past_end(counters.step, m.steps));
-                }
-                resumed = Some(counters);
-            }
-            Model::Limit(_) | Model::Hpm(_) => {
-                return Err(ScenarioError::Option(format!(
-                "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
-            )))
-            }
-        }
-    }
+    let resumed = match resume {
+        Some(path) => Some(restore(&mut model, file, path)?),
+        None => None,
+    };
     let mut saver = checkpoints.map(|plan| Saver {
         dir: checkpoint::folder(file, out, plan.dir.as_deref()),
         every: plan.every,
+        keep: plan.keep,
         dt_bits: match &model {
             Model::Explicit(m) => m.dt.to_bits(),
             Model::Implicit(m) => m.dt.to_bits(),

@@ -106,6 +106,7 @@ pub const KEYS: &[&str] = &[
     "frames_every",
     "checkpoint_every",
     "checkpoint_dir",
+    "keep_checkpoints",
     "ground",
     "slip",
     "water",

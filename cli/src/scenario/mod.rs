@@ -44,7 +44,7 @@ use std::path::{Path, PathBuf};
 use dismech::error::DismechError;
 use serde::Deserialize;
 
-pub use execute::{execute, resume, Finished};
+pub use execute::{check_resume, execute, resume, Finished};
 pub use source::{KeyPath, Located, Source};
 
 /// A scenario file as read: one field per table.
