@@ -342,6 +342,135 @@ fn polygon_lp_scenarios_equal_the_composition_bit_for_bit() {
     }
 }
 
+/// The packing-LP scenario: the composition's 120 ellipses, law, step and
+/// rest criterion settle to the same bits, and the limit analysis of the
+/// settled packing (`[limit_analysis]`) gives the composition's limit
+/// load and bounds, bodies and contacts, to the bit.
+#[test]
+fn packing_lp_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::limit::analyse;
+    use dismech::lp::LinearProgramSolver;
+    use dismech_cli::compositions::packing_lp::{
+        packing_limit_model, settle_ellipses, EllipsePacking,
+    };
+    let summary = run("packing_lp.toml", Overrides::default());
+    let (dem, outcome) = settle_ellipses(&EllipsePacking::default()).unwrap();
+    assert_eq!(
+        summary["outcome"]["status"],
+        format!("{:?}", outcome.status)
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(outcome.steps));
+    assert_eq!(bits(&summary["time"]), dem.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 120);
+    for (b, p) in bodies.iter().zip(&dem.scene().particles) {
+        assert_eq!(bits(&b["centre"][0]), p.pose.position.x.to_bits());
+        assert_eq!(bits(&b["centre"][1]), p.pose.position.y.to_bits());
+        assert_eq!(bits(&b["angle"]), p.pose.angle.to_bits());
+    }
+    let model = packing_limit_model(&dem).unwrap();
+    let result = analyse(&model, &mut LinearProgramSolver::default()).unwrap();
+    let limit = &summary["limit"];
+    assert_eq!(limit["status"], format!("{:?}", result.status));
+    assert_eq!(limit["status"], "Collapse");
+    assert_eq!(bits(&limit["load"]), result.load.unwrap().to_bits());
+    assert_eq!(
+        bits(&limit["kinematic_load"]),
+        result.kinematic_load.unwrap().to_bits()
+    );
+    assert_eq!(
+        bits(&limit["static_load"]),
+        result.static_load.unwrap().to_bits()
+    );
+    assert_eq!(
+        limit["elements"].as_u64(),
+        Some(model.bodies().len() as u64)
+    );
+    assert_eq!(
+        limit["contacts"].as_u64(),
+        Some(model.contacts().len() as u64)
+    );
+    assert_eq!(
+        limit["supports"].as_u64(),
+        Some(model.supports().len() as u64)
+    );
+    assert_eq!(limit["frames"].as_u64(), Some(1));
+}
+
+/// `[limit_analysis]`'s refusals name their keys; a run to rest stopped
+/// short is not analysed and says so.
+#[test]
+fn limit_analysis_keys_are_checked() {
+    let text = std::fs::read_to_string(scenarios().join("packing_lp.toml")).unwrap();
+    let refused = |from: &str, to: &str| -> String {
+        assert!(text.contains(from), "{from}");
+        let edited = text.replacen(from, to, 1);
+        match scenario::prepare(Path::new("model.toml"), &edited, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let wall = refused("plate_wall = \"left\"", "plate_wall = \"top\"");
+    assert!(
+        wall.contains("`limit_analysis.plate_wall` = \"top\"") && wall.contains("\"left\""),
+        "{wall}"
+    );
+    let cohesion = refused("walls = { cohesion = 2.0 }", "walls = { cohesion = -2.0 }");
+    assert!(
+        cohesion.contains("`limit_analysis.walls.cohesion` = -2"),
+        "{cohesion}"
+    );
+    let both = refused(
+        "plate = { cohesion = 0.0 }",
+        "plate = { cohesion = 0.0, friction = 0.1, friction_angle = 5.0 }",
+    );
+    assert!(
+        both.contains("`limit_analysis.plate.friction` and `limit_analysis.plate.friction_angle`"),
+        "{both}"
+    );
+    let unknown = refused("rolling = true", "rolling = true\nroll = 1");
+    assert!(unknown.contains("roll"), "{unknown}");
+    let lp = refused("[limit_analysis]", "[limit_analysis_]");
+    assert!(lp.contains("limit_analysis_"), "{lp}");
+    // The LP solver serves the analysis only.
+    let katsuki = std::fs::read_to_string(scenarios().join("katsuki_example1.toml")).unwrap();
+    let solver = format!("{katsuki}\n[lp_solver]\nkind = \"clarabel\"\n");
+    match scenario::prepare(Path::new("model.toml"), &solver, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => assert!(
+            located
+                .to_string()
+                .contains("`driver.kind` and `lp_solver`"),
+            "{located}"
+        ),
+        _ => panic!("an LP solver beside the explicit driver was accepted"),
+    }
+    // Beside the limit driver.
+    let lp_file = std::fs::read_to_string(scenarios().join("lp_bearing_capacity.toml")).unwrap();
+    let beside = format!(
+        "{lp_file}\n[limit_analysis]\nplate_wall = \"left\"\ncontacts = {{ cohesion = 1.0 }}\n"
+    );
+    match scenario::prepare(Path::new("model.toml"), &beside, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => assert!(
+            located
+                .to_string()
+                .contains("`driver.kind` and `limit_analysis`"),
+            "{located}"
+        ),
+        _ => panic!("`[limit_analysis]` beside the limit driver was accepted"),
+    }
+    // Stopped short of rest: not analysed, exit status 0.
+    let summary = run(
+        "packing_lp.toml",
+        Overrides {
+            max_steps: Some(60),
+            end_time: None,
+        },
+    );
+    assert_eq!(summary["outcome"]["status"], "StepLimit");
+    assert_eq!(summary["limit"]["status"], "NotAnalysed");
+}
+
 /// The block wall by the explicit polygon DEM from its file: the
 /// composition's scene (its blocks, base, law and quarter of the stable
 /// step), stepped as far, ends in the same bits.

@@ -15,7 +15,7 @@ use dismech::io::write_atomically;
 use dismech::kinematics::{Advance, Kinematics};
 use dismech::kinematics::{PlacedEllipse, PlacedPolygon};
 use dismech::law::{BoundedStiffness, ContactLaw, TangentLaw};
-use dismech::limit::{analyse, LimitStatus};
+use dismech::limit::{analyse, model_from_packing, LimitModel, LimitResult, LimitStatus};
 use dismech::linsolve::SparseLu;
 use dismech::observe::Event;
 use dismech::scene::Scene;
@@ -29,6 +29,7 @@ use super::checkpoint::{
     self, decode, encode, file_name, fingerprint, from_file, mismatch, Driver, RunCounters,
 };
 
+use super::analysis::PackingAnalysis;
 use super::explicit::{ExplicitDem, ExplicitPlan};
 use super::hpm::HpmPlan;
 use super::implicit::{ImplicitDriver, Scheme};
@@ -436,17 +437,33 @@ fn run(
                 ExplicitPlan::Steps(n) => n,
             };
             let bar = bar(steps, "steps");
-            let value = match m.dem {
+            let analysis = m.analysis;
+            let (value, analysed) = match m.dem {
                 ExplicitDem::Spring(mut d) => {
                     run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
+                        .and_then(|v| {
+                            let analysed = analyse_packing(&d, analysis, &v, &dir, segments)?;
+                            Ok((v, analysed))
+                        })
                 }
                 ExplicitDem::Penalty(mut d) => {
                     run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
+                        .and_then(|v| {
+                            let analysed = analyse_packing(&d, analysis, &v, &dir, segments)?;
+                            Ok((v, analysed))
+                        })
                 }
             }
             .map_err(run_error)?;
             bar.finish_and_clear();
-            (value, None)
+            let mut value = value;
+            let status = analysed.and_then(|(limit, status)| {
+                if let Value::Object(map) = &mut value {
+                    map.insert("limit".into(), limit);
+                }
+                status
+            });
+            (value, status)
         }
         Model::Implicit(m) => {
             let bar = bar(m.steps, "steps");
@@ -752,24 +769,80 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
     if let Some(object) = value.as_object_mut() {
         match &plan.lattice {
             Some(lattice) => object.extend(limit_summary(&result, lattice.plate_length())),
-            None => {
-                let mut map = limit_summary(&result, f64::NAN);
-                map.remove("plate_length");
-                for (from, to) in [
-                    ("p_over_cp", "load"),
-                    ("kinematic_p_over_cp", "kinematic_load"),
-                    ("static_p_over_cp", "static_load"),
-                ] {
-                    if let Some(v) = map.remove(from) {
-                        map.insert(to.into(), v);
-                    }
-                }
-                map.insert("supports".into(), json!(plan.model.supports().len()));
-                object.extend(map);
-            }
+            None => object.extend(shapes_summary(&result, &plan.model)),
         }
     }
     Ok((value, result.status))
+}
+
+/// The summary of the limit analysis of bodies of shapes: the load (a
+/// multiplier, not in units of a plate's C_p), its bounds, the status,
+/// the LP's solver and the number of supports.
+fn shapes_summary(result: &LimitResult, model: &LimitModel) -> serde_json::Map<String, Value> {
+    let mut map = limit_summary(result, f64::NAN);
+    map.remove("plate_length");
+    for (from, to) in [
+        ("p_over_cp", "load"),
+        ("kinematic_p_over_cp", "kinematic_load"),
+        ("static_p_over_cp", "static_load"),
+    ] {
+        if let Some(v) = map.remove(from) {
+            map.insert(to.into(), v);
+        }
+    }
+    map.insert("supports".into(), json!(model.supports().len()));
+    map
+}
+
+/// With `analysis`, the limit analysis of `dem`'s packing as it ends
+/// ([`model_from_packing`]): its mechanism written as one frame at time 0
+/// into `dir/limit/` where it has one, and its summary (as the limit
+/// driver's of bodies of shapes) with its status. A run to rest that
+/// ended by a limit (`run`'s summary says how it ended), before the
+/// packing came to rest, is not analysed: the summary says so, without a
+/// status.
+fn analyse_packing<L>(
+    dem: &DemSimulation<L>,
+    analysis: Option<Box<PackingAnalysis>>,
+    run: &Value,
+    dir: &Path,
+    segments: usize,
+) -> Result<Option<(Value, Option<LimitStatus>)>>
+where
+    L: ContactLaw<2>,
+{
+    let Some(mut analysis) = analysis else {
+        return Ok(None);
+    };
+    let ended = &run["outcome"]["status"];
+    if ended != "AtRest" && ended != "Steps" {
+        let reason = format!(
+            "the run to rest ended by a limit ({}) before the packing came to rest",
+            ended.as_str().unwrap_or("?")
+        );
+        return Ok(Some((
+            json!({ "status": "NotAnalysed", "reason": reason }),
+            None,
+        )));
+    }
+    let model = model_from_packing(dem.scene(), dem.contacts(), &analysis.settings)?;
+    let result = analyse(&model, &mut analysis.solver)?;
+    let mechanism = matches!(result.status, LimitStatus::Collapse | LimitStatus::ZeroLoad);
+    let mut frames = 0;
+    if mechanism {
+        let mut series = PvdSeries::new(dir.join("limit"))?;
+        series.write_frame(0.0, &limit_frame(&model, &result, segments)?)?;
+        frames = series.frames();
+    }
+    let mut value = json!({
+        "elements": model.bodies().len(),
+        "contacts": model.contacts().len(),
+        "frames": frames,
+    });
+    if let Some(object) = value.as_object_mut() {
+        object.extend(shapes_summary(&result, &model));
+    }
+    Ok(Some((value, Some(result.status))))
 }
 
 /// Solve the HPM's elastic equations and write the columns (one frame at

@@ -89,7 +89,10 @@ pub fn build(
 }
 
 /// The LP solver of `[lp_solver]` (Clarabel's defaults when absent).
-fn lp_solver(source: &Source<'_>, spec: &ScenarioSpec) -> Result<LinearProgramSolver, Refusal> {
+pub(super) fn lp_solver(
+    source: &Source<'_>,
+    spec: &ScenarioSpec,
+) -> Result<LinearProgramSolver, Refusal> {
     Ok(match &spec.lp_solver {
         None => LinearProgramSolver::default(),
         Some(LpSolverSpec::Clarabel(c)) => {
