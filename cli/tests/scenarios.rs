@@ -471,6 +471,124 @@ fn limit_analysis_keys_are_checked() {
     assert_eq!(summary["limit"]["status"], "NotAnalysed");
 }
 
+/// A moving wall drives the limit analysis: the sliding block (φ = 10°)
+/// pushed over its whole left face by a wall moving at unit speed gives
+/// the load of the same model built in Rust, to the bit; a moving wall
+/// beside a live load, two moving walls, a wall given a zero velocity and
+/// one in the implicit driver are refused by key.
+#[test]
+fn a_moving_wall_drives_the_limit_analysis() {
+    use dismech::law::{friction_from_degrees, RigidPlastic};
+    use dismech::limit::{analyse, LimitModel, Partner};
+    use dismech::lp::LinearProgramSolver;
+    use dismech::math::Pose2;
+    use dismech::shape::Polygon;
+    let text = std::fs::read_to_string(scenarios().join("polygon_lp_sliding.toml")).unwrap();
+    let live = text
+        .lines()
+        .find(|l| l.starts_with("live = "))
+        .unwrap()
+        .to_string();
+    let plate = "[[bodies]]\nkind = \"wall\"\nstart = [-0.2, 1.0]\nend = [-0.2, -0.1]\nvelocity = [1.0, 0.0]\n";
+    let pushed = text
+        .replacen("[law]", &format!("{plate}\n[law]"), 1)
+        .replacen(&live, "", 1);
+    let dir = scratch("moving-wall");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("pushed.toml");
+    std::fs::write(&file, &pushed).unwrap();
+    let prepared = scenario::load(&file, Overrides::default()).unwrap();
+    let scenario::Model::Limit(plan) = &prepared.model else {
+        panic!("not a limit model");
+    };
+    assert_eq!(plan.model.supports().len(), 2);
+    assert_eq!(plan.model.supports()[1].velocity, Vec2::new(1.0, 0.0));
+    assert!(plan.model.load_driver().is_none());
+    let finished = scenario::execute(prepared, &file, &dir.join("out"), false).unwrap();
+    let summary = finished.summary;
+    assert_eq!(summary["outcome"]["status"], "Collapse", "{summary}");
+    // The same model built in Rust: the block, its weight, the floor, the
+    // plate at unit speed, the contacts the pair query gives.
+    let law = RigidPlastic::coulomb(0.0, friction_from_degrees(10.0).unwrap(), true).unwrap();
+    let mut model = LimitModel::new(8e-10).unwrap();
+    let block = model
+        .add_shape(
+            Polygon::rectangle(0.4, 0.8).unwrap().into(),
+            Pose2::new(0.0, 0.4, 0.0),
+            true,
+        )
+        .unwrap();
+    let normal = |along: Vec2| Vec2::new(-along.y, along.x);
+    model
+        .add_support(
+            "floor",
+            Point::new(-1.0, 0.0),
+            normal(Vec2::new(2.0, 0.0)),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    model
+        .add_support(
+            "plate",
+            Point::new(-0.2, 1.0),
+            normal(Vec2::new(0.0, -0.1 - 1.0)),
+            Vec2::new(1.0, 0.0),
+        )
+        .unwrap();
+    model.set_load(block, Vec2::new(0.0, -1000.0)).unwrap();
+    model.add_contacts(block, Partner::Support(0), law).unwrap();
+    model.add_contacts(block, Partner::Support(1), law).unwrap();
+    let result = analyse(&model, &mut LinearProgramSolver::default()).unwrap();
+    assert_eq!(
+        summary["contacts"].as_u64(),
+        Some(model.contacts().len() as u64)
+    );
+    assert_eq!(bits(&summary["load"]), result.load.unwrap().to_bits());
+    assert_eq!(
+        bits(&summary["static_load"]),
+        result.static_load.unwrap().to_bits()
+    );
+    // Pushed over its whole face, with friction on the plate too (the
+    // associated flow lifts a sliding block along the plate), the block
+    // needs more than mu W.
+    let mu_w = friction_from_degrees(10.0).unwrap() * 1000.0;
+    assert!(result.load.unwrap() > mu_w, "{summary}");
+    std::fs::remove_dir_all(&dir).unwrap();
+    let refused = |text: &str| -> String {
+        match scenario::prepare(Path::new("model.toml"), text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {text}"),
+        }
+    };
+    let both = refused(&format!("{pushed}\n{live}\n"));
+    assert!(
+        both.contains("`bodies[2].velocity` and `loads.live`"),
+        "{both}"
+    );
+    let two = refused(&pushed.replacen(
+        "end = [1.0, 0.0]",
+        "end = [1.0, 0.0]\nvelocity = [0.0, 1.0]",
+        1,
+    ));
+    assert!(
+        two.contains("`bodies[1].velocity` and `bodies[2].velocity`"),
+        "{two}"
+    );
+    let zero = refused(&pushed.replacen("velocity = [1.0, 0.0]", "velocity = [0.0, 0.0]", 1));
+    assert!(zero.contains("`bodies[2].velocity`"), "{zero}");
+    let dda = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap();
+    let implicit = refused(&dda.replacen(
+        "[law]",
+        "[[bodies]]\nkind = \"wall\"\nstart = [-3.0, 1.0]\nend = [-3.0, 0.0]\nvelocity = [1.0, 0.0]\n\n[law]",
+        1,
+    ));
+    assert!(
+        implicit.contains("`driver.kind` and `bodies[2].velocity`"),
+        "{implicit}"
+    );
+}
+
 /// The block wall by the explicit polygon DEM from its file: the
 /// composition's scene (its blocks, base, law and quarter of the stable
 /// step), stepped as far, ends in the same bits.
