@@ -1411,6 +1411,20 @@ fn check_with_resume_checks_the_checkpoint_and_writes_nothing() {
     let (code, _, stderr) = check(&dir.join("none.ckpt"), None);
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("none.ckpt: cannot be read"), "{stderr}");
+    // A limit analysis has no checkpoints, whatever the file.
+    let lp = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(scenarios().join("lp_bearing_capacity.toml"))
+        .args(["--quiet", "--check", "--resume"])
+        .arg(dir.join("none.ckpt"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&lp.stderr);
+    assert_eq!(lp.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("a limit or HPM analysis takes no steps and has no checkpoints"),
+        "{stderr}"
+    );
     // Another model: the law's penalty changed.
     let text = std::fs::read_to_string(&dda).unwrap();
     std::fs::write(&dda, text.replacen("penalty = 2e9", "penalty = 3e9", 1)).unwrap();

@@ -278,6 +278,15 @@ fn restore(
         error: Box::new(error),
     };
     let origin = path.display().to_string();
+    let no_steps = || {
+        ScenarioError::Option(format!(
+            "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
+        ))
+    };
+    // Refused before the file is read: no file would do.
+    if matches!(model, Model::Limit(_) | Model::Hpm(_)) {
+        return Err(no_steps());
+    }
     let bytes = read_checkpoint(path).map_err(run_error)?;
     let past_end = |step: u64, end: u64| {
         ScenarioError::Option(format!(
@@ -350,9 +359,7 @@ fn restore(
             }
             Ok(counters)
         }
-        Model::Limit(_) | Model::Hpm(_) => Err(ScenarioError::Option(format!(
-            "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
-        ))),
+        Model::Limit(_) | Model::Hpm(_) => Err(no_steps()),
     }
 }
 
