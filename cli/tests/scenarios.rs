@@ -1359,6 +1359,26 @@ fn a_checkpoint_of_another_run_or_damaged_is_refused_by_name() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The implicit driver's summary gives each body's contact force: the
+/// base and the sliding block, in contact only with each other, carry
+/// opposite forces, the block's pointing up.
+#[test]
+fn implicit_summary_gives_each_bodys_contact_force() {
+    let summary = run(
+        "dda_sliding_block.toml",
+        Overrides {
+            max_steps: Some(5),
+            end_time: None,
+        },
+    );
+    let bodies = summary["bodies"].as_array().unwrap();
+    let force = |k: usize, i: usize| bodies[k]["contact_force"][i].as_f64().unwrap();
+    for i in 0..2 {
+        assert_eq!(force(0, i).to_bits(), (-force(1, i)).to_bits(), "{summary}");
+    }
+    assert!(force(1, 1) > 0.0, "{summary}");
+}
+
 /// `dismech run FILE --check --resume CHECKPOINT` checks the resumed
 /// run: a checkpoint that resumes the file passes, naming its step; one
 /// of another model, damaged or past the run's end is refused as `--resume`

@@ -736,13 +736,16 @@ where
     let bodies: Vec<Value> = model
         .bodies()
         .iter()
-        .map(|b| {
+        .enumerate()
+        .map(|(k, b)| {
             let c = b.centroid();
+            let force = model.contact_force_on(k);
             json!({
                 "centroid": [c.x, c.y],
                 "displacement": b.displacement.as_slice(),
                 "velocity": b.velocity.as_slice(),
                 "stress": b.stress.as_slice(),
+                "contact_force": [force.x, force.y],
             })
         })
         .collect();
