@@ -66,7 +66,9 @@ enum Command {
         #[arg(long)]
         end_time: Option<f64>,
         /// Parse, build and check the scenario, then stop (nothing is run
-        /// or written).
+        /// or written); with `--resume`, check also that the checkpoint
+        /// resumes this scenario (readable, of its driver and model, before
+        /// the run's end).
         #[arg(long)]
         check: bool,
         /// Resume the run from this checkpoint (written by the same
@@ -214,7 +216,17 @@ fn run_command(
     use dismech_cli::scenario::{self, ScenarioError};
     let outcome = scenario::load(file, overrides).and_then(|prepared| {
         if check {
-            println!("{}: the scenario is valid", file.display());
+            match resume {
+                Some(checkpoint) => {
+                    let step = scenario::check_resume(prepared, file, checkpoint)?;
+                    println!(
+                        "{}: the scenario is valid and resumes from {} (step {step})",
+                        file.display(),
+                        checkpoint.display()
+                    );
+                }
+                None => println!("{}: the scenario is valid", file.display()),
+            }
             return Ok(None);
         }
         let out = out.map_or_else(|| scenario::default_output(file), Path::to_path_buf);

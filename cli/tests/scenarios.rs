@@ -342,6 +342,253 @@ fn polygon_lp_scenarios_equal_the_composition_bit_for_bit() {
     }
 }
 
+/// The packing-LP scenario: the composition's 120 ellipses, law, step and
+/// rest criterion settle to the same bits, and the limit analysis of the
+/// settled packing (`[limit_analysis]`) gives the composition's limit
+/// load and bounds, bodies and contacts, to the bit.
+#[test]
+fn packing_lp_scenario_equals_the_composition_bit_for_bit() {
+    use dismech::limit::analyse;
+    use dismech::lp::LinearProgramSolver;
+    use dismech_cli::compositions::packing_lp::{
+        packing_limit_model, settle_ellipses, EllipsePacking,
+    };
+    let summary = run("packing_lp.toml", Overrides::default());
+    let (dem, outcome) = settle_ellipses(&EllipsePacking::default()).unwrap();
+    assert_eq!(
+        summary["outcome"]["status"],
+        format!("{:?}", outcome.status)
+    );
+    assert_eq!(summary["steps"].as_u64(), Some(outcome.steps));
+    assert_eq!(bits(&summary["time"]), dem.time().to_bits());
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 120);
+    for (b, p) in bodies.iter().zip(&dem.scene().particles) {
+        assert_eq!(bits(&b["centre"][0]), p.pose.position.x.to_bits());
+        assert_eq!(bits(&b["centre"][1]), p.pose.position.y.to_bits());
+        assert_eq!(bits(&b["angle"]), p.pose.angle.to_bits());
+    }
+    let model = packing_limit_model(&dem).unwrap();
+    let result = analyse(&model, &mut LinearProgramSolver::default()).unwrap();
+    let limit = &summary["limit"];
+    assert_eq!(limit["status"], format!("{:?}", result.status));
+    assert_eq!(limit["status"], "Collapse");
+    assert_eq!(bits(&limit["load"]), result.load.unwrap().to_bits());
+    assert_eq!(
+        bits(&limit["kinematic_load"]),
+        result.kinematic_load.unwrap().to_bits()
+    );
+    assert_eq!(
+        bits(&limit["static_load"]),
+        result.static_load.unwrap().to_bits()
+    );
+    assert_eq!(
+        limit["elements"].as_u64(),
+        Some(model.bodies().len() as u64)
+    );
+    assert_eq!(
+        limit["contacts"].as_u64(),
+        Some(model.contacts().len() as u64)
+    );
+    assert_eq!(
+        limit["supports"].as_u64(),
+        Some(model.supports().len() as u64)
+    );
+    assert_eq!(limit["frames"].as_u64(), Some(1));
+}
+
+/// `[limit_analysis]`'s refusals name their keys; a run to rest stopped
+/// short is not analysed and says so.
+#[test]
+fn limit_analysis_keys_are_checked() {
+    let text = std::fs::read_to_string(scenarios().join("packing_lp.toml")).unwrap();
+    let refused = |from: &str, to: &str| -> String {
+        assert!(text.contains(from), "{from}");
+        let edited = text.replacen(from, to, 1);
+        match scenario::prepare(Path::new("model.toml"), &edited, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let wall = refused("plate_wall = \"left\"", "plate_wall = \"top\"");
+    assert!(
+        wall.contains("`limit_analysis.plate_wall` = \"top\"") && wall.contains("\"left\""),
+        "{wall}"
+    );
+    let cohesion = refused("walls = { cohesion = 2.0 }", "walls = { cohesion = -2.0 }");
+    assert!(
+        cohesion.contains("`limit_analysis.walls.cohesion` = -2"),
+        "{cohesion}"
+    );
+    let both = refused(
+        "plate = { cohesion = 0.0 }",
+        "plate = { cohesion = 0.0, friction = 0.1, friction_angle = 5.0 }",
+    );
+    assert!(
+        both.contains("`limit_analysis.plate.friction` and `limit_analysis.plate.friction_angle`"),
+        "{both}"
+    );
+    let unknown = refused("rolling = true", "rolling = true\nroll = 1");
+    assert!(unknown.contains("roll"), "{unknown}");
+    let lp = refused("[limit_analysis]", "[limit_analysis_]");
+    assert!(lp.contains("limit_analysis_"), "{lp}");
+    // The LP solver serves the analysis only.
+    let katsuki = std::fs::read_to_string(scenarios().join("katsuki_example1.toml")).unwrap();
+    let solver = format!("{katsuki}\n[lp_solver]\nkind = \"clarabel\"\n");
+    match scenario::prepare(Path::new("model.toml"), &solver, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => assert!(
+            located
+                .to_string()
+                .contains("`driver.kind` and `lp_solver`"),
+            "{located}"
+        ),
+        _ => panic!("an LP solver beside the explicit driver was accepted"),
+    }
+    // Beside the limit driver.
+    let lp_file = std::fs::read_to_string(scenarios().join("lp_bearing_capacity.toml")).unwrap();
+    let beside = format!(
+        "{lp_file}\n[limit_analysis]\nplate_wall = \"left\"\ncontacts = {{ cohesion = 1.0 }}\n"
+    );
+    match scenario::prepare(Path::new("model.toml"), &beside, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => assert!(
+            located
+                .to_string()
+                .contains("`driver.kind` and `limit_analysis`"),
+            "{located}"
+        ),
+        _ => panic!("`[limit_analysis]` beside the limit driver was accepted"),
+    }
+    // Stopped short of rest: not analysed, exit status 0.
+    let summary = run(
+        "packing_lp.toml",
+        Overrides {
+            max_steps: Some(60),
+            end_time: None,
+        },
+    );
+    assert_eq!(summary["outcome"]["status"], "StepLimit");
+    assert_eq!(summary["limit"]["status"], "NotAnalysed");
+}
+
+/// A moving wall drives the limit analysis: the sliding block (φ = 10°)
+/// pushed over its whole left face by a wall moving at unit speed gives
+/// the load of the same model built in Rust, to the bit; a moving wall
+/// beside a live load, two moving walls, a wall given a zero velocity and
+/// one in the implicit driver are refused by key.
+#[test]
+fn a_moving_wall_drives_the_limit_analysis() {
+    use dismech::law::{friction_from_degrees, RigidPlastic};
+    use dismech::limit::{analyse, LimitModel, Partner};
+    use dismech::lp::LinearProgramSolver;
+    use dismech::math::Pose2;
+    use dismech::shape::Polygon;
+    let text = std::fs::read_to_string(scenarios().join("polygon_lp_sliding.toml")).unwrap();
+    let live = text
+        .lines()
+        .find(|l| l.starts_with("live = "))
+        .unwrap()
+        .to_string();
+    let plate = "[[bodies]]\nkind = \"wall\"\nstart = [-0.2, 1.0]\nend = [-0.2, -0.1]\nvelocity = [1.0, 0.0]\n";
+    let pushed = text
+        .replacen("[law]", &format!("{plate}\n[law]"), 1)
+        .replacen(&live, "", 1);
+    let dir = scratch("moving-wall");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("pushed.toml");
+    std::fs::write(&file, &pushed).unwrap();
+    let prepared = scenario::load(&file, Overrides::default()).unwrap();
+    let scenario::Model::Limit(plan) = &prepared.model else {
+        panic!("not a limit model");
+    };
+    assert_eq!(plan.model.supports().len(), 2);
+    assert_eq!(plan.model.supports()[1].velocity, Vec2::new(1.0, 0.0));
+    assert!(plan.model.load_driver().is_none());
+    let finished = scenario::execute(prepared, &file, &dir.join("out"), false).unwrap();
+    let summary = finished.summary;
+    assert_eq!(summary["outcome"]["status"], "Collapse", "{summary}");
+    // The same model built in Rust: the block, its weight, the floor, the
+    // plate at unit speed, the contacts the pair query gives.
+    let law = RigidPlastic::coulomb(0.0, friction_from_degrees(10.0).unwrap(), true).unwrap();
+    let mut model = LimitModel::new(8e-10).unwrap();
+    let block = model
+        .add_shape(
+            Polygon::rectangle(0.4, 0.8).unwrap().into(),
+            Pose2::new(0.0, 0.4, 0.0),
+            true,
+        )
+        .unwrap();
+    let normal = |along: Vec2| Vec2::new(-along.y, along.x);
+    model
+        .add_support(
+            "floor",
+            Point::new(-1.0, 0.0),
+            normal(Vec2::new(2.0, 0.0)),
+            Vec2::zeros(),
+        )
+        .unwrap();
+    model
+        .add_support(
+            "plate",
+            Point::new(-0.2, 1.0),
+            normal(Vec2::new(0.0, -0.1 - 1.0)),
+            Vec2::new(1.0, 0.0),
+        )
+        .unwrap();
+    model.set_load(block, Vec2::new(0.0, -1000.0)).unwrap();
+    model.add_contacts(block, Partner::Support(0), law).unwrap();
+    model.add_contacts(block, Partner::Support(1), law).unwrap();
+    let result = analyse(&model, &mut LinearProgramSolver::default()).unwrap();
+    assert_eq!(
+        summary["contacts"].as_u64(),
+        Some(model.contacts().len() as u64)
+    );
+    assert_eq!(bits(&summary["load"]), result.load.unwrap().to_bits());
+    assert_eq!(
+        bits(&summary["static_load"]),
+        result.static_load.unwrap().to_bits()
+    );
+    // Pushed over its whole face, with friction on the plate too (the
+    // associated flow lifts a sliding block along the plate), the block
+    // needs more than mu W.
+    let mu_w = friction_from_degrees(10.0).unwrap() * 1000.0;
+    assert!(result.load.unwrap() > mu_w, "{summary}");
+    std::fs::remove_dir_all(&dir).unwrap();
+    let refused = |text: &str| -> String {
+        match scenario::prepare(Path::new("model.toml"), text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {text}"),
+        }
+    };
+    let both = refused(&format!("{pushed}\n{live}\n"));
+    assert!(
+        both.contains("`bodies[2].velocity` and `loads.live`"),
+        "{both}"
+    );
+    let two = refused(&pushed.replacen(
+        "end = [1.0, 0.0]",
+        "end = [1.0, 0.0]\nvelocity = [0.0, 1.0]",
+        1,
+    ));
+    assert!(
+        two.contains("`bodies[1].velocity` and `bodies[2].velocity`"),
+        "{two}"
+    );
+    let zero = refused(&pushed.replacen("velocity = [1.0, 0.0]", "velocity = [0.0, 0.0]", 1));
+    assert!(zero.contains("`bodies[2].velocity`"), "{zero}");
+    let dda = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap();
+    let implicit = refused(&dda.replacen(
+        "[law]",
+        "[[bodies]]\nkind = \"wall\"\nstart = [-3.0, 1.0]\nend = [-3.0, 0.0]\nvelocity = [1.0, 0.0]\n\n[law]",
+        1,
+    ));
+    assert!(
+        implicit.contains("`driver.kind` and `bodies[2].velocity`"),
+        "{implicit}"
+    );
+}
+
 /// The block wall by the explicit polygon DEM from its file: the
 /// composition's scene (its blocks, base, law and quarter of the stable
 /// step), stepped as far, ends in the same bits.
@@ -1112,6 +1359,134 @@ fn a_checkpoint_of_another_run_or_damaged_is_refused_by_name() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The implicit driver's summary gives each body's contact force: the
+/// base and the sliding block, in contact only with each other, carry
+/// opposite forces, the block's pointing up.
+#[test]
+fn implicit_summary_gives_each_bodys_contact_force() {
+    let summary = run(
+        "dda_sliding_block.toml",
+        Overrides {
+            max_steps: Some(5),
+            end_time: None,
+        },
+    );
+    let bodies = summary["bodies"].as_array().unwrap();
+    let force = |k: usize, i: usize| bodies[k]["contact_force"][i].as_f64().unwrap();
+    for i in 0..2 {
+        assert_eq!(force(0, i).to_bits(), (-force(1, i)).to_bits(), "{summary}");
+    }
+    assert!(force(1, 1) > 0.0, "{summary}");
+}
+
+/// `dismech run FILE --check --resume CHECKPOINT` checks the resumed
+/// run: a checkpoint that resumes the file passes, naming its step; one
+/// of another model, damaged or past the run's end is refused as `--resume`
+/// refuses it (exit status 2); nothing is run or written either way.
+#[test]
+fn check_with_resume_checks_the_checkpoint_and_writes_nothing() {
+    let dir = scratch("check-resume");
+    let dda = variant("dda_sliding_block.toml", "checkpoint_every = 10", &dir);
+    run_file(&dda, "a", Some(20), None);
+    let good = dir.join("a.checkpoints/step-0000000020.ckpt");
+    let check = |checkpoint: &Path, max_steps: Option<&str>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_dismech"));
+        command
+            .arg("run")
+            .arg(&dda)
+            .args(["--quiet", "--check", "--out"])
+            .arg(dir.join("checked"))
+            .arg("--resume")
+            .arg(checkpoint);
+        if let Some(n) = max_steps {
+            command.args(["--max-steps", n]);
+        }
+        let output = command.output().unwrap();
+        assert!(!dir.join("checked").exists());
+        assert!(!dir.join("checked.checkpoints").exists());
+        (
+            output.status.code(),
+            String::from_utf8_lossy(&output.stdout).into_owned(),
+            String::from_utf8_lossy(&output.stderr).into_owned(),
+        )
+    };
+    let (code, stdout, stderr) = check(&good, None);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stdout.contains("the scenario is valid and resumes from") && stdout.contains("(step 20)"),
+        "{stdout}"
+    );
+    let (code, _, stderr) = check(&good, Some("20"));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("at or past the run's end at step 20"),
+        "{stderr}"
+    );
+    let bytes = std::fs::read(&good).unwrap();
+    let damaged = dir.join("damaged.ckpt");
+    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    let (code, _, stderr) = check(&damaged, None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("damaged.ckpt: truncated"), "{stderr}");
+    let (code, _, stderr) = check(&dir.join("none.ckpt"), None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("none.ckpt: cannot be read"), "{stderr}");
+    // A limit analysis has no checkpoints, whatever the file.
+    let lp = Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .arg("run")
+        .arg(scenarios().join("lp_bearing_capacity.toml"))
+        .args(["--quiet", "--check", "--resume"])
+        .arg(dir.join("none.ckpt"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&lp.stderr);
+    assert_eq!(lp.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("a limit or HPM analysis takes no steps and has no checkpoints"),
+        "{stderr}"
+    );
+    // Another model: the law's penalty changed.
+    let text = std::fs::read_to_string(&dda).unwrap();
+    std::fs::write(&dda, text.replacen("penalty = 2e9", "penalty = 3e9", 1)).unwrap();
+    let (code, _, stderr) = check(&good, None);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("contact laws parameters"), "{stderr}");
+    // The library's check, in-process.
+    let prepared = scenario::load(&dda, Overrides::default()).unwrap();
+    assert!(scenario::check_resume(prepared, &dda, &good).is_err());
+    std::fs::write(&dda, &text).unwrap();
+    let prepared = scenario::load(&dda, Overrides::default()).unwrap();
+    assert_eq!(scenario::check_resume(prepared, &dda, &good).unwrap(), 20);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `keep_checkpoints = 3`: a run leaves its newest three checkpoints; a
+/// run resumed into the same folder removes the older ones as it writes
+/// newer ones, and its result is the run's that never stopped.
+#[test]
+fn keep_checkpoints_leaves_the_newest() {
+    let dir = scratch("keep-checkpoints");
+    let file = variant(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 100\ncheckpoint_dir = \"ck\"\nkeep_checkpoints = 3",
+        &dir,
+    );
+    let names = |steps: &[u64]| -> Vec<String> {
+        steps.iter().map(|k| format!("step-{k:010}.ckpt")).collect()
+    };
+    run_file(&file, "a", Some(700), None);
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[500, 600, 700]));
+    let from = dir.join("resume-from.ckpt");
+    std::fs::copy(dir.join("ck/step-0000000500.ckpt"), &from).unwrap();
+    let resumed = run_file(&file, "b", Some(900), Some(&from));
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[700, 800, 900]));
+    std::fs::remove_dir_all(dir.join("ck")).unwrap();
+    let straight = run_file(&file, "c", Some(900), None);
+    assert_eq!(resumed, straight);
+    assert_eq!(checkpoints(&dir.join("ck")), names(&[700, 800, 900]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn checkpoint_keys_are_checked() {
     let refused = |name: &str, extra: &str| -> String {
@@ -1151,6 +1526,19 @@ fn checkpoint_keys_are_checked() {
     assert!(
         limit.contains("`driver.kind` and `output.checkpoint_every`"),
         "{limit}"
+    );
+    let keep = refused(
+        "dda_sliding_block.toml",
+        "checkpoint_every = 5\nkeep_checkpoints = 0",
+    );
+    assert!(
+        keep.contains("`output.keep_checkpoints` = 0: 0 is refused: must be at least 1"),
+        "{keep}"
+    );
+    let keep_alone = refused("dda_sliding_block.toml", "keep_checkpoints = 2");
+    assert!(
+        keep_alone.contains("`output.keep_checkpoints` and `output.checkpoint_every`"),
+        "{keep_alone}"
     );
     let negative = refused("dda_sliding_block.toml", "checkpoint_every = -1");
     assert!(

@@ -16,7 +16,8 @@ pub enum BodySpec {
     Polygon(PolygonSpec),
     /// A rectangle, centred and turned.
     Rectangle(RectangleSpec),
-    /// A fixed wall segment (implicit driver), the bodies on its left.
+    /// A wall segment (implicit and limit drivers), the bodies on its
+    /// left; the limit driver's may move (the plate).
     Wall(WallSpec),
     /// Circles in a running bond in an open box ([`dismech::scene::CircleRows`]).
     CircleRows(CircleRowsSpec),
@@ -197,7 +198,7 @@ pub struct RectangleSpec {
     pub motion: Option<MotionSpec>,
 }
 
-/// A fixed wall segment.
+/// A wall segment, fixed or (limit driver) moving.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WallSpec {
@@ -205,6 +206,9 @@ pub struct WallSpec {
     pub start: [f64; 2],
     /// End point (m); the bodies lie on the left of start → end.
     pub end: [f64; 2],
+    /// Velocity (limit driver): the wall is the plate that drives the
+    /// collapse; fixed when absent.
+    pub velocity: Option<[f64; 2]>,
 }
 
 /// Circles in a running bond, filling an open box from the floor.

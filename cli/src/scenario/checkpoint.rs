@@ -264,6 +264,53 @@ pub fn folder(file: &Path, out: &Path, dir: Option<&str>) -> PathBuf {
     }
 }
 
+/// The step of a checkpoint's file name (`step-NNNNNNNNNN.ckpt`, ten
+/// digits or more), none for any other name.
+pub fn step_of(name: &str) -> Option<u64> {
+    let digits = name.strip_prefix("step-")?.strip_suffix(".ckpt")?;
+    if digits.len() < 10 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// Remove from `dir` the checkpoints of steps below `newest` (the one just
+/// written) but the `keep − 1` of the highest steps: `keep` checkpoints
+/// are left, the newest included. Files of other names, and checkpoints
+/// of steps above `newest` (an earlier run's, in the same folder; the run
+/// writes over them as it gets there), are left alone.
+///
+/// # Errors
+/// [`DismechError::Output`] naming the folder when it cannot be listed, or
+/// a file that cannot be removed (one removed meanwhile is not an error).
+pub fn prune(dir: &Path, newest: u64, keep: usize) -> Result<(), DismechError> {
+    let output_error = |path: &Path, e: std::io::Error| DismechError::Output {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    let mut older: Vec<(u64, PathBuf)> = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(|e| output_error(dir, e))? {
+        let entry = entry.map_err(|e| output_error(dir, e))?;
+        let name = entry.file_name();
+        let Some(step) = name.to_str().and_then(step_of) else {
+            continue;
+        };
+        if step < newest {
+            older.push((step, entry.path()));
+        }
+    }
+    older.sort_unstable();
+    let remove = older.len().saturating_sub(keep.saturating_sub(1));
+    for (_, path) in &older[..remove] {
+        match std::fs::remove_file(path) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(output_error(path, e)),
+        }
+    }
+    Ok(())
+}
+
 /// The checkpoints a scenario asks for.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {
@@ -271,6 +318,8 @@ pub struct Plan {
     pub every: u64,
     /// `output.checkpoint_dir` as written.
     pub dir: Option<String>,
+    /// `output.keep_checkpoints`: how many to keep (≥ 1); all when none.
+    pub keep: Option<usize>,
 }
 
 /// The checkpoints of `[output]`, checked against the driver and the run
@@ -289,6 +338,16 @@ pub(crate) fn plan(
     let output = KeyPath::root("output");
     let every_key = output.key("checkpoint_every");
     let dir_key = output.key("checkpoint_dir");
+    let keep_key = output.key("keep_checkpoints");
+    if let Some(keep) = spec.output.keep_checkpoints {
+        check::require(
+            source,
+            &keep_key,
+            keep,
+            keep >= 1,
+            "must be at least 1: the newest checkpoint is kept (leave the key out to keep all)",
+        )?;
+    }
     if let Some(dir) = &spec.output.checkpoint_dir {
         if dir.is_empty() || dir.contains('\0') {
             return Err(Box::new(source.at_key(
@@ -303,6 +362,13 @@ pub(crate) fn plan(
                 source,
                 &[&dir_key, &every_key],
                 "a folder of checkpoints needs `checkpoint_every`, the steps between two",
+            ));
+        }
+        if spec.output.keep_checkpoints.is_some() {
+            return Err(check::combination(
+                source,
+                &[&keep_key, &every_key],
+                "checkpoints to keep need `checkpoint_every`, the steps between two",
             ));
         }
         return Ok(None);
@@ -339,6 +405,7 @@ pub(crate) fn plan(
     Ok(Some(Plan {
         every,
         dir: spec.output.checkpoint_dir.clone(),
+        keep: spec.output.keep_checkpoints,
     }))
 }
 
@@ -381,6 +448,41 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn pruning_keeps_the_newest_and_leaves_other_files() {
+        let dir = std::env::temp_dir().join(format!("dismech-prune-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        for step in [10, 20, 30, 40, 50] {
+            std::fs::write(file_name(&dir, step), b"x").unwrap();
+        }
+        for other in ["notes.txt", "step-12.ckpt", ".step-0000000060.ckpt.tmp1"] {
+            std::fs::write(dir.join(other), b"x").unwrap();
+        }
+        prune(&dir, 40, 2).unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                ".step-0000000060.ckpt.tmp1",
+                "notes.txt",
+                "step-0000000030.ckpt",
+                "step-0000000040.ckpt",
+                "step-0000000050.ckpt",
+                "step-12.ckpt",
+            ]
+        );
+        prune(&dir, 50, 1).unwrap();
+        assert!(!file_name(&dir, 40).exists() && file_name(&dir, 50).exists());
+        assert_eq!(step_of("step-0000000050.ckpt"), Some(50));
+        assert_eq!(step_of("step-00000000x0.ckpt"), None);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -15,7 +15,7 @@ use dismech::io::write_atomically;
 use dismech::kinematics::{Advance, Kinematics};
 use dismech::kinematics::{PlacedEllipse, PlacedPolygon};
 use dismech::law::{BoundedStiffness, ContactLaw, TangentLaw};
-use dismech::limit::{analyse, LimitStatus};
+use dismech::limit::{analyse, model_from_packing, LimitModel, LimitResult, LimitStatus};
 use dismech::linsolve::SparseLu;
 use dismech::observe::Event;
 use dismech::scene::Scene;
@@ -29,6 +29,7 @@ use super::checkpoint::{
     self, decode, encode, file_name, fingerprint, from_file, mismatch, Driver, RunCounters,
 };
 
+use super::analysis::PackingAnalysis;
 use super::explicit::{ExplicitDem, ExplicitPlan};
 use super::hpm::HpmPlan;
 use super::implicit::{ImplicitDriver, Scheme};
@@ -97,13 +98,16 @@ struct Saver {
     every: u64,
     dt_bits: u64,
     settings: u64,
+    /// Checkpoints to keep (`output.keep_checkpoints`); all when none.
+    keep: Option<usize>,
     /// The step of the last checkpoint written or resumed from.
     last: Option<u64>,
 }
 
 impl Saver {
     /// Write `driver` (a driver's checkpoint) as the checkpoint of
-    /// `counters.step`, unless one of that step is written already.
+    /// `counters.step`, unless one of that step is written already; then,
+    /// with `keep`, remove the older ones beyond it.
     fn save(&mut self, driver: Checkpoint, step: u64, substeps: u64, halvings: u64) -> Result<()> {
         if self.last == Some(step) {
             return Ok(());
@@ -119,6 +123,10 @@ impl Saver {
         let bytes = encode(&counters, &driver.1?);
         write_atomically(&file_name(&self.dir, step), &bytes)?;
         self.last = Some(step);
+        // Older checkpoints go only once the new one is whole on disk.
+        if let Some(keep) = self.keep {
+            checkpoint::prune(&self.dir, step, keep)?;
+        }
         Ok(())
     }
 }
@@ -251,6 +259,127 @@ fn same_step(counters: &RunCounters, dt: f64, settings: (&str, u64), origin: &st
     Ok(())
 }
 
+/// Replace the state of `model` (built from the scenario `file`) by the
+/// checkpoint at `path`, checked against the model: its driver, step,
+/// settings, scene, and a step before the run's end.
+///
+/// # Errors
+/// [`ScenarioError::Run`] with [`DismechError::Checkpoint`] naming `path`
+/// when it cannot be read, is damaged, is another driver's or another
+/// model's; [`ScenarioError::Option`] when it lies at or past the run's
+/// end, or the model is a limit or HPM analysis.
+fn restore(
+    model: &mut Model,
+    file: &Path,
+    path: &Path,
+) -> std::result::Result<RunCounters, ScenarioError> {
+    let run_error = |error: DismechError| ScenarioError::Run {
+        file: file.display().to_string(),
+        error: Box::new(error),
+    };
+    let origin = path.display().to_string();
+    let no_steps = || {
+        ScenarioError::Option(format!(
+            "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
+        ))
+    };
+    // Refused before the file is read: no file would do.
+    if matches!(model, Model::Limit(_) | Model::Hpm(_)) {
+        return Err(no_steps());
+    }
+    let bytes = read_checkpoint(path).map_err(run_error)?;
+    let past_end = |step: u64, end: u64| {
+        ScenarioError::Option(format!(
+            "--resume {origin}: the checkpoint of step {step} lies at or past the run's end at step {end}; nothing is left to run"
+        ))
+    };
+    match model {
+        Model::Explicit(m) => {
+            let (counters, payload) =
+                decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
+            same_step(
+                &counters,
+                m.dt,
+                ("driver settings", fingerprint(&m.settings)),
+                &origin,
+            )
+            .map_err(run_error)?;
+            m.dem = match &m.dem {
+                ExplicitDem::Spring(d) => {
+                    ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
+                }
+                ExplicitDem::Penalty(d) => {
+                    ExplicitDem::Penalty(resume_dem(d, payload, &origin).map_err(run_error)?)
+                }
+            };
+            let k = counters.step;
+            match &mut m.plan {
+                ExplicitPlan::Steps(n) => {
+                    if k >= *n {
+                        return Err(past_end(k, *n));
+                    }
+                }
+                ExplicitPlan::ToRest(c) => {
+                    if k >= c.max_steps {
+                        return Err(past_end(k, c.max_steps));
+                    }
+                    if k % c.check_every.max(1) != 0 {
+                        return Err(run_error(mismatch(
+                            &origin,
+                            "step, a multiple of run.check_every",
+                            k,
+                            c.check_every,
+                        )));
+                    }
+                    // The criterion counts the steps of the call.
+                    c.max_steps -= k;
+                }
+            }
+            Ok(counters)
+        }
+        Model::Implicit(m) => {
+            let (counters, payload) =
+                decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
+            same_step(
+                &counters,
+                m.dt,
+                ("bodies' sine motions", m.motions),
+                &origin,
+            )
+            .map_err(run_error)?;
+            let restored = match &mut m.driver {
+                ImplicitDriver::RigidSpring(d) => d.restore(payload),
+                ImplicitDriver::RigidPenalty(d) => d.restore(payload),
+                ImplicitDriver::AffineSpring(d) => d.restore(payload),
+                ImplicitDriver::AffinePenalty(d) => d.restore(payload),
+            };
+            restored.map_err(|e| run_error(from_file(e, &origin)))?;
+            if counters.step >= m.steps {
+                return Err(past_end(counters.step, m.steps));
+            }
+            Ok(counters)
+        }
+        Model::Limit(_) | Model::Hpm(_) => Err(no_steps()),
+    }
+}
+
+/// Check that `prepared` (read from `file`) resumes from the checkpoint
+/// `checkpoint` as [`resume`] would, without running it or writing
+/// anything (`dismech run --check --resume`): the step it resumes from.
+///
+/// # Errors
+/// Those of [`resume`] before it runs: the checkpoint unreadable,
+/// damaged, another driver's or another model's, or at or past the run's
+/// end.
+pub fn check_resume(
+    prepared: Prepared,
+    file: &Path,
+    checkpoint: &Path,
+) -> std::result::Result<u64, ScenarioError> {
+    let Prepared { mut model, .. } = prepared;
+    restore(&mut model, file, checkpoint).map(|c| c.step)
+}
+
 fn run(
     prepared: Prepared,
     file: &Path,
@@ -269,91 +398,14 @@ fn run(
     } = prepared;
     let segments = spec.output.segments.unwrap_or(DEFAULT_SEGMENTS);
     let every = spec.output.frames_every.unwrap_or(DEFAULT_FRAMES_EVERY);
-    let mut resumed: Option<RunCounters> = None;
-    if let Some(path) = resume {
-        let origin = path.display().to_string();
-        let bytes = read_checkpoint(path).map_err(run_error)?;
-        let past_end = |step: u64, end: u64| {
-            ScenarioError::Option(format!(
-                "--resume {origin}: the checkpoint of step {step} lies at or past the run's end at step {end}; nothing is left to run"
-            ))
-        };
-        match &mut model {
-            Model::Explicit(m) => {
-                let (counters, payload) =
-                    decode(&bytes, &origin, Driver::Explicit).map_err(run_error)?;
-                same_step(
-                    &counters,
-                    m.dt,
-                    ("driver settings", fingerprint(&m.settings)),
-                    &origin,
-                )
-                .map_err(run_error)?;
-                m.dem = match &m.dem {
-                    ExplicitDem::Spring(d) => {
-                        ExplicitDem::Spring(resume_dem(d, payload, &origin).map_err(run_error)?)
-                    }
-                    ExplicitDem::Penalty(d) => {
-                        ExplicitDem::Penalty(resume_dem(d, payload, &origin).map_err(run_error)?)
-                    }
-                };
-                let k = counters.step;
-                match &mut m.plan {
-                    ExplicitPlan::Steps(n) => {
-                        if k >= *n {
-                            return Err(past_end(k, *n));
-                        }
-                    }
-                    ExplicitPlan::ToRest(c) => {
-                        if k >= c.max_steps {
-                            return Err(past_end(k, c.max_steps));
-                        }
-                        if k % c.check_every.max(1) != 0 {
-                            return Err(run_error(mismatch(
-                                &origin,
-                                "step, a multiple of run.check_every",
-                                k,
-                                c.check_every,
-                            )));
-                        }
-                        // The criterion counts the steps of the call.
-                        c.max_steps -= k;
-                    }
-                }
-                resumed = Some(counters);
-            }
-            Model::Implicit(m) => {
-                let (counters, payload) =
-                    decode(&bytes, &origin, Driver::Implicit).map_err(run_error)?;
-                same_step(
-                    &counters,
-                    m.dt,
-                    ("bodies' sine motions", m.motions),
-                    &origin,
-                )
-                .map_err(run_error)?;
-                let restored = match &mut m.driver {
-                    ImplicitDriver::RigidSpring(d) => d.restore(payload),
-                    ImplicitDriver::RigidPenalty(d) => d.restore(payload),
-                    ImplicitDriver::AffineSpring(d) => d.restore(payload),
-                    ImplicitDriver::AffinePenalty(d) => d.restore(payload),
-                };
-                restored.map_err(|e| run_error(from_file(e, &origin)))?;
-                if counters.step >= m.steps {
-                    return Err(past_end(counters.step, m.steps));
-                }
-                resumed = Some(counters);
-            }
-            Model::Limit(_) | Model::Hpm(_) => {
-                return Err(ScenarioError::Option(format!(
-                "--resume {origin}: a limit or HPM analysis takes no steps and has no checkpoints"
-            )))
-            }
-        }
-    }
+    let resumed = match resume {
+        Some(path) => Some(restore(&mut model, file, path)?),
+        None => None,
+    };
     let mut saver = checkpoints.map(|plan| Saver {
         dir: checkpoint::folder(file, out, plan.dir.as_deref()),
         every: plan.every,
+        keep: plan.keep,
         dt_bits: match &model {
             Model::Explicit(m) => m.dt.to_bits(),
             Model::Implicit(m) => m.dt.to_bits(),
@@ -392,17 +444,33 @@ fn run(
                 ExplicitPlan::Steps(n) => n,
             };
             let bar = bar(steps, "steps");
-            let value = match m.dem {
+            let analysis = m.analysis;
+            let (value, analysed) = match m.dem {
                 ExplicitDem::Spring(mut d) => {
                     run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
+                        .and_then(|v| {
+                            let analysed = analyse_packing(&d, analysis, &v, &dir, segments)?;
+                            Ok((v, analysed))
+                        })
                 }
                 ExplicitDem::Penalty(mut d) => {
                     run_explicit(&mut d, m.plan, &dir, every, segments, &bar, saver.as_mut())
+                        .and_then(|v| {
+                            let analysed = analyse_packing(&d, analysis, &v, &dir, segments)?;
+                            Ok((v, analysed))
+                        })
                 }
             }
             .map_err(run_error)?;
             bar.finish_and_clear();
-            (value, None)
+            let mut value = value;
+            let status = analysed.and_then(|(limit, status)| {
+                if let Value::Object(map) = &mut value {
+                    map.insert("limit".into(), limit);
+                }
+                status
+            });
+            (value, status)
         }
         Model::Implicit(m) => {
             let bar = bar(m.steps, "steps");
@@ -668,13 +736,16 @@ where
     let bodies: Vec<Value> = model
         .bodies()
         .iter()
-        .map(|b| {
+        .enumerate()
+        .map(|(k, b)| {
             let c = b.centroid();
+            let force = model.contact_force_on(k);
             json!({
                 "centroid": [c.x, c.y],
                 "displacement": b.displacement.as_slice(),
                 "velocity": b.velocity.as_slice(),
                 "stress": b.stress.as_slice(),
+                "contact_force": [force.x, force.y],
             })
         })
         .collect();
@@ -708,24 +779,80 @@ fn run_limit(mut plan: LimitPlan, dir: &Path, segments: usize) -> Result<(Value,
     if let Some(object) = value.as_object_mut() {
         match &plan.lattice {
             Some(lattice) => object.extend(limit_summary(&result, lattice.plate_length())),
-            None => {
-                let mut map = limit_summary(&result, f64::NAN);
-                map.remove("plate_length");
-                for (from, to) in [
-                    ("p_over_cp", "load"),
-                    ("kinematic_p_over_cp", "kinematic_load"),
-                    ("static_p_over_cp", "static_load"),
-                ] {
-                    if let Some(v) = map.remove(from) {
-                        map.insert(to.into(), v);
-                    }
-                }
-                map.insert("supports".into(), json!(plan.model.supports().len()));
-                object.extend(map);
-            }
+            None => object.extend(shapes_summary(&result, &plan.model)),
         }
     }
     Ok((value, result.status))
+}
+
+/// The summary of the limit analysis of bodies of shapes: the load (a
+/// multiplier, not in units of a plate's C_p), its bounds, the status,
+/// the LP's solver and the number of supports.
+fn shapes_summary(result: &LimitResult, model: &LimitModel) -> serde_json::Map<String, Value> {
+    let mut map = limit_summary(result, f64::NAN);
+    map.remove("plate_length");
+    for (from, to) in [
+        ("p_over_cp", "load"),
+        ("kinematic_p_over_cp", "kinematic_load"),
+        ("static_p_over_cp", "static_load"),
+    ] {
+        if let Some(v) = map.remove(from) {
+            map.insert(to.into(), v);
+        }
+    }
+    map.insert("supports".into(), json!(model.supports().len()));
+    map
+}
+
+/// With `analysis`, the limit analysis of `dem`'s packing as it ends
+/// ([`model_from_packing`]): its mechanism written as one frame at time 0
+/// into `dir/limit/` where it has one, and its summary (as the limit
+/// driver's of bodies of shapes) with its status. A run to rest that
+/// ended by a limit (`run`'s summary says how it ended), before the
+/// packing came to rest, is not analysed: the summary says so, without a
+/// status.
+fn analyse_packing<L>(
+    dem: &DemSimulation<L>,
+    analysis: Option<Box<PackingAnalysis>>,
+    run: &Value,
+    dir: &Path,
+    segments: usize,
+) -> Result<Option<(Value, Option<LimitStatus>)>>
+where
+    L: ContactLaw<2>,
+{
+    let Some(mut analysis) = analysis else {
+        return Ok(None);
+    };
+    let ended = &run["outcome"]["status"];
+    if ended != "AtRest" && ended != "Steps" {
+        let reason = format!(
+            "the run to rest ended by a limit ({}) before the packing came to rest",
+            ended.as_str().unwrap_or("?")
+        );
+        return Ok(Some((
+            json!({ "status": "NotAnalysed", "reason": reason }),
+            None,
+        )));
+    }
+    let model = model_from_packing(dem.scene(), dem.contacts(), &analysis.settings)?;
+    let result = analyse(&model, &mut analysis.solver)?;
+    let mechanism = matches!(result.status, LimitStatus::Collapse | LimitStatus::ZeroLoad);
+    let mut frames = 0;
+    if mechanism {
+        let mut series = PvdSeries::new(dir.join("limit"))?;
+        series.write_frame(0.0, &limit_frame(&model, &result, segments)?)?;
+        frames = series.frames();
+    }
+    let mut value = json!({
+        "elements": model.bodies().len(),
+        "contacts": model.contacts().len(),
+        "frames": frames,
+    });
+    if let Some(object) = value.as_object_mut() {
+        object.extend(shapes_summary(&result, &model));
+    }
+    Ok(Some((value, Some(result.status))))
 }
 
 /// Solve the HPM's elastic equations and write the columns (one frame at

@@ -63,6 +63,8 @@ pub struct ExplicitModel {
     pub dt: f64,
     /// The driver's settings.
     pub settings: DemSettings,
+    /// The limit analysis of the final packing (`[limit_analysis]`).
+    pub analysis: Option<Box<super::analysis::PackingAnalysis>>,
 }
 
 /// The law of `[law]` for a time-stepping driver: a spring–dashpot law
@@ -164,17 +166,18 @@ fn refuse_other_slots(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Re
         KeyPath::root("integrator").key("kind"),
         "the explicit driver takes an explicit integrator (`explicit-euler`); `newmark` and `quasi-static` are implicit",
     )?;
-    for (present, table) in [
-        (spec.linear_solver.is_some(), "linear_solver"),
-        (spec.lp_solver.is_some(), "lp_solver"),
-    ] {
-        refuse_beside_driver(
-            source,
-            present,
-            KeyPath::root(table),
-            "the explicit driver solves no system: remove this table",
-        )?;
-    }
+    refuse_beside_driver(
+        source,
+        spec.lp_solver.is_some() && spec.limit_analysis.is_none(),
+        KeyPath::root("lp_solver"),
+        "the explicit driver solves no LP but that of `[limit_analysis]`: remove this table or add that one",
+    )?;
+    refuse_beside_driver(
+        source,
+        spec.linear_solver.is_some(),
+        KeyPath::root("linear_solver"),
+        "the explicit driver solves no system: remove this table",
+    )?;
     refuse_beside_driver(
         source,
         spec.loads.seismic.is_some(),
@@ -223,6 +226,7 @@ pub fn build(
         },
         relative_travel: settings.relative_travel.unwrap_or(defaults.relative_travel),
     };
+    let analysis = super::analysis::build(source, spec, &scene, &entry_of)?;
     let plan = plan(source, spec, dem_settings.dt, overrides)?;
     let dem_settings_dt = dem_settings.dt;
     let refuse = |e: DismechError| build_error(source, &entry_of, e);
@@ -239,6 +243,7 @@ pub fn build(
         plan,
         dt: dem_settings_dt,
         settings: dem_settings,
+        analysis,
     })
 }
 

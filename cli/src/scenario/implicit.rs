@@ -397,6 +397,13 @@ fn bodies<const N: usize>(
         let path = KeyPath::root("bodies").index(k);
         let body = match entry {
             BodySpec::Wall(w) => {
+                if w.velocity.is_some() {
+                    return Err(combination(
+                        source,
+                        &[&driver_kind, &path.key("velocity")],
+                        "the implicit driver's walls are fixed; a moving wall is the limit driver's plate",
+                    ));
+                }
                 let start = finite2(source, &path.key("start"), w.start)?;
                 let end = finite2(source, &path.key("end"), w.end)?;
                 let segment = Segment::new(Point::new(start[0], start[1]), Point::new(end[0], end[1]));

@@ -89,7 +89,10 @@ pub fn build(
 }
 
 /// The LP solver of `[lp_solver]` (Clarabel's defaults when absent).
-fn lp_solver(source: &Source<'_>, spec: &ScenarioSpec) -> Result<LinearProgramSolver, Refusal> {
+pub(super) fn lp_solver(
+    source: &Source<'_>,
+    spec: &ScenarioSpec,
+) -> Result<LinearProgramSolver, Refusal> {
     Ok(match &spec.lp_solver {
         None => LinearProgramSolver::default(),
         Some(LpSolverSpec::Clarabel(c)) => {
@@ -243,6 +246,8 @@ fn shapes_plan(
     // The `[[bodies]]` entry of each model body and of each support.
     let mut body_paths: Vec<KeyPath> = Vec::new();
     let mut support_paths: Vec<(KeyPath, f64)> = Vec::new();
+    // The `velocity` key of the moving wall (the plate), if any.
+    let mut moving: Option<KeyPath> = None;
     for (k, entry) in spec.bodies.iter().enumerate() {
         let path = bodies.index(k);
         if let BodySpec::Wall(wall) = entry {
@@ -250,12 +255,34 @@ fn shapes_plan(
             let end = finite2(source, &path.key("end"), wall.end)?;
             let along = Vec2::new(end[0] - start[0], end[1] - start[1]);
             let name = format!("wall {}", support_paths.len());
+            let velocity = match wall.velocity {
+                None => Vec2::zeros(),
+                Some(v) => {
+                    let key = path.key("velocity");
+                    let v = finite2(source, &key, v)?;
+                    if v == [0.0, 0.0] {
+                        return Err(Box::new(source.at_key(
+                            &key,
+                            "[0, 0] is refused: a moving wall needs a velocity other than zero (leave the key out for a fixed wall)",
+                        )));
+                    }
+                    if let Some(first) = &moving {
+                        return Err(combination(
+                            source,
+                            &[first, &key],
+                            "one wall may move: the limit load is the force of the one moving wall (the plate) along its velocity",
+                        ));
+                    }
+                    moving = Some(key);
+                    Vec2::new(v[0], v[1])
+                }
+            };
             model
                 .add_support(
                     &name,
                     Point::new(start[0], start[1]),
                     Vec2::new(-along.y, along.x),
-                    Vec2::zeros(),
+                    velocity,
                 )
                 .map_err(|e| Box::new(source.at_key(&path.key("end"), e.to_string())))?;
             support_paths.push((path, along.norm()));
@@ -293,7 +320,24 @@ fn shapes_plan(
             .set_load(f.body, load)
             .map_err(|e| Box::new(source.at_key(&path.key("force"), e.to_string())))?;
     }
+    if let Some(plate) = &moving {
+        let other = if spec.loads.live.is_some() {
+            Some(loads.key("live"))
+        } else if settings.multiply_dead_loads == Some(true) {
+            Some(driver.key("multiply_dead_loads"))
+        } else {
+            None
+        };
+        if let Some(other) = other {
+            return Err(combination(
+                source,
+                &[plate, &other],
+                "the limit load is the moving wall's force, a live load's multiplier or the dead loads' factor: give one",
+            ));
+        }
+    }
     match (&spec.loads.live, settings.multiply_dead_loads.unwrap_or(false)) {
+        (None, false) if moving.is_some() => {}
         (Some(_), true) => {
             return Err(combination(
                 source,
@@ -328,7 +372,7 @@ fn shapes_plan(
         (None, false) => {
             return Err(Box::new(source.at_key(
                 &loads,
-                "no load to multiply: give `loads.live` (a body, a force and its point) or `driver.multiply_dead_loads = true`",
+                "no load to multiply: give `loads.live` (a body, a force and its point), `driver.multiply_dead_loads = true` or a wall a `velocity` (the plate)",
             )))
         }
     }

@@ -4,7 +4,8 @@
 //! A scenario's tables are the slots of a composition (see the crate docs
 //! of [`dismech`]): `[driver]`, `[kinematics]`, `[boundary]`,
 //! `[[bodies]]`, `[law]`, `[integrator]`, `[linear_solver]`,
-//! `[lp_solver]`, `[loads]`, `[run]` and `[output]`. A slot's `kind`
+//! `[lp_solver]`, `[loads]`, `[run]`, `[limit_analysis]` and `[output]`.
+//! A slot's `kind`
 //! chooses its piece; a combination the library cannot compose is refused
 //! with an error naming both keys, an unknown key is refused, and every
 //! refusal names the file, the line and column, the key and the value
@@ -17,9 +18,11 @@
 //! | the tables, one file each | `driver.rs`, `bodies.rs`, `boundary.rs`, `law.rs`, `solvers.rs`, `loads.rs`, `run.rs`, `output.rs` |
 //! | values checked and library errors named by their keys | `check.rs` |
 //! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs`, `hpm.rs` |
+//! | the limit analysis of the explicit driver's final packing | `analysis.rs` |
 //! | the run: progress, frames, summary, the folder written whole | `execute.rs` |
 //! | checkpoints of a run and its resumption | `checkpoint.rs` |
 
+pub mod analysis;
 pub mod bodies;
 pub mod boundary;
 mod check;
@@ -44,7 +47,7 @@ use std::path::{Path, PathBuf};
 use dismech::error::DismechError;
 use serde::Deserialize;
 
-pub use execute::{execute, resume, Finished};
+pub use execute::{check_resume, execute, resume, Finished};
 pub use source::{KeyPath, Located, Source};
 
 /// A scenario file as read: one field per table.
@@ -75,6 +78,9 @@ pub struct ScenarioSpec {
     pub loads: loads::LoadsSpec,
     /// `[run]` (time-stepping drivers).
     pub run: Option<run::RunSpec>,
+    /// `[limit_analysis]` (explicit driver): the limit analysis of the
+    /// final packing.
+    pub limit_analysis: Option<analysis::LimitAnalysisSpec>,
     /// `[output]`.
     #[serde(default)]
     pub output: output::OutputSpec,
@@ -235,6 +241,16 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
             3,
             1 << 16,
         )?;
+    }
+    if spec.limit_analysis.is_some() && !matches!(spec.driver, driver::DriverSpec::Explicit(_)) {
+        return Err(ScenarioError::Invalid(check::combination(
+            &source,
+            &[
+                &KeyPath::root("driver").key("kind"),
+                &KeyPath::root("limit_analysis"),
+            ],
+            "`[limit_analysis]` analyses the explicit driver's final packing; the limit driver analyses bodies given in the file",
+        )));
     }
     let model = match &spec.driver {
         driver::DriverSpec::Explicit(settings) => {

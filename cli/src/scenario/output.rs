@@ -18,4 +18,8 @@ pub struct OutputSpec {
     /// The folder of the checkpoints, relative to the scenario file's
     /// folder; beside the output folder by default.
     pub checkpoint_dir: Option<String>,
+    /// Keep only the checkpoints of the newest this many steps (≥ 1): the
+    /// older ones are removed once a newer one is written; all are kept
+    /// by default.
+    pub keep_checkpoints: Option<usize>,
 }
