@@ -41,7 +41,8 @@ use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::{surface_columns, Refusal, SlipColumn, SurfaceLimits, TrialSurface};
 use super::terrain::Terrain;
 
-/// Hovland's Fs of one trial surface and what it is made of.
+/// The Fs of one trial surface, by Hovland's method (or Bishop's,
+/// [`super::bishop_ground`]), and what it is made of.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceFs {
     /// `Σ (c A + N' tan φ) / Σ T`.
@@ -58,9 +59,11 @@ pub struct SurfaceFs {
     pub depth: f64,
     /// Weight `Σ W` (N).
     pub weight: f64,
-    /// Strength `Σ (c A + N' tan φ)` (N).
+    /// Strength `Σ (c A + N' tan φ)` (N) (by Bishop's method, with its
+    /// normal forces N).
     pub resisting: f64,
-    /// Driving force `Σ T` (N).
+    /// Driving force `Σ T` (N) (by Bishop's method, whose Fs is a ratio
+    /// of moments, the base shear mobilised, `resisting / Fs`).
     pub driving: f64,
 }
 

@@ -4,7 +4,7 @@
 //!
 //! | concept | items | file |
 //! |---|---|---|
-//! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`Span`] | `args.rs` |
+//! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`MethodArg`] (`--method hovland\|bishop`), [`Span`] | `args.rs` |
 //! | ground, layers, r_u, loads, limits | [`inputs::terrain`], [`inputs::ground`], [`inputs::material`], … | `inputs.rs` |
 //! | the family, defaults from the DEM | [`family::family`], [`family::Family`] | `family.rs` |
 //! | errors naming the option | [`SlopeError`] | `error.rs` |
