@@ -271,7 +271,8 @@ fn slope_command(args: &SlopeArgs) -> Exit {
                 SlopeError::Run(error) => Exit::of_error(error),
                 SlopeError::Argument { .. }
                 | SlopeError::Unused { .. }
-                | SlopeError::NoSurface { .. } => Exit::BadInput,
+                | SlopeError::NoSurface { .. }
+                | SlopeError::HpmAboveKeep { .. } => Exit::BadInput,
             }
         }
     }

@@ -103,6 +103,18 @@ fn esri_citation(wkt: &str) -> std::result::Result<String, String> {
     Ok(text)
 }
 
+/// Check that a GeoTIFF can keep the coordinate system `wkt` (an ESRI WKT,
+/// as a `.prj` holds it) in its citation key, as
+/// [`write_geotiff_with_crs`] writes it: so that a bad `.prj` is refused
+/// before a long computation whose results would carry it.
+///
+/// # Errors
+/// Why it cannot be kept: a character outside printable ASCII or `|`, or
+/// a text longer than [`MAX_CRS_CITATION`].
+pub fn check_crs_wkt(wkt: &str) -> std::result::Result<(), String> {
+    esri_citation(wkt).map(|_| ())
+}
+
 /// The no-data value for `raster`: [`GEOTIFF_NODATA`], or NaN where a cell
 /// holds it.
 fn nodata_for(raster: &Raster) -> f64 {

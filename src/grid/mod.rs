@@ -69,7 +69,7 @@ pub use esri_ascii::{
 };
 pub use format::{read_raster, write_rasters, write_rasters_with_crs, RasterFormat};
 pub use geotiff::{
-    parse_geotiff, read_geotiff, write_geotiff, write_geotiff_with_crs, GEOTIFF_NODATA,
-    MAX_CRS_CITATION, MAX_GEOTIFF_EXPANSION,
+    check_crs_wkt, parse_geotiff, read_geotiff, write_geotiff, write_geotiff_with_crs,
+    GEOTIFF_NODATA, MAX_CRS_CITATION, MAX_GEOTIFF_EXPANSION,
 };
 pub use raster::{Raster, MAX_GRID_CELLS};

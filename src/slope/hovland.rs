@@ -41,7 +41,8 @@ use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::{surface_columns, Refusal, SlipColumn, SurfaceLimits, TrialSurface};
 use super::terrain::Terrain;
 
-/// Hovland's Fs of one trial surface and what it is made of.
+/// The Fs of one trial surface, by Hovland's method (or Bishop's,
+/// [`super::bishop_ground`]), and what it is made of.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceFs {
     /// `Σ (c A + N' tan φ) / Σ T`.
@@ -58,9 +59,11 @@ pub struct SurfaceFs {
     pub depth: f64,
     /// Weight `Σ W` (N).
     pub weight: f64,
-    /// Strength `Σ (c A + N' tan φ)` (N).
+    /// Strength `Σ (c A + N' tan φ)` (N) (by Bishop's method, with its
+    /// normal forces N).
     pub resisting: f64,
-    /// Driving force `Σ T` (N).
+    /// Driving force `Σ T` (N) (by Bishop's method, whose Fs is a ratio
+    /// of moments, the base shear mobilised, `resisting / Fs`).
     pub driving: f64,
 }
 
@@ -121,15 +124,36 @@ pub fn hovland_ground(
     })
 }
 
-/// The sums, with what the ground gives each column from `at` (`None`:
-/// no data, the surface refused).
-fn hovland_core(
+/// What the limits and the sliding direction of a surface's columns give,
+/// the same for every limit-equilibrium method ([`hovland_core`],
+/// [`super::bishop`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SurfaceSetup {
+    /// `Σ h d²` (m³).
+    pub volume: f64,
+    /// Columns × d² (m²).
+    pub area: f64,
+    /// The thickest column (m).
+    pub depth: f64,
+    /// `Σ W` (N).
+    pub weight: f64,
+    /// The plan sliding direction (unit vector).
+    pub direction: (f64, f64),
+}
+
+/// The limits checked on `columns`, then the sliding direction: the plan
+/// resultant of the base shear under the weight (see the module's
+/// documentation).
+///
+/// # Errors
+/// (A refusal.) The limits' refusals, [`Refusal::NoData`] and
+/// [`Refusal::NothingDrives`] as in [`hovland_columns`].
+pub(super) fn surface_setup(
     columns: &[SlipColumn],
     cell_size: f64,
-    loads: &SlopeLoads,
     limits: &SurfaceLimits,
-    at: impl Fn(&SlipColumn) -> Option<ColumnGround>,
-) -> std::result::Result<SurfaceFs, Refusal> {
+    at: &impl Fn(&SlipColumn) -> Option<ColumnGround>,
+) -> std::result::Result<SurfaceSetup, Refusal> {
     let cell_area = cell_size * cell_size;
     if columns.len() < limits.min_columns {
         return Err(Refusal::TooFewColumns);
@@ -168,35 +192,112 @@ fn hovland_core(
     if plan.partial_cmp(&(MIN_DRIVING_RATIO * weight)) != Some(std::cmp::Ordering::Greater) {
         return Err(Refusal::NothingDrives);
     }
-    let (sx, sy) = (hx / plan, hy / plan);
+    Ok(SurfaceSetup {
+        volume,
+        area,
+        depth,
+        weight,
+        direction: (hx / plan, hy / plan),
+    })
+}
+
+/// One column's quantities along the sliding direction, shared by
+/// Hovland's and Bishop's methods.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ColumnTerms {
+    /// Weight `W = σ_v d²` (N).
+    pub weight: f64,
+    /// `ρ = √(1 + z_x² + z_y²)`: `1/ρ` is the cosine of the base's true
+    /// dip.
+    pub rho: f64,
+    /// The base's slope along the sliding direction, `a = z_x s_x + z_y s_y`.
+    pub slope: f64,
+    /// Hovland's normal force `N = w · n` (N).
+    pub normal: f64,
+    /// Hovland's driving force `T = w · t` (N).
+    pub along: f64,
+    /// True base area `A = d² ρ` (m²).
+    pub base_area: f64,
+    /// Pore pressure on the base `u` (Pa).
+    pub pore_pressure: f64,
+    /// Cohesion of the base (Pa).
+    pub cohesion: f64,
+    /// Friction coefficient of the base.
+    pub friction: f64,
+}
+
+/// The quantities of column `k` on ground `g` along the plan sliding
+/// direction `(sx, sy)` (see the module's documentation).
+pub(super) fn column_terms(
+    k: &SlipColumn,
+    g: &ColumnGround,
+    cell_area: f64,
+    (sx, sy): (f64, f64),
+    loads: &SlopeLoads,
+) -> ColumnTerms {
     let kh = loads.seismic_coefficient;
+    let w = g.vertical_stress * cell_area;
+    let (zx, zy) = k.gradient;
+    let rho = (1.0 + zx * zx + zy * zy).sqrt();
+    let a = zx * sx + zy * sy;
+    // w = (k_h W s_x, k_h W s_y, −W); n = (z_x, z_y, −1)/ρ; t = (s_x, s_y, a)/√(1 + a²).
+    let (lx, ly, lz) = (kh * w * sx, kh * w * sy, -w);
+    let normal = (lx * zx + ly * zy - lz) / rho;
+    let along = (lx * sx + ly * sy + lz * a) / (1.0 + a * a).sqrt();
+    let base_area = cell_area * rho;
+    let pore_pressure = match g.ratio_pore_pressure {
+        Some(u) => u,
+        None => loads.water_unit_weight * k.pressure_head,
+    };
+    ColumnTerms {
+        weight: w,
+        rho,
+        slope: a,
+        normal,
+        along,
+        base_area,
+        pore_pressure,
+        cohesion: g.cohesion,
+        friction: g.friction_coefficient,
+    }
+}
+
+/// The sums, with what the ground gives each column from `at` (`None`:
+/// no data, the surface refused).
+fn hovland_core(
+    columns: &[SlipColumn],
+    cell_size: f64,
+    loads: &SlopeLoads,
+    limits: &SurfaceLimits,
+    at: impl Fn(&SlipColumn) -> Option<ColumnGround>,
+) -> std::result::Result<SurfaceFs, Refusal> {
+    let cell_area = cell_size * cell_size;
+    let setup = surface_setup(columns, cell_size, limits, &at)?;
     let (mut resisting, mut driving) = (0.0, 0.0);
     for k in columns {
         let g = at(k).ok_or(Refusal::NoData)?;
-        let (c, mu) = (g.cohesion, g.friction_coefficient);
-        let w = g.vertical_stress * cell_area;
-        let (zx, zy) = k.gradient;
-        let rho = (1.0 + zx * zx + zy * zy).sqrt();
-        let a = zx * sx + zy * sy;
-        // w = (k_h W s_x, k_h W s_y, −W); n = (z_x, z_y, −1)/ρ; t = (s_x, s_y, a)/√(1 + a²).
-        let (lx, ly, lz) = (kh * w * sx, kh * w * sy, -w);
-        let normal = (lx * zx + ly * zy - lz) / rho;
-        let along = (lx * sx + ly * sy + lz * a) / (1.0 + a * a).sqrt();
-        let base_area = cell_area * rho;
+        let t = column_terms(k, &g, cell_area, setup.direction, loads);
         // A column whose pore pressure (or seismic lift) exceeds its normal
         // force has no frictional strength left, not a negative one: the
         // effective normal force is taken as zero there, as
         // limit-equilibrium codes do (Scoops3D; Reid et al. 2015).
-        let u = match g.ratio_pore_pressure {
-            Some(u) => u,
-            None => loads.water_unit_weight * k.pressure_head,
-        };
-        let effective = (normal - u * base_area).max(0.0);
-        resisting += c * base_area + effective * mu;
-        driving += along;
+        let effective = (t.normal - t.pore_pressure * t.base_area).max(0.0);
+        resisting += t.cohesion * t.base_area + effective * t.friction;
+        driving += t.along;
     }
+    finish(setup, columns.len(), resisting, driving)
+}
+
+/// The Fs `resisting / driving` of a surface, refused where nothing
+/// drives it or it has no strength.
+pub(super) fn finish(
+    setup: SurfaceSetup,
+    columns: usize,
+    resisting: f64,
+    driving: f64,
+) -> std::result::Result<SurfaceFs, Refusal> {
     let safety_factor = resisting / driving;
-    if !(driving > MIN_DRIVING_RATIO * weight && safety_factor.is_finite()) {
+    if !(driving > MIN_DRIVING_RATIO * setup.weight && safety_factor.is_finite()) {
         return Err(Refusal::NothingDrives);
     }
     if resisting.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
@@ -204,30 +305,44 @@ fn hovland_core(
     }
     Ok(SurfaceFs {
         safety_factor,
-        direction: (sx, sy),
-        columns: columns.len(),
-        volume,
-        area,
-        depth,
-        weight,
+        direction: setup.direction,
+        columns,
+        volume: setup.volume,
+        area: setup.area,
+        depth: setup.depth,
+        weight: setup.weight,
         resisting,
         driving,
     })
 }
 
-/// Hovland's method on trial surfaces over one terrain, with the material,
-/// loads and limits checked once.
+/// The limit-equilibrium method a surface is evaluated by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Hovland's method ([`hovland_ground`]).
+    #[default]
+    Hovland,
+    /// Bishop's simplified method in 3D (Hungr 1987,
+    /// [`super::bishop_ground`]).
+    Bishop,
+}
+
+/// Hovland's (or Bishop's) method on trial surfaces over one terrain, with
+/// the material, loads and limits checked once.
 #[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
     terrain: &'a Terrain,
     ground: Ground,
     loads: SlopeLoads,
     limits: SurfaceLimits,
+    method: Method,
 }
 
 impl<'a> Evaluator<'a> {
     /// Check the ground (one material, `&SlopeMaterial`, or a layered
-    /// [`Ground`]), the loads and the limits.
+    /// [`Ground`]), the loads and the limits; the surfaces are evaluated
+    /// by Hovland's method unless [`Evaluator::with_method`] says
+    /// otherwise.
     ///
     /// # Errors
     /// Those of [`Ground::validate_on`] (for one material, those of
@@ -248,7 +363,19 @@ impl<'a> Evaluator<'a> {
             ground,
             loads: *loads,
             limits: *limits,
+            method: Method::Hovland,
         })
+    }
+
+    /// The evaluator with `method`.
+    pub fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// The method the surfaces are evaluated by.
+    pub fn method(&self) -> Method {
+        self.method
     }
 
     /// The terrain.
@@ -262,23 +389,38 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The columns of `surface` ([`surface_columns`]) into `scratch`, then
-    /// Hovland's Fs ([`hovland_ground`]).
+    /// the Fs by the evaluator's method: Hovland's ([`hovland_ground`]) or
+    /// Bishop's ([`super::bishop_ground`], moments about the axis through
+    /// [`TrialSurface::centre`]).
     ///
     /// # Errors
     /// (A refusal, not a [`crate::error::DismechError`].) Those of
-    /// [`surface_columns`], then of [`hovland_ground`].
+    /// [`surface_columns`], then of [`hovland_ground`] or
+    /// [`super::bishop_ground`] (as [`Refusal::SmallMAlpha`] and
+    /// [`Refusal::NotConverged`]).
     pub fn evaluate<S: TrialSurface>(
         &self,
         surface: &S,
         scratch: &mut Vec<SlipColumn>,
     ) -> std::result::Result<SurfaceFs, Refusal> {
         surface_columns(self.terrain, surface, scratch)?;
-        hovland_ground(
-            scratch,
-            self.terrain.cell_size(),
-            &self.ground,
-            &self.loads,
-            &self.limits,
-        )
+        match self.method {
+            Method::Hovland => hovland_ground(
+                scratch,
+                self.terrain.cell_size(),
+                &self.ground,
+                &self.loads,
+                &self.limits,
+            ),
+            Method::Bishop => super::bishop::bishop_ground(
+                scratch,
+                self.terrain,
+                &self.ground,
+                &self.loads,
+                &self.limits,
+                surface.centre(),
+            )
+            .map_err(Refusal::from),
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! Slope stability over real terrain: a search over trial slip surfaces
-//! on a digital elevation model, evaluated by Hovland's 3D column method,
+//! on a digital elevation model, evaluated by Hovland's 3D column method
+//! (or Bishop's simplified method in 3D, Hungr 1987),
 //! and the map of the lowest factor of safety per cell, on ground of one
 //! material or of layers, dry, under a water table or with a pore-pressure
 //! ratio.
@@ -16,7 +17,8 @@
 //! | strength and loads | [`SlopeMaterial`] (c, μ = tan φ, γ), [`SlopeLoads`] (k_h, γ_w) | `material.rs` |
 //! | layered ground, r_u | [`Ground`] (strength [`Layer`]s bounded by elevation rasters, Scoops3D's convention), [`PoreRatio`] (Bishop & Morgenstern's r_u), [`ColumnGround`] | `ground.rs` |
 //! | trial surfaces | [`TrialSurface`]: [`Sphere`], [`Ellipsoid`]; [`surface_columns`], [`SlipColumn`], [`SurfaceLimits`], [`Refusal`] | `surface.rs` |
-//! | Hovland per surface | [`hovland_columns`], [`hovland_ground`], [`Evaluator`], [`SurfaceFs`] | `hovland.rs` |
+//! | Hovland per surface | [`hovland_columns`], [`hovland_ground`], [`Evaluator`], [`SurfaceFs`], [`Method`] | `hovland.rs` |
+//! | Bishop's simplified method in 3D per surface (Hungr 1987) | [`bishop_columns`], [`bishop_ground`], [`BishopFailure`], [`MIN_M_ALPHA`] | `bishop.rs` |
 //! | families | [`TrialFamily`]: [`SphereGrid`] (Scoops3D), [`SphereRandom`], [`EllipsoidRandom`] (r.slope.stability); [`Steps`] | `family.rs` |
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
 //! | HPM re-analysis of a surface (paper 001) | [`hpm_reanalysis`], [`HpmReanalysis`], [`HpmStiffness`], [`surface_raster`] | `reanalysis.rs` |
@@ -45,6 +47,7 @@
 //! # Ok(()) }
 //! ```
 
+mod bishop;
 mod family;
 mod ground;
 mod hovland;
@@ -55,9 +58,13 @@ mod search;
 mod surface;
 mod terrain;
 
+pub use bishop::{
+    bishop_columns, bishop_ground, BishopFailure, BISHOP_MAX_ITERATIONS, BISHOP_TOLERANCE,
+    MIN_M_ALPHA,
+};
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};
 pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
-pub use hovland::{hovland_columns, hovland_ground, Evaluator, SurfaceFs};
+pub use hovland::{hovland_columns, hovland_ground, Evaluator, Method, SurfaceFs};
 pub use material::{SlopeLoads, SlopeMaterial, WATER_UNIT_WEIGHT};
 pub use output::MAP_NAMES;
 pub use reanalysis::{hpm_reanalysis, surface_raster, HpmReanalysis, HpmStiffness};

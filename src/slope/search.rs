@@ -1,4 +1,5 @@
-//! The search: every trial of a family evaluated by Hovland's method, in
+//! The search: every trial of a family evaluated by Hovland's method (or
+//! Bishop's, [`SearchSettings::method`]), in
 //! parallel and streaming, keeping for each cell the lowest Fs of any
 //! trial surface with a column there (Scoops3D's map, Reid, Christian &
 //! Brien, USGS 2015) and the few most critical surfaces.
@@ -22,7 +23,7 @@ use crate::error::{require_positive, Result};
 
 use super::family::TrialFamily;
 use super::ground::ToGround;
-use super::hovland::{Evaluator, SurfaceFs};
+use super::hovland::{Evaluator, Method, SurfaceFs};
 use super::material::SlopeLoads;
 use super::surface::{Refusal, SlipColumn, SurfaceLimits};
 use super::terrain::Terrain;
@@ -36,16 +37,19 @@ pub struct SearchSettings {
     pub critical: usize,
     /// Trials per batch (≥ 1): the progress callback is called after each.
     pub batch: u64,
+    /// The limit-equilibrium method each surface is evaluated by.
+    pub method: Method,
 }
 
 impl Default for SearchSettings {
     /// Default limits, the 10 most critical surfaces, batches of 20 000
-    /// trials.
+    /// trials, Hovland's method.
     fn default() -> Self {
         Self {
             limits: SurfaceLimits::default(),
             critical: 10,
             batch: 20_000,
+            method: Method::Hovland,
         }
     }
 }
@@ -242,7 +246,9 @@ impl<S: Copy> Partial<S> {
 }
 
 /// Search the trial surfaces of `family` over `terrain` by Hovland's
-/// method ([`super::hovland_ground`]) on `ground` (one material,
+/// method ([`super::hovland_ground`]), or Bishop's where
+/// [`SearchSettings::method`] says so ([`super::bishop_ground`]), on
+/// `ground` (one material,
 /// `&SlopeMaterial`, or a layered [`super::Ground`] with an optional
 /// pore-pressure ratio), in parallel on the current rayon
 /// pool (install a `rayon::ThreadPool` to choose the threads), calling
@@ -261,7 +267,8 @@ pub fn search<F: TrialFamily>(
     settings: &SearchSettings,
     mut progress: impl FnMut(u64, u64),
 ) -> Result<SearchResult<F::Surface>> {
-    let evaluator = Evaluator::new(terrain, ground, loads, &settings.limits)?;
+    let evaluator =
+        Evaluator::new(terrain, ground, loads, &settings.limits)?.with_method(settings.method);
     family.validate()?;
     require_positive("search batch (trials)", settings.batch as f64)?;
     let total = family.len(terrain);

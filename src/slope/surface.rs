@@ -32,6 +32,11 @@ pub trait TrialSurface {
     /// and gradient `(∂z/∂x, ∂z/∂y)`, `None` outside the footprint or on
     /// its rim (where the gradient is infinite).
     fn base(&self, x: f64, y: f64) -> Option<(f64, (f64, f64))>;
+
+    /// The surface's centre `(x, y, z)`: the point the axis of moment
+    /// equilibrium of Bishop's method passes through
+    /// ([`super::bishop_ground`]).
+    fn centre(&self) -> (f64, f64, f64);
 }
 
 /// A sphere: centre `(x, y, z)` and radius (m), the trial surface of
@@ -85,6 +90,10 @@ impl TrialSurface for Sphere {
         }
         let s = s2.sqrt();
         Some((self.z - s, (dx / s, dy / s)))
+    }
+
+    fn centre(&self) -> (f64, f64, f64) {
+        (self.x, self.y, self.z)
     }
 }
 
@@ -190,6 +199,10 @@ impl TrialSurface for Ellipsoid {
             self.z - self.vertical * root,
             (zu * c - zv * s, zu * s + zv * c),
         ))
+    }
+
+    fn centre(&self) -> (f64, f64, f64) {
+        (self.x, self.y, self.z)
     }
 }
 
@@ -304,11 +317,17 @@ pub enum Refusal {
     /// The strength `Σ (c A + N' tan φ)` is not positive (pore pressure or
     /// a seismic force lifting the columns off their bases).
     NoStrength,
+    /// Bishop's method: a column's `m_α` is at or below
+    /// [`super::MIN_M_ALPHA`] ([`super::BishopFailure::SmallMAlpha`]).
+    SmallMAlpha,
+    /// Bishop's method: the iteration of F did not settle
+    /// ([`super::BishopFailure::NotConverged`]).
+    NotConverged,
 }
 
 impl Refusal {
     /// Every reason, in the order of [`Refusal::index`].
-    pub const ALL: [Refusal; 9] = [
+    pub const ALL: [Refusal; 11] = [
         Refusal::CentreOffDem,
         Refusal::LeavesDem,
         Refusal::NoData,
@@ -318,6 +337,8 @@ impl Refusal {
         Refusal::Depth,
         Refusal::NothingDrives,
         Refusal::NoStrength,
+        Refusal::SmallMAlpha,
+        Refusal::NotConverged,
     ];
 
     /// Position in [`Refusal::ALL`].

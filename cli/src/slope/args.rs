@@ -43,6 +43,39 @@ pub enum SearchKind {
     Ellipsoids,
 }
 
+/// The limit-equilibrium method of `--method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Hovland's 3D column method (Hovland 1977): each column's normal
+    /// force its weight's component on the base normal, force sums along
+    /// the sliding direction.
+    Hovland,
+    /// Bishop's simplified method in 3D (Hungr 1987): each column's normal
+    /// force from its vertical equilibrium, moments about the horizontal
+    /// axis through the surface's centre across the sliding direction,
+    /// iterated on Fs; a surface with a column of m_alpha <= 0.2 is
+    /// refused.
+    Bishop,
+}
+
+impl MethodArg {
+    /// The library's method.
+    pub fn method(self) -> dismech::slope::Method {
+        match self {
+            Self::Hovland => dismech::slope::Method::Hovland,
+            Self::Bishop => dismech::slope::Method::Bishop,
+        }
+    }
+
+    /// Its name as an option value.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Hovland => "hovland",
+            Self::Bishop => "bishop",
+        }
+    }
+}
+
 /// A range `MIN:MAX`, with a number of values `MIN:MAX:COUNT` where the
 /// option takes one (a single value `V` is `V:V`, one value).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -138,6 +171,11 @@ pub struct SlopeArgs {
     /// radii) or `ellipsoids` (r.slope.stability's random sampling).
     #[arg(long, value_enum)]
     pub search: SearchKind,
+    /// Limit-equilibrium method of each trial surface: `hovland`
+    /// (Hovland 1977) or `bishop` (Bishop's simplified method in 3D,
+    /// Hungr 1987).
+    #[arg(long, value_enum, default_value = "hovland")]
+    pub method: MethodArg,
 
     /// Cells between neighbouring sphere centres [default: a 25th of the
     /// DEM's shorter side, at least 1].
@@ -195,7 +233,8 @@ pub struct SlopeArgs {
     /// How many of the most critical surfaces to list in critical.csv.
     #[arg(long, value_name = "K", default_value_t = 10, value_parser = parse_keep)]
     pub keep: usize,
-    /// Re-analyse the K most critical surfaces by HPM (paper 001):
+    /// Re-analyse the K most critical surfaces by HPM (paper 001), K at
+    /// most --keep (a larger K is refused):
     /// elastic, and nonlinear with --hpm-nonlinear; their Fs go into
     /// critical.csv and summary.json, the maps of the most critical one
     /// (local Fs, displacement, strains) and its slip surface into
@@ -209,11 +248,12 @@ pub struct SlopeArgs {
     #[arg(long, requires = "hpm", help_heading = "HPM re-analysis")]
     pub hpm_nonlinear: bool,
     /// Young's modulus E of the ground for HPM (Pa); the slip springs'
-    /// modulus E_slip is taken equal (paper 001, eq. 30).
-    #[arg(long, value_name = "PA", default_value_t = 1e9, value_parser = parse_modulus, help_heading = "HPM re-analysis")]
+    /// modulus E_slip is taken equal (paper 001, eq. 30). Only with --hpm.
+    #[arg(long, value_name = "PA", default_value_t = 1e9, value_parser = parse_modulus, requires = "hpm", help_heading = "HPM re-analysis")]
     pub youngs_modulus: f64,
-    /// Poisson's ratio ν of the ground for HPM, in [0, 0.5).
-    #[arg(long, value_name = "NU", default_value_t = 0.2, value_parser = parse_poisson, help_heading = "HPM re-analysis")]
+    /// Poisson's ratio ν of the ground for HPM, in [0, 0.5). Only with
+    /// --hpm.
+    #[arg(long, value_name = "NU", default_value_t = 0.2, value_parser = parse_poisson, requires = "hpm", help_heading = "HPM re-analysis")]
     pub poisson_ratio: f64,
     /// Worker threads [default: one per core].
     #[arg(long, value_name = "N", value_parser = parse_threads)]

@@ -30,10 +30,12 @@ pub enum SlopeError {
         family: &'static str,
     },
     /// No trial surface of the family gave a factor of safety: every one
-    /// left the DEM, stayed above the ground or fell outside the limits.
+    /// left the DEM, stayed above the ground or fell outside the limits
+    /// (or, with `--bedrock`, was cut off by a bedrock at or near the
+    /// ground).
     #[error(
-        "no trial surface gave a factor of safety: of {} trials, {} (the family `{family}` does not fit the DEM of {} m × {} m, cells of {} m: choose sizes that cut the ground inside it)",
-        .counts.trials, refusals(.counts).join(", "), .dem.0, .dem.1, .dem.2
+        "no trial surface gave a factor of safety: of {} trials, {} (the family `{family}` does not fit the DEM of {} m × {} m, cells of {} m: choose sizes that cut the ground inside it{})",
+        .counts.trials, refusals(.counts).join(", "), .dem.0, .dem.1, .dem.2, bedrock_hint(.bedrock.as_deref())
     )]
     NoSurface {
         /// The family as options.
@@ -42,6 +44,17 @@ pub enum SlopeError {
         dem: (f64, f64, f64),
         /// Trials and refusals.
         counts: Box<SearchCounts>,
+        /// The `--bedrock` file, where one was given.
+        bedrock: Option<String>,
+    },
+    /// `--hpm K` asks for more surfaces than `--keep` lists (the HPM
+    /// results go into the list of critical.csv).
+    #[error("--hpm {hpm}: re-analyses more surfaces than --keep {keep} lists in critical.csv (where the HPM Fs are written): give --keep {hpm} or more, or --hpm {keep} or fewer")]
+    HpmAboveKeep {
+        /// `--hpm`.
+        hpm: usize,
+        /// `--keep`.
+        keep: usize,
     },
     /// The search or the outputs failed (the error names the file).
     #[error(transparent)]
@@ -65,6 +78,16 @@ impl From<DismechError> for SlopeError {
     }
 }
 
+/// The part of [`SlopeError::NoSurface`]'s message on `--bedrock`.
+fn bedrock_hint(bedrock: Option<&str>) -> String {
+    match bedrock {
+        None => String::new(),
+        Some(file) => format!(
+            "; or the bedrock --bedrock {file} cuts them off: a surface is raised to the bedrock where it goes below it, and has no column where the bedrock lies at or above the ground, so a bedrock at or near the ground leaves too few columns or none"
+        ),
+    }
+}
+
 /// A refusal in the words of a summary.
 pub fn refusal_words(reason: Refusal) -> &'static str {
     match reason {
@@ -77,6 +100,8 @@ pub fn refusal_words(reason: Refusal) -> &'static str {
         Refusal::Depth => "depth outside --depth",
         Refusal::NothingDrives => "nothing drives the slide",
         Refusal::NoStrength => "no strength left",
+        Refusal::SmallMAlpha => "Bishop's m_alpha at or below 0.2 at a column",
+        Refusal::NotConverged => "Bishop's iteration did not settle",
     }
 }
 

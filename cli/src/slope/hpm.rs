@@ -88,8 +88,12 @@ pub struct HpmSurface {
     pub rank: usize,
     /// Its trial index in the family.
     pub trial: u64,
-    /// Hovland's Fs of the search.
+    /// The Fs of the search (Hovland's, or Bishop's with `--method
+    /// bishop`).
     pub hovland_fs: f64,
+    /// The search's method (`hovland` or `bishop`): the JSON key of the
+    /// Fs is `<method>_fs`.
+    pub method: &'static str,
     /// HPM's columns, elastic and nonlinear numbers, or why the model
     /// could not be built or solved.
     pub outcome: Result<(usize, HpmNumbers, Option<HpmNumbers>), String>,
@@ -98,11 +102,11 @@ pub struct HpmSurface {
 impl HpmSurface {
     /// As JSON.
     pub fn json(&self) -> serde_json::Value {
-        match &self.outcome {
+        let fs_key = format!("{}_fs", self.method);
+        let mut value = match &self.outcome {
             Ok((columns, elastic, nonlinear)) => serde_json::json!({
                 "rank": self.rank,
                 "trial": self.trial,
-                "hovland_fs": self.hovland_fs,
                 "columns": columns,
                 "elastic": elastic.json(),
                 "nonlinear": nonlinear.as_ref().map(HpmNumbers::json),
@@ -110,10 +114,11 @@ impl HpmSurface {
             Err(reason) => serde_json::json!({
                 "rank": self.rank,
                 "trial": self.trial,
-                "hovland_fs": self.hovland_fs,
                 "refused": reason,
             }),
-        }
+        };
+        value[fs_key] = self.hovland_fs.into();
+        value
     }
 }
 
@@ -128,15 +133,23 @@ pub struct HpmRuns {
     pub worst: Option<HpmReanalysis>,
 }
 
-/// Refuse `--hpm` with ground HPM cannot take (checked before the search).
+/// Refuse `--hpm` above `--keep`, or with ground HPM cannot take (checked
+/// before the search).
 ///
 /// # Errors
+/// [`SlopeError::HpmAboveKeep`] for `--hpm K` above `--keep`;
 /// [`SlopeError::Argument`] naming `--hpm` with
 /// [`DismechError::HpmGround`] for `--ru`, or a `--layer` whose unit
 /// weight is not that of `--unit-weight`.
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     if args.hpm == 0 {
         return Ok(());
+    }
+    if args.hpm > args.keep {
+        return Err(SlopeError::HpmAboveKeep {
+            hpm: args.hpm,
+            keep: args.keep,
+        });
     }
     let reason = if args.ru.is_some() {
         "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only"
@@ -210,6 +223,7 @@ pub fn reanalyse<S: TrialSurface + Copy>(
             rank: k + 1,
             trial: *trial,
             hovland_fs: fs.safety_factor,
+            method: args.method.name(),
             outcome,
         });
         if k == 0 {

@@ -44,6 +44,43 @@ pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
     }
 }
 
+/// The DEM's coordinate system: the text of the `.prj` beside `--dem`
+/// where there is one, read and checked before the search (it is copied
+/// beside every ESRI ASCII map and kept inside every GeoTIFF map).
+///
+/// # Errors
+/// [`SlopeError::Argument`] naming `--dem` and the DEM with
+/// [`DismechError::GridFormat`] naming the `.prj` when it cannot be read
+/// as text or a GeoTIFF cannot keep it (a character outside printable
+/// ASCII or `|`, or a text too long for GDAL:
+/// [`dismech::grid::check_crs_wkt`]).
+pub fn crs(args: &SlopeArgs) -> Result<Option<String>, SlopeError> {
+    let prj = args.dem.with_extension("prj");
+    if !prj.is_file() {
+        return Ok(None);
+    }
+    let refuse = |message: String| {
+        SlopeError::argument(
+            "--dem",
+            &args.dem.display().to_string(),
+            DismechError::GridFormat {
+                file: prj.display().to_string(),
+                line: 0,
+                column: 0,
+                message,
+            },
+        )
+    };
+    let text = std::fs::read_to_string(&prj).map_err(|e| {
+        refuse(format!(
+            "the coordinate system beside the DEM cannot be read as text: {e}"
+        ))
+    })?;
+    dismech::grid::check_crs_wkt(&text)
+        .map_err(|e| refuse(format!("the coordinate system beside the DEM: {e}")))?;
+    Ok(Some(text))
+}
+
 /// The material of `args`.
 ///
 /// # Errors

@@ -4,7 +4,7 @@
 //!
 //! | concept | items | file |
 //! |---|---|---|
-//! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`Span`] | `args.rs` |
+//! | the options, checked as parsed | [`SlopeArgs`], [`SearchKind`], [`MethodArg`] (`--method hovland\|bishop`), [`Span`] | `args.rs` |
 //! | ground, layers, r_u, loads, limits | [`inputs::terrain`], [`inputs::ground`], [`inputs::material`], … | `inputs.rs` |
 //! | the family, defaults from the DEM | [`family::family`], [`family::Family`] | `family.rs` |
 //! | errors naming the option | [`SlopeError`] | `error.rs` |
@@ -42,7 +42,7 @@ use dismech::slope::{
 
 use crate::output::StagedFolder;
 
-pub use args::{LayerArg, RuArg, SearchKind, SlopeArgs, Span};
+pub use args::{LayerArg, MethodArg, RuArg, SearchKind, SlopeArgs, Span};
 pub use error::{refusal_words, refusals, SlopeError};
 pub use outputs::{Lowest, Report};
 
@@ -54,6 +54,8 @@ pub struct Problem {
     ground: Ground,
     loads: SlopeLoads,
     limits: SurfaceLimits,
+    /// The DEM's coordinate system (its `.prj`), checked.
+    crs: Option<String>,
 }
 
 /// A progress bar over the trials, hidden when `quiet`.
@@ -76,11 +78,13 @@ fn run_family<F: TrialFamily>(
     problem: &Problem,
     family: &F,
     keep: usize,
+    method: dismech::slope::Method,
     bar: &indicatif::ProgressBar,
 ) -> dismech::error::Result<SearchResult<F::Surface>> {
     let settings = SearchSettings {
         limits: problem.limits,
         critical: keep.max(1),
+        method,
         ..SearchSettings::default()
     };
     bar.set_length(family.len(&problem.terrain));
@@ -127,11 +131,11 @@ where
                     )
                 })?;
             threads = n;
-            pool.install(|| run_family(problem, family, args.keep.max(args.hpm), &bar))?
+            pool.install(|| run_family(problem, family, args.keep, args.method.method(), &bar))?
         }
         None => {
             threads = rayon::current_num_threads();
-            run_family(problem, family, args.keep.max(args.hpm), &bar)?
+            run_family(problem, family, args.keep, args.method.method(), &bar)?
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -143,6 +147,7 @@ where
             family: description,
             dem: (width, height, extent.cell),
             counts: Box::new(result.counts),
+            bedrock: args.bedrock.as_ref().map(|b| b.display().to_string()),
         });
     }
     let hpm_runs = hpm::reanalyse(args, problem, &result);
@@ -152,6 +157,7 @@ where
         &result,
         &hpm_runs,
         folder.path(),
+        problem.crs.as_deref(),
         outputs::Run {
             family: description,
             kind: match args.search {
@@ -175,7 +181,9 @@ where
 pub fn run(args: &SlopeArgs) -> Result<Report, SlopeError> {
     hpm::check(args)?;
     let terrain = inputs::terrain(args)?;
+    let crs = inputs::crs(args)?;
     let problem = Problem {
+        crs,
         ground: inputs::ground(args, &terrain)?,
         loads: inputs::loads(args)?,
         limits: inputs::limits(args)?,

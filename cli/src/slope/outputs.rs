@@ -162,7 +162,8 @@ fn output_error(path: &Path, e: impl std::fmt::Display) -> DismechError {
 }
 
 /// Write the rasters, the `.prj` copies, the CSV, the map and the summary
-/// of `result` into `dir`; the report names them.
+/// of `result` into `dir`; the report names them. `wkt` is the DEM's
+/// coordinate system, the text of its `.prj` ([`super::inputs::crs`]).
 ///
 /// # Errors
 /// [`SlopeError::Run`] with [`DismechError::Output`] naming a file that
@@ -173,6 +174,7 @@ pub fn write<S: TrialSurface + Copy>(
     result: &SearchResult<S>,
     hpm: &HpmRuns,
     dir: &Path,
+    wkt: Option<&str>,
     run: Run,
 ) -> Result<Report, SlopeError> {
     let mut files = Vec::new();
@@ -181,27 +183,8 @@ pub fn write<S: TrialSurface + Copy>(
     // A GIS reads an ESRI ASCII grid's coordinate system from a `.prj`
     // beside it, copied from the DEM's; a GeoTIFF carries it inside (GDAL
     // ignores a `.prj` beside a GeoTIFF).
+    // (read and checked before the search: [`super::inputs::crs`]).
     let prj = args.dem.with_extension("prj");
-    let wkt = if prj.is_file() {
-        let text = std::fs::read_to_string(&prj).map_err(|e| {
-            SlopeError::argument(
-                "--dem",
-                &args.dem.display().to_string(),
-                DismechError::GridFormat {
-                    file: prj.display().to_string(),
-                    line: 0,
-                    column: 0,
-                    message: format!(
-                        "the coordinate system beside the DEM cannot be read as text: {e}"
-                    ),
-                },
-            )
-        })?;
-        Some(text)
-    } else {
-        None
-    };
-    let wkt = wkt.as_deref();
     let all = &RasterFormat::ALL;
     let mut rasters = result.write_maps_with_crs(dir, MAP_PREFIX, all, wkt)?;
     if let Some(worst) = &hpm.worst {
@@ -345,6 +328,7 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
             super::args::RuArg::File(p) => serde_json::json!(p.display().to_string()),
         }),
         "kh": args.kh,
+        "method": args.method.name(),
         "family": report.run.family,
         "limits": {
             "min_columns": args.min_columns,

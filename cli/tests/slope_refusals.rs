@@ -1,0 +1,152 @@
+//! `dismech slope` refuses, before the search and with exit status 2, what
+//! it used to find late or ignore: a `.prj` beside the DEM that the maps
+//! cannot carry, `--hpm K` above `--keep`, and the HPM options without
+//! `--hpm`; and where no surface gives an Fs over a `--bedrock`, the
+//! message names the bedrock as a cause.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn terrain_file() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/data/terrain/jacksboro_fault.asc")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "dismech-slope-refusals-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// `dismech slope` over `dem` with a small sphere grid and `extra`.
+fn slope(dem: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "slope",
+        "--dem",
+        dem.to_str().unwrap(),
+        "--cohesion",
+        "20e3",
+        "--friction-angle",
+        "30",
+        "--unit-weight",
+        "20e3",
+        "--search",
+        "spheres",
+        "--stride",
+        "25",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    Command::new(env!("CARGO_BIN_EXE_dismech"))
+        .args(&args)
+        .output()
+        .expect("the dismech binary runs")
+}
+
+fn refused(run: &Output, needles: &[&str]) -> String {
+    let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    for needle in needles {
+        assert!(stderr.contains(needle), "`{needle}` in {stderr}");
+    }
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
+}
+
+/// A `.prj` that a GeoTIFF map cannot keep (a `|`, or bytes that are not
+/// text) is refused naming `--dem` and the `.prj`, before the search: with
+/// spheres that all leave the DEM, the search would end in "no trial
+/// surface gave a factor of safety", and that message does not come.
+#[test]
+fn a_bad_prj_is_refused_before_the_search() {
+    let dir = scratch("prj");
+    let dem = dir.join("dem.asc");
+    std::fs::copy(terrain_file(), &dem).unwrap();
+    let prj = dir.join("dem.prj");
+    let every_sphere_leaves = ["--radii", "20000:30000:2", "--heights", "0:10:2"];
+    for (bytes, needle) in [
+        (&b"PROJCS[\"a|b\"]"[..], "'|'"),
+        (&b"PROJCS[\"\xff\xfe\"]"[..], "cannot be read as text"),
+    ] {
+        std::fs::write(&prj, bytes).unwrap();
+        let out = dir.join("out");
+        let run = slope(&dem, &out, &every_sphere_leaves);
+        let stderr = refused(
+            &run,
+            &[&format!("--dem {}", dem.display()), "dem.prj", needle],
+        );
+        assert!(!stderr.contains("no trial surface"), "{stderr}");
+        assert!(!out.exists());
+    }
+    // A good one passes, and the search then runs.
+    std::fs::write(&prj, "PROJCS[\"ok\"]").unwrap();
+    let run = slope(&dem, &dir.join("out"), &every_sphere_leaves);
+    refused(&run, &["no trial surface gave a factor of safety"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// With a bedrock at the ground no surface has a column: the message names
+/// `--bedrock` and its file as the cause; without `--bedrock` it does not
+/// mention one.
+#[test]
+fn no_surface_over_a_bedrock_names_the_bedrock() {
+    let dir = scratch("bedrock");
+    let rock = dir.join("rock.asc");
+    std::fs::copy(terrain_file(), &rock).unwrap();
+    let run = slope(
+        &terrain_file(),
+        &dir.join("out"),
+        &["--bedrock", rock.to_str().unwrap()],
+    );
+    refused(
+        &run,
+        &[
+            "no trial surface gave a factor of safety",
+            &format!("the bedrock --bedrock {}", rock.display()),
+        ],
+    );
+    let run = slope(
+        &terrain_file(),
+        &dir.join("out"),
+        &["--radii", "20000:30000:2", "--heights", "0:10:2"],
+    );
+    let stderr = refused(&run, &["no trial surface gave a factor of safety"]);
+    assert!(!stderr.contains("bedrock"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--hpm K` above `--keep` is refused naming both values (it used to be
+/// cut to --keep silently); `--hpm` equal to `--keep` is not refused by
+/// this check.
+#[test]
+fn hpm_above_keep_is_refused_naming_both() {
+    let dir = scratch("keep");
+    let run = slope(
+        &terrain_file(),
+        &dir.join("out"),
+        &["--hpm", "3", "--keep", "2"],
+    );
+    refused(&run, &["--hpm 3", "--keep 2", "critical.csv"]);
+    let run = slope(&terrain_file(), &dir.join("out"), &["--hpm", "12"]);
+    refused(&run, &["--hpm 12", "--keep 10"]);
+    assert!(!dir.join("out").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--youngs-modulus` and `--poisson-ratio` without `--hpm` are refused by
+/// the parser naming the flag and `--hpm` (they used to be ignored).
+#[test]
+fn hpm_moduli_without_hpm_are_refused() {
+    let dir = scratch("moduli");
+    for (flag, value) in [("--youngs-modulus", "5e8"), ("--poisson-ratio", "0.3")] {
+        let run = slope(&terrain_file(), &dir.join("out"), &[flag, value]);
+        refused(&run, &[flag, "--hpm <K>"]);
+    }
+    assert!(!dir.join("out").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
