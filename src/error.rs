@@ -174,7 +174,7 @@ pub enum DismechError {
     #[error("the dead loads' multiplier is sought (multiply_dead_loads), but every body's load is zero: set the bodies' weights with set_load")]
     NoDeadLoads,
     /// A grid file (ESRI ASCII raster) is malformed.
-    #[error("{file}, line {line}, column {column}: {message}")]
+    #[error("{file}, line {line}, column {column}: {problem}")]
     GridFormat {
         /// The file (or the name given to the text).
         file: String,
@@ -183,7 +183,7 @@ pub enum DismechError {
         /// Column (character position in the line), from 1.
         column: usize,
         /// What is wrong.
-        message: String,
+        problem: crate::grid::GridFormatProblem,
     },
     /// A value of a grid file's header cannot be used (a count that is not
     /// a whole number, a cell size that is not positive, a coordinate or
@@ -199,7 +199,7 @@ pub enum DismechError {
         /// The value as written in the file.
         value: String,
         /// What the value must satisfy.
-        requirement: String,
+        requirement: crate::grid::GridHeaderProblem,
     },
     /// A grid file's header asks for more cells than a grid may hold
     /// ([`crate::grid::MAX_GRID_CELLS`]); refused before any value is read.
@@ -219,16 +219,16 @@ pub enum DismechError {
     /// A GeoTIFF file cannot be read as a raster: not a TIFF, damaged, or a
     /// TIFF without what a raster needs (one band, square cells, a tie
     /// point), naming the tag and its value.
-    #[error("{file}: {message}")]
+    #[error("{file}: {problem}")]
     GeoTiff {
         /// The file.
         file: String,
         /// What is wrong, naming the tag and its value.
-        message: String,
+        problem: crate::grid::GeoTiffProblem,
     },
     /// A cell of a grid file cannot be used (no data inside the slide, a
     /// water table missing over a column, ...).
-    #[error("{file}, grid row {row}, column {column}: {message}")]
+    #[error("{file}, grid row {row}, column {column}: {problem}")]
     GridCell {
         /// The file (or the name given to the raster).
         file: String,
@@ -237,17 +237,19 @@ pub enum DismechError {
         /// Grid column, from 0 at the left (west).
         column: usize,
         /// What is wrong.
-        message: String,
+        problem: crate::grid::GridCellProblem,
     },
     /// Two grid files do not lie on the same grid.
-    #[error("{file} does not lie on the grid of {reference}: {message}")]
+    #[error("{file} does not lie on the grid of {reference}: {found} against {expected} (rows × columns, cell size, lower-left corner)")]
     GridMismatch {
         /// The file that differs.
         file: String,
         /// The file whose grid is the reference.
         reference: String,
-        /// What differs.
-        message: String,
+        /// The grid of `file` (boxed: it keeps the error small).
+        found: Box<crate::grid::GridExtent>,
+        /// The grid of `reference`.
+        expected: Box<crate::grid::GridExtent>,
     },
     /// No cell has its slip surface below the ground surface.
     #[error("no valid column: the slip surface of {slip} lies nowhere below the ground surface of {ground}")]

@@ -4,7 +4,9 @@
 //! of indexing out of bounds.
 
 use dismech::error::DismechError;
-use dismech::grid::{parse_esri_ascii, Raster, MAX_GRID_CELLS};
+use dismech::grid::{
+    parse_esri_ascii, GridFormatProblem, GridHeaderProblem, Raster, MAX_GRID_CELLS,
+};
 use dismech::hpm::SlopeGrids;
 
 /// A header with `ncols` and `nrows` as given and `values` as data.
@@ -203,5 +205,142 @@ fn raster_new_refuses_a_size_whose_product_wraps_to_its_value_count() {
     assert!(
         matches!(result, Err(DismechError::InvalidParameter { .. })),
         "{result:?}"
+    );
+}
+
+/// The cause of a `GridFormat` refusal of `text`, with its line and column.
+fn format_problem(text: &str) -> (usize, usize, GridFormatProblem) {
+    match parse_esri_ascii(text, "g.asc").unwrap_err() {
+        DismechError::GridFormat {
+            file,
+            line,
+            column,
+            problem,
+        } => {
+            assert_eq!(file, "g.asc");
+            (line, column, problem)
+        }
+        e => panic!("{e}"),
+    }
+}
+
+/// The cause of a `GridHeader` refusal of `text`, with its key.
+fn header_problem(text: &str) -> (String, GridHeaderProblem) {
+    match parse_esri_ascii(text, "g.asc").unwrap_err() {
+        DismechError::GridHeader {
+            key, requirement, ..
+        } => (key, requirement),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn esri_grid_format_refusals_carry_a_typed_cause() {
+    use GridFormatProblem as P;
+    assert_eq!(format_problem(""), (0, 0, P::EndsInsideHeader));
+    let key = "ncols".to_string();
+    assert_eq!(format_problem("ncols"), (1, 1, P::KeyWithoutValue { key }));
+    let key = "NCOLS".to_string();
+    assert_eq!(
+        format_problem("ncols 1\nNCOLS 2\n1"),
+        (2, 1, P::KeyTwice { key })
+    );
+    let key = "cellsize";
+    assert_eq!(
+        format_problem("ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\n1"),
+        (0, 0, P::MissingKey { key })
+    );
+    let key = "yllcorner or yllcenter";
+    assert_eq!(
+        format_problem("ncols 1\nnrows 1\nxllcorner 0\ncellsize 1\n1"),
+        (0, 0, P::MissingKey { key })
+    );
+    let (columns, rows) = (2, 1);
+    assert_eq!(
+        format_problem(&grid("2", "1", "1 2 3")),
+        (7, 5, P::TooManyValues { columns, rows })
+    );
+    assert_eq!(
+        format_problem(&grid("2", "2", "1 2 3")),
+        (
+            0,
+            0,
+            P::TooFewValues {
+                found: 3,
+                columns: 2,
+                rows: 2
+            }
+        )
+    );
+    let text = "x1".to_string();
+    assert_eq!(
+        format_problem(&grid("2", "2", "1 2\n3 x1")),
+        (
+            8,
+            3,
+            P::NotANumber {
+                text,
+                row: 1,
+                column: 1
+            }
+        )
+    );
+    let text = "inf".to_string();
+    assert_eq!(
+        format_problem(&grid("2", "1", "inf 2")),
+        (
+            7,
+            1,
+            P::NotFinite {
+                text,
+                row: 0,
+                column: 0
+            }
+        )
+    );
+}
+
+#[test]
+fn esri_grid_header_refusals_carry_a_typed_cause() {
+    use GridHeaderProblem as P;
+    let ncols = "ncols".to_string();
+    assert_eq!(
+        header_problem(&grid("1e30", "1", "1")),
+        (ncols.clone(), P::NotWholeNumber)
+    );
+    assert_eq!(
+        header_problem(&grid("0", "1", "1")),
+        (ncols.clone(), P::Zero)
+    );
+    assert_eq!(
+        header_problem(&grid("18446744073709551616", "1", "1")),
+        (ncols, P::CountOverflow)
+    );
+    let head = |cell: &str, nodata: &str| {
+        format!("ncols 1\nnrows 3\nxllcorner 0\nyllcorner 1e308\ncellsize {cell}\nNODATA_value {nodata}\n1 2 3\n")
+    };
+    let cellsize = "cellsize".to_string();
+    assert_eq!(
+        header_problem(&head("-1", "0")),
+        (cellsize.clone(), P::NotPositive)
+    );
+    assert_eq!(
+        header_problem(&head("inf", "0")),
+        (cellsize.clone(), P::NotFinite)
+    );
+    assert_eq!(header_problem(&head("ten", "0")), (cellsize, P::NotANumber));
+    assert_eq!(
+        header_problem(&head("1e308", "0")),
+        (
+            "yllcorner".to_string(),
+            P::ReachesInfinity {
+                count: 3,
+                cell_size: 1e308
+            }
+        )
+    );
+    assert_eq!(
+        header_problem(&head("1", "none")),
+        ("NODATA_value".to_string(), P::NotANumber)
     );
 }

@@ -3,7 +3,7 @@
 //! uniform stress, layer refinement, and the errors bad input gets.
 
 use dismech::error::DismechError;
-use dismech::grid::{parse_esri_ascii, Raster};
+use dismech::grid::{parse_esri_ascii, GridCellProblem, Raster};
 use dismech::hpm::*;
 use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
@@ -625,12 +625,17 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     );
     match SlopeGrids::new(ground(), other, None).unwrap_err() {
         DismechError::GridMismatch {
-            file, reference, ..
+            file,
+            reference,
+            found,
+            expected,
         } => {
             assert_eq!(
                 (file.as_str(), reference.as_str()),
                 ("slip.asc", "ground.asc")
-            )
+            );
+            assert_eq!((found.rows, found.columns, found.cell_size), (3, 3, 5.0));
+            assert_ne!(found, expected);
         }
         e => panic!("{e}"),
     }
@@ -638,9 +643,13 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
     match SlopeGrids::new(ground(), holed, None).unwrap_err() {
         DismechError::GridCell {
-            file, row, column, ..
+            file,
+            row,
+            column,
+            problem,
         } => {
-            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1))
+            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1));
+            assert_eq!(problem, GridCellProblem::SlipSurfaceHole);
         }
         e => panic!("{e}"),
     }
@@ -648,9 +657,13 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
     match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
         DismechError::GridCell {
-            file, row, column, ..
+            file,
+            row,
+            column,
+            problem,
         } => {
-            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1))
+            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1));
+            assert_eq!(problem, GridCellProblem::NoGround);
         }
         e => panic!("{e}"),
     }
@@ -664,9 +677,13 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     .unwrap_err()
     {
         DismechError::GridCell {
-            file, row, column, ..
+            file,
+            row,
+            column,
+            problem,
         } => {
-            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2))
+            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2));
+            assert_eq!(problem, GridCellProblem::NoWaterTable);
         }
         e => panic!("{e}"),
     }

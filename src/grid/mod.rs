@@ -58,11 +58,16 @@
 //! raster of [`MAX_GRID_CELLS`]
 //! cells takes 800 MB, within classic TIFF's 4 GiB.
 
+mod error;
 mod esri_ascii;
 mod format;
 mod geotiff;
 mod raster;
 
+pub use error::{
+    FileKind, GeoTiffProblem, GridCellProblem, GridExtent, GridFormatProblem, GridHeaderProblem,
+    MissingTags, TiffDamage,
+};
 pub use esri_ascii::{
     parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii, MAX_BYTES_PER_VALUE,
     MAX_HEADER_BYTES,

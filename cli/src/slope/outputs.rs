@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
-use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
+use dismech::grid::{write_rasters_with_crs, GridFormatProblem, Raster, RasterFormat};
 use dismech::slope::{surface_columns, SearchCounts, SearchResult, Terrain, TrialSurface};
 
 use super::args::SlopeArgs;
@@ -191,9 +191,10 @@ pub fn write<S: TrialSurface + Copy>(
                     file: prj.display().to_string(),
                     line: 0,
                     column: 0,
-                    message: format!(
-                        "the coordinate system beside the DEM cannot be read as text: {e}"
-                    ),
+                    problem: GridFormatProblem::CrsUnreadable {
+                        kind: e.kind(),
+                        message: e.to_string(),
+                    },
                 },
             )
         })?;
