@@ -895,7 +895,7 @@ pub enum SolveError {
     /// The matrix could not be factorized (singular or, for Cholesky, not
     /// positive definite).
     #[error("factorization failed: {0}")]
-    Factorization(String),
+    Factorization(FactorizationFailure),
     /// A solver setting is out of its range.
     #[error("invalid {name} = {value}: {requirement}")]
     InvalidSetting {
@@ -916,5 +916,106 @@ pub enum SolveError {
     },
     /// The underlying LP solver refused the problem.
     #[error("linear program solver error: {0}")]
-    LinearProgram(String),
+    LinearProgram(LpFailure),
+}
+
+/// Why a matrix could not be factorized or a factor used
+/// ([`SolveError::Factorization`]); where the linear-algebra library
+/// (faer) refused, its message is kept.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FactorizationFailure {
+    /// A solve asked of a solver that holds no factor.
+    #[error("solve before a factorization")]
+    NotFactored,
+    /// The symbolic analysis of the sparsity pattern failed.
+    #[error("{stage}: {message}")]
+    Analysis {
+        /// The step of the analysis (e.g. `symbolic Cholesky analysis`).
+        stage: &'static str,
+        /// The library's message.
+        message: String,
+    },
+    /// A workspace could not be allocated.
+    #[error("allocating the {workspace} workspace: {message}")]
+    Workspace {
+        /// Which workspace (`LU`, `solve`, `Cholesky`).
+        workspace: &'static str,
+        /// The library's message.
+        message: String,
+    },
+    /// The sparse Cholesky factorization met a pivot that is not positive.
+    #[error("sparse Cholesky (matrix not positive definite) failed: {message}")]
+    NotPositiveDefinite {
+        /// The library's message.
+        message: String,
+    },
+    /// The sparse LU factorization met a zero column.
+    #[error("sparse LU (matrix structurally singular): {message}")]
+    StructurallySingular {
+        /// The library's message.
+        message: String,
+    },
+    /// The factor gave a solution that is not finite.
+    #[error("matrix is numerically singular: solution entry {index} is {value}")]
+    NumericallySingular {
+        /// The entry of the solution.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A diagonal block of a block-Jacobi preconditioner is not positive
+    /// definite.
+    #[error("block-Jacobi block {block} is not positive definite")]
+    BlockNotPositiveDefinite {
+        /// Index of the block.
+        block: usize,
+    },
+    /// A diagonal block of a multigrid level is not positive definite.
+    #[error("diagonal block {block} of a multigrid level is not positive definite")]
+    LevelBlockNotPositiveDefinite {
+        /// Index of the block.
+        block: usize,
+    },
+    /// A block row of a multigrid level has no diagonal block.
+    #[error("block {block} has no diagonal block")]
+    NoDiagonalBlock {
+        /// Index of the block row.
+        block: usize,
+    },
+    /// A multigrid aggregate too small for the near-null vectors.
+    #[error(
+        "aggregate {aggregate} has {unknowns} unknowns, fewer than the {vectors} near-null vectors"
+    )]
+    SmallAggregate {
+        /// Index of the aggregate.
+        aggregate: usize,
+        /// Its unknowns.
+        unknowns: usize,
+        /// The near-null vectors.
+        vectors: usize,
+    },
+}
+
+/// Why the LP solver gave no usable answer ([`SolveError::LinearProgram`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LpFailure {
+    /// The solver (Clarabel) refused to set the problem up.
+    #[error("{message}")]
+    Setup {
+        /// The solver's message.
+        message: String,
+    },
+    /// The solver panicked inside (on degenerate input); the panic was
+    /// caught.
+    #[error("{message}")]
+    Panicked {
+        /// The panic's message, or `internal solver panic`.
+        message: String,
+    },
+    /// The LP of a mechanism-uniqueness test did not reach an optimum.
+    #[error("the uniqueness test LP ended with status {status:?}")]
+    UniquenessTest {
+        /// The status it ended with.
+        status: crate::lp::LpStatus,
+    },
 }
