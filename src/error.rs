@@ -382,16 +382,16 @@ pub enum DismechError {
     /// mechanism ([`crate::vtk`]).
     #[error("VTK output: {reason}")]
     VtkData {
-        /// What does not fit, and what to change.
-        reason: String,
+        /// What does not fit.
+        reason: crate::vtk::VtkProblem,
     },
     /// Maps asked of a result on a grid it does not belong to: an HPM or
     /// Hovland result of another model, or a model of another grid
     /// ([`crate::hpm::ColumnMaps`]).
     #[error("maps: {reason}")]
     MapData {
-        /// What does not fit, and what to change.
-        reason: String,
+        /// What does not fit.
+        reason: crate::hpm::MapProblem,
     },
     /// Writing an output failed.
     #[error("cannot write {path}: {message}")]

@@ -1145,6 +1145,19 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
     ] {
         let message = e.to_string();
         assert!(matches!(e, DismechError::MapData { .. }), "{e}");
+        assert!(
+            matches!(
+                &e,
+                DismechError::MapData {
+                    reason: MapProblem::GridSize {
+                        model: (4, 4, _),
+                        rasters: (5, 4, _),
+                        ..
+                    }
+                }
+            ),
+            "{e}"
+        );
         assert!(message.contains("`ground.asc`"), "{message}");
         assert!(
             message.contains("4 × 4 cells of 10 m, the rasters 5 × 4"),
@@ -1163,12 +1176,37 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
         None,
     )
     .unwrap();
-    let e = result.maps(&small, &shifted).unwrap_err().to_string();
+    let e = result.maps(&small, &shifted).unwrap_err();
+    assert!(
+        matches!(&e, DismechError::MapData { reason: MapProblem::CornerOff { ground, .. } } if ground == "moved.asc"),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("`moved.asc`") && e.contains("corner"), "{e}");
     // A result of another model.
     let large_grids = grids(5, 4, 20.0, 5.0).unwrap();
-    let e = result.maps(&large, &large_grids).unwrap_err().to_string();
+    let e = result.maps(&large, &large_grids).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DismechError::MapData {
+                reason: MapProblem::NotThisResult { .. }
+            }
+        ),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("not a result of this model"), "{e}");
-    let e = hov.maps(&large, &large_grids).unwrap_err().to_string();
+    let e = hov.maps(&large, &large_grids).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DismechError::MapData {
+                reason: MapProblem::NotThisHovland { .. }
+            }
+        ),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("not Hovland's method of this model"), "{e}");
 }
