@@ -47,11 +47,11 @@ pub enum DismechError {
     #[error("{what} needs about {bytes} bytes ({}): {advice}", Bytes(*bytes))]
     OutOfMemory {
         /// What would be allocated, with its sizes.
-        what: String,
+        what: crate::explicit::MemoryUse,
         /// Bytes it needs (an estimate where it is a budget).
         bytes: u128,
         /// Why it is refused and what to change.
-        advice: String,
+        advice: crate::explicit::MemoryAdvice,
     },
     /// Two particles overlap at the start by more than the tolerance.
     #[error("particles {a} and {b} overlap by {overlap:.3e} m at the start, more than the tolerance {tolerance:.3e} m")]
@@ -607,12 +607,12 @@ pub enum DismechError {
     /// A strength layer of the ground of a slope search that cannot be
     /// used ([`crate::slope::Layer`]): its bottom raster off the DEM's
     /// grid, a bottom missing or given where it must not be, no layer.
-    #[error("layer `{layer}`: {message}")]
+    #[error("layer `{layer}`: {problem}")]
     InvalidLayer {
         /// The layer's name.
         layer: String,
         /// What is wrong, with the offending file or value.
-        message: String,
+        problem: crate::slope::LayerProblem,
     },
     /// Ground that an HPM re-analysis of a trial surface
     /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold

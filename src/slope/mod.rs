@@ -48,6 +48,7 @@
 mod family;
 mod ground;
 mod hovland;
+mod layer_problem;
 mod material;
 mod output;
 mod reanalysis;
@@ -58,6 +59,7 @@ mod terrain;
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};
 pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
 pub use hovland::{hovland_columns, hovland_ground, Evaluator, SurfaceFs};
+pub use layer_problem::LayerProblem;
 pub use material::{SlopeLoads, SlopeMaterial, WATER_UNIT_WEIGHT};
 pub use output::MAP_NAMES;
 pub use reanalysis::{hpm_reanalysis, surface_raster, HpmReanalysis, HpmStiffness};
