@@ -173,84 +173,10 @@ pub enum DismechError {
     /// The dead loads' multiplier is sought, but every dead load is zero.
     #[error("the dead loads' multiplier is sought (multiply_dead_loads), but every body's load is zero: set the bodies' weights with set_load")]
     NoDeadLoads,
-    /// A grid file (ESRI ASCII raster) is malformed.
-    #[error("{file}, line {line}, column {column}: {problem}")]
-    GridFormat {
-        /// The file (or the name given to the text).
-        file: String,
-        /// Line number, from 1 (0 when the problem is the file as a whole).
-        line: usize,
-        /// Column (character position in the line), from 1.
-        column: usize,
-        /// What is wrong.
-        problem: crate::grid::GridFormatProblem,
-    },
-    /// A value of a grid file's header cannot be used (a count that is not
-    /// a whole number, a cell size that is not positive, a coordinate or
-    /// NODATA value that is not a number...).
-    #[error("{file}, line {line}: `{key} {value}`: {requirement}")]
-    GridHeader {
-        /// The file (or the name given to the text).
-        file: String,
-        /// Line of the value, from 1.
-        line: usize,
-        /// The key as written in the file (e.g. `ncols`).
-        key: String,
-        /// The value as written in the file.
-        value: String,
-        /// What the value must satisfy.
-        requirement: crate::grid::GridHeaderProblem,
-    },
-    /// A grid file's header asks for more cells than a grid may hold
-    /// ([`crate::grid::MAX_GRID_CELLS`]); refused before any value is read.
-    #[error("{file}: ncols × nrows = {columns} × {rows} = {cells} cells, more than the {cap} cells a grid may hold; crop or coarsen the grid")]
-    GridTooLarge {
-        /// The file (or the name given to the text).
-        file: String,
-        /// `ncols` as given.
-        columns: u64,
-        /// `nrows` as given.
-        rows: u64,
-        /// Their exact product.
-        cells: u128,
-        /// The largest number of cells accepted.
-        cap: usize,
-    },
-    /// A GeoTIFF file cannot be read as a raster: not a TIFF, damaged, or a
-    /// TIFF without what a raster needs (one band, square cells, a tie
-    /// point), naming the tag and its value.
-    #[error("{file}: {problem}")]
-    GeoTiff {
-        /// The file.
-        file: String,
-        /// What is wrong, naming the tag and its value.
-        problem: crate::grid::GeoTiffProblem,
-    },
-    /// A cell of a grid file cannot be used (no data inside the slide, a
-    /// water table missing over a column, ...).
-    #[error("{file}, grid row {row}, column {column}: {problem}")]
-    GridCell {
-        /// The file (or the name given to the raster).
-        file: String,
-        /// Grid row, from 0 at the top (north) as in the file.
-        row: usize,
-        /// Grid column, from 0 at the left (west).
-        column: usize,
-        /// What is wrong.
-        problem: crate::grid::GridCellProblem,
-    },
-    /// Two grid files do not lie on the same grid.
-    #[error("{file} does not lie on the grid of {reference}: {found} against {expected} (rows × columns, cell size, lower-left corner)")]
-    GridMismatch {
-        /// The file that differs.
-        file: String,
-        /// The file whose grid is the reference.
-        reference: String,
-        /// The grid of `file` (boxed: it keeps the error small).
-        found: Box<crate::grid::GridExtent>,
-        /// The grid of `reference`.
-        expected: Box<crate::grid::GridExtent>,
-    },
+    /// A grid file (ESRI ASCII or GeoTIFF) that cannot be read or used
+    /// ([`crate::grid::GridError`]).
+    #[error(transparent)]
+    Grid(#[from] crate::grid::GridError),
     /// No cell has its slip surface below the ground surface.
     #[error("no valid column: the slip surface of {slip} lies nowhere below the ground surface of {ground}")]
     NoValidColumn {

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use dismech::error::DismechError;
 use dismech::grid::{
     parse_geotiff, read_geotiff, write_geotiff, FileKind, GeoTiffProblem, GridCellProblem,
-    MissingTags, Raster, TiffDamage, MAX_GEOTIFF_EXPANSION, MAX_GRID_CELLS,
+    GridError, MissingTags, Raster, TiffDamage, MAX_GEOTIFF_EXPANSION, MAX_GRID_CELLS,
 };
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
@@ -136,9 +136,9 @@ fn seeds(name: &str) -> Vec<Vec<u8>> {
 
 fn kind(e: &DismechError) -> &'static str {
     match e {
-        DismechError::GeoTiff { .. } => "GeoTiff",
-        DismechError::GridTooLarge { .. } => "GridTooLarge",
-        DismechError::GridCell { .. } => "GridCell",
+        DismechError::Grid(GridError::GeoTiff { .. }) => "GeoTiff",
+        DismechError::Grid(GridError::TooLarge { .. }) => "GridTooLarge",
+        DismechError::Grid(GridError::Cell { .. }) => "GridCell",
         DismechError::InvalidParameter { .. } => "InvalidParameter",
         _ => "other",
     }
@@ -266,11 +266,11 @@ fn bad_geotiffs_are_refused_naming_the_file_and_the_tag() {
     assert!(
         matches!(
             e,
-            DismechError::GridCell {
+            DismechError::Grid(GridError::Cell {
                 row: 1,
                 column: 3,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -300,7 +300,7 @@ fn geotiff_refusals_carry_a_typed_cause() {
     let h = heights();
     let problem = |name: &str, bytes: Vec<u8>| -> GeoTiffProblem {
         match parse_geotiff(&bytes, name).unwrap_err() {
-            DismechError::GeoTiff { file, problem } => {
+            DismechError::Grid(GridError::GeoTiff { file, problem }) => {
                 assert_eq!(file, name);
                 problem
             }
@@ -422,17 +422,17 @@ fn geotiff_refusals_carry_a_typed_cause() {
         tiff_file::<Gray64Float>(6, 4, &infinite, Compression::Uncompressed, &Tags::good());
     assert_eq!(
         parse_geotiff(&infinite, "infinite.tif").unwrap_err(),
-        DismechError::GridCell {
+        DismechError::Grid(GridError::Cell {
             file: "infinite.tif".into(),
             row: 1,
             column: 3,
             problem: GridCellProblem::NotFinite {
                 value: f64::INFINITY
             },
-        }
+        })
     );
     match read_geotiff(&dir).unwrap_err() {
-        DismechError::GeoTiff { problem, .. } => assert_eq!(
+        DismechError::Grid(GridError::GeoTiff { problem, .. }) => assert_eq!(
             problem,
             GeoTiffProblem::NotRegularFile {
                 kind: FileKind::Directory
@@ -441,10 +441,10 @@ fn geotiff_refusals_carry_a_typed_cause() {
         e => panic!("{e}"),
     }
     match read_geotiff(&dir.join("missing.tif")).unwrap_err() {
-        DismechError::GeoTiff {
+        DismechError::Grid(GridError::GeoTiff {
             problem: GeoTiffProblem::CannotRead { kind, .. },
             ..
-        } => assert_eq!(kind, std::io::ErrorKind::NotFound),
+        }) => assert_eq!(kind, std::io::ErrorKind::NotFound),
         e => panic!("{e}"),
     }
 }
@@ -466,7 +466,7 @@ fn a_file_claiming_more_cells_than_the_cap_is_refused_before_decoding() {
     std::fs::write(&path, &bytes).unwrap();
     let e = read_geotiff(&path).unwrap_err();
     assert!(
-        matches!(e, DismechError::GridTooLarge { columns: 2147483648, rows: 1, cap, .. } if cap == MAX_GRID_CELLS),
+        matches!(e, DismechError::Grid(GridError::TooLarge { columns: 2147483648, rows: 1, cap, .. }) if cap == MAX_GRID_CELLS),
         "{e}"
     );
     // 10^7 cells claimed by an uncompressed file of a few hundred bytes.
@@ -476,7 +476,7 @@ fn a_file_claiming_more_cells_than_the_cap_is_refused_before_decoding() {
     assert!(
         matches!(
             &e,
-            DismechError::GeoTiff {
+            DismechError::Grid(GridError::GeoTiff {
                 problem: GeoTiffProblem::ValuesExceedFile {
                     width: 10_000_000,
                     height: 1,
@@ -485,7 +485,7 @@ fn a_file_claiming_more_cells_than_the_cap_is_refused_before_decoding() {
                     ..
                 },
                 ..
-            }
+            })
         ),
         "{e}"
     );

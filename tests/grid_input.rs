@@ -5,7 +5,7 @@
 
 use dismech::error::DismechError;
 use dismech::grid::{
-    parse_esri_ascii, GridFormatProblem, GridHeaderProblem, Raster, MAX_GRID_CELLS,
+    parse_esri_ascii, GridError, GridFormatProblem, GridHeaderProblem, Raster, MAX_GRID_CELLS,
 };
 use dismech::hpm::SlopeGrids;
 
@@ -41,13 +41,13 @@ fn nrows_2147483648_in_a_seven_line_file_is_refused_before_any_allocation() {
         result = Some(parse_esri_ascii(&text, "ground.asc"));
     });
     match result.expect("parsed").unwrap_err() {
-        DismechError::GridTooLarge {
+        DismechError::Grid(GridError::TooLarge {
             file,
             columns,
             rows,
             cells,
             cap,
-        } => {
+        }) => {
             assert_eq!(file, "ground.asc");
             assert_eq!((columns, rows), (24, 2_147_483_648));
             assert_eq!(cells, 24 * 2_147_483_648);
@@ -68,13 +68,13 @@ fn ncols_1e30_is_refused_as_not_a_whole_number() {
     // Used to panic with "capacity overflow" (1e30 as usize saturates).
     let text = grid("1e30", "1", "1");
     match parse_esri_ascii(&text, "ground.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file,
             line,
             key,
             value,
             ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), line, key.as_str(), value.as_str()),
             ("ground.asc", 1, "ncols", "1e30")
         ),
@@ -90,9 +90,9 @@ fn ncols_274177_nrows_67280421310721_is_refused_not_wrapped_to_one_cell() {
     let exact = 274_177_u128 * 67_280_421_310_721_u128;
     assert_eq!(exact, u128::from(u64::MAX) + 2);
     match parse_esri_ascii(&text, "slip.asc").unwrap_err() {
-        DismechError::GridTooLarge {
+        DismechError::Grid(GridError::TooLarge {
             file, rows, cells, ..
-        } => {
+        }) => {
             assert_eq!(
                 (file.as_str(), rows, cells),
                 ("slip.asc", 67_280_421_310_721, exact)
@@ -116,7 +116,7 @@ fn slope_grids_read_of_ncols_274177_nrows_67280421310721_returns_an_error() {
     let result = std::panic::catch_unwind(|| SlopeGrids::read(&ground, &slip, None));
     std::fs::remove_dir_all(&dir).unwrap();
     match result.expect("no panic") {
-        Err(DismechError::GridTooLarge { file, .. }) => {
+        Err(DismechError::Grid(GridError::TooLarge { file, .. })) => {
             assert_eq!(file, ground.display().to_string())
         }
         other => panic!("{other:?}"),
@@ -129,7 +129,7 @@ fn ncols_beyond_64_bits_is_refused_not_saturated() {
     // with "capacity overflow".
     let text = grid("18446744073709551616", "1", "1");
     match parse_esri_ascii(&text, "ground.asc").unwrap_err() {
-        DismechError::GridHeader { key, value, .. } => {
+        DismechError::Grid(GridError::Header { key, value, .. }) => {
             assert_eq!(
                 (key.as_str(), value.as_str()),
                 ("ncols", "18446744073709551616")
@@ -145,13 +145,13 @@ fn a_corner_or_cell_size_reaching_past_the_largest_coordinate_is_refused() {
     // the grid accepted.
     let text = "ncols 1\nnrows 3\nxllcorner 0\nyllcorner 1e308\ncellsize 1e308\n1 2 3\n";
     match parse_esri_ascii(text, "water.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file,
             line,
             key,
             value,
             ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), line, key.as_str(), value.as_str()),
             ("water.asc", 4, "yllcorner", "1e308")
         ),
@@ -160,9 +160,9 @@ fn a_corner_or_cell_size_reaching_past_the_largest_coordinate_is_refused() {
     // An infinite corner was refused without the file's name.
     let text = "ncols 1\nnrows 1\nXLLCORNER inf\nyllcorner 0\ncellsize 1\n1\n";
     match parse_esri_ascii(text, "water.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file, key, value, ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), key.as_str(), value.as_str()),
             ("water.asc", "XLLCORNER", "inf")
         ),
@@ -211,12 +211,12 @@ fn raster_new_refuses_a_size_whose_product_wraps_to_its_value_count() {
 /// The cause of a `GridFormat` refusal of `text`, with its line and column.
 fn format_problem(text: &str) -> (usize, usize, GridFormatProblem) {
     match parse_esri_ascii(text, "g.asc").unwrap_err() {
-        DismechError::GridFormat {
+        DismechError::Grid(GridError::Format {
             file,
             line,
             column,
             problem,
-        } => {
+        }) => {
             assert_eq!(file, "g.asc");
             (line, column, problem)
         }
@@ -227,9 +227,9 @@ fn format_problem(text: &str) -> (usize, usize, GridFormatProblem) {
 /// The cause of a `GridHeader` refusal of `text`, with its key.
 fn header_problem(text: &str) -> (String, GridHeaderProblem) {
     match parse_esri_ascii(text, "g.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             key, requirement, ..
-        } => (key, requirement),
+        }) => (key, requirement),
         e => panic!("{e}"),
     }
 }

@@ -3,7 +3,7 @@
 //! uniform stress, layer refinement, and the errors bad input gets.
 
 use dismech::error::DismechError;
-use dismech::grid::{parse_esri_ascii, GridCellProblem, Raster};
+use dismech::grid::{parse_esri_ascii, GridCellProblem, GridError, Raster};
 use dismech::hpm::*;
 use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
@@ -624,12 +624,12 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
         .unwrap(),
     );
     match SlopeGrids::new(ground(), other, None).unwrap_err() {
-        DismechError::GridMismatch {
+        DismechError::Grid(GridError::Mismatch {
             file,
             reference,
             found,
             expected,
-        } => {
+        }) => {
             assert_eq!(
                 (file.as_str(), reference.as_str()),
                 ("slip.asc", "ground.asc")
@@ -642,12 +642,12 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     // A hole in the slip surface inside the slide.
     let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
     match SlopeGrids::new(ground(), holed, None).unwrap_err() {
-        DismechError::GridCell {
+        DismechError::Grid(GridError::Cell {
             file,
             row,
             column,
             problem,
-        } => {
+        }) => {
             assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1));
             assert_eq!(problem, GridCellProblem::SlipSurfaceHole);
         }
@@ -656,12 +656,12 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     // No ground data where the slip surface is given.
     let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
     match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
-        DismechError::GridCell {
+        DismechError::Grid(GridError::Cell {
             file,
             row,
             column,
             problem,
-        } => {
+        }) => {
             assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1));
             assert_eq!(problem, GridCellProblem::NoGround);
         }
@@ -676,12 +676,12 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     )
     .unwrap_err()
     {
-        DismechError::GridCell {
+        DismechError::Grid(GridError::Cell {
             file,
             row,
             column,
             problem,
-        } => {
+        }) => {
             assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2));
             assert_eq!(problem, GridCellProblem::NoWaterTable);
         }
@@ -698,11 +698,11 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     assert!(
         matches!(
             nan,
-            DismechError::GridFormat {
+            DismechError::Grid(GridError::Format {
                 line: 8,
                 column: 3,
                 ..
-            }
+            })
         ),
         "{nan}"
     );

@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 
 use dismech::error::{DismechError, SolveError};
 use dismech::grid::{
-    read_esri_ascii, to_esri_ascii, FileKind, GridFormatProblem, Raster, MAX_BYTES_PER_VALUE,
-    MAX_HEADER_BYTES,
+    read_esri_ascii, to_esri_ascii, FileKind, GridError, GridFormatProblem, Raster,
+    MAX_BYTES_PER_VALUE, MAX_HEADER_BYTES,
 };
 use dismech::hpm::*;
 use dismech::linsolve::CgSettings;
@@ -69,12 +69,12 @@ fn scratch(test: &str) -> PathBuf {
 /// The cause of a `GridFormat` error of `file`, or a panic.
 fn grid_format_problem(result: dismech::error::Result<Raster>, file: &Path) -> GridFormatProblem {
     match result {
-        Err(DismechError::GridFormat {
+        Err(DismechError::Grid(GridError::Format {
             file: name,
             line,
             problem,
             ..
-        }) => {
+        })) => {
             assert_eq!((name, line), (file.display().to_string(), 0));
             problem
         }

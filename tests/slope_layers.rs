@@ -4,6 +4,7 @@
 //! column sum; bad input refused with typed errors.
 
 use dismech::error::DismechError;
+use dismech::grid::GridError;
 use dismech::grid::Raster;
 use dismech::hpm::NamedRaster;
 use dismech::nalgebra::Vector3;
@@ -435,7 +436,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
                 "{message}"
             );
             assert!(
-                matches!(&problem, LayerProblem::BottomOffGrid(e) if matches!(**e, DismechError::GridMismatch { .. })),
+                matches!(&problem, LayerProblem::BottomOffGrid(e) if matches!(**e, DismechError::Grid(GridError::Mismatch { .. }))),
                 "{problem:?}"
             );
         }
@@ -545,7 +546,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
         .unwrap();
     assert!(matches!(
         Evaluator::new(&t, &g, &loads, &lim).unwrap_err(),
-        DismechError::GridMismatch { file, .. } if file == "ru_off.asc"
+        DismechError::Grid(GridError::Mismatch { file, .. }) if file == "ru_off.asc"
     ));
     // A water table and r_u together.
     let wet = Terrain::new(

@@ -1,17 +1,95 @@
-//! Why a grid file cannot be read or used: the causes carried by
-//! [`DismechError::GridFormat`], [`DismechError::GridHeader`],
-//! [`DismechError::GeoTiff`], [`DismechError::GridCell`] and
-//! [`DismechError::GridMismatch`], one variant a cause, so that a caller
-//! can `match` on it; each one's Display is the message's text.
-//!
-//! [`DismechError::GridFormat`]: crate::error::DismechError::GridFormat
-//! [`DismechError::GridHeader`]: crate::error::DismechError::GridHeader
-//! [`DismechError::GeoTiff`]: crate::error::DismechError::GeoTiff
-//! [`DismechError::GridCell`]: crate::error::DismechError::GridCell
-//! [`DismechError::GridMismatch`]: crate::error::DismechError::GridMismatch
+//! Grid-file errors: [`GridError`], joined into [`DismechError::Grid`],
+//! and the causes its variants carry ([`GridFormatProblem`],
+//! [`GridHeaderProblem`], [`GeoTiffProblem`], [`GridCellProblem`],
+//! [`GridExtent`]), one variant a cause, so that a caller can `match` on
+//! it; each one's Display is the message's text.
 
 use super::{MAX_BYTES_PER_VALUE, MAX_GRID_CELLS, MAX_HEADER_BYTES};
 use crate::error::DismechError;
+
+/// Why a grid file cannot be read or used; joined into
+/// [`DismechError::Grid`]. Each names the file.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GridError {
+    /// A grid file (ESRI ASCII raster) is malformed.
+    #[error("{file}, line {line}, column {column}: {problem}")]
+    Format {
+        /// The file (or the name given to the text).
+        file: String,
+        /// Line number, from 1 (0 when the problem is the file as a whole).
+        line: usize,
+        /// Column (character position in the line), from 1.
+        column: usize,
+        /// What is wrong.
+        problem: GridFormatProblem,
+    },
+    /// A value of a grid file's header cannot be used (a count that is not
+    /// a whole number, a cell size that is not positive, a coordinate or
+    /// NODATA value that is not a number...).
+    #[error("{file}, line {line}: `{key} {value}`: {requirement}")]
+    Header {
+        /// The file (or the name given to the text).
+        file: String,
+        /// Line of the value, from 1.
+        line: usize,
+        /// The key as written in the file (e.g. `ncols`).
+        key: String,
+        /// The value as written in the file.
+        value: String,
+        /// What the value must satisfy.
+        requirement: GridHeaderProblem,
+    },
+    /// A grid file's header asks for more cells than a grid may hold
+    /// ([`MAX_GRID_CELLS`]); refused before any value is read.
+    #[error("{file}: ncols × nrows = {columns} × {rows} = {cells} cells, more than the {cap} cells a grid may hold; crop or coarsen the grid")]
+    TooLarge {
+        /// The file (or the name given to the text).
+        file: String,
+        /// `ncols` as given.
+        columns: u64,
+        /// `nrows` as given.
+        rows: u64,
+        /// Their exact product.
+        cells: u128,
+        /// The largest number of cells accepted.
+        cap: usize,
+    },
+    /// A GeoTIFF file cannot be read as a raster: not a TIFF, damaged, or a
+    /// TIFF without what a raster needs (one band, square cells, a tie
+    /// point), naming the tag and its value.
+    #[error("{file}: {problem}")]
+    GeoTiff {
+        /// The file.
+        file: String,
+        /// What is wrong, naming the tag and its value.
+        problem: GeoTiffProblem,
+    },
+    /// A cell of a grid file cannot be used (no data inside the slide, a
+    /// water table missing over a column, ...).
+    #[error("{file}, grid row {row}, column {column}: {problem}")]
+    Cell {
+        /// The file (or the name given to the raster).
+        file: String,
+        /// Grid row, from 0 at the top (north) as in the file.
+        row: usize,
+        /// Grid column, from 0 at the left (west).
+        column: usize,
+        /// What is wrong.
+        problem: GridCellProblem,
+    },
+    /// Two grid files do not lie on the same grid.
+    #[error("{file} does not lie on the grid of {reference}: {found} against {expected} (rows × columns, cell size, lower-left corner)")]
+    Mismatch {
+        /// The file that differs.
+        file: String,
+        /// The file whose grid is the reference.
+        reference: String,
+        /// The grid of `file` (boxed: it keeps the error small).
+        found: Box<GridExtent>,
+        /// The grid of `reference`.
+        expected: Box<GridExtent>,
+    },
+}
 
 /// What a path that is not a regular file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -63,7 +141,7 @@ impl FileKind {
     }
 }
 
-/// Why an ESRI ASCII grid file is malformed ([`DismechError::GridFormat`]).
+/// Why an ESRI ASCII grid file is malformed ([`GridError::Format`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GridFormatProblem {
     /// The operating system could not read the file.
@@ -172,7 +250,7 @@ pub enum GridFormatProblem {
 }
 
 /// Why a value of an ESRI ASCII grid's header cannot be used
-/// ([`DismechError::GridHeader`]); the Display says what it must satisfy.
+/// ([`GridError::Header`]); the Display says what it must satisfy.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GridHeaderProblem {
     /// A count (`ncols`, `nrows`) not written as digits.
@@ -279,7 +357,7 @@ pub enum TiffDamage {
 }
 
 /// Why a GeoTIFF file cannot be read as a raster
-/// ([`DismechError::GeoTiff`]), naming the tag and its value where one is
+/// ([`GridError::GeoTiff`]), naming the tag and its value where one is
 /// at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GeoTiffProblem {
@@ -430,7 +508,7 @@ pub enum GeoTiffProblem {
     },
 }
 
-/// Why a cell of a grid cannot be used ([`DismechError::GridCell`]).
+/// Why a cell of a grid cannot be used ([`GridError::Cell`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GridCellProblem {
     /// A value that is not finite.

@@ -31,18 +31,18 @@
 
 use std::path::Path;
 
-use super::error::{FileKind, GridFormatProblem as Problem, GridHeaderProblem};
+use super::error::{FileKind, GridError, GridFormatProblem as Problem, GridHeaderProblem};
 use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
 
 fn format_error(file: &str, line: usize, column: usize, problem: Problem) -> DismechError {
-    DismechError::GridFormat {
+    DismechError::Grid(GridError::Format {
         file: file.to_string(),
         line,
         column,
         problem,
-    }
+    })
 }
 
 /// The most bytes read before the header is checked: the header must end
@@ -66,14 +66,14 @@ pub const MAX_BYTES_PER_VALUE: u64 = 256;
 /// parsed as by [`parse_esri_ascii`].
 ///
 /// # Errors
-/// [`DismechError::GridFormat`] (line 0) for a path that cannot be read
+/// [`GridError::Format`] (line 0) for a path that cannot be read
 /// ([`Problem::CannotRead`]) or is not a regular file
 /// ([`Problem::NotRegularFile`], naming what it is), a file that is not
 /// UTF-8 text ([`Problem::NotUtf8`]), a header that does not end within
 /// [`MAX_HEADER_BYTES`] ([`Problem::NoCompleteHeader`]), or a file larger
 /// than its header's grid can need ([`Problem::FileTooLarge`], naming both
 /// sizes); then those of [`parse_esri_ascii`], a header's
-/// [`DismechError::GridHeader`] and [`DismechError::GridTooLarge`] before
+/// [`GridError::Header`] and [`GridError::TooLarge`] before
 /// any value is read.
 pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
     use std::io::Read;
@@ -132,7 +132,7 @@ pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
 
 /// The largest size a file may have whose first [`MAX_HEADER_BYTES`] are
 /// `head`, from the grid its header describes; the header's errors, or a
-/// [`DismechError::GridFormat`] when the header does not end in `head` or
+/// [`GridError::Format`] when the header does not end in `head` or
 /// the file's `size` is over the limit.
 fn allowed_size(head: &[u8], name: &str, size: u64) -> Result<u64> {
     // Whole tokens only: cut at the last whitespace, and at the end of the
@@ -175,13 +175,13 @@ struct Entry<'a> {
 
 impl Entry<'_> {
     fn error(&self, file: &str, requirement: GridHeaderProblem) -> DismechError {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file: file.to_string(),
             line: self.line,
             key: self.key.to_string(),
             value: self.value.to_string(),
             requirement,
-        }
+        })
     }
 
     /// The value as a count of cells: digits only, at least 1.
@@ -328,13 +328,13 @@ fn parse_header<'a>(
     let (columns, rows) = (ncols.count(name)?, nrows.count(name)?);
     let cells = u128::from(columns) * u128::from(rows);
     if cells > MAX_GRID_CELLS as u128 {
-        return Err(DismechError::GridTooLarge {
+        return Err(DismechError::Grid(GridError::TooLarge {
             file: name.to_string(),
             columns,
             rows,
             cells,
             cap: MAX_GRID_CELLS,
-        });
+        }));
     }
     // Lossless: each factor is at most the product, at most MAX_GRID_CELLS.
     let (columns, rows, cells) = (columns as usize, rows as usize, cells as usize);
@@ -377,10 +377,10 @@ fn parse_header<'a>(
 /// Parse the text of an ESRI ASCII grid; `name` is used in errors.
 ///
 /// # Errors
-/// [`DismechError::GridHeader`] for a header value that cannot be used
+/// [`GridError::Header`] for a header value that cannot be used
 /// (its [`GridHeaderProblem`] says what it must satisfy),
-/// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells,
-/// [`DismechError::GridFormat`] for anything else: a header cut short
+/// [`GridError::TooLarge`] for more than [`MAX_GRID_CELLS`] cells,
+/// [`GridError::Format`] for anything else: a header cut short
 /// ([`Problem::EndsInsideHeader`], [`Problem::KeyWithoutValue`]), a key
 /// given twice ([`Problem::KeyTwice`]) or missing
 /// ([`Problem::MissingKey`]), a value that is not a number
@@ -508,12 +508,12 @@ mod tests {
     fn esri_grid_errors_name_file_line_and_column() {
         let bad = SAMPLE.replace("5.5", "5,5");
         match parse_esri_ascii(&bad, "slip.asc").unwrap_err() {
-            DismechError::GridFormat {
+            DismechError::Grid(GridError::Format {
                 file,
                 line,
                 column,
                 problem,
-            } => {
+            }) => {
                 assert_eq!((file.as_str(), line, column), ("slip.asc", 8, 3));
                 assert!(problem.to_string().contains("row 1, column 1"), "{problem}");
                 let text = "5,5".to_string();

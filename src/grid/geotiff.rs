@@ -10,7 +10,9 @@ use tiff::encoder::{colortype::Gray64Float, TiffEncoder};
 use tiff::tags::Tag;
 use tiff::ColorType;
 
-use super::error::{FileKind, GeoTiffProblem as Problem, GridCellProblem, MissingTags, TiffDamage};
+use super::error::{
+    FileKind, GeoTiffProblem as Problem, GridCellProblem, GridError, MissingTags, TiffDamage,
+};
 use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
@@ -383,7 +385,7 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 /// takes is bounded by the file's size.
 ///
 /// # Errors
-/// [`DismechError::GeoTiff`] naming the file and, where one is at fault,
+/// [`GridError::GeoTiff`] naming the file and, where one is at fault,
 /// the tag and its value, its [`Problem`] one of: a path that cannot be
 /// read ([`Problem::CannotRead`]) or is not a regular file
 /// ([`Problem::NotRegularFile`]), not a TIFF or a damaged one
@@ -400,16 +402,18 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 /// [`Problem::NodataNotText`]), a tag that is not numbers
 /// ([`Problem::TagNotNumbers`]), or values the file cannot hold
 /// ([`Problem::ValuesExceedFile`], [`Problem::ValueCount`]);
-/// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells;
-/// [`DismechError::GridCell`] ([`GridCellProblem::NotFinite`]) for an
+/// [`GridError::TooLarge`] for more than [`MAX_GRID_CELLS`] cells;
+/// [`GridError::Cell`] ([`GridCellProblem::NotFinite`]) for an
 /// infinite value (naming its row and column); and
 /// [`Problem::Georeference`], holding the error of [`Raster::new`], for a
 /// corner or extent that is not finite.
 pub fn read_geotiff(path: &Path) -> Result<Raster> {
     let name = path.display().to_string();
-    let fail = |problem: Problem| DismechError::GeoTiff {
-        file: name.clone(),
-        problem,
+    let fail = |problem: Problem| {
+        DismechError::Grid(GridError::GeoTiff {
+            file: name.clone(),
+            problem,
+        })
     };
     let cannot = |e: std::io::Error| {
         fail(Problem::CannotRead {
@@ -451,9 +455,11 @@ fn decode<R: std::io::Read + std::io::Seek>(
     name: &str,
 ) -> Result<Raster> {
     let name = name.to_string();
-    let fail = |problem: Problem| DismechError::GeoTiff {
-        file: name.clone(),
-        problem,
+    let fail = |problem: Problem| {
+        DismechError::Grid(GridError::GeoTiff {
+            file: name.clone(),
+            problem,
+        })
     };
     let tiff_error = |e: tiff::TiffError| {
         let damage = TiffDamage::Decoder {
@@ -474,13 +480,13 @@ fn decode<R: std::io::Read + std::io::Seek>(
     let (width, height) = decoder.dimensions().map_err(tiff_error)?;
     let cells = u128::from(width) * u128::from(height);
     if cells > MAX_GRID_CELLS as u128 {
-        return Err(DismechError::GridTooLarge {
+        return Err(DismechError::Grid(GridError::TooLarge {
             file: name.clone(),
             columns: u64::from(width),
             rows: u64::from(height),
             cells,
             cap: MAX_GRID_CELLS,
-        });
+        }));
     }
     let bits = match decoder.colortype().map_err(tiff_error)? {
         ColorType::Gray(bits) => u64::from(bits),
@@ -620,14 +626,14 @@ fn decode<R: std::io::Read + std::io::Seek>(
         }));
     }
     if let Some(k) = values.iter().position(|v| v.is_some_and(f64::is_infinite)) {
-        return Err(DismechError::GridCell {
+        return Err(DismechError::Grid(GridError::Cell {
             file: name,
             row: k / columns,
             column: k % columns,
             problem: GridCellProblem::NotFinite {
                 value: values[k].unwrap_or_default(),
             },
-        });
+        }));
     }
     Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values).map_err(|e| {
         fail(Problem::Georeference {

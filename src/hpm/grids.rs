@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use crate::error::{DismechError, Result};
-use crate::grid::{read_raster, GridCellProblem, GridExtent, Raster};
+use crate::grid::{read_raster, GridCellProblem, GridError, GridExtent, Raster};
 
 /// The fewest rows, and the fewest columns, of slope grids: corner heights
 /// are interpolated (and at the edge extrapolated) between two cell centres
@@ -44,19 +44,19 @@ impl NamedRaster {
     /// columns, cell size, lower-left corner).
     ///
     /// # Errors
-    /// [`DismechError::GridMismatch`] naming both rasters and both grids
+    /// [`GridError::Mismatch`] naming both rasters and both grids
     /// (their [`GridExtent`]s).
     pub fn require_grid_of(&self, reference: &NamedRaster) -> Result<()> {
         let (a, b) = (&reference.raster, &self.raster);
         if a.same_grid(b) {
             return Ok(());
         }
-        Err(DismechError::GridMismatch {
+        Err(DismechError::Grid(GridError::Mismatch {
             file: self.name.clone(),
             reference: reference.name.clone(),
             found: Box::new(GridExtent::of(b)),
             expected: Box::new(GridExtent::of(a)),
-        })
+        }))
     }
 
     /// Read a grid file: GeoTIFF where its extension is `.tif` or `.tiff`,
@@ -87,7 +87,7 @@ impl SlopeGrids {
     /// Check the rasters and find the valid columns.
     ///
     /// # Errors
-    /// Rasters on different grids ([`DismechError::GridMismatch`]); a grid
+    /// Rasters on different grids ([`GridError::Mismatch`]); a grid
     /// of fewer than [`MIN_GRID_SIDE`] rows or columns
     /// ([`DismechError::GridTooSmall`], naming its size: the corner heights
     /// and slopes need two cell centres along each axis);
@@ -95,7 +95,7 @@ impl SlopeGrids {
     /// ([`GridCellProblem::NoGround`]), a slip-surface hole inside the
     /// slide ([`GridCellProblem::SlipSurfaceHole`]), or a water table
     /// without data over a valid column ([`GridCellProblem::NoWaterTable`])
-    /// ([`DismechError::GridCell`], naming file, row and column); no valid
+    /// ([`GridError::Cell`], naming file, row and column); no valid
     /// column ([`DismechError::NoValidColumn`]).
     pub fn new(ground: NamedRaster, slip: NamedRaster, water: Option<NamedRaster>) -> Result<Self> {
         for other in std::iter::once(&slip).chain(water.as_ref()) {
@@ -239,12 +239,12 @@ fn cell_error(
     column: usize,
     problem: GridCellProblem,
 ) -> DismechError {
-    DismechError::GridCell {
+    DismechError::Grid(GridError::Cell {
         file: raster.name.clone(),
         row,
         column,
         problem,
-    }
+    })
 }
 
 /// The value at grid node (node_row, node_column): node row 0 is the top

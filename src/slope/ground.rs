@@ -250,7 +250,7 @@ impl Ground {
     /// they are; for several layers, [`DismechError::InvalidLayer`] naming
     /// the layer for a material that fails it ([`LayerProblem::Material`])
     /// or a bottom raster on another grid ([`LayerProblem::BottomOffGrid`],
-    /// naming both files); [`DismechError::GridMismatch`] for an r_u
+    /// naming both files); [`crate::grid::GridError::Mismatch`] for an r_u
     /// raster on another grid; those of [`PoreRatio::validate`];
     /// [`DismechError::PorePressureTwice`] naming both when the terrain has
     /// a water table and the ground an r_u.

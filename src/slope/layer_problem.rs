@@ -13,7 +13,7 @@ pub enum LayerProblem {
     #[error("{0}")]
     Material(Box<DismechError>),
     /// The layer's bottom raster is not on the DEM's grid
-    /// ([`DismechError::GridMismatch`]).
+    /// ([`crate::grid::GridError::Mismatch`]).
     #[error("{0}")]
     BottomOffGrid(Box<DismechError>),
     /// A layer other than the last without a bottom raster.

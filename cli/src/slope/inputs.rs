@@ -2,6 +2,7 @@
 //! read and checked, each error naming its option.
 
 use dismech::error::DismechError;
+use dismech::grid::GridError;
 use dismech::hpm::NamedRaster;
 use dismech::law::friction_from_degrees;
 use dismech::slope::{Ground, Layer, PoreRatio, SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain};
@@ -28,7 +29,7 @@ pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
         None => None,
     };
     let terrain = Terrain::new(dem, water).map_err(|e| match (&e, &args.water) {
-        (DismechError::GridMismatch { .. }, Some(path)) => {
+        (DismechError::Grid(GridError::Mismatch { .. }), Some(path)) => {
             SlopeError::argument("--water", &path.display().to_string(), e)
         }
         _ => SlopeError::argument("--dem", &dem_value, e),

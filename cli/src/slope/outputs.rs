@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
-use dismech::grid::{write_rasters_with_crs, GridFormatProblem, Raster, RasterFormat};
+use dismech::grid::{write_rasters_with_crs, GridError, GridFormatProblem, Raster, RasterFormat};
 use dismech::slope::{surface_columns, SearchCounts, SearchResult, Terrain, TrialSurface};
 
 use super::args::SlopeArgs;
@@ -187,7 +187,7 @@ pub fn write<S: TrialSurface + Copy>(
             SlopeError::argument(
                 "--dem",
                 &args.dem.display().to_string(),
-                DismechError::GridFormat {
+                DismechError::Grid(GridError::Format {
                     file: prj.display().to_string(),
                     line: 0,
                     column: 0,
@@ -195,7 +195,7 @@ pub fn write<S: TrialSurface + Copy>(
                         kind: e.kind(),
                         message: e.to_string(),
                     },
-                },
+                }),
             )
         })?;
         Some(text)
