@@ -47,11 +47,11 @@ pub enum DismechError {
     #[error("{what} needs about {bytes} bytes ({}): {advice}", Bytes(*bytes))]
     OutOfMemory {
         /// What would be allocated, with its sizes.
-        what: String,
+        what: crate::explicit::MemoryUse,
         /// Bytes it needs (an estimate where it is a budget).
         bytes: u128,
         /// Why it is refused and what to change.
-        advice: String,
+        advice: crate::explicit::MemoryAdvice,
     },
     /// Two particles overlap at the start by more than the tolerance.
     #[error("particles {a} and {b} overlap by {overlap:.3e} m at the start, more than the tolerance {tolerance:.3e} m")]
@@ -173,82 +173,10 @@ pub enum DismechError {
     /// The dead loads' multiplier is sought, but every dead load is zero.
     #[error("the dead loads' multiplier is sought (multiply_dead_loads), but every body's load is zero: set the bodies' weights with set_load")]
     NoDeadLoads,
-    /// A grid file (ESRI ASCII raster) is malformed.
-    #[error("{file}, line {line}, column {column}: {message}")]
-    GridFormat {
-        /// The file (or the name given to the text).
-        file: String,
-        /// Line number, from 1 (0 when the problem is the file as a whole).
-        line: usize,
-        /// Column (character position in the line), from 1.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
-    /// A value of a grid file's header cannot be used (a count that is not
-    /// a whole number, a cell size that is not positive, a coordinate or
-    /// NODATA value that is not a number...).
-    #[error("{file}, line {line}: `{key} {value}`: {requirement}")]
-    GridHeader {
-        /// The file (or the name given to the text).
-        file: String,
-        /// Line of the value, from 1.
-        line: usize,
-        /// The key as written in the file (e.g. `ncols`).
-        key: String,
-        /// The value as written in the file.
-        value: String,
-        /// What the value must satisfy.
-        requirement: String,
-    },
-    /// A grid file's header asks for more cells than a grid may hold
-    /// ([`crate::grid::MAX_GRID_CELLS`]); refused before any value is read.
-    #[error("{file}: ncols × nrows = {columns} × {rows} = {cells} cells, more than the {cap} cells a grid may hold; crop or coarsen the grid")]
-    GridTooLarge {
-        /// The file (or the name given to the text).
-        file: String,
-        /// `ncols` as given.
-        columns: u64,
-        /// `nrows` as given.
-        rows: u64,
-        /// Their exact product.
-        cells: u128,
-        /// The largest number of cells accepted.
-        cap: usize,
-    },
-    /// A GeoTIFF file cannot be read as a raster: not a TIFF, damaged, or a
-    /// TIFF without what a raster needs (one band, square cells, a tie
-    /// point), naming the tag and its value.
-    #[error("{file}: {message}")]
-    GeoTiff {
-        /// The file.
-        file: String,
-        /// What is wrong, naming the tag and its value.
-        message: String,
-    },
-    /// A cell of a grid file cannot be used (no data inside the slide, a
-    /// water table missing over a column, ...).
-    #[error("{file}, grid row {row}, column {column}: {message}")]
-    GridCell {
-        /// The file (or the name given to the raster).
-        file: String,
-        /// Grid row, from 0 at the top (north) as in the file.
-        row: usize,
-        /// Grid column, from 0 at the left (west).
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
-    /// Two grid files do not lie on the same grid.
-    #[error("{file} does not lie on the grid of {reference}: {message}")]
-    GridMismatch {
-        /// The file that differs.
-        file: String,
-        /// The file whose grid is the reference.
-        reference: String,
-        /// What differs.
-        message: String,
-    },
+    /// A grid file (ESRI ASCII or GeoTIFF) that cannot be read or used
+    /// ([`crate::grid::GridError`]).
+    #[error(transparent)]
+    Grid(#[from] crate::grid::GridError),
     /// No cell has its slip surface below the ground surface.
     #[error("no valid column: the slip surface of {slip} lies nowhere below the ground surface of {ground}")]
     NoValidColumn {
@@ -380,16 +308,16 @@ pub enum DismechError {
     /// mechanism ([`crate::vtk`]).
     #[error("VTK output: {reason}")]
     VtkData {
-        /// What does not fit, and what to change.
-        reason: String,
+        /// What does not fit.
+        reason: crate::vtk::VtkProblem,
     },
     /// Maps asked of a result on a grid it does not belong to: an HPM or
     /// Hovland result of another model, or a model of another grid
     /// ([`crate::hpm::ColumnMaps`]).
     #[error("maps: {reason}")]
     MapData {
-        /// What does not fit, and what to change.
-        reason: String,
+        /// What does not fit.
+        reason: crate::hpm::MapProblem,
     },
     /// Writing an output failed.
     #[error("cannot write {path}: {message}")]
@@ -605,12 +533,12 @@ pub enum DismechError {
     /// A strength layer of the ground of a slope search that cannot be
     /// used ([`crate::slope::Layer`]): its bottom raster off the DEM's
     /// grid, a bottom missing or given where it must not be, no layer.
-    #[error("layer `{layer}`: {message}")]
+    #[error("layer `{layer}`: {problem}")]
     InvalidLayer {
         /// The layer's name.
         layer: String,
         /// What is wrong, with the offending file or value.
-        message: String,
+        problem: crate::slope::LayerProblem,
     },
     /// Ground that an HPM re-analysis of a trial surface
     /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold
@@ -893,7 +821,7 @@ pub enum SolveError {
     /// The matrix could not be factorized (singular or, for Cholesky, not
     /// positive definite).
     #[error("factorization failed: {0}")]
-    Factorization(String),
+    Factorization(FactorizationFailure),
     /// A solver setting is out of its range.
     #[error("invalid {name} = {value}: {requirement}")]
     InvalidSetting {
@@ -914,5 +842,106 @@ pub enum SolveError {
     },
     /// The underlying LP solver refused the problem.
     #[error("linear program solver error: {0}")]
-    LinearProgram(String),
+    LinearProgram(LpFailure),
+}
+
+/// Why a matrix could not be factorized or a factor used
+/// ([`SolveError::Factorization`]); where the linear-algebra library
+/// (faer) refused, its message is kept.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FactorizationFailure {
+    /// A solve asked of a solver that holds no factor.
+    #[error("solve before a factorization")]
+    NotFactored,
+    /// The symbolic analysis of the sparsity pattern failed.
+    #[error("{stage}: {message}")]
+    Analysis {
+        /// The step of the analysis (e.g. `symbolic Cholesky analysis`).
+        stage: &'static str,
+        /// The library's message.
+        message: String,
+    },
+    /// A workspace could not be allocated.
+    #[error("allocating the {workspace} workspace: {message}")]
+    Workspace {
+        /// Which workspace (`LU`, `solve`, `Cholesky`).
+        workspace: &'static str,
+        /// The library's message.
+        message: String,
+    },
+    /// The sparse Cholesky factorization met a pivot that is not positive.
+    #[error("sparse Cholesky (matrix not positive definite) failed: {message}")]
+    NotPositiveDefinite {
+        /// The library's message.
+        message: String,
+    },
+    /// The sparse LU factorization met a zero column.
+    #[error("sparse LU (matrix structurally singular): {message}")]
+    StructurallySingular {
+        /// The library's message.
+        message: String,
+    },
+    /// The factor gave a solution that is not finite.
+    #[error("matrix is numerically singular: solution entry {index} is {value}")]
+    NumericallySingular {
+        /// The entry of the solution.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A diagonal block of a block-Jacobi preconditioner is not positive
+    /// definite.
+    #[error("block-Jacobi block {block} is not positive definite")]
+    BlockNotPositiveDefinite {
+        /// Index of the block.
+        block: usize,
+    },
+    /// A diagonal block of a multigrid level is not positive definite.
+    #[error("diagonal block {block} of a multigrid level is not positive definite")]
+    LevelBlockNotPositiveDefinite {
+        /// Index of the block.
+        block: usize,
+    },
+    /// A block row of a multigrid level has no diagonal block.
+    #[error("block {block} has no diagonal block")]
+    NoDiagonalBlock {
+        /// Index of the block row.
+        block: usize,
+    },
+    /// A multigrid aggregate too small for the near-null vectors.
+    #[error(
+        "aggregate {aggregate} has {unknowns} unknowns, fewer than the {vectors} near-null vectors"
+    )]
+    SmallAggregate {
+        /// Index of the aggregate.
+        aggregate: usize,
+        /// Its unknowns.
+        unknowns: usize,
+        /// The near-null vectors.
+        vectors: usize,
+    },
+}
+
+/// Why the LP solver gave no usable answer ([`SolveError::LinearProgram`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LpFailure {
+    /// The solver (Clarabel) refused to set the problem up.
+    #[error("{message}")]
+    Setup {
+        /// The solver's message.
+        message: String,
+    },
+    /// The solver panicked inside (on degenerate input); the panic was
+    /// caught.
+    #[error("{message}")]
+    Panicked {
+        /// The panic's message, or `internal solver panic`.
+        message: String,
+    },
+    /// The LP of a mechanism-uniqueness test did not reach an optimum.
+    #[error("the uniqueness test LP ended with status {status:?}")]
+    UniquenessTest {
+        /// The status it ended with.
+        status: crate::lp::LpStatus,
+    },
 }

@@ -235,6 +235,21 @@ fn skin_as_large_as_the_scene_is_refused_before_the_list_is_built() {
     };
     let err = new(discs(2000), skin).unwrap_err();
     assert!(matches!(err, DismechError::OutOfMemory { .. }), "{err}");
+    assert!(
+        matches!(
+            &err,
+            DismechError::OutOfMemory {
+                what: dismech::explicit::MemoryUse::NeighbourList {
+                    skin: 1e6,
+                    particles: 2000,
+                    ..
+                },
+                advice: dismech::explicit::MemoryAdvice::SkinTooWide { .. },
+                ..
+            }
+        ),
+        "{err}"
+    );
     assert!(err.to_string().contains("skin of 1e6 m"), "{err}");
     // A skin of a few radii is listed.
     let modest = DemSettings {

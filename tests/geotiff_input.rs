@@ -12,7 +12,8 @@ use std::path::{Path, PathBuf};
 
 use dismech::error::DismechError;
 use dismech::grid::{
-    parse_geotiff, read_geotiff, write_geotiff, Raster, MAX_GEOTIFF_EXPANSION, MAX_GRID_CELLS,
+    parse_geotiff, read_geotiff, write_geotiff, FileKind, GeoTiffProblem, GridCellProblem,
+    GridError, MissingTags, Raster, TiffDamage, MAX_GEOTIFF_EXPANSION, MAX_GRID_CELLS,
 };
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
@@ -135,9 +136,9 @@ fn seeds(name: &str) -> Vec<Vec<u8>> {
 
 fn kind(e: &DismechError) -> &'static str {
     match e {
-        DismechError::GeoTiff { .. } => "GeoTiff",
-        DismechError::GridTooLarge { .. } => "GridTooLarge",
-        DismechError::GridCell { .. } => "GridCell",
+        DismechError::Grid(GridError::GeoTiff { .. }) => "GeoTiff",
+        DismechError::Grid(GridError::TooLarge { .. }) => "GridTooLarge",
+        DismechError::Grid(GridError::Cell { .. }) => "GridCell",
         DismechError::InvalidParameter { .. } => "InvalidParameter",
         _ => "other",
     }
@@ -265,11 +266,11 @@ fn bad_geotiffs_are_refused_naming_the_file_and_the_tag() {
     assert!(
         matches!(
             e,
-            DismechError::GridCell {
+            DismechError::Grid(GridError::Cell {
                 row: 1,
                 column: 3,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -294,6 +295,161 @@ fn bad_geotiffs_are_refused_naming_the_file_and_the_tag() {
 }
 
 #[test]
+fn geotiff_refusals_carry_a_typed_cause() {
+    let dir = folder("typed");
+    let h = heights();
+    let problem = |name: &str, bytes: Vec<u8>| -> GeoTiffProblem {
+        match parse_geotiff(&bytes, name).unwrap_err() {
+            DismechError::Grid(GridError::GeoTiff { file, problem }) => {
+                assert_eq!(file, name);
+                problem
+            }
+            e => panic!("{e}"),
+        }
+    };
+    let with = |tags: Tags| tiff_file::<Gray64Float>(6, 4, &h, Compression::Uncompressed, &tags);
+
+    let start = [b'n', b'c'];
+    let damage = TiffDamage::ByteOrder { start };
+    assert_eq!(
+        problem("text.tif", b"ncols 2\nnrows 2\n".to_vec()),
+        GeoTiffProblem::Unreadable { damage }
+    );
+    let version = b"II\x29\x00\x08\x00\x00\x00".to_vec();
+    let damage = TiffDamage::Version { version: 41 };
+    assert_eq!(
+        problem("v41.tif", version),
+        GeoTiffProblem::Unreadable { damage }
+    );
+    assert!(matches!(
+        problem("empty.tif", Vec::new()),
+        GeoTiffProblem::Unreadable {
+            damage: TiffDamage::ShortRead {
+                bytes: 8,
+                offset: 0,
+                size: 0,
+                ..
+            }
+        }
+    ));
+    let no_scale = with(Tags {
+        scale: None,
+        ..Tags::good()
+    });
+    let missing = MissingTags::Scale;
+    assert_eq!(
+        problem("no_scale.tif", no_scale),
+        GeoTiffProblem::NotGeoreferenced { missing }
+    );
+    let no_tie = with(Tags {
+        tie: None,
+        ..Tags::good()
+    });
+    let missing = MissingTags::Tiepoint;
+    assert_eq!(
+        problem("no_tie.tif", no_tie),
+        GeoTiffProblem::NotGeoreferenced { missing }
+    );
+    let zero = with(Tags {
+        scale: Some(vec![0.0, 0.0, 0.0]),
+        ..Tags::good()
+    });
+    assert_eq!(
+        problem("zero_scale.tif", zero),
+        GeoTiffProblem::ScaleNotPositive { x: 0.0, y: 0.0 }
+    );
+    let oblong = with(Tags {
+        scale: Some(vec![2.0, 3.0, 0.0]),
+        ..Tags::good()
+    });
+    assert_eq!(
+        problem("oblong.tif", oblong),
+        GeoTiffProblem::CellsNotSquare { x: 2.0, y: 3.0 }
+    );
+    let two_ties = with(Tags {
+        tie: Some(vec![0.0; 12]),
+        ..Tags::good()
+    });
+    assert_eq!(
+        problem("two_ties.tif", two_ties),
+        GeoTiffProblem::TiepointCount { values: 12 }
+    );
+    let raster_type = with(Tags {
+        raster_type: Some(3),
+        ..Tags::good()
+    });
+    assert_eq!(
+        problem("raster_type.tif", raster_type),
+        GeoTiffProblem::RasterType {
+            value: 3,
+            location: 0
+        }
+    );
+    let nodata = with(Tags {
+        nodata: Some("none"),
+        ..Tags::good()
+    });
+    let text = "none".to_string();
+    assert_eq!(
+        problem("nodata.tif", nodata),
+        GeoTiffProblem::NodataNotNumber { text }
+    );
+    let infinite_tie = with(Tags {
+        tie: Some(vec![0.0, 0.0, 0.0, f64::INFINITY, 0.0, 0.0]),
+        ..Tags::good()
+    });
+    match problem("infinite_tie.tif", infinite_tie) {
+        GeoTiffProblem::Georeference {
+            error,
+            width: 6,
+            height: 4,
+            ..
+        } => assert!(
+            matches!(*error, DismechError::InvalidParameter { value, .. } if value.is_infinite()),
+            "{error}"
+        ),
+        p => panic!("{p}"),
+    }
+    let rgb = vec![0u8; 6 * 4 * 3];
+    let rgb = tiff_file::<RGB8>(6, 4, &rgb, Compression::Uncompressed, &Tags::good());
+    match problem("rgb.tif", rgb) {
+        GeoTiffProblem::NotOneBand { color } => assert_eq!(color, "RGB(8)"),
+        p => panic!("{p}"),
+    }
+    let mut infinite = h.clone();
+    infinite[9] = f64::INFINITY;
+    let infinite =
+        tiff_file::<Gray64Float>(6, 4, &infinite, Compression::Uncompressed, &Tags::good());
+    assert_eq!(
+        parse_geotiff(&infinite, "infinite.tif").unwrap_err(),
+        DismechError::Grid(GridError::Cell {
+            file: "infinite.tif".into(),
+            row: 1,
+            column: 3,
+            problem: GridCellProblem::NotFinite {
+                value: f64::INFINITY
+            },
+        })
+    );
+    match read_geotiff(&dir).unwrap_err() {
+        DismechError::Grid(GridError::GeoTiff { problem, .. }) => assert_eq!(
+            problem,
+            GeoTiffProblem::NotRegularFile {
+                kind: FileKind::Directory
+            }
+        ),
+        e => panic!("{e}"),
+    }
+    match read_geotiff(&dir.join("missing.tif")).unwrap_err() {
+        DismechError::Grid(GridError::GeoTiff {
+            problem: GeoTiffProblem::CannotRead { kind, .. },
+            ..
+        }) => assert_eq!(kind, std::io::ErrorKind::NotFound),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
 fn a_file_claiming_more_cells_than_the_cap_is_refused_before_decoding() {
     let dir = folder("huge");
     // A one-row image whose width field is set to 2^31 after writing:
@@ -310,13 +466,30 @@ fn a_file_claiming_more_cells_than_the_cap_is_refused_before_decoding() {
     std::fs::write(&path, &bytes).unwrap();
     let e = read_geotiff(&path).unwrap_err();
     assert!(
-        matches!(e, DismechError::GridTooLarge { columns: 2147483648, rows: 1, cap, .. } if cap == MAX_GRID_CELLS),
+        matches!(e, DismechError::Grid(GridError::TooLarge { columns: 2147483648, rows: 1, cap, .. }) if cap == MAX_GRID_CELLS),
         "{e}"
     );
     // 10^7 cells claimed by an uncompressed file of a few hundred bytes.
     set_field(&mut bytes, 256, 10_000_000);
     std::fs::write(&path, &bytes).unwrap();
-    let e = read_geotiff(&path).unwrap_err().to_string();
+    let e = read_geotiff(&path).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DismechError::Grid(GridError::GeoTiff {
+                problem: GeoTiffProblem::ValuesExceedFile {
+                    width: 10_000_000,
+                    height: 1,
+                    bits: 64,
+                    compression: 1,
+                    ..
+                },
+                ..
+            })
+        ),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("cannot be held in a file of"), "{e}");
 }
 

@@ -4,7 +4,9 @@
 //! of indexing out of bounds.
 
 use dismech::error::DismechError;
-use dismech::grid::{parse_esri_ascii, Raster, MAX_GRID_CELLS};
+use dismech::grid::{
+    parse_esri_ascii, GridError, GridFormatProblem, GridHeaderProblem, Raster, MAX_GRID_CELLS,
+};
 use dismech::hpm::SlopeGrids;
 
 /// A header with `ncols` and `nrows` as given and `values` as data.
@@ -39,13 +41,13 @@ fn nrows_2147483648_in_a_seven_line_file_is_refused_before_any_allocation() {
         result = Some(parse_esri_ascii(&text, "ground.asc"));
     });
     match result.expect("parsed").unwrap_err() {
-        DismechError::GridTooLarge {
+        DismechError::Grid(GridError::TooLarge {
             file,
             columns,
             rows,
             cells,
             cap,
-        } => {
+        }) => {
             assert_eq!(file, "ground.asc");
             assert_eq!((columns, rows), (24, 2_147_483_648));
             assert_eq!(cells, 24 * 2_147_483_648);
@@ -66,13 +68,13 @@ fn ncols_1e30_is_refused_as_not_a_whole_number() {
     // Used to panic with "capacity overflow" (1e30 as usize saturates).
     let text = grid("1e30", "1", "1");
     match parse_esri_ascii(&text, "ground.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file,
             line,
             key,
             value,
             ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), line, key.as_str(), value.as_str()),
             ("ground.asc", 1, "ncols", "1e30")
         ),
@@ -88,9 +90,9 @@ fn ncols_274177_nrows_67280421310721_is_refused_not_wrapped_to_one_cell() {
     let exact = 274_177_u128 * 67_280_421_310_721_u128;
     assert_eq!(exact, u128::from(u64::MAX) + 2);
     match parse_esri_ascii(&text, "slip.asc").unwrap_err() {
-        DismechError::GridTooLarge {
+        DismechError::Grid(GridError::TooLarge {
             file, rows, cells, ..
-        } => {
+        }) => {
             assert_eq!(
                 (file.as_str(), rows, cells),
                 ("slip.asc", 67_280_421_310_721, exact)
@@ -114,7 +116,7 @@ fn slope_grids_read_of_ncols_274177_nrows_67280421310721_returns_an_error() {
     let result = std::panic::catch_unwind(|| SlopeGrids::read(&ground, &slip, None));
     std::fs::remove_dir_all(&dir).unwrap();
     match result.expect("no panic") {
-        Err(DismechError::GridTooLarge { file, .. }) => {
+        Err(DismechError::Grid(GridError::TooLarge { file, .. })) => {
             assert_eq!(file, ground.display().to_string())
         }
         other => panic!("{other:?}"),
@@ -127,7 +129,7 @@ fn ncols_beyond_64_bits_is_refused_not_saturated() {
     // with "capacity overflow".
     let text = grid("18446744073709551616", "1", "1");
     match parse_esri_ascii(&text, "ground.asc").unwrap_err() {
-        DismechError::GridHeader { key, value, .. } => {
+        DismechError::Grid(GridError::Header { key, value, .. }) => {
             assert_eq!(
                 (key.as_str(), value.as_str()),
                 ("ncols", "18446744073709551616")
@@ -143,13 +145,13 @@ fn a_corner_or_cell_size_reaching_past_the_largest_coordinate_is_refused() {
     // the grid accepted.
     let text = "ncols 1\nnrows 3\nxllcorner 0\nyllcorner 1e308\ncellsize 1e308\n1 2 3\n";
     match parse_esri_ascii(text, "water.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file,
             line,
             key,
             value,
             ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), line, key.as_str(), value.as_str()),
             ("water.asc", 4, "yllcorner", "1e308")
         ),
@@ -158,9 +160,9 @@ fn a_corner_or_cell_size_reaching_past_the_largest_coordinate_is_refused() {
     // An infinite corner was refused without the file's name.
     let text = "ncols 1\nnrows 1\nXLLCORNER inf\nyllcorner 0\ncellsize 1\n1\n";
     match parse_esri_ascii(text, "water.asc").unwrap_err() {
-        DismechError::GridHeader {
+        DismechError::Grid(GridError::Header {
             file, key, value, ..
-        } => assert_eq!(
+        }) => assert_eq!(
             (file.as_str(), key.as_str(), value.as_str()),
             ("water.asc", "XLLCORNER", "inf")
         ),
@@ -203,5 +205,142 @@ fn raster_new_refuses_a_size_whose_product_wraps_to_its_value_count() {
     assert!(
         matches!(result, Err(DismechError::InvalidParameter { .. })),
         "{result:?}"
+    );
+}
+
+/// The cause of a `GridFormat` refusal of `text`, with its line and column.
+fn format_problem(text: &str) -> (usize, usize, GridFormatProblem) {
+    match parse_esri_ascii(text, "g.asc").unwrap_err() {
+        DismechError::Grid(GridError::Format {
+            file,
+            line,
+            column,
+            problem,
+        }) => {
+            assert_eq!(file, "g.asc");
+            (line, column, problem)
+        }
+        e => panic!("{e}"),
+    }
+}
+
+/// The cause of a `GridHeader` refusal of `text`, with its key.
+fn header_problem(text: &str) -> (String, GridHeaderProblem) {
+    match parse_esri_ascii(text, "g.asc").unwrap_err() {
+        DismechError::Grid(GridError::Header {
+            key, requirement, ..
+        }) => (key, requirement),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn esri_grid_format_refusals_carry_a_typed_cause() {
+    use GridFormatProblem as P;
+    assert_eq!(format_problem(""), (0, 0, P::EndsInsideHeader));
+    let key = "ncols".to_string();
+    assert_eq!(format_problem("ncols"), (1, 1, P::KeyWithoutValue { key }));
+    let key = "NCOLS".to_string();
+    assert_eq!(
+        format_problem("ncols 1\nNCOLS 2\n1"),
+        (2, 1, P::KeyTwice { key })
+    );
+    let key = "cellsize";
+    assert_eq!(
+        format_problem("ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\n1"),
+        (0, 0, P::MissingKey { key })
+    );
+    let key = "yllcorner or yllcenter";
+    assert_eq!(
+        format_problem("ncols 1\nnrows 1\nxllcorner 0\ncellsize 1\n1"),
+        (0, 0, P::MissingKey { key })
+    );
+    let (columns, rows) = (2, 1);
+    assert_eq!(
+        format_problem(&grid("2", "1", "1 2 3")),
+        (7, 5, P::TooManyValues { columns, rows })
+    );
+    assert_eq!(
+        format_problem(&grid("2", "2", "1 2 3")),
+        (
+            0,
+            0,
+            P::TooFewValues {
+                found: 3,
+                columns: 2,
+                rows: 2
+            }
+        )
+    );
+    let text = "x1".to_string();
+    assert_eq!(
+        format_problem(&grid("2", "2", "1 2\n3 x1")),
+        (
+            8,
+            3,
+            P::NotANumber {
+                text,
+                row: 1,
+                column: 1
+            }
+        )
+    );
+    let text = "inf".to_string();
+    assert_eq!(
+        format_problem(&grid("2", "1", "inf 2")),
+        (
+            7,
+            1,
+            P::NotFinite {
+                text,
+                row: 0,
+                column: 0
+            }
+        )
+    );
+}
+
+#[test]
+fn esri_grid_header_refusals_carry_a_typed_cause() {
+    use GridHeaderProblem as P;
+    let ncols = "ncols".to_string();
+    assert_eq!(
+        header_problem(&grid("1e30", "1", "1")),
+        (ncols.clone(), P::NotWholeNumber)
+    );
+    assert_eq!(
+        header_problem(&grid("0", "1", "1")),
+        (ncols.clone(), P::Zero)
+    );
+    assert_eq!(
+        header_problem(&grid("18446744073709551616", "1", "1")),
+        (ncols, P::CountOverflow)
+    );
+    let head = |cell: &str, nodata: &str| {
+        format!("ncols 1\nnrows 3\nxllcorner 0\nyllcorner 1e308\ncellsize {cell}\nNODATA_value {nodata}\n1 2 3\n")
+    };
+    let cellsize = "cellsize".to_string();
+    assert_eq!(
+        header_problem(&head("-1", "0")),
+        (cellsize.clone(), P::NotPositive)
+    );
+    assert_eq!(
+        header_problem(&head("inf", "0")),
+        (cellsize.clone(), P::NotFinite)
+    );
+    assert_eq!(header_problem(&head("ten", "0")), (cellsize, P::NotANumber));
+    assert_eq!(
+        header_problem(&head("1e308", "0")),
+        (
+            "yllcorner".to_string(),
+            P::ReachesInfinity {
+                count: 3,
+                cell_size: 1e308
+            }
+        )
+    );
+    assert_eq!(
+        header_problem(&head("1", "none")),
+        ("NODATA_value".to_string(), P::NotANumber)
     );
 }

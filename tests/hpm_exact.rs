@@ -3,7 +3,7 @@
 //! uniform stress, layer refinement, and the errors bad input gets.
 
 use dismech::error::DismechError;
-use dismech::grid::{parse_esri_ascii, Raster};
+use dismech::grid::{parse_esri_ascii, GridCellProblem, GridError, Raster};
 use dismech::hpm::*;
 use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
@@ -791,33 +791,46 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
         .unwrap(),
     );
     match SlopeGrids::new(ground(), other, None).unwrap_err() {
-        DismechError::GridMismatch {
-            file, reference, ..
-        } => {
+        DismechError::Grid(GridError::Mismatch {
+            file,
+            reference,
+            found,
+            expected,
+        }) => {
             assert_eq!(
                 (file.as_str(), reference.as_str()),
                 ("slip.asc", "ground.asc")
-            )
+            );
+            assert_eq!((found.rows, found.columns, found.cell_size), (3, 3, 5.0));
+            assert_ne!(found, expected);
         }
         e => panic!("{e}"),
     }
     // A hole in the slip surface inside the slide.
     let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
     match SlopeGrids::new(ground(), holed, None).unwrap_err() {
-        DismechError::GridCell {
-            file, row, column, ..
-        } => {
-            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1))
+        DismechError::Grid(GridError::Cell {
+            file,
+            row,
+            column,
+            problem,
+        }) => {
+            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1));
+            assert_eq!(problem, GridCellProblem::SlipSurfaceHole);
         }
         e => panic!("{e}"),
     }
     // No ground data where the slip surface is given.
     let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
     match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
-        DismechError::GridCell {
-            file, row, column, ..
-        } => {
-            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1))
+        DismechError::Grid(GridError::Cell {
+            file,
+            row,
+            column,
+            problem,
+        }) => {
+            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1));
+            assert_eq!(problem, GridCellProblem::NoGround);
         }
         e => panic!("{e}"),
     }
@@ -830,10 +843,14 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     )
     .unwrap_err()
     {
-        DismechError::GridCell {
-            file, row, column, ..
-        } => {
-            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2))
+        DismechError::Grid(GridError::Cell {
+            file,
+            row,
+            column,
+            problem,
+        }) => {
+            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2));
+            assert_eq!(problem, GridCellProblem::NoWaterTable);
         }
         e => panic!("{e}"),
     }
@@ -848,11 +865,11 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     assert!(
         matches!(
             nan,
-            DismechError::GridFormat {
+            DismechError::Grid(GridError::Format {
                 line: 8,
                 column: 3,
                 ..
-            }
+            })
         ),
         "{nan}"
     );

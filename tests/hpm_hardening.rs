@@ -9,7 +9,8 @@ use std::time::{Duration, Instant};
 
 use dismech::error::{DismechError, SolveError};
 use dismech::grid::{
-    read_esri_ascii, to_esri_ascii, Raster, MAX_BYTES_PER_VALUE, MAX_HEADER_BYTES,
+    read_esri_ascii, to_esri_ascii, FileKind, GridError, GridFormatProblem, Raster,
+    MAX_BYTES_PER_VALUE, MAX_HEADER_BYTES,
 };
 use dismech::hpm::*;
 use dismech::linsolve::CgSettings;
@@ -65,17 +66,17 @@ fn scratch(test: &str) -> PathBuf {
     dir
 }
 
-/// The message of a `GridFormat` error of `file`, or a panic.
-fn grid_format_message(result: dismech::error::Result<Raster>, file: &Path) -> String {
+/// The cause of a `GridFormat` error of `file`, or a panic.
+fn grid_format_problem(result: dismech::error::Result<Raster>, file: &Path) -> GridFormatProblem {
     match result {
-        Err(DismechError::GridFormat {
+        Err(DismechError::Grid(GridError::Format {
             file: name,
             line,
-            message,
+            problem,
             ..
-        }) => {
+        })) => {
             assert_eq!((name, line), (file.display().to_string(), 0));
-            message
+            problem
         }
         other => panic!("{other:?}"),
     }
@@ -469,7 +470,10 @@ fn grid_reader_refuses_a_fifo() {
     let result = receive
         .recv_timeout(Duration::from_secs(20))
         .expect("reading a FIFO returned within 20 s");
-    let message = grid_format_message(result, &fifo);
+    let problem = grid_format_problem(result, &fifo);
+    let kind = FileKind::Fifo;
+    assert_eq!(problem, GridFormatProblem::NotRegularFile { kind });
+    let message = problem.to_string();
     assert!(message.contains("FIFO"), "{message}");
     assert!(message.contains("not a regular file"), "{message}");
     std::fs::remove_dir_all(&dir).unwrap();
@@ -480,11 +484,17 @@ fn grid_reader_refuses_dev_zero_and_a_directory() {
     // /dev/zero was read whole (it never ends) before the header was checked.
     let zero = Path::new("/dev/zero");
     if zero.exists() {
-        let message = grid_format_message(read_esri_ascii(zero), zero);
+        let problem = grid_format_problem(read_esri_ascii(zero), zero);
+        let kind = FileKind::CharacterDevice;
+        assert_eq!(problem, GridFormatProblem::NotRegularFile { kind });
+        let message = problem.to_string();
         assert!(message.contains("character device"), "{message}");
     }
     let dir = scratch("directory");
-    let message = grid_format_message(read_esri_ascii(&dir), &dir);
+    let problem = grid_format_problem(read_esri_ascii(&dir), &dir);
+    let kind = FileKind::Directory;
+    assert_eq!(problem, GridFormatProblem::NotRegularFile { kind });
+    let message = problem.to_string();
     assert!(message.contains("a directory"), "{message}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -502,7 +512,10 @@ fn grid_reader_refuses_a_file_of_zeros_from_its_first_bytes() {
     let start = Instant::now();
     let mut result = None;
     let memory = allocation_counter::measure(|| result = Some(read_esri_ascii(&path)));
-    let message = grid_format_message(result.unwrap(), &path);
+    let problem = grid_format_problem(result.unwrap(), &path);
+    let size = 3 << 30;
+    assert_eq!(problem, GridFormatProblem::NoCompleteHeader { size });
+    let message = problem.to_string();
     assert!(message.contains("no complete header"), "{message}");
     assert!(message.contains("3221225472 bytes"), "{message}");
     assert!(
@@ -533,8 +546,11 @@ fn grid_reader_refuses_a_huge_sparse_file_after_a_valid_header_before_reading_it
     let start = Instant::now();
     let mut result = None;
     let memory = allocation_counter::measure(|| result = Some(read_esri_ascii(&path)));
-    let message = grid_format_message(result.unwrap(), &path);
+    let problem = grid_format_problem(result.unwrap(), &path);
     let limit = MAX_HEADER_BYTES as u64 + 12 * MAX_BYTES_PER_VALUE;
+    let size = 3 << 30;
+    assert_eq!(problem, GridFormatProblem::FileTooLarge { size, limit });
+    let message = problem.to_string();
     assert!(
         message.contains(&format!("has 3221225472 bytes, more than the {limit}")),
         "{message}"
@@ -1129,6 +1145,19 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
     ] {
         let message = e.to_string();
         assert!(matches!(e, DismechError::MapData { .. }), "{e}");
+        assert!(
+            matches!(
+                &e,
+                DismechError::MapData {
+                    reason: MapProblem::GridSize {
+                        model: (4, 4, _),
+                        rasters: (5, 4, _),
+                        ..
+                    }
+                }
+            ),
+            "{e}"
+        );
         assert!(message.contains("`ground.asc`"), "{message}");
         assert!(
             message.contains("4 × 4 cells of 10 m, the rasters 5 × 4"),
@@ -1147,12 +1176,37 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
         None,
     )
     .unwrap();
-    let e = result.maps(&small, &shifted).unwrap_err().to_string();
+    let e = result.maps(&small, &shifted).unwrap_err();
+    assert!(
+        matches!(&e, DismechError::MapData { reason: MapProblem::CornerOff { ground, .. } } if ground == "moved.asc"),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("`moved.asc`") && e.contains("corner"), "{e}");
     // A result of another model.
     let large_grids = grids(5, 4, 20.0, 5.0).unwrap();
-    let e = result.maps(&large, &large_grids).unwrap_err().to_string();
+    let e = result.maps(&large, &large_grids).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DismechError::MapData {
+                reason: MapProblem::NotThisResult { .. }
+            }
+        ),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("not a result of this model"), "{e}");
-    let e = hov.maps(&large, &large_grids).unwrap_err().to_string();
+    let e = hov.maps(&large, &large_grids).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DismechError::MapData {
+                reason: MapProblem::NotThisHovland { .. }
+            }
+        ),
+        "{e}"
+    );
+    let e = e.to_string();
     assert!(e.contains("not Hovland's method of this model"), "{e}");
 }

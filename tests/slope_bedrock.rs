@@ -6,6 +6,7 @@
 //! data under a column is refused.
 
 use dismech::error::DismechError;
+use dismech::grid::GridError;
 use dismech::grid::Raster;
 use dismech::hpm::NamedRaster;
 use dismech::slope::*;
@@ -135,7 +136,7 @@ fn bedrock_off_the_grid_or_without_data_is_refused() {
         .with_bedrock(NamedRaster::new("rock.asc", other))
         .unwrap_err();
     assert!(
-        matches!(&e, DismechError::GridMismatch { file, .. } if file == "rock.asc"),
+        matches!(&e, DismechError::Grid(GridError::Mismatch { file, .. }) if file == "rock.asc"),
         "{e}"
     );
     let holes = Raster::from_fn(20, 20, 0.0, 0.0, CELL, |_, _| None).unwrap();

@@ -4,6 +4,7 @@
 //! column sum; bad input refused with typed errors.
 
 use dismech::error::DismechError;
+use dismech::grid::GridError;
 use dismech::grid::Raster;
 use dismech::hpm::NamedRaster;
 use dismech::nalgebra::Vector3;
@@ -427,11 +428,16 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     ])
     .unwrap();
     match Evaluator::new(&t, &g, &loads, &lim).unwrap_err() {
-        DismechError::InvalidLayer { layer, message } => {
+        DismechError::InvalidLayer { layer, problem } => {
             assert_eq!(layer, "sand");
+            let message = problem.to_string();
             assert!(
                 message.contains("off.asc") && message.contains("valley"),
                 "{message}"
+            );
+            assert!(
+                matches!(&problem, LayerProblem::BottomOffGrid(e) if matches!(**e, DismechError::Grid(GridError::Mismatch { .. }))),
+                "{problem:?}"
             );
         }
         e => panic!("{e}"),
@@ -447,9 +453,14 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     ])
     .unwrap_err()
     {
-        DismechError::InvalidLayer { layer, message } => {
+        DismechError::InvalidLayer { layer, problem } => {
             assert_eq!(layer, "peat");
+            let message = problem.to_string();
             assert!(message.contains("-5"), "{message}");
+            assert!(
+                matches!(&problem, LayerProblem::Material(e) if matches!(**e, DismechError::InvalidParameter { value, .. } if value == -5.0)),
+                "{problem:?}"
+            );
         }
         e => panic!("{e}"),
     }
@@ -459,14 +470,35 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
         matches!(&e, DismechError::InvalidLayer { layer, .. } if layer == "a"),
         "{e}"
     );
+    assert!(
+        matches!(
+            &e,
+            DismechError::InvalidLayer {
+                problem: LayerProblem::NoBottom { index: 1, count: 2 },
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = Ground::layered(vec![layer("a", Some(below(&dem, 1.0, "a.asc")), soil())]).unwrap_err();
     assert!(
-        matches!(&e, DismechError::InvalidLayer { layer, message } if layer == "a" && message.contains("a.asc")),
+        matches!(&e, DismechError::InvalidLayer { layer, problem } if layer == "a" && problem.to_string().contains("a.asc")),
+        "{e}"
+    );
+    assert!(
+        matches!(&e, DismechError::InvalidLayer { problem: LayerProblem::LastHasBottom { bottom }, .. } if bottom == "a.asc"),
         "{e}"
     );
     assert!(matches!(
         Ground::layered(vec![]).unwrap_err(),
         DismechError::InvalidLayer { .. }
+    ));
+    assert!(matches!(
+        Ground::layered(vec![]).unwrap_err(),
+        DismechError::InvalidLayer {
+            problem: LayerProblem::NoLayer,
+            ..
+        }
     ));
     // r_u outside [0, 1).
     for v in [1.0, -0.1, f64::NAN, 1.5] {
@@ -514,7 +546,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
         .unwrap();
     assert!(matches!(
         Evaluator::new(&t, &g, &loads, &lim).unwrap_err(),
-        DismechError::GridMismatch { file, .. } if file == "ru_off.asc"
+        DismechError::Grid(GridError::Mismatch { file, .. }) if file == "ru_off.asc"
     ));
     // A water table and r_u together.
     let wet = Terrain::new(

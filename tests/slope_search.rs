@@ -4,6 +4,7 @@
 //! slope's limit, the outputs read back, and bad input refused.
 
 use dismech::error::DismechError;
+use dismech::grid::GridError;
 use dismech::grid::{read_esri_ascii, Raster};
 use dismech::hpm::NamedRaster;
 use dismech::nalgebra::Vector3;
@@ -420,7 +421,9 @@ fn bad_input_is_refused_with_typed_errors() {
         Some(NamedRaster::new("water.asc", other)),
     )
     .unwrap_err();
-    assert!(matches!(e, DismechError::GridMismatch { ref file, .. } if file == "water.asc"));
+    assert!(
+        matches!(e, DismechError::Grid(GridError::Mismatch { ref file, .. }) if file == "water.asc")
+    );
     // Radii.
     let e = Steps::checked("radius range", 0.0, 10.0, 3, true).unwrap_err();
     assert!(

@@ -32,7 +32,10 @@ use dismech::lp::LinearProgramSolver;
 use dismech::math::{perp, Point, Pose2, Vec2};
 use dismech::scene::{Frame, Particle, Scene};
 use dismech::shape::{AnyShape2, Circle, Polygon};
-use dismech::vtk::{dem_frame, hpm_frame, implicit_frame, kind, limit_frame, PvdSeries, VtkFrame};
+use dismech::vtk::{
+    dem_frame, hpm_frame, implicit_frame, kind, limit_frame, Cells, DataArray, DataKind, Dataset,
+    PolyData, PvdSeries, UnstructuredGrid, VtkFrame, VtkProblem,
+};
 use serde_json::Value;
 
 const SEGMENTS: usize = 24;
@@ -692,6 +695,13 @@ fn limit_frame_reads_back_with_the_mechanism_and_the_dual_forces() {
         limit_frame(&other, &result, SEGMENTS),
         Err(DismechError::VtkData { .. })
     ));
+    let bodies = other.bodies().len();
+    assert!(matches!(
+        limit_frame(&other, &result, SEGMENTS),
+        Err(DismechError::VtkData {
+            reason: VtkProblem::NoMechanism { velocities, bodies: b, .. }
+        }) if velocities + 1 == bodies && b == bodies
+    ));
 }
 
 // ---------------------------------------------------------------- HPM
@@ -799,4 +809,86 @@ fn hpm_frame_reads_back_with_hexahedra_displacements_and_strains() {
         hpm_frame(&model, &short),
         Err(DismechError::VtkData { .. })
     ));
+    assert!(matches!(
+        hpm_frame(&model, &short),
+        Err(DismechError::VtkData {
+            reason: VtkProblem::NotThisHpmResult { displacements, elements, .. }
+        }) if displacements + 1 == 12 * elements
+    ));
+}
+
+/// The cause of a `VtkData` error, or a panic.
+fn vtk_problem<T: std::fmt::Debug>(result: dismech::error::Result<T>) -> VtkProblem {
+    match result {
+        Err(DismechError::VtkData { reason }) => reason,
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn datasets_and_frames_that_do_not_fit_carry_a_typed_cause() {
+    let mut verts = Cells::new();
+    verts.push([0]);
+    let points = PolyData {
+        points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
+        verts,
+        ..PolyData::default()
+    };
+    let with_points = |arrays: Vec<DataArray>| {
+        Dataset::PolyData(PolyData {
+            point_data: arrays,
+            ..points.clone()
+        })
+    };
+    let name = "h".to_string();
+    assert_eq!(
+        vtk_problem(with_points(vec![DataArray::scalars("h", vec![1.0])]).to_xml()),
+        VtkProblem::ValueCount {
+            kind: DataKind::Point,
+            name: name.clone(),
+            values: 1,
+            components: 1,
+            tuples: 2
+        }
+    );
+    let twice = vec![
+        DataArray::scalars("h", vec![1.0, 2.0]),
+        DataArray::scalars("h", vec![1.0, 2.0]),
+    ];
+    assert_eq!(
+        vtk_problem(with_points(twice).to_xml()),
+        VtkProblem::NamedTwice {
+            kind: DataKind::Point,
+            name
+        }
+    );
+    let mut far = points.clone();
+    far.lines.push([0, 5]);
+    assert_eq!(
+        vtk_problem(Dataset::PolyData(far).to_xml()),
+        VtkProblem::NoSuchPoint {
+            point: 5,
+            points: 2
+        }
+    );
+    let mut grid = UnstructuredGrid {
+        points: vec![[0.0; 3]],
+        ..UnstructuredGrid::default()
+    };
+    grid.cells.push([0]);
+    assert_eq!(
+        vtk_problem(Dataset::UnstructuredGrid(grid).to_xml()),
+        VtkProblem::CellTypeCount { types: 0, cells: 1 }
+    );
+    let mut frame = VtkFrame::new();
+    let name = "a b".to_string();
+    assert_eq!(
+        vtk_problem(frame.push("a b", Dataset::PolyData(points.clone()))),
+        VtkProblem::PieceName { name }
+    );
+    frame.push("a", Dataset::PolyData(points.clone())).unwrap();
+    let name = "a".to_string();
+    let problem = vtk_problem(frame.push("a", Dataset::PolyData(points)));
+    assert_eq!(problem, VtkProblem::DuplicatePiece { name });
+    assert_eq!(problem.to_string(), "the frame already has a piece `a`");
 }

@@ -126,12 +126,7 @@ impl Exit {
             | E::PlateTouchesNothing { .. }
             | E::DrivingSupportCount(_)
             | E::NoDeadLoads
-            | E::GridFormat { .. }
-            | E::GridCell { .. }
-            | E::GridMismatch { .. }
-            | E::GridHeader { .. }
-            | E::GridTooLarge { .. }
-            | E::GeoTiff { .. }
+            | E::Grid(_)
             | E::NoValidColumn { .. }
             | E::NoGroundData { .. }
             | E::DemTooSmall { .. }

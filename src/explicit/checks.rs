@@ -186,13 +186,16 @@ pub(crate) fn check_neighbour_budget(
     let all = (n as u128) * (n as u128 - 1) / 2;
     let smallest = smallest_bounding_radius(scene);
     Err(DismechError::OutOfMemory {
-        what: format!(
-            "a neighbour list at a skin of {skin:e} m over {n} particles (more than {budget} pairs, up to {all})"
-        ),
+        what: super::MemoryUse::NeighbourList {
+            skin,
+            particles: n,
+            budget,
+            pairs: all,
+        },
         bytes: all * pair_bytes as u128,
-        advice: format!(
-            "more than {MAX_LISTED_PAIRS_PER_PARTICLE} pairs a particle is a skin far wider than the particles; use a skin of about the smallest bounding radius ({smallest:.3e} m) or leave neighbour_skin at None to tune it"
-        ),
+        advice: super::MemoryAdvice::SkinTooWide {
+            smallest_radius: smallest,
+        },
     })
 }
 

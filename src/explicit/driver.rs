@@ -18,6 +18,7 @@ use super::skin::Skin;
 use super::stability::{
     critical_time_step_at, OverlapReached, StabilityLimit, DEFAULT_STABILITY_OVERLAP,
 };
+use super::{MemoryAdvice, MemoryUse};
 use crate::broad_phase::CellGrid;
 use crate::error::{require_non_negative, require_positive, DismechError, Result};
 use crate::integrate::{ExplicitEuler, ExplicitIntegrator};
@@ -359,20 +360,16 @@ fn check_memory<S>(n: usize) -> Result<()> {
         + 2 * std::mem::size_of::<Vec2>()
         + 4 * std::mem::size_of::<PairSlot<S>>();
     let bytes = (n as u128) * per_particle as u128;
-    let refused = |advice: String| DismechError::OutOfMemory {
-        what: format!("a DEM of {n} particles"),
+    let refused = |advice: MemoryAdvice| DismechError::OutOfMemory {
+        what: MemoryUse::Dem { particles: n },
         bytes,
         advice,
     };
-    let len = usize::try_from(bytes)
-        .map_err(|_| refused("more than the address space; run fewer particles".into()))?;
+    let len = usize::try_from(bytes).map_err(|_| refused(MemoryAdvice::AddressSpace))?;
     let mut probe: Vec<u8> = Vec::new();
-    probe.try_reserve_exact(len).map_err(|_| {
-        refused(
-            "the system refused the memory; run fewer particles or on a machine with more memory"
-                .into(),
-        )
-    })?;
+    probe
+        .try_reserve_exact(len)
+        .map_err(|_| refused(MemoryAdvice::SystemRefused))?;
     Ok(())
 }
 
@@ -1246,7 +1243,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
 #[cfg(test)]
 mod tests {
-    use super::check_memory;
+    use super::{check_memory, MemoryUse};
     use crate::error::DismechError;
     use crate::law::SpringState;
 
@@ -1267,9 +1264,10 @@ mod tests {
                     bytes,
                     advice,
                 }) => {
-                    assert!(what.contains(&n.to_string()), "{what}");
+                    assert!(what.to_string().contains(&n.to_string()), "{what}");
+                    assert_eq!(what, MemoryUse::Dem { particles: n });
                     assert!(bytes >= n as u128 * 100, "{bytes}");
-                    assert!(advice.contains(says), "{advice}");
+                    assert!(advice.to_string().contains(says), "{advice}");
                 }
                 other => panic!("{n} particles: {other:?}"),
             }

@@ -93,6 +93,7 @@ mod checks;
 mod driver;
 mod keys;
 mod list_travel;
+mod memory;
 mod motion;
 mod neighbours;
 mod pair_bodies;
@@ -106,6 +107,7 @@ pub use driver::{
     ContactRecord, ContactTarget, DemSettings, ExplicitDynamics, RestCriterion, RunOutcome,
     RunStatus,
 };
+pub use memory::{MemoryAdvice, MemoryUse};
 pub use phases::PhaseTimes;
 pub use stability::{
     critical_time_step, critical_time_step_at, GoverningMode, ModePartner, OscillationMode,

@@ -31,22 +31,18 @@
 
 use std::path::Path;
 
+use super::error::{FileKind, GridError, GridFormatProblem as Problem, GridHeaderProblem};
 use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
 
-fn format_error(
-    file: &str,
-    line: usize,
-    column: usize,
-    message: impl Into<String>,
-) -> DismechError {
-    DismechError::GridFormat {
+fn format_error(file: &str, line: usize, column: usize, problem: Problem) -> DismechError {
+    DismechError::Grid(GridError::Format {
         file: file.to_string(),
         line,
         column,
-        message: message.into(),
-    }
+        problem,
+    })
 }
 
 /// The most bytes read before the header is checked: the header must end
@@ -60,31 +56,6 @@ pub const MAX_HEADER_BYTES: usize = 64 * 1024;
 /// values are read: it is not the grid its header describes.
 pub const MAX_BYTES_PER_VALUE: u64 = 256;
 
-/// What a file that is not a regular file is, in words.
-pub(super) fn describe(kind: std::fs::FileType) -> &'static str {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if kind.is_fifo() {
-            return "a FIFO (named pipe)";
-        }
-        if kind.is_char_device() {
-            return "a character device";
-        }
-        if kind.is_block_device() {
-            return "a block device";
-        }
-        if kind.is_socket() {
-            return "a socket";
-        }
-    }
-    if kind.is_dir() {
-        "a directory"
-    } else {
-        "not a regular file"
-    }
-}
-
 /// Read an ESRI ASCII grid file.
 ///
 /// The file is checked before its values are read: it must be a regular
@@ -95,27 +66,30 @@ pub(super) fn describe(kind: std::fs::FileType) -> &'static str {
 /// parsed as by [`parse_esri_ascii`].
 ///
 /// # Errors
-/// [`DismechError::GridFormat`] (line 0) for a path that cannot be read or
-/// is not a regular file (naming what it is), a file that is not UTF-8
-/// text, a header that does not end within [`MAX_HEADER_BYTES`], or a file
-/// larger than its header's grid can need (naming both sizes); then those
-/// of [`parse_esri_ascii`], a header's [`DismechError::GridHeader`] and
-/// [`DismechError::GridTooLarge`] before any value is read.
+/// [`GridError::Format`] (line 0) for a path that cannot be read
+/// ([`Problem::CannotRead`]) or is not a regular file
+/// ([`Problem::NotRegularFile`], naming what it is), a file that is not
+/// UTF-8 text ([`Problem::NotUtf8`]), a header that does not end within
+/// [`MAX_HEADER_BYTES`] ([`Problem::NoCompleteHeader`]), or a file larger
+/// than its header's grid can need ([`Problem::FileTooLarge`], naming both
+/// sizes); then those of [`parse_esri_ascii`], a header's
+/// [`GridError::Header`] and [`GridError::TooLarge`] before
+/// any value is read.
 pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
     use std::io::Read;
     let name = path.display().to_string();
-    let cannot =
-        |e: std::io::Error| format_error(&name, 0, 0, format!("cannot read the file: {e}"));
+    let cannot = |e: std::io::Error| {
+        let problem = Problem::CannotRead {
+            kind: e.kind(),
+            message: e.to_string(),
+        };
+        format_error(&name, 0, 0, problem)
+    };
     let not_regular = |kind: std::fs::FileType| {
-        format_error(
-            &name,
-            0,
-            0,
-            format!(
-                "is {}, not a regular file: give the path of an ESRI ASCII grid file",
-                describe(kind)
-            ),
-        )
+        let problem = Problem::NotRegularFile {
+            kind: FileKind::of(kind),
+        };
+        format_error(&name, 0, 0, problem)
     };
     // The kind first, without opening: opening a FIFO blocks until a writer
     // comes.
@@ -150,22 +124,15 @@ pub fn read_esri_ascii(path: &Path) -> Result<Raster> {
         }
     }
     let text = String::from_utf8(bytes).map_err(|e| {
-        format_error(
-            &name,
-            0,
-            0,
-            format!(
-                "is not UTF-8 text (invalid byte at offset {}): an ESRI ASCII grid is text",
-                e.utf8_error().valid_up_to()
-            ),
-        )
+        let offset = e.utf8_error().valid_up_to();
+        format_error(&name, 0, 0, Problem::NotUtf8 { offset })
     })?;
     parse_esri_ascii(&text, &name)
 }
 
 /// The largest size a file may have whose first [`MAX_HEADER_BYTES`] are
 /// `head`, from the grid its header describes; the header's errors, or a
-/// [`DismechError::GridFormat`] when the header does not end in `head` or
+/// [`GridError::Format`] when the header does not end in `head` or
 /// the file's `size` is over the limit.
 fn allowed_size(head: &[u8], name: &str, size: u64) -> Result<u64> {
     // Whole tokens only: cut at the last whitespace, and at the end of the
@@ -176,27 +143,13 @@ fn allowed_size(head: &[u8], name: &str, size: u64) -> Result<u64> {
             std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or_default()
         }
         Err(e) => {
-            return Err(format_error(
-                name,
-                0,
-                0,
-                format!(
-                    "is not UTF-8 text (invalid byte at offset {}): an ESRI ASCII grid is text",
-                    e.valid_up_to()
-                ),
-            ))
+            let offset = e.valid_up_to();
+            return Err(format_error(name, 0, 0, Problem::NotUtf8 { offset }));
         }
     };
     let text = &text[..text.rfind(char::is_whitespace).unwrap_or(0)];
     let Ok((header, _)) = parse_header(&mut tokens(text), name)? else {
-        return Err(format_error(
-            name,
-            0,
-            0,
-            format!(
-                "no complete header in the first {MAX_HEADER_BYTES} bytes of a file of {size} bytes: an ESRI ASCII grid starts with ncols, nrows, xllcorner, yllcorner, cellsize (and NODATA_value), then its values"
-            ),
-        ));
+        return Err(format_error(name, 0, 0, Problem::NoCompleteHeader { size }));
     };
     let limit = (header.cells as u64)
         .saturating_mul(MAX_BYTES_PER_VALUE)
@@ -209,14 +162,7 @@ fn allowed_size(head: &[u8], name: &str, size: u64) -> Result<u64> {
 
 /// A file of `size` bytes, over the `limit` its header's grid can need.
 fn too_big(name: &str, size: u64, limit: u64) -> DismechError {
-    format_error(
-        name,
-        0,
-        0,
-        format!(
-            "the file has {size} bytes, more than the {limit} its header's grid can need ({MAX_HEADER_BYTES} for the header and {MAX_BYTES_PER_VALUE} a value): it is not the grid its header describes (check ncols and nrows), or its values are padded far beyond any writer's"
-        ),
-    )
+    format_error(name, 0, 0, Problem::FileTooLarge { size, limit })
 }
 
 /// A header entry: key and value as written, and where the value stands.
@@ -228,32 +174,26 @@ struct Entry<'a> {
 }
 
 impl Entry<'_> {
-    fn error(&self, file: &str, requirement: impl Into<String>) -> DismechError {
-        DismechError::GridHeader {
+    fn error(&self, file: &str, requirement: GridHeaderProblem) -> DismechError {
+        DismechError::Grid(GridError::Header {
             file: file.to_string(),
             line: self.line,
             key: self.key.to_string(),
             value: self.value.to_string(),
-            requirement: requirement.into(),
-        }
+            requirement,
+        })
     }
 
     /// The value as a count of cells: digits only, at least 1.
     fn count(&self, file: &str) -> Result<u64> {
         let digits = self.value.strip_prefix('+').unwrap_or(self.value);
         if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(self.error(
-                file,
-                "must be a whole number of cells written in digits (e.g. 24)",
-            ));
+            return Err(self.error(file, GridHeaderProblem::NotWholeNumber));
         }
         match digits.parse::<u64>() {
-            Ok(0) => Err(self.error(file, "must be at least 1")),
+            Ok(0) => Err(self.error(file, GridHeaderProblem::Zero)),
             Ok(n) => Ok(n),
-            Err(_) => Err(self.error(
-                file,
-                format!("is far more than the {MAX_GRID_CELLS} cells a grid may hold"),
-            )),
+            Err(_) => Err(self.error(file, GridHeaderProblem::CountOverflow)),
         }
     }
 
@@ -261,7 +201,7 @@ impl Entry<'_> {
     fn number(&self, file: &str) -> Result<f64> {
         self.value
             .parse()
-            .map_err(|_| self.error(file, "is not a number"))
+            .map_err(|_| self.error(file, GridHeaderProblem::NotANumber))
     }
 
     /// The value as a finite number.
@@ -270,7 +210,7 @@ impl Entry<'_> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(self.error(file, "must be a finite number"))
+            Err(self.error(file, GridHeaderProblem::NotFinite))
         }
     }
 }
@@ -325,12 +265,7 @@ fn parse_header<'a>(
     let first_value;
     loop {
         let Some((line, column, token)) = tokens.next() else {
-            return Ok(Err(format_error(
-                name,
-                0,
-                0,
-                "the file ends inside the header",
-            )));
+            return Ok(Err(format_error(name, 0, 0, Problem::EndsInsideHeader)));
         };
         let lower = token.to_ascii_lowercase();
         let slot = match lower.as_str() {
@@ -353,20 +288,17 @@ fn parse_header<'a>(
             break;
         };
         let Some((vline, _, value)) = tokens.next() else {
+            let key = token.to_string();
             return Ok(Err(format_error(
                 name,
                 line,
                 column,
-                format!("`{token}` has no value"),
+                Problem::KeyWithoutValue { key },
             )));
         };
         if header[slot].is_some() {
-            return Err(format_error(
-                name,
-                line,
-                column,
-                format!("`{token}` is given twice"),
-            ));
+            let key = token.to_string();
+            return Err(format_error(name, line, column, Problem::KeyTwice { key }));
         }
         header[slot] = Some(Entry {
             key: token,
@@ -376,12 +308,12 @@ fn parse_header<'a>(
     }
     let required = |slot: usize| -> Result<Entry> {
         header[slot].ok_or_else(|| {
-            let shown = match keys[slot] {
+            let key = match keys[slot] {
                 "xll" => "xllcorner or xllcenter",
                 "yll" => "yllcorner or yllcenter",
                 other => other,
             };
-            format_error(name, 0, 0, format!("the header has no `{shown}`"))
+            format_error(name, 0, 0, Problem::MissingKey { key })
         })
     };
     let (ncols, nrows, xll, yll, size) = (
@@ -396,20 +328,20 @@ fn parse_header<'a>(
     let (columns, rows) = (ncols.count(name)?, nrows.count(name)?);
     let cells = u128::from(columns) * u128::from(rows);
     if cells > MAX_GRID_CELLS as u128 {
-        return Err(DismechError::GridTooLarge {
+        return Err(DismechError::Grid(GridError::TooLarge {
             file: name.to_string(),
             columns,
             rows,
             cells,
             cap: MAX_GRID_CELLS,
-        });
+        }));
     }
     // Lossless: each factor is at most the product, at most MAX_GRID_CELLS.
     let (columns, rows, cells) = (columns as usize, rows as usize, cells as usize);
 
     let cell = size.finite(name)?;
     if cell <= 0.0 {
-        return Err(size.error(name, "must be positive"));
+        return Err(size.error(name, GridHeaderProblem::NotPositive));
     }
     let corner = |entry: Entry, centred: bool, count: usize| -> Result<f64> {
         let v = entry.finite(name)?;
@@ -418,12 +350,11 @@ fn parse_header<'a>(
         if start.is_finite() && end.is_finite() {
             Ok(start)
         } else {
-            Err(entry.error(
-                name,
-                format!(
-                    "the grid would reach past the largest finite coordinate ({count} cells of {cell} from there)"
-                ),
-            ))
+            let problem = GridHeaderProblem::ReachesInfinity {
+                count,
+                cell_size: cell,
+            };
+            Err(entry.error(name, problem))
         }
     };
     let x0 = corner(xll, centred.0, columns)?;
@@ -446,10 +377,16 @@ fn parse_header<'a>(
 /// Parse the text of an ESRI ASCII grid; `name` is used in errors.
 ///
 /// # Errors
-/// [`DismechError::GridHeader`] for a header value that cannot be
-/// used, [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`]
-/// cells, [`DismechError::GridFormat`] for anything else (a missing key, a
-/// value that is not a number, too few or too many values).
+/// [`GridError::Header`] for a header value that cannot be used
+/// (its [`GridHeaderProblem`] says what it must satisfy),
+/// [`GridError::TooLarge`] for more than [`MAX_GRID_CELLS`] cells,
+/// [`GridError::Format`] for anything else: a header cut short
+/// ([`Problem::EndsInsideHeader`], [`Problem::KeyWithoutValue`]), a key
+/// given twice ([`Problem::KeyTwice`]) or missing
+/// ([`Problem::MissingKey`]), a value that is not a number
+/// ([`Problem::NotANumber`]) or not finite ([`Problem::NotFinite`]), too
+/// many or too few values ([`Problem::TooManyValues`],
+/// [`Problem::TooFewValues`]).
 pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
     let mut tokens = tokens(text);
     let (header, first_value) = parse_header(&mut tokens, name)??;
@@ -469,47 +406,37 @@ pub fn parse_esri_ascii(text: &str, name: &str) -> Result<Raster> {
     let mut values = Vec::with_capacity(cells.min(text.len() / 2 + 1));
     for (line, column, token) in std::iter::once(first_value).chain(tokens) {
         if values.len() == cells {
-            return Err(format_error(
-                name,
-                line,
-                column,
-                format!("more values than ncols × nrows = {columns} × {rows} = {cells}"),
-            ));
+            let problem = Problem::TooManyValues { columns, rows };
+            return Err(format_error(name, line, column, problem));
         }
         let value: f64 = token.parse().map_err(|_| {
-            let (r, c) = (values.len() / columns, values.len() % columns);
-            format_error(
-                name,
-                line,
-                column,
-                format!("`{token}` is not a number (grid row {r}, column {c})"),
-            )
+            let problem = Problem::NotANumber {
+                text: token.to_string(),
+                row: values.len() / columns,
+                column: values.len() % columns,
+            };
+            format_error(name, line, column, problem)
         })?;
         if is_nodata(value) {
             values.push(None);
         } else if value.is_finite() {
             values.push(Some(value));
         } else {
-            let (r, c) = (values.len() / columns, values.len() % columns);
-            return Err(format_error(
-                name,
-                line,
-                column,
-                format!("`{token}` is not finite (grid row {r}, column {c}); mark missing cells with NODATA_value"),
-            ));
+            let problem = Problem::NotFinite {
+                text: token.to_string(),
+                row: values.len() / columns,
+                column: values.len() % columns,
+            };
+            return Err(format_error(name, line, column, problem));
         }
     }
     if values.len() != cells {
-        let (r, c) = (values.len() / columns, values.len() % columns);
-        return Err(format_error(
-            name,
-            0,
-            0,
-            format!(
-                "{} values for ncols × nrows = {columns} × {rows} = {cells}: the data stop in grid row {r} after {c} of {columns} values",
-                values.len(),
-            ),
-        ));
+        let problem = Problem::TooFewValues {
+            found: values.len(),
+            columns,
+            rows,
+        };
+        return Err(format_error(name, 0, 0, problem));
     }
     Raster::new(columns, rows, x0, y0, cell, values)
 }
@@ -581,14 +508,17 @@ mod tests {
     fn esri_grid_errors_name_file_line_and_column() {
         let bad = SAMPLE.replace("5.5", "5,5");
         match parse_esri_ascii(&bad, "slip.asc").unwrap_err() {
-            DismechError::GridFormat {
+            DismechError::Grid(GridError::Format {
                 file,
                 line,
                 column,
-                message,
-            } => {
+                problem,
+            }) => {
                 assert_eq!((file.as_str(), line, column), ("slip.asc", 8, 3));
-                assert!(message.contains("row 1, column 1"), "{message}");
+                assert!(problem.to_string().contains("row 1, column 1"), "{problem}");
+                let text = "5,5".to_string();
+                let (row, column) = (1, 1);
+                assert_eq!(problem, Problem::NotANumber { text, row, column });
             }
             other => panic!("{other}"),
         }

@@ -10,7 +10,10 @@ use tiff::encoder::{colortype::Gray64Float, TiffEncoder};
 use tiff::tags::Tag;
 use tiff::ColorType;
 
-use super::esri_ascii::describe;
+use super::error::{
+    CrsProblem, FileKind, GeoTiffProblem as Problem, GridCellProblem, GridError, MissingTags,
+    TiffDamage,
+};
 use super::{Raster, MAX_GRID_CELLS};
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
@@ -85,20 +88,17 @@ pub const MAX_CRS_CITATION: usize = 2399;
 /// (`|` ends each key's text), or why it cannot be written: a WKT with
 /// `|` or a character outside printable ASCII, or a text longer than
 /// [`MAX_CRS_CITATION`].
-fn esri_citation(wkt: &str) -> std::result::Result<String, String> {
+fn esri_citation(wkt: &str) -> std::result::Result<String, CrsProblem> {
     let wkt = wkt.trim();
-    if let Some(bad) = wkt.chars().find(|&c| !(' '..='~').contains(&c) || c == '|') {
-        return Err(format!(
-            "the coordinate system's WKT holds {bad:?}, which a GeoTIFF's ASCII key cannot keep (printable ASCII other than `|` only)"
-        ));
+    if let Some(character) = wkt.chars().find(|&c| !(' '..='~').contains(&c) || c == '|') {
+        return Err(CrsProblem::Character { character });
     }
     let text = format!("ESRI PE String = {wkt}|");
     if text.len() > MAX_CRS_CITATION {
-        return Err(format!(
-            "the coordinate system's WKT is {} characters long; GDAL reads at most {} of the citation `ESRI PE String = <wkt>|`",
-            wkt.len(),
-            MAX_CRS_CITATION
-        ));
+        return Err(CrsProblem::TooLong {
+            length: wkt.len(),
+            limit: MAX_CRS_CITATION,
+        });
     }
     Ok(text)
 }
@@ -109,9 +109,10 @@ fn esri_citation(wkt: &str) -> std::result::Result<String, String> {
 /// before a long computation whose results would carry it.
 ///
 /// # Errors
-/// Why it cannot be kept: a character outside printable ASCII or `|`, or
-/// a text longer than [`MAX_CRS_CITATION`].
-pub fn check_crs_wkt(wkt: &str) -> std::result::Result<(), String> {
+/// Why it cannot be kept: [`CrsProblem::Character`] for a character
+/// outside printable ASCII or `|`, [`CrsProblem::TooLong`] for a text
+/// longer than [`MAX_CRS_CITATION`].
+pub fn check_crs_wkt(wkt: &str) -> std::result::Result<(), CrsProblem> {
     esri_citation(wkt).map(|_| ())
 }
 
@@ -145,7 +146,10 @@ fn nodata_text(nodata: f64) -> String {
 /// The encoder's, as text (none for a [`Raster`], whose sides fit TIFF's
 /// 32-bit sizes and whose values fit its 4 GiB).
 fn encode(raster: &Raster, wkt: Option<&str>) -> std::result::Result<Vec<u8>, String> {
-    let citation = wkt.map(esri_citation).transpose()?;
+    let citation = wkt
+        .map(esri_citation)
+        .transpose()
+        .map_err(|e| e.to_string())?;
     let columns = u32::try_from(raster.columns()).map_err(|e| e.to_string())?;
     let rows = u32::try_from(raster.rows()).map_err(|e| e.to_string())?;
     let nodata = nodata_for(raster);
@@ -219,22 +223,20 @@ pub const MAX_GEOTIFF_EXPANSION: u64 = 4096;
 
 /// What [`read_geotiff`] reads of the GeoKey directory: the raster type
 /// (`true` for `RasterPixelIsPoint`).
-fn pixel_is_point(keys: &[u16]) -> std::result::Result<bool, String> {
+fn pixel_is_point(keys: &[u16]) -> std::result::Result<bool, Problem> {
     let count = keys.get(3).copied().unwrap_or(0) as usize;
     if keys.len() < 4 || keys.len() < 4 + 4 * count {
-        return Err(format!(
-            "GeoKeyDirectory (34735) of {} values announces {count} keys: it is damaged",
-            keys.len()
-        ));
+        return Err(Problem::KeyDirectoryDamaged {
+            values: keys.len(),
+            keys: count,
+        });
     }
     for key in keys[4..4 + 4 * count].chunks_exact(4) {
         if key[0] == geokey::RASTER_TYPE {
             return match (key[1], key[3]) {
                 (0, 1) => Ok(false),
                 (0, 2) => Ok(true),
-                (location, value) => Err(format!(
-                    "GTRasterTypeGeoKey (1025) = {value} (location {location}): expected 1 (RasterPixelIsArea) or 2 (RasterPixelIsPoint)"
-                )),
+                (location, value) => Err(Problem::RasterType { value, location }),
             };
         }
     }
@@ -261,23 +263,27 @@ fn type_bytes(kind: u16) -> Option<u64> {
 fn check_first_directory(
     file: &mut (impl std::io::Read + std::io::Seek),
     size: u64,
-) -> std::result::Result<(), String> {
+) -> std::result::Result<(), TiffDamage> {
     use std::io::SeekFrom;
-    let mut read = |at: u64, n: usize| -> std::result::Result<Vec<u8>, String> {
+    let mut read = |at: u64, n: usize| -> std::result::Result<Vec<u8>, TiffDamage> {
         let mut buf = vec![0; n];
         file.seek(SeekFrom::Start(at))
             .and_then(|_| file.read_exact(&mut buf))
-            .map_err(|e| format!("cannot read {n} bytes at offset {at} of {size}: {e}"))?;
+            .map_err(|e| TiffDamage::ShortRead {
+                bytes: n,
+                offset: at,
+                size,
+                message: e.to_string(),
+            })?;
         Ok(buf)
     };
     let header = read(0, 8)?;
     let little = match &header[..2] {
         b"II" => true,
         b"MM" => false,
-        other => {
-            return Err(format!(
-                "it starts with {other:?}, not a TIFF byte order (`II` or `MM`)"
-            ))
+        _ => {
+            let start = [header[0], header[1]];
+            return Err(TiffDamage::ByteOrder { start });
         }
     };
     let uint = |b: &[u8]| -> u64 {
@@ -291,11 +297,7 @@ fn check_first_directory(
     let big = match uint(&header[2..4]) {
         42 => false,
         43 => true,
-        magic => {
-            return Err(format!(
-                "TIFF version {magic}: expected 42 (TIFF) or 43 (BigTIFF)"
-            ))
-        }
+        version => return Err(TiffDamage::Version { version }),
     };
     let (first, count_bytes, entry_bytes, inline) = if big {
         (uint(&read(8, 8)?), 8, 20, 8)
@@ -309,9 +311,11 @@ fn check_first_directory(
         .saturating_add(table)
         > size
     {
-        return Err(format!(
-            "its first directory, at offset {first}, announces {count} entries, which do not fit in the file's {size} bytes"
-        ));
+        return Err(TiffDamage::DirectoryOutside {
+            offset: first,
+            count,
+            size,
+        });
     }
     let entries = read(first + count_bytes as u64, table as usize)?;
     for entry in entries.chunks_exact(entry_bytes) {
@@ -326,9 +330,13 @@ fn check_first_directory(
         };
         let bytes = n.saturating_mul(unit);
         if bytes > inline && offset.saturating_add(bytes) > size {
-            return Err(format!(
-                "tag {tag} announces {n} values ({bytes} bytes) at offset {offset}, beyond the file's {size} bytes"
-            ));
+            return Err(TiffDamage::TagOutside {
+                tag,
+                count: n,
+                bytes,
+                offset,
+                size,
+            });
         }
     }
     Ok(())
@@ -391,40 +399,53 @@ fn samples(result: DecodingResult, nodata: Option<f64>) -> Vec<Option<f64>> {
 /// takes is bounded by the file's size.
 ///
 /// # Errors
-/// [`DismechError::GeoTiff`] naming the file and, where one is at fault,
-/// the tag and its value: a path that cannot be read or is not a regular
-/// file, not a TIFF or a damaged one (the decoder's message), more than
-/// one band, no `ModelPixelScale` or `ModelTiepoint` (or a
-/// `ModelTransformation` instead), cells that are not square or a scale
-/// that is not finite and positive, more than one tie point, a
-/// `GTRasterTypeGeoKey` other than area or point, a `GDAL_NODATA` that is
-/// not a number, or values the file cannot hold;
-/// [`DismechError::GridTooLarge`] for more than [`MAX_GRID_CELLS`] cells;
-/// [`DismechError::GridCell`] for an infinite value (naming its row and
-/// column); and [`DismechError::GeoTiff`] with the message of
-/// [`Raster::new`] for a corner or extent that is not finite.
+/// [`GridError::GeoTiff`] naming the file and, where one is at fault,
+/// the tag and its value, its [`Problem`] one of: a path that cannot be
+/// read ([`Problem::CannotRead`]) or is not a regular file
+/// ([`Problem::NotRegularFile`]), not a TIFF or a damaged one
+/// ([`Problem::Unreadable`], with the decoder's message), more than one
+/// band ([`Problem::NotOneBand`]), no `ModelPixelScale` or
+/// `ModelTiepoint` ([`Problem::NotGeoreferenced`], or
+/// [`Problem::Transformation`] for a `ModelTransformation` instead), cells
+/// that are not square ([`Problem::CellsNotSquare`]) or a scale that is
+/// not finite and positive ([`Problem::ScaleNotPositive`],
+/// [`Problem::ScaleTooShort`]), more than one tie point
+/// ([`Problem::TiepointCount`]), a `GTRasterTypeGeoKey` other than area or
+/// point ([`Problem::RasterType`], [`Problem::KeyDirectoryDamaged`]), a
+/// `GDAL_NODATA` that is not a number ([`Problem::NodataNotNumber`],
+/// [`Problem::NodataNotText`]), a tag that is not numbers
+/// ([`Problem::TagNotNumbers`]), or values the file cannot hold
+/// ([`Problem::ValuesExceedFile`], [`Problem::ValueCount`]);
+/// [`GridError::TooLarge`] for more than [`MAX_GRID_CELLS`] cells;
+/// [`GridError::Cell`] ([`GridCellProblem::NotFinite`]) for an
+/// infinite value (naming its row and column); and
+/// [`Problem::Georeference`], holding the error of [`Raster::new`], for a
+/// corner or extent that is not finite.
 pub fn read_geotiff(path: &Path) -> Result<Raster> {
     let name = path.display().to_string();
-    let fail = |message: String| DismechError::GeoTiff {
-        file: name.clone(),
-        message,
+    let fail = |problem: Problem| {
+        DismechError::Grid(GridError::GeoTiff {
+            file: name.clone(),
+            problem,
+        })
     };
-    let kind = std::fs::metadata(path)
-        .map_err(|e| fail(format!("cannot read the file: {e}")))?
-        .file_type();
+    let cannot = |e: std::io::Error| {
+        fail(Problem::CannotRead {
+            kind: e.kind(),
+            message: e.to_string(),
+        })
+    };
+    let kind = std::fs::metadata(path).map_err(cannot)?.file_type();
     let not_regular = |kind: std::fs::FileType| {
-        fail(format!(
-            "is {}, not a regular file: give the path of a GeoTIFF file",
-            describe(kind)
-        ))
+        fail(Problem::NotRegularFile {
+            kind: FileKind::of(kind),
+        })
     };
     if !kind.is_file() {
         return Err(not_regular(kind));
     }
-    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
-    let meta = file
-        .metadata()
-        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let file = std::fs::File::open(path).map_err(cannot)?;
+    let meta = file.metadata().map_err(cannot)?;
     if !meta.is_file() {
         return Err(not_regular(meta.file_type()));
     }
@@ -448,35 +469,44 @@ fn decode<R: std::io::Read + std::io::Seek>(
     name: &str,
 ) -> Result<Raster> {
     let name = name.to_string();
-    let fail = |message: String| DismechError::GeoTiff {
-        file: name.clone(),
-        message,
+    let fail = |problem: Problem| {
+        DismechError::Grid(GridError::GeoTiff {
+            file: name.clone(),
+            problem,
+        })
     };
-    let tiff_error = |e: tiff::TiffError| fail(format!("not a TIFF file that can be read: {e}"));
+    let tiff_error = |e: tiff::TiffError| {
+        let damage = TiffDamage::Decoder {
+            message: e.to_string(),
+        };
+        fail(Problem::Unreadable { damage })
+    };
     check_first_directory(&mut reader, size)
-        .map_err(|e| fail(format!("not a TIFF file that can be read: {e}")))?;
-    reader
-        .rewind()
-        .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+        .map_err(|damage| fail(Problem::Unreadable { damage }))?;
+    reader.rewind().map_err(|e| {
+        fail(Problem::CannotRead {
+            kind: e.kind(),
+            message: e.to_string(),
+        })
+    })?;
     let mut decoder = Decoder::new(reader).map_err(tiff_error)?;
 
     let (width, height) = decoder.dimensions().map_err(tiff_error)?;
     let cells = u128::from(width) * u128::from(height);
     if cells > MAX_GRID_CELLS as u128 {
-        return Err(DismechError::GridTooLarge {
+        return Err(DismechError::Grid(GridError::TooLarge {
             file: name.clone(),
             columns: u64::from(width),
             rows: u64::from(height),
             cells,
             cap: MAX_GRID_CELLS,
-        });
+        }));
     }
     let bits = match decoder.colortype().map_err(tiff_error)? {
         ColorType::Gray(bits) => u64::from(bits),
         other => {
-            return Err(fail(format!(
-                "its image is {other:?}: a raster is one band of values (a DEM), not a colour or multi-band image"
-            )))
+            let color = format!("{other:?}");
+            return Err(fail(Problem::NotOneBand { color }));
         }
     };
     let compression: u16 = decoder
@@ -490,21 +520,34 @@ fn decode<R: std::io::Read + std::io::Seek>(
         size.saturating_mul(MAX_GEOTIFF_EXPANSION)
     };
     if bytes > holds {
-        return Err(fail(format!(
-            "{width} × {height} values of {bits} bits ({bytes} bytes) cannot be held in a file of {size} bytes (compression {compression}): the file is truncated or damaged"
-        )));
+        return Err(fail(Problem::ValuesExceedFile {
+            width,
+            height,
+            bits,
+            bytes,
+            size,
+            compression,
+        }));
     }
 
-    let f64_tag = |decoder: &mut Decoder<R>, tag: Tag, number: u16, what: &str| match decoder
-        .find_tag(tag)
-        .map_err(tiff_error)?
-    {
-        None => Ok(None),
-        Some(v) => v
-            .into_f64_vec()
-            .map(Some)
-            .map_err(|e| fail(format!("{what} ({number}) cannot be read as numbers: {e}"))),
+    let not_numbers = |tag: &'static str, number: u16, e: tiff::TiffError| {
+        fail(Problem::TagNotNumbers {
+            tag,
+            number,
+            message: e.to_string(),
+        })
     };
+    let f64_tag =
+        |decoder: &mut Decoder<R>, tag: Tag, number: u16, what: &'static str| match decoder
+            .find_tag(tag)
+            .map_err(tiff_error)?
+        {
+            None => Ok(None),
+            Some(v) => v
+                .into_f64_vec()
+                .map(Some)
+                .map_err(|e| not_numbers(what, number, e)),
+        };
     let scale = f64_tag(
         &mut decoder,
         Tag::ModelPixelScaleTag,
@@ -520,51 +563,42 @@ fn decode<R: std::io::Read + std::io::Seek>(
                 .map_err(tiff_error)?
                 .is_some();
             let missing = match (scale.is_none(), tie.is_none()) {
-                (true, true) => "ModelPixelScale (33550) and ModelTiepoint (33922)",
-                (true, false) => "ModelPixelScale (33550)",
-                _ => "ModelTiepoint (33922)",
+                (true, true) => MissingTags::ScaleAndTiepoint,
+                (true, false) => MissingTags::Scale,
+                _ => MissingTags::Tiepoint,
             };
             return Err(fail(if transformation {
-                format!("is georeferenced by a ModelTransformation (34264), which may rotate the grid; a raster needs {missing}: warp it onto a north-up grid (gdalwarp)")
+                Problem::Transformation { missing }
             } else {
-                format!("has no {missing}: it is not georeferenced (a GeoTIFF DEM has both)")
+                Problem::NotGeoreferenced { missing }
             }));
         }
     };
     let (sx, sy) = match scale[..] {
         [sx, sy, ..] => (sx, sy),
         _ => {
-            return Err(fail(format!(
-                "ModelPixelScale (33550) = {scale:?}: expected (x scale, y scale, z scale)"
-            )))
+            return Err(fail(Problem::ScaleTooShort {
+                scale: scale.clone(),
+            }))
         }
     };
     if !(sx.is_finite() && sx > 0.0 && sy.is_finite() && sy > 0.0) {
-        return Err(fail(format!(
-            "ModelPixelScale (33550) = ({sx}, {sy}): the cell sides must be finite and positive"
-        )));
+        return Err(fail(Problem::ScaleNotPositive { x: sx, y: sy }));
     }
     if (sx - sy).abs() > 1e-9 * sx {
-        return Err(fail(format!(
-            "ModelPixelScale (33550) = ({sx}, {sy}): cells of {sx} × {sy} m; a raster has square cells: resample it (gdalwarp -tr)"
-        )));
+        return Err(fail(Problem::CellsNotSquare { x: sx, y: sy }));
     }
     let [i, j, _, x, y, _] = tie[..] else {
-        return Err(fail(format!(
-            "ModelTiepoint (33922) has {} values: expected one tie point (i, j, k, x, y, z), 6 values",
-            tie.len()
-        )));
+        return Err(fail(Problem::TiepointCount { values: tie.len() }));
     };
     let keys = match decoder
         .find_tag(Tag::GeoKeyDirectoryTag)
         .map_err(tiff_error)?
     {
         None => Vec::new(),
-        Some(v) => v.into_u16_vec().map_err(|e| {
-            fail(format!(
-                "GeoKeyDirectory (34735) cannot be read as numbers: {e}"
-            ))
-        })?,
+        Some(v) => v
+            .into_u16_vec()
+            .map_err(|e| not_numbers("GeoKeyDirectory", 34735, e))?,
     };
     let point = if keys.is_empty() {
         false
@@ -574,19 +608,22 @@ fn decode<R: std::io::Read + std::io::Seek>(
     let shift = if point { 0.5 } else { 0.0 };
     let x_left = x - (i + shift) * sx;
     let y_top = y + (j + shift) * sy;
-    let nodata =
-        match decoder.find_tag(Tag::GdalNodata).map_err(tiff_error)? {
-            None => None,
-            Some(v) => {
-                let text = v
-                    .into_string()
-                    .map_err(|e| fail(format!("GDAL_NODATA (42113) is not text: {e}")))?;
-                let trimmed = text.trim_matches(|c: char| c.is_whitespace() || c == '\0');
-                Some(trimmed.parse::<f64>().map_err(|_| {
-                    fail(format!("GDAL_NODATA (42113) = `{trimmed}`: not a number"))
-                })?)
-            }
-        };
+    let nodata = match decoder.find_tag(Tag::GdalNodata).map_err(tiff_error)? {
+        None => None,
+        Some(v) => {
+            let text = v.into_string().map_err(|e| {
+                fail(Problem::NodataNotText {
+                    message: e.to_string(),
+                })
+            })?;
+            let trimmed = text.trim_matches(|c: char| c.is_whitespace() || c == '\0');
+            Some(trimmed.parse::<f64>().map_err(|_| {
+                fail(Problem::NodataNotNumber {
+                    text: trimmed.to_string(),
+                })
+            })?)
+        }
+    };
 
     let mut limits = Limits::default();
     limits.decoding_buffer_size = usize::try_from(bytes.max(1)).unwrap_or(usize::MAX);
@@ -596,23 +633,30 @@ fn decode<R: std::io::Read + std::io::Seek>(
     let values = samples(decoder.read_image().map_err(tiff_error)?, nodata);
     let (columns, rows) = (width as usize, height as usize);
     if values.len() != columns * rows {
-        return Err(fail(format!(
-            "{} values decoded for {width} × {height} cells",
-            values.len()
-        )));
+        return Err(fail(Problem::ValueCount {
+            decoded: values.len(),
+            width,
+            height,
+        }));
     }
     if let Some(k) = values.iter().position(|v| v.is_some_and(f64::is_infinite)) {
-        return Err(DismechError::GridCell {
+        return Err(DismechError::Grid(GridError::Cell {
             file: name,
             row: k / columns,
             column: k % columns,
-            message: format!("value {}: not finite", values[k].unwrap_or_default()),
-        });
+            problem: GridCellProblem::NotFinite {
+                value: values[k].unwrap_or_default(),
+            },
+        }));
     }
     Raster::new(columns, rows, x_left, y_top - rows as f64 * sx, sx, values).map_err(|e| {
-        fail(format!(
-            "{e} (from ModelTiepoint (33922) = {tie:?} and ModelPixelScale (33550) = {scale:?}, {width} × {height} cells)"
-        ))
+        fail(Problem::Georeference {
+            error: Box::new(e),
+            tiepoint: tie.clone(),
+            scale: scale.clone(),
+            width,
+            height,
+        })
     })
 }
 
@@ -705,9 +749,20 @@ mod tests {
         point[11] = 2;
         assert_eq!(pixel_is_point(&point), Ok(true));
         point[11] = 7;
-        assert!(pixel_is_point(&point).unwrap_err().contains("= 7"));
+        assert!(pixel_is_point(&point)
+            .unwrap_err()
+            .to_string()
+            .contains("= 7"));
+        assert_eq!(
+            pixel_is_point(&point),
+            Err(Problem::RasterType {
+                value: 7,
+                location: 0
+            })
+        );
         assert!(pixel_is_point(&[1, 1, 1, 9, 1024])
             .unwrap_err()
+            .to_string()
             .contains("announces 9 keys"));
     }
 

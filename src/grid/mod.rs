@@ -49,7 +49,7 @@
 //! cells (`ModelPixelScale`), one tie point (`ModelTiepoint`, shifted half
 //! a cell where `GTRasterTypeGeoKey` says `RasterPixelIsPoint`), and
 //! `GDAL_NODATA` or NaN as no data. What it cannot use is refused with
-//! [`DismechError::GeoTiff`](crate::error::DismechError::GeoTiff) naming the file, the tag and its value; no
+//! [`GridError::GeoTiff`] naming the file, the tag and its value; no
 //! file makes it panic, and the memory it takes is bounded by the file's
 //! size (see [`read_geotiff`]).
 //!
@@ -58,11 +58,16 @@
 //! raster of [`MAX_GRID_CELLS`]
 //! cells takes 800 MB, within classic TIFF's 4 GiB.
 
+mod error;
 mod esri_ascii;
 mod format;
 mod geotiff;
 mod raster;
 
+pub use error::{
+    CrsProblem, FileKind, GeoTiffProblem, GridCellProblem, GridError, GridExtent,
+    GridFormatProblem, GridHeaderProblem, MissingTags, TiffDamage,
+};
 pub use esri_ascii::{
     parse_esri_ascii, read_esri_ascii, to_esri_ascii, write_esri_ascii, MAX_BYTES_PER_VALUE,
     MAX_HEADER_BYTES,

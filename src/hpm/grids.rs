@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use crate::error::{DismechError, Result};
-use crate::grid::{read_raster, Raster};
+use crate::grid::{read_raster, GridCellProblem, GridError, GridExtent, Raster};
 
 /// The fewest rows, and the fewest columns, of slope grids: corner heights
 /// are interpolated (and at the edge extrapolated) between two cell centres
@@ -44,27 +44,19 @@ impl NamedRaster {
     /// columns, cell size, lower-left corner).
     ///
     /// # Errors
-    /// [`DismechError::GridMismatch`] naming both rasters and both grids.
+    /// [`GridError::Mismatch`] naming both rasters and both grids
+    /// (their [`GridExtent`]s).
     pub fn require_grid_of(&self, reference: &NamedRaster) -> Result<()> {
         let (a, b) = (&reference.raster, &self.raster);
         if a.same_grid(b) {
             return Ok(());
         }
-        Err(DismechError::GridMismatch {
+        Err(DismechError::Grid(GridError::Mismatch {
             file: self.name.clone(),
             reference: reference.name.clone(),
-            message: format!(
-                "{} × {} cells of {} m at {:?} against {} × {} cells of {} m at {:?} (rows × columns, cell size, lower-left corner)",
-                b.rows(),
-                b.columns(),
-                b.cell_size(),
-                b.lower_left(),
-                a.rows(),
-                a.columns(),
-                a.cell_size(),
-                a.lower_left()
-            ),
-        })
+            found: Box::new(GridExtent::of(b)),
+            expected: Box::new(GridExtent::of(a)),
+        }))
     }
 
     /// Read a grid file: GeoTIFF where its extension is `.tif` or `.tiff`,
@@ -95,13 +87,15 @@ impl SlopeGrids {
     /// Check the rasters and find the valid columns.
     ///
     /// # Errors
-    /// Rasters on different grids ([`DismechError::GridMismatch`]); a grid
+    /// Rasters on different grids ([`GridError::Mismatch`]); a grid
     /// of fewer than [`MIN_GRID_SIDE`] rows or columns
     /// ([`DismechError::GridTooSmall`], naming its size: the corner heights
     /// and slopes need two cell centres along each axis);
-    /// a cell of the slide without ground data, a slip-surface hole inside
-    /// the slide, or a water table without data over a valid column
-    /// ([`DismechError::GridCell`], naming file, row and column); no valid
+    /// a cell of the slide without ground data
+    /// ([`GridCellProblem::NoGround`]), a slip-surface hole inside the
+    /// slide ([`GridCellProblem::SlipSurfaceHole`]), or a water table
+    /// without data over a valid column ([`GridCellProblem::NoWaterTable`])
+    /// ([`GridError::Cell`], naming file, row and column); no valid
     /// column ([`DismechError::NoValidColumn`]).
     pub fn new(ground: NamedRaster, slip: NamedRaster, water: Option<NamedRaster>) -> Result<Self> {
         for other in std::iter::once(&slip).chain(water.as_ref()) {
@@ -123,12 +117,7 @@ impl SlopeGrids {
                 match (ground.raster.get(r, c), slip.raster.get(r, c)) {
                     (Some(g), Some(s)) => valid[r * columns + c] = s < g,
                     (None, Some(_)) => {
-                        return Err(cell_error(
-                            &ground,
-                            r,
-                            c,
-                            "no ground data where the slip surface is given (inside the slide)",
-                        ))
+                        return Err(cell_error(&ground, r, c, GridCellProblem::NoGround))
                     }
                     _ => {}
                 }
@@ -145,12 +134,7 @@ impl SlopeGrids {
                 let column_hole = (0..r).any(|k| valid[k * columns + c])
                     && (r + 1..rows).any(|k| valid[k * columns + c]);
                 if row_hole || column_hole {
-                    return Err(cell_error(
-                        &slip,
-                        r,
-                        c,
-                        "no slip-surface data inside the slide (valid columns on both sides)",
-                    ));
+                    return Err(cell_error(&slip, r, c, GridCellProblem::SlipSurfaceHole));
                 }
             }
         }
@@ -164,12 +148,7 @@ impl SlopeGrids {
             for (k, _) in valid.iter().enumerate().filter(|(_, &v)| v) {
                 let (r, c) = (k / columns, k % columns);
                 if w.raster.get(r, c).is_none() {
-                    return Err(cell_error(
-                        w,
-                        r,
-                        c,
-                        "no water-table data over a valid column",
-                    ));
+                    return Err(cell_error(w, r, c, GridCellProblem::NoWaterTable));
                 }
             }
         }
@@ -254,13 +233,18 @@ impl SlopeGrids {
     }
 }
 
-fn cell_error(raster: &NamedRaster, row: usize, column: usize, message: &str) -> DismechError {
-    DismechError::GridCell {
+fn cell_error(
+    raster: &NamedRaster,
+    row: usize,
+    column: usize,
+    problem: GridCellProblem,
+) -> DismechError {
+    DismechError::Grid(GridError::Cell {
         file: raster.name.clone(),
         row,
         column,
-        message: message.to_string(),
-    }
+        problem,
+    })
 }
 
 /// The value at grid node (node_row, node_column): node row 0 is the top

@@ -14,6 +14,65 @@ use crate::error::{DismechError, Result};
 use crate::grid::{write_rasters, Raster, RasterFormat};
 use crate::kinematics::affine3::ELEMENT_DOF;
 
+/// Why maps cannot be made of a result on a grid
+/// ([`DismechError::MapData`]): the model is not one of the grid, or the
+/// result not one of the model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MapProblem {
+    /// The model's grid has another size or cell size than the rasters'.
+    #[error("the model is not one of the grid of `{ground}`: its grid has {} × {} cells of {} m, the rasters {} × {} cells of {} m", model.0, model.1, model.2, rasters.0, rasters.1, rasters.2)]
+    GridSize {
+        /// The ground-surface raster's name.
+        ground: String,
+        /// The model's rows, columns and cell size (m).
+        model: (usize, usize, f64),
+        /// The rasters' rows, columns and cell size (m).
+        rasters: (usize, usize, f64),
+    },
+    /// A column of the model lies outside the grid.
+    #[error("the model is not one of the grid of `{ground}`: column {column} lies in cell ({}, {}), outside the grid", cell.0, cell.1)]
+    CellOutside {
+        /// The ground-surface raster's name.
+        ground: String,
+        /// The column of the model.
+        column: usize,
+        /// Its cell (row, column).
+        cell: (usize, usize),
+    },
+    /// The model's first column is not at its cell of the grid.
+    #[error("the model is not one of the grid of `{ground}`: column 0 of cell ({}, {}) has its corner at ({}, {}), the cell at ({}, {})", cell.0, cell.1, corner.0, corner.1, expected.0, expected.1)]
+    CornerOff {
+        /// The ground-surface raster's name.
+        ground: String,
+        /// The column's cell (row, column).
+        cell: (usize, usize),
+        /// The column's lower-left corner (m).
+        corner: (f64, f64),
+        /// The cell's lower-left corner (m).
+        expected: (f64, f64),
+    },
+    /// An HPM result of another model.
+    #[error("the HPM result has {displacements} displacements and {tractions} slip tractions, the model {elements} elements ({} displacements) and {springs} slip springs: it is not a result of this model", ELEMENT_DOF * elements)]
+    NotThisResult {
+        /// Displacements of the result.
+        displacements: usize,
+        /// Slip tractions of the result.
+        tractions: usize,
+        /// Elements of the model.
+        elements: usize,
+        /// Slip springs of the model.
+        springs: usize,
+    },
+    /// Hovland's terms of another model.
+    #[error("Hovland's method has {hovland} columns, the model {model}: it is not Hovland's method of this model")]
+    NotThisHovland {
+        /// Columns of Hovland's terms.
+        hovland: usize,
+        /// Columns of the model.
+        model: usize,
+    },
+}
+
 /// The maps of [`HpmResult::maps`], in this order.
 pub const HPM_MAP_NAMES: [&str; 7] = [
     "local_fs",
@@ -80,27 +139,25 @@ impl ColumnMaps {
 fn column_cells(model: &HpmModel, grids: &SlopeGrids) -> Result<Vec<usize>> {
     let raster = &grids.ground().raster;
     let (rows, columns, d) = model.grid;
-    let mismatch = |what: String| DismechError::MapData {
-        reason: format!(
-            "the model is not one of the grid of `{}`: {what}",
-            grids.ground().name
-        ),
-    };
-    if (rows, columns, d) != (raster.rows(), raster.columns(), raster.cell_size()) {
-        return Err(mismatch(format!(
-            "its grid has {rows} × {columns} cells of {d} m, the rasters {} × {} cells of {} m",
-            raster.rows(),
-            raster.columns(),
-            raster.cell_size()
-        )));
+    let ground = || grids.ground().name.clone();
+    let mismatch = |reason: MapProblem| DismechError::MapData { reason };
+    let rasters = (raster.rows(), raster.columns(), raster.cell_size());
+    if (rows, columns, d) != rasters {
+        return Err(mismatch(MapProblem::GridSize {
+            ground: ground(),
+            model: (rows, columns, d),
+            rasters,
+        }));
     }
     let mut cells = Vec::with_capacity(model.columns.len());
     for (k, column) in model.columns.iter().enumerate() {
         let (r, c) = column.cell;
         if r >= rows || c >= columns {
-            return Err(mismatch(format!(
-                "column {k} lies in cell ({r}, {c}), outside the grid"
-            )));
+            return Err(mismatch(MapProblem::CellOutside {
+                ground: ground(),
+                column: k,
+                cell: (r, c),
+            }));
         }
         cells.push(r * columns + c);
     }
@@ -112,9 +169,12 @@ fn column_cells(model: &HpmModel, grids: &SlopeGrids) -> Result<Vec<usize>> {
         if (x - x_ll).abs() > 1e-9 * d.max(x_ll.abs())
             || (y - y_ll).abs() > 1e-9 * d.max(y_ll.abs())
         {
-            return Err(mismatch(format!(
-                "column 0 of cell ({r}, {c}) has its corner at ({x}, {y}), the cell at ({x_ll}, {y_ll})"
-            )));
+            return Err(mismatch(MapProblem::CornerOff {
+                ground: ground(),
+                cell: (r, c),
+                corner: (x, y),
+                expected: (x_ll, y_ll),
+            }));
         }
     }
     Ok(cells)
@@ -151,22 +211,21 @@ impl HpmResult {
     ///
     /// # Errors
     /// [`DismechError::MapData`] when `model` was not built on the grid of
-    /// `grids`, or this result is not an analysis of `model` (its
-    /// displacements not 12 per element, its tractions not one per slip
-    /// spring).
+    /// `grids` ([`MapProblem::GridSize`], [`MapProblem::CellOutside`],
+    /// [`MapProblem::CornerOff`]), or this result is not an analysis of
+    /// `model` ([`MapProblem::NotThisResult`]: its displacements not 12 per
+    /// element, its tractions not one per slip spring).
     pub fn maps(&self, model: &HpmModel, grids: &SlopeGrids) -> Result<ColumnMaps> {
         if self.displacements.len() != ELEMENT_DOF * model.elements.len()
             || self.tractions.len() != model.slip.len()
         {
             return Err(DismechError::MapData {
-                reason: format!(
-                    "the HPM result has {} displacements and {} slip tractions, the model {} elements ({} displacements) and {} slip springs: it is not a result of this model",
-                    self.displacements.len(),
-                    self.tractions.len(),
-                    model.elements.len(),
-                    ELEMENT_DOF * model.elements.len(),
-                    model.slip.len()
-                ),
+                reason: MapProblem::NotThisResult {
+                    displacements: self.displacements.len(),
+                    tractions: self.tractions.len(),
+                    elements: model.elements.len(),
+                    springs: model.slip.len(),
+                },
             });
         }
         let cells = column_cells(model, grids)?;
@@ -196,16 +255,16 @@ impl Hovland {
     ///
     /// # Errors
     /// [`DismechError::MapData`] when `model` was not built on the grid of
-    /// `grids`, or these are not Hovland's terms of `model` (not one per
-    /// column).
+    /// `grids` ([`MapProblem::GridSize`], [`MapProblem::CellOutside`],
+    /// [`MapProblem::CornerOff`]), or these are not Hovland's terms of
+    /// `model` ([`MapProblem::NotThisHovland`]: not one per column).
     pub fn maps(&self, model: &HpmModel, grids: &SlopeGrids) -> Result<ColumnMaps> {
         if self.columns.len() != model.columns.len() {
             return Err(DismechError::MapData {
-                reason: format!(
-                    "Hovland's method has {} columns, the model {}: it is not Hovland's method of this model",
-                    self.columns.len(),
-                    model.columns.len()
-                ),
+                reason: MapProblem::NotThisHovland {
+                    hovland: self.columns.len(),
+                    model: model.columns.len(),
+                },
             });
         }
         let cells = column_cells(model, grids)?;

@@ -79,7 +79,7 @@ pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, TH
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};
-pub use maps::{ColumnMaps, HOVLAND_MAP_NAMES, HPM_MAP_NAMES};
+pub use maps::{ColumnMaps, MapProblem, HOVLAND_MAP_NAMES, HPM_MAP_NAMES};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
 pub use model::{
     Element, GridColumn, HpmModel, Interface, MemoryParts, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY,

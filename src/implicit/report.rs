@@ -226,8 +226,10 @@ mod tests {
     /// that a caller can match on them, and their messages.
     #[test]
     fn failures_of_the_pieces_keep_their_types() {
-        use crate::error::{DismechError, SolveError};
-        let singular = SolveError::Factorization("zero pivot in column 3".into());
+        use crate::error::{DismechError, FactorizationFailure, SolveError};
+        let singular = SolveError::Factorization(FactorizationFailure::StructurallySingular {
+            message: "zero pivot in column 3".into(),
+        });
         let failure = StepFailure::Solve(singular.clone());
         assert!(matches!(&failure, StepFailure::Solve(e) if *e == singular));
         assert!(failure.to_string().contains("zero pivot in column 3"));

@@ -548,10 +548,9 @@ pub fn mechanism_uniqueness<S: LpSolver>(
         }
         if !matches!(solution.status, LpStatus::Optimal | LpStatus::AlmostOptimal) {
             return Err(DismechError::Solve(
-                crate::error::SolveError::LinearProgram(format!(
-                    "the uniqueness test LP ended with status {:?}",
-                    solution.status
-                )),
+                crate::error::SolveError::LinearProgram(crate::error::LpFailure::UniquenessTest {
+                    status: solution.status,
+                }),
             ));
         }
         certify(&lp, &solution, dead_load_scales(model, &driver, false))?;

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use super::conjugate_gradient::Preconditioner;
 use super::pattern::SparseMatrix;
-use super::SolveError;
+use super::{FactorizationFailure, SolveError};
 
 /// A matrix that can hand out its dense diagonal blocks.
 pub trait DiagonalBlocks {
@@ -112,11 +112,9 @@ impl BlockJacobi {
                     found: block.ncols(),
                 });
             }
-            let factor = block.cholesky().ok_or_else(|| {
-                SolveError::Factorization(format!(
-                    "block-Jacobi block {index} is not positive definite"
-                ))
-            })?;
+            let factor = block.cholesky().ok_or(SolveError::Factorization(
+                FactorizationFailure::BlockNotPositiveDefinite { block: index },
+            ))?;
             self.inverses.push(factor.inverse());
         }
         Ok(())
@@ -198,7 +196,8 @@ mod tests {
         let mut p = BlockJacobi::new(vec![0..2, 2..3]);
         assert!(matches!(
             Preconditioner::<SparseMatrix>::setup(&mut p, &m),
-            Err(SolveError::Factorization(message)) if message.contains("block 1")
+            Err(SolveError::Factorization(failure)) if failure.to_string().contains("block 1")
+                && failure == FactorizationFailure::BlockNotPositiveDefinite { block: 1 }
         ));
         let mut gap = BlockJacobi::new(vec![0..1, 2..3]);
         assert!(matches!(

@@ -19,7 +19,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::{MatMut, Side};
 
 use super::pattern::{check_rhs, check_solution, SparseMatrix, SparsePattern};
-use super::{LinearSolver, LinearSolverInfo, SolveError, SolveStats};
+use super::{FactorizationFailure, LinearSolver, LinearSolverInfo, SolveError, SolveStats};
 
 /// Wall-clock times of the stages of the last factorization.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -83,11 +83,7 @@ impl SparseCholesky {
     pub(crate) fn solve_factored(&mut self, rhs: &mut [f64]) -> Result<SolveStats, SolveError> {
         let analysis = match (&self.analysis, self.factored) {
             (Some(a), true) => a,
-            _ => {
-                return Err(SolveError::Factorization(
-                    "solve before a factorization".into(),
-                ))
-            }
+            _ => return Err(SolveError::Factorization(FactorizationFailure::NotFactored)),
         };
         let n = analysis.symbolic.nrows();
         check_rhs(rhs, n)?;
@@ -96,7 +92,12 @@ impl SparseCholesky {
         let mut buffer = MemBuffer::try_new(
             analysis.symbolic.solve_in_place_scratch::<f64>(1, par),
         )
-        .map_err(|e| SolveError::Factorization(format!("allocating the solve workspace: {e:?}")))?;
+        .map_err(|e| {
+            SolveError::Factorization(FactorizationFailure::Workspace {
+                workspace: "solve",
+                message: format!("{e:?}"),
+            })
+        })?;
         LltRef::new(&analysis.symbolic, &self.values).solve_in_place_with_conj(
             faer::Conj::No,
             MatMut::from_column_major_slice_mut(rhs, n, 1),
@@ -176,7 +177,12 @@ impl SparseCholesky {
             SymmetricOrdering::Amd,
             Default::default(),
         )
-        .map_err(|e| SolveError::Factorization(format!("symbolic Cholesky analysis: {e:?}")))?;
+        .map_err(|e| {
+            SolveError::Factorization(FactorizationFailure::Analysis {
+                stage: "symbolic Cholesky analysis",
+                message: format!("{e:?}"),
+            })
+        })?;
         self.timings.symbolic = start.elapsed();
         self.analyses += 1;
         self.analysis = Some(Analysis {
@@ -202,9 +208,7 @@ impl LinearSolver<SparseMatrix> for SparseCholesky {
         let start = Instant::now();
         let symbolic = &analysis.symbolic;
         let par = faer::get_global_parallelism();
-        let failed = |what: &str, e: &dyn std::fmt::Debug| {
-            SolveError::Factorization(format!("{what} failed: {e:?}"))
-        };
+
         if self.values.len() == symbolic.len_val() {
             self.values.fill(0.0);
         } else {
@@ -215,7 +219,12 @@ impl LinearSolver<SparseMatrix> for SparseCholesky {
         let mut buffer = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
         )
-        .map_err(|e| failed("allocating the Cholesky workspace", &e))?;
+        .map_err(|e| {
+            SolveError::Factorization(FactorizationFailure::Workspace {
+                workspace: "Cholesky",
+                message: format!("{e:?}"),
+            })
+        })?;
         symbolic
             .factorize_numeric_llt::<f64>(
                 &mut self.values,
@@ -226,7 +235,11 @@ impl LinearSolver<SparseMatrix> for SparseCholesky {
                 MemStack::new(&mut buffer),
                 Default::default(),
             )
-            .map_err(|e| failed("sparse Cholesky (matrix not positive definite)", &e))?;
+            .map_err(|e| {
+                SolveError::Factorization(FactorizationFailure::NotPositiveDefinite {
+                    message: format!("{e:?}"),
+                })
+            })?;
         self.timings.numeric = start.elapsed();
         self.factored = true;
         Ok(())

@@ -17,7 +17,7 @@
 use super::partial_pivot_lu::PartialPivotLu;
 use super::pattern::{check_rhs, check_solution, SparseMatrix, SparsePattern};
 use super::supernodal_lu::{Breakdown, SupernodalLu};
-use super::{LinearSolver, LinearSolverInfo, SolveError, SolveStats};
+use super::{FactorizationFailure, LinearSolver, LinearSolverInfo, SolveError, SolveStats};
 
 /// How [`SparseLu`] pivots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -177,11 +177,7 @@ impl LinearSolver<SparseMatrix> for SparseLu {
             (Some(_), _, _) if rhs.is_empty() => {}
             (Some(Active::Supernodal), Some(lu), _) => lu.solve_in_place(rhs),
             (Some(Active::Partial), _, Some(lu)) => lu.solve_in_place(rhs),
-            _ => {
-                return Err(SolveError::Factorization(
-                    "solve before a factorization".into(),
-                ))
-            }
+            _ => return Err(SolveError::Factorization(FactorizationFailure::NotFactored)),
         }
         check_solution(rhs)?;
         Ok(SolveStats::direct())

@@ -85,7 +85,7 @@ pub use lumped::{solve_lumped_into, LumpedMassSolver, LumpedSystem};
 pub use pattern::{SparseMatrix, SparsePattern};
 pub use smoothed_aggregation::{AggregationSettings, BlockSparse, LineLevel, SmoothedAggregation};
 
-pub use crate::error::SolveError;
+pub use crate::error::{FactorizationFailure, LpFailure, SolveError};
 
 /// What a solve reports besides its solution.
 #[derive(Debug, Clone, Copy, PartialEq)]

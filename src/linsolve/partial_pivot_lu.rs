@@ -8,7 +8,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::{MatMut, Par};
 
 use super::pattern::{SparseMatrix, SparsePattern};
-use super::SolveError;
+use super::{FactorizationFailure, SolveError};
 
 /// faer's LU of one pattern.
 pub(crate) struct PartialPivotLu {
@@ -27,22 +27,29 @@ impl std::fmt::Debug for PartialPivotLu {
     }
 }
 
-fn failed(what: &str, e: &dyn std::fmt::Debug) -> SolveError {
-    SolveError::Factorization(format!("{what}: {e:?}"))
+fn workspace(workspace: &'static str, e: &dyn std::fmt::Debug) -> SolveError {
+    SolveError::Factorization(FactorizationFailure::Workspace {
+        workspace,
+        message: format!("{e:?}"),
+    })
 }
 
 impl PartialPivotLu {
     /// COLAMD ordering and symbolic factorization of `pattern`.
     pub(crate) fn analyse(pattern: &SparsePattern) -> Result<Self, SolveError> {
-        let symbolic = factorize_symbolic_lu(pattern.faer(), Default::default())
-            .map_err(|e| failed("symbolic LU analysis", &e))?;
+        let symbolic = factorize_symbolic_lu(pattern.faer(), Default::default()).map_err(|e| {
+            SolveError::Factorization(FactorizationFailure::Analysis {
+                stage: "symbolic LU analysis",
+                message: format!("{e:?}"),
+            })
+        })?;
         let par = faer::get_global_parallelism();
         let factor_scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_lu_scratch::<f64>(par, Default::default()),
         )
-        .map_err(|e| failed("allocating the LU workspace", &e))?;
+        .map_err(|e| workspace("LU", &e))?;
         let solve_scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
-            .map_err(|e| failed("allocating the solve workspace", &e))?;
+            .map_err(|e| workspace("solve", &e))?;
         Ok(Self {
             symbolic,
             numeric: NumericLu::new(),
@@ -63,7 +70,11 @@ impl PartialPivotLu {
                 Default::default(),
             )
             .map(|_| ())
-            .map_err(|e| failed("sparse LU (matrix structurally singular)", &e))
+            .map_err(|e| {
+                SolveError::Factorization(FactorizationFailure::StructurallySingular {
+                    message: format!("{e:?}"),
+                })
+            })
     }
 
     /// Overwrite `x` (holding `b`) with the solution of `A x = b`.

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use faer::prelude::Reborrow;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 
-use crate::error::SolveError;
+use crate::error::{FactorizationFailure, SolveError};
 
 /// The positions of the stored entries of a square sparse matrix, by
 /// columns with sorted, distinct rows. Clones share the same data.
@@ -46,8 +46,13 @@ impl SparsePattern {
             .iter()
             .map(|&(row, col)| Pair { row, col })
             .collect();
-        let (structure, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| SolveError::Factorization(format!("building a sparse pattern: {e}")))?;
+        let (structure, _) =
+            SymbolicSparseColMat::try_new_from_indices(n, n, &pairs).map_err(|e| {
+                SolveError::Factorization(FactorizationFailure::Analysis {
+                    stage: "building a sparse pattern",
+                    message: e.to_string(),
+                })
+            })?;
         let pattern = Self {
             structure: Arc::new(structure),
         };
@@ -309,10 +314,12 @@ pub(crate) fn check_rhs(rhs: &[f64], n: usize) -> Result<(), SolveError> {
 pub(crate) fn check_solution(x: &[f64]) -> Result<(), SolveError> {
     match x.iter().position(|v| !v.is_finite()) {
         None => Ok(()),
-        Some(index) => Err(SolveError::Factorization(format!(
-            "matrix is numerically singular: solution entry {index} is {}",
-            x[index]
-        ))),
+        Some(index) => Err(SolveError::Factorization(
+            FactorizationFailure::NumericallySingular {
+                index,
+                value: x[index],
+            },
+        )),
     }
 }
 

@@ -62,8 +62,8 @@ use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::{
-    BlockJacobi, DiagonalBlocks, LinearSolver, LinearSolverInfo, Preconditioner, SolveError,
-    SparseCholesky, SparseMatrix, SparsePattern,
+    BlockJacobi, DiagonalBlocks, FactorizationFailure, LinearSolver, LinearSolverInfo,
+    Preconditioner, SolveError, SparseCholesky, SparseMatrix, SparsePattern,
 };
 
 /// Fewest block rows a parallel task takes: below this the threads'
@@ -317,16 +317,14 @@ impl Bsr {
         let inverses: Result<Vec<Vec<f64>>, SolveError> = (0..self.block_rows)
             .into_par_iter()
             .map(|i| {
-                let k = self.find(i, i).ok_or_else(|| {
-                    SolveError::Factorization(format!("block {i} has no diagonal block"))
-                })?;
+                let k = self.find(i, i).ok_or(SolveError::Factorization(
+                    FactorizationFailure::NoDiagonalBlock { block: i },
+                ))?;
                 let d = DMatrix::from_row_slice(b, b, self.block(k));
                 let d = (&d + d.transpose()) * 0.5;
-                let factor = d.cholesky().ok_or_else(|| {
-                    SolveError::Factorization(format!(
-                        "diagonal block {i} of a multigrid level is not positive definite"
-                    ))
-                })?;
+                let factor = d.cholesky().ok_or(SolveError::Factorization(
+                    FactorizationFailure::LevelBlockNotPositiveDefinite { block: i },
+                ))?;
                 // Symmetric: its column-major entries are its rows.
                 Ok(factor.inverse().as_slice().to_vec())
             })
@@ -622,9 +620,13 @@ fn tentative(
     for (g, list) in members.iter().enumerate() {
         let rows = list.len() * b;
         if rows < m {
-            return Err(SolveError::Factorization(format!(
-                "aggregate {g} has {rows} unknowns, fewer than the {m} near-null vectors"
-            )));
+            return Err(SolveError::Factorization(
+                FactorizationFailure::SmallAggregate {
+                    aggregate: g,
+                    unknowns: rows,
+                    vectors: m,
+                },
+            ));
         }
         let mut local = DMatrix::zeros(rows, m);
         for (t, &i) in list.iter().enumerate() {

@@ -33,7 +33,7 @@ use faer::sparse::{Pair, SymbolicSparseColMat};
 use faer::{Accum, MatMut, MatRef, Par, Side};
 
 use super::pattern::SparsePattern;
-use super::SolveError;
+use super::{FactorizationFailure, SolveError};
 
 const NONE: usize = usize::MAX;
 
@@ -113,7 +113,12 @@ impl SupernodalLu {
             Par::Seq,
             Default::default(),
         ))
-        .map_err(|e| SolveError::Factorization(format!("allocating the LU workspace: {e:?}")))?;
+        .map_err(|e| {
+            SolveError::Factorization(FactorizationFailure::Workspace {
+                workspace: "LU",
+                message: format!("{e:?}"),
+            })
+        })?;
         Ok(Self {
             l: vec![0.0; structure.l_ptr[ns]],
             u: vec![0.0; structure.u_ptr[ns]],
@@ -394,8 +399,11 @@ fn product(out: &mut [f64], a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
 impl Structure {
     fn new(pattern: &SparsePattern) -> Result<Self, SolveError> {
         let n = pattern.dimension();
-        let failed = |what: &str, e: &dyn std::fmt::Debug| {
-            SolveError::Factorization(format!("symbolic LU analysis, {what}: {e:?}"))
+        let failed = |stage: &'static str, e: &dyn std::fmt::Debug| {
+            SolveError::Factorization(FactorizationFailure::Analysis {
+                stage,
+                message: format!("{e:?}"),
+            })
         };
         // The lower triangle of the pattern of A + Aᵀ, with the diagonal.
         let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
@@ -410,16 +418,19 @@ impl Structure {
             }
         }
         let (lower, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| failed("pattern of A + Aᵀ", &e))?;
+            .map_err(|e| failed("symbolic LU analysis, pattern of A + Aᵀ", &e))?;
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             ..Default::default()
         };
         let symbolic =
             factorize_symbolic_cholesky(lower.rb(), Side::Lower, SymmetricOrdering::Amd, params)
-                .map_err(|e| failed("ordering and supernodes", &e))?;
+                .map_err(|e| failed("symbolic LU analysis, ordering and supernodes", &e))?;
         let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
-            return Err(failed("supernodes", &"a simplicial structure was returned"));
+            return Err(failed(
+                "symbolic LU analysis, supernodes",
+                &"a simplicial structure was returned",
+            ));
         };
         let (perm, perm_inv) = match symbolic.perm() {
             Some(p) => (p.arrays().0.to_vec(), p.arrays().1.to_vec()),
@@ -459,7 +470,7 @@ impl Structure {
             for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
                 let dest = structure
                     .destination(perm_inv[i], perm_inv[j])
-                    .ok_or_else(|| failed("scatter", &(i, j)))?;
+                    .ok_or_else(|| failed("symbolic LU analysis, scatter", &(i, j)))?;
                 structure.scatter.push(dest);
             }
         }

@@ -6,7 +6,7 @@ use clarabel::solver::{
 };
 
 use super::{LinearProgram, LinearProgramSolution, LpSolver, LpStatus};
-use crate::error::SolveError;
+use crate::error::{LpFailure, SolveError};
 
 /// Interior-point LP solver backed by Clarabel.
 #[derive(Debug, Clone)]
@@ -143,8 +143,12 @@ impl LinearProgramSolver {
             ..DefaultSettings::default()
         };
 
-        let mut solver = DefaultSolver::new(&p, &lp.objective, &a, &b, &cones, settings)
-            .map_err(|e| SolveError::LinearProgram(e.to_string()))?;
+        let mut solver =
+            DefaultSolver::new(&p, &lp.objective, &a, &b, &cones, settings).map_err(|e| {
+                SolveError::LinearProgram(LpFailure::Setup {
+                    message: e.to_string(),
+                })
+            })?;
         solver.solve();
         let sol = &solver.solution;
 
@@ -204,7 +208,8 @@ impl LpSolver for LinearProgramSolver {
     /// `found` the index); [`SolveError::NonFinite`] for a non-finite
     /// coefficient, right-hand side or tolerance; [`SolveError::NonPositive`]
     /// for a non-positive tolerance; [`SolveError::LinearProgram`] if Clarabel
-    /// rejects the problem or fails internally. Infeasibility and
+    /// rejects the problem ([`LpFailure::Setup`], with its message) or
+    /// fails internally ([`LpFailure::Panicked`]). Infeasibility and
     /// unboundedness are reported through [`LinearProgramSolution::status`].
     fn solve(&mut self, system: &LinearProgram) -> Result<LinearProgramSolution, SolveError> {
         if !self.tolerance.is_finite() {
@@ -234,7 +239,9 @@ impl LpSolver for LinearProgramSolver {
                     .map(|s| (*s).to_owned())
                     .or_else(|| payload.downcast_ref::<String>().cloned())
                     .unwrap_or_else(|| "internal solver panic".to_owned());
-                Err(SolveError::LinearProgram(msg))
+                Err(SolveError::LinearProgram(LpFailure::Panicked {
+                    message: msg,
+                }))
             },
         )
     }

@@ -36,6 +36,7 @@
 use crate::error::{DismechError, Result};
 use crate::hpm::NamedRaster;
 
+use super::layer_problem::LayerProblem;
 use super::material::SlopeMaterial;
 use super::terrain::Terrain;
 
@@ -177,35 +178,40 @@ impl Ground {
     /// raster, the last unbounded below.
     ///
     /// # Errors
-    /// [`DismechError::InvalidLayer`] naming the layer for no layer at all,
-    /// a layer other than the last without a bottom, the last with one, or
-    /// a material that fails [`SlopeMaterial::validate`] (with its value).
+    /// [`DismechError::InvalidLayer`] naming the layer for no layer at all
+    /// ([`LayerProblem::NoLayer`]), a layer other than the last without a
+    /// bottom ([`LayerProblem::NoBottom`]), the last with one
+    /// ([`LayerProblem::LastHasBottom`]), or a material that fails
+    /// [`SlopeMaterial::validate`] ([`LayerProblem::Material`], with its
+    /// value).
     pub fn layered(layers: Vec<Layer>) -> Result<Self> {
         let n = layers.len();
         if n == 0 {
             return Err(DismechError::InvalidLayer {
                 layer: "(none)".to_string(),
-                message: "no layer given: the ground needs at least one".to_string(),
+                problem: LayerProblem::NoLayer,
             });
         }
         for (i, layer) in layers.iter().enumerate() {
-            let fail = |message: String| DismechError::InvalidLayer {
+            let fail = |problem: LayerProblem| DismechError::InvalidLayer {
                 layer: layer.name.clone(),
-                message,
+                problem,
             };
-            layer.material.validate().map_err(|e| fail(e.to_string()))?;
+            layer
+                .material
+                .validate()
+                .map_err(|e| fail(LayerProblem::Material(Box::new(e))))?;
             match (&layer.bottom, i + 1 == n) {
                 (None, false) => {
-                    return Err(fail(format!(
-                        "layer {} of {n} has no bottom raster: only the last layer is unbounded below",
-                        i + 1
-                    )))
+                    return Err(fail(LayerProblem::NoBottom {
+                        index: i + 1,
+                        count: n,
+                    }))
                 }
                 (Some(b), true) => {
-                    return Err(fail(format!(
-                        "the last layer has a bottom raster ({}): the last layer is unbounded below; add a layer under it",
-                        b.name
-                    )))
+                    return Err(fail(LayerProblem::LastHasBottom {
+                        bottom: b.name.clone(),
+                    }))
                 }
                 _ => {}
             }
@@ -242,8 +248,9 @@ impl Ground {
     /// # Errors
     /// For a one-layer ground, those of [`SlopeMaterial::validate`] as
     /// they are; for several layers, [`DismechError::InvalidLayer`] naming
-    /// the layer for a material that fails it or a bottom raster on another
-    /// grid (naming both files); [`DismechError::GridMismatch`] for an r_u
+    /// the layer for a material that fails it ([`LayerProblem::Material`])
+    /// or a bottom raster on another grid ([`LayerProblem::BottomOffGrid`],
+    /// naming both files); [`crate::grid::GridError::Mismatch`] for an r_u
     /// raster on another grid; those of [`PoreRatio::validate`];
     /// [`DismechError::PorePressureTwice`] naming both when the terrain has
     /// a water table and the ground an r_u.
@@ -252,14 +259,17 @@ impl Ground {
             only.material.validate()?;
         }
         for layer in &self.layers {
-            let fail = |message: String| DismechError::InvalidLayer {
+            let fail = |problem: LayerProblem| DismechError::InvalidLayer {
                 layer: layer.name.clone(),
-                message,
+                problem,
             };
-            layer.material.validate().map_err(|e| fail(e.to_string()))?;
+            layer
+                .material
+                .validate()
+                .map_err(|e| fail(LayerProblem::Material(Box::new(e))))?;
             if let Some(b) = &layer.bottom {
                 b.require_grid_of(terrain.dem())
-                    .map_err(|e| fail(e.to_string()))?;
+                    .map_err(|e| fail(LayerProblem::BottomOffGrid(Box::new(e))))?;
             }
         }
         if let Some(ratio) = &self.pore_ratio {

@@ -51,6 +51,7 @@ mod bishop;
 mod family;
 mod ground;
 mod hovland;
+mod layer_problem;
 mod material;
 mod output;
 mod reanalysis;
@@ -65,6 +66,7 @@ pub use bishop::{
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};
 pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
 pub use hovland::{hovland_columns, hovland_ground, Evaluator, Method, SurfaceFs};
+pub use layer_problem::LayerProblem;
 pub use material::{SlopeLoads, SlopeMaterial, WATER_UNIT_WEIGHT};
 pub use output::MAP_NAMES;
 pub use reanalysis::{hpm_reanalysis, surface_raster, HpmReanalysis, HpmStiffness};

@@ -34,7 +34,7 @@ impl Terrain {
     /// # Errors
     /// [`DismechError::DemTooSmall`] for a DEM of fewer than
     /// [`MIN_DEM_SIDE`] rows or columns; [`DismechError::NoGroundData`]
-    /// when no cell of the DEM has data; [`DismechError::GridMismatch`]
+    /// when no cell of the DEM has data; [`crate::grid::GridError::Mismatch`]
     /// naming both files when the water table lies on another grid (shape,
     /// corner or cell size). (A raster holds no NaN or infinite value:
     /// [`crate::grid::Raster::new`] refuses them.)
@@ -90,7 +90,7 @@ impl Terrain {
     /// [`super::Refusal::NoData`]).
     ///
     /// # Errors
-    /// [`DismechError::GridMismatch`] naming both files when the bedrock
+    /// [`crate::grid::GridError::Mismatch`] naming both files when the bedrock
     /// lies on another grid than the DEM.
     pub fn with_bedrock(mut self, bedrock: NamedRaster) -> Result<Self> {
         bedrock.require_grid_of(&self.dem)?;

@@ -22,23 +22,21 @@ use crate::hpm::{displacement_at, strain_tensor, ElementDofs, HpmModel, HpmResul
 ///   bottom element) as a vertex, with its tractions.
 ///
 /// # Errors
-/// [`DismechError::VtkData`] when `result` is not an analysis of `model`
-/// (its displacements are not 12 per element, or its tractions not one per
-/// slip spring).
+/// [`DismechError::VtkData`] ([`super::VtkProblem::NotThisHpmResult`])
+/// when `result` is not an analysis of `model` (its displacements are not
+/// 12 per element, or its tractions not one per slip spring).
 pub fn hpm_frame(model: &HpmModel, result: &HpmResult) -> Result<VtkFrame> {
     let elements = &model.elements;
     if result.displacements.len() != ELEMENT_DOF * elements.len()
         || result.tractions.len() != model.slip.len()
     {
         return Err(DismechError::VtkData {
-            reason: format!(
-                "the HPM result has {} displacements and {} slip tractions, the model {} elements ({} displacements) and {} slip springs: it is not a result of this model",
-                result.displacements.len(),
-                result.tractions.len(),
-                elements.len(),
-                ELEMENT_DOF * elements.len(),
-                model.slip.len()
-            ),
+            reason: super::VtkProblem::NotThisHpmResult {
+                displacements: result.displacements.len(),
+                tractions: result.tractions.len(),
+                elements: elements.len(),
+                springs: model.slip.len(),
+            },
         });
     }
     let dofs = |e: usize| {

@@ -26,20 +26,20 @@ use crate::math::{perp, Point, Vec2};
 /// # Errors
 /// [`DismechError::InvalidParameter`] naming `outline segments` for fewer
 /// than 3 segments; [`DismechError::VtkData`] when `result` has no
-/// mechanism (its status is neither `Collapse` nor `ZeroLoad`: a locked
-/// or unbounded model, a solver in trouble) or is not a result of
-/// `model` (another number of bodies or contacts).
+/// mechanism ([`super::VtkProblem::NoMechanism`]: its status is neither
+/// `Collapse` nor `ZeroLoad`, a locked or unbounded model, a solver in
+/// trouble) or is not a result of `model` (another number of bodies, or of
+/// contacts: [`super::VtkProblem::NotThisLimitResult`]).
 pub fn limit_frame(model: &LimitModel, result: &LimitResult, segments: usize) -> Result<VtkFrame> {
     super::outline::check_segments(segments)?;
     let (bodies, contacts, supports) = (model.bodies(), model.contacts(), model.supports());
     if result.velocities.len() != bodies.len() {
         return Err(DismechError::VtkData {
-            reason: format!(
-                "the limit result (status {:?}) has {} body velocities for the model's {} bodies: only a result of this model with a mechanism (Collapse or ZeroLoad) has a frame",
-                result.status,
-                result.velocities.len(),
-                bodies.len()
-            ),
+            reason: super::VtkProblem::NoMechanism {
+                status: result.status,
+                velocities: result.velocities.len(),
+                bodies: bodies.len(),
+            },
         });
     }
     let per_contact = [
@@ -50,11 +50,10 @@ pub fn limit_frame(model: &LimitModel, result: &LimitResult, segments: usize) ->
     ];
     if per_contact.iter().any(|v| v.len() != contacts.len()) {
         return Err(DismechError::VtkData {
-            reason: format!(
-                "the limit result has {} contact forces for the model's {} contacts: it is not a result of this model",
-                result.normal_force.len(),
-                contacts.len()
-            ),
+            reason: super::VtkProblem::NotThisLimitResult {
+                forces: result.normal_force.len(),
+                contacts: contacts.len(),
+            },
         });
     }
 

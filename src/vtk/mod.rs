@@ -179,6 +179,7 @@ mod implicit;
 mod limit;
 mod observe;
 mod outline;
+mod problem;
 mod series;
 mod xml;
 
@@ -188,5 +189,6 @@ pub use implicit::{bodies_frame, implicit_frame};
 pub use limit::limit_frame;
 pub use observe::DemFrames;
 pub use outline::{kind, DEFAULT_SEGMENTS};
+pub use problem::{DataKind, VtkProblem};
 pub use series::{pvd_text, write_dataset, Piece, PvdEntry, PvdSeries, VtkFrame};
 pub use xml::{cell_type, Cells, DataArray, Dataset, PolyData, UnstructuredGrid, Values};

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::xml::Dataset;
+use super::VtkProblem;
 use crate::error::{DismechError, Result};
 use crate::io::write_atomically;
 
@@ -34,8 +35,9 @@ impl VtkFrame {
     ///
     /// # Errors
     /// [`DismechError::VtkData`] for a name that is empty, has a character
-    /// other than a letter, a digit, `_` or `-` (it names files), or is
-    /// already in the frame.
+    /// other than a letter, a digit, `_` or `-` (it names files:
+    /// [`VtkProblem::PieceName`]), or is already in the frame
+    /// ([`VtkProblem::DuplicatePiece`]).
     pub fn push(&mut self, name: &str, data: Dataset) -> Result<()> {
         let valid = !name.is_empty()
             && name
@@ -43,14 +45,16 @@ impl VtkFrame {
                 .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
         if !valid {
             return Err(DismechError::VtkData {
-                reason: format!(
-                    "the piece name `{name}` must be letters, digits, `_` and `-` (it names files)"
-                ),
+                reason: VtkProblem::PieceName {
+                    name: name.to_string(),
+                },
             });
         }
         if self.get(name).is_some() {
             return Err(DismechError::VtkData {
-                reason: format!("the frame already has a piece `{name}`"),
+                reason: VtkProblem::DuplicatePiece {
+                    name: name.to_string(),
+                },
             });
         }
         self.pieces.push(Piece {

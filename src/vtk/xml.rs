@@ -9,6 +9,7 @@
 //! `UInt64` (`header_type="UInt64"`), the bytes little-endian
 //! (`byte_order="LittleEndian"`), uncompressed.
 
+use super::{DataKind, VtkProblem};
 use crate::error::{DismechError, Result};
 
 /// VTK's cell types used here (`vtkCellType.h`).
@@ -280,10 +281,12 @@ impl Dataset {
     ///
     /// # Errors
     /// [`DismechError::VtkData`] naming the array or the cell when an
-    /// array has no component, a number of values that is not its
-    /// components times the points (point data) or cells (cell data), or
-    /// a name used twice; when a cell names a point the dataset does not
-    /// have; or when an unstructured grid has not one type per cell.
+    /// array has no component ([`VtkProblem::NoComponent`]), a number of
+    /// values that is not its components times the points (point data) or
+    /// cells (cell data) ([`VtkProblem::ValueCount`]), or a name used twice
+    /// ([`VtkProblem::NamedTwice`]); when a cell names a point the dataset
+    /// does not have ([`VtkProblem::NoSuchPoint`]); or when an unstructured
+    /// grid has not one type per cell ([`VtkProblem::CellTypeCount`]).
     pub fn to_xml(&self) -> Result<String> {
         self.validate()?;
         let mut out = String::with_capacity(64 + 12 * self.point_count());
@@ -339,11 +342,10 @@ impl Dataset {
             ),
             Dataset::UnstructuredGrid(d) => {
                 if d.types.len() != d.cells.len() {
-                    return Err(invalid(format!(
-                        "{} cell types for {} cells",
-                        d.types.len(),
-                        d.cells.len()
-                    )));
+                    return Err(invalid(VtkProblem::CellTypeCount {
+                        types: d.types.len(),
+                        cells: d.cells.len(),
+                    }));
                 }
                 (d.points.len(), &d.point_data, &d.cell_data, vec![&d.cells])
             }
@@ -354,38 +356,40 @@ impl Dataset {
                 .iter()
                 .find(|&&p| p < 0 || p as usize >= points)
             {
-                return Err(invalid(format!(
-                    "a cell names point {p}, of {points} points"
-                )));
+                return Err(invalid(VtkProblem::NoSuchPoint { point: p, points }));
             }
         }
-        check_arrays("point", point_data, points)?;
-        check_arrays("cell", cell_data, self.cell_count())
+        check_arrays(DataKind::Point, point_data, points)?;
+        check_arrays(DataKind::Cell, cell_data, self.cell_count())
     }
 }
 
-fn invalid(reason: String) -> DismechError {
+fn invalid(reason: VtkProblem) -> DismechError {
     DismechError::VtkData { reason }
 }
 
-fn check_arrays(kind: &str, arrays: &[DataArray], tuples: usize) -> Result<()> {
+fn check_arrays(kind: DataKind, arrays: &[DataArray], tuples: usize) -> Result<()> {
     for (k, a) in arrays.iter().enumerate() {
         if a.components == 0 {
-            return Err(invalid(format!(
-                "{kind} data `{}` has no component",
-                a.name
-            )));
+            return Err(invalid(VtkProblem::NoComponent {
+                kind,
+                name: a.name.clone(),
+            }));
         }
         if a.values.len() != a.components * tuples {
-            return Err(invalid(format!(
-                "{kind} data `{}` has {} values, not {} components × {tuples} {kind}s",
-                a.name,
-                a.values.len(),
-                a.components
-            )));
+            return Err(invalid(VtkProblem::ValueCount {
+                kind,
+                name: a.name.clone(),
+                values: a.values.len(),
+                components: a.components,
+                tuples,
+            }));
         }
         if arrays[..k].iter().any(|b| b.name == a.name) {
-            return Err(invalid(format!("{kind} data `{}` is named twice", a.name)));
+            return Err(invalid(VtkProblem::NamedTwice {
+                kind,
+                name: a.name.clone(),
+            }));
         }
     }
     Ok(())

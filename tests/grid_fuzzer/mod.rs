@@ -294,12 +294,18 @@ impl Stats {
 
 /// The variant of an error, as a count key.
 fn kind(error: &DismechError) -> String {
-    let debug = format!("{error:?}");
-    debug
-        .split(|c: char| !c.is_alphanumeric())
-        .next()
-        .unwrap_or("")
-        .to_string()
+    let first = |debug: String| {
+        debug
+            .split(|c: char| !c.is_alphanumeric())
+            .next()
+            .unwrap_or("")
+            .to_string()
+    };
+    match error {
+        // The grid-file errors, as `GridFormat`, `GridHeader`, ...
+        DismechError::Grid(grid) => format!("Grid{}", first(format!("{grid:?}"))),
+        other => first(format!("{other:?}")),
+    }
 }
 
 thread_local! {

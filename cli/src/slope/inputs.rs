@@ -2,6 +2,7 @@
 //! read and checked, each error naming its option.
 
 use dismech::error::DismechError;
+use dismech::grid::{GridError, GridFormatProblem};
 use dismech::hpm::NamedRaster;
 use dismech::law::friction_from_degrees;
 use dismech::slope::{Ground, Layer, PoreRatio, SlopeLoads, SlopeMaterial, SurfaceLimits, Terrain};
@@ -28,7 +29,7 @@ pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
         None => None,
     };
     let terrain = Terrain::new(dem, water).map_err(|e| match (&e, &args.water) {
-        (DismechError::GridMismatch { .. }, Some(path)) => {
+        (DismechError::Grid(GridError::Mismatch { .. }), Some(path)) => {
             SlopeError::argument("--water", &path.display().to_string(), e)
         }
         _ => SlopeError::argument("--dem", &dem_value, e),
@@ -59,25 +60,26 @@ pub fn crs(args: &SlopeArgs) -> Result<Option<String>, SlopeError> {
     if !prj.is_file() {
         return Ok(None);
     }
-    let refuse = |message: String| {
+    let refuse = |problem: GridFormatProblem| {
         SlopeError::argument(
             "--dem",
             &args.dem.display().to_string(),
-            DismechError::GridFormat {
+            DismechError::Grid(GridError::Format {
                 file: prj.display().to_string(),
                 line: 0,
                 column: 0,
-                message,
-            },
+                problem,
+            }),
         )
     };
     let text = std::fs::read_to_string(&prj).map_err(|e| {
-        refuse(format!(
-            "the coordinate system beside the DEM cannot be read as text: {e}"
-        ))
+        refuse(GridFormatProblem::CrsUnreadable {
+            kind: e.kind(),
+            message: e.to_string(),
+        })
     })?;
     dismech::grid::check_crs_wkt(&text)
-        .map_err(|e| refuse(format!("the coordinate system beside the DEM: {e}")))?;
+        .map_err(|problem| refuse(GridFormatProblem::CrsNotKept { problem }))?;
     Ok(Some(text))
 }
 
