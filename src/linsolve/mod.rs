@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | [`SparseLu`] | [`SparseMatrix`] (any square) | unsymmetric tangents (DDA friction); supernodal LU on a symmetric fill-reducing ordering, falling back to faer's partial-pivoting LU |
 //! | [`SparseCholesky`] | [`SparseMatrix`] (lower triangle read), [`crate::hpm::BlockMatrix`] | symmetric positive definite stiffness (HPM) |
-//! | [`ConjugateGradient`] | any [`LinearOperator`] with a [`Preconditioner`] for it ([`BlockJacobi`], [`SmoothedAggregation`] multigrid) | large SPD systems where a factor does not fit (HPM) |
+//! | [`ConjugateGradient`] | any [`LinearOperator`] with a [`Preconditioner`] for it ([`BlockJacobi`], [`SmoothedAggregation`] multigrid, whose finest level may be given as lines of strongly coupled blocks, [`LineLevel`]) | large SPD systems where a factor does not fit (HPM) |
 //! | [`LumpedMassSolver`] | a diagonal, as `[f64]` | explicit methods (`M a = f`) |
 //!
 //! # How a driver uses it
