@@ -51,7 +51,7 @@ pub fn terrain(args: &SlopeArgs) -> Result<Terrain, SlopeError> {
 ///
 /// # Errors
 /// [`SlopeError::Argument`] naming `--dem` and the DEM with
-/// [`DismechError::GridFormat`] naming the `.prj` when it cannot be read
+/// [`GridError::Format`] naming the `.prj` when it cannot be read
 /// as text or a GeoTIFF cannot keep it (a character outside printable
 /// ASCII or `|`, or a text too long for GDAL:
 /// [`dismech::grid::check_crs_wkt`]).
