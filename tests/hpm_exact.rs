@@ -638,6 +638,40 @@ fn a_line_level_that_does_not_fit_the_matrix_is_refused() {
     setup(LineLevel { aggregates, lines }).unwrap();
 }
 
+/// A first level that does not fit the matrix is refused even where the
+/// matrix is small enough to be factored whole (no level is built): the
+/// caller's level is checked, not skipped.
+#[test]
+fn a_line_level_is_checked_where_the_matrix_is_factored_whole() {
+    use dismech::linsolve::{LineLevel, Preconditioner, SmoothedAggregation, SolveError};
+    let model = HpmModel::new(&bowl(), &HpmMaterial::paper(), &HpmSettings::default()).unwrap();
+    let stiffness = model.stiffness();
+    let elements = model.elements.len();
+    let mut amg = SmoothedAggregation::new(
+        AggregationSettings {
+            max_coarse: usize::MAX,
+            ..AggregationSettings::default()
+        },
+        linear_motions(&model, 6).unwrap(),
+        6,
+    )
+    .with_lines(LineLevel {
+        aggregates: vec![0; elements + 3],
+        lines: model.columns.iter().map(|c| c.elements.clone()).collect(),
+    });
+    match amg.setup(&stiffness) {
+        Err(SolveError::DimensionMismatch {
+            what,
+            expected,
+            found,
+        }) => {
+            assert!(what.contains("one per block"), "{what}");
+            assert_eq!((expected, found), (elements, elements + 3));
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 /// The nonlinear analysis and the strength reduction by PCG (to a tight
 /// residual) find the safety factors of the sparse Cholesky factor: the
 /// linear solver is a slot of the analysis, not part of it.
@@ -679,11 +713,16 @@ fn nonlinear_fs_and_strength_reduction_by_pcg_match_cholesky() {
         eprintln!("nonlinear Fs: Cholesky {x:.10}, PCG {y:.10}");
         assert!((x / y - 1.0).abs() < 1e-7, "{x} vs {y}");
     }
-    // The column multigrid (two levels): its hierarchy, built once from
-    // the elastic stiffness, serves every iteration of the nonlinear
-    // analysis.
-    let aggregation = AggregationSettings::default();
+    // The column multigrid (two levels or more): its hierarchy, built
+    // once from the elastic stiffness, serves every iteration of the
+    // nonlinear analysis.
+    let aggregation = AggregationSettings {
+        max_coarse: 50,
+        ..AggregationSettings::default()
+    };
     let mut multigrid = HpmSolver::column_multigrid(&model, cg, aggregation, 6, 2).unwrap();
+    let levels = multigrid.linear_solver().preconditioner().level_sizes();
+    assert!(levels.len() >= 2, "{levels:?}");
     let c = multigrid
         .nonlinear(&model, &Seismic::none(), 1.0, &settings)
         .unwrap();

@@ -107,8 +107,9 @@ enum Command {
         json: bool,
     },
     /// Slope stability over a terrain: search trial slip surfaces (a grid
-    /// of spheres or random ellipsoids) over a DEM by Hovland's method and
-    /// map the lowest factor of safety of each cell.
+    /// of spheres or random ellipsoids) over a DEM by Hovland's method (or
+    /// Bishop's, with --method bishop) and map the lowest factor of safety
+    /// of each cell.
     ///
     /// Writes into OUT (replaced whole once every file is written): the
     /// lowest Fs per cell and the volume, area and depth of the surface

@@ -771,20 +771,30 @@ impl SmoothedAggregation {
                 found: self.near_null.len(),
             });
         }
+        // The caller's first level is checked whether or not a level is
+        // built (a matrix at or below `max_coarse` is factored whole).
+        let first_count = match &self.first {
+            Some(first) => Some(first.validate(a.block_rows)?),
+            None => None,
+        };
         let mut near_null = self.near_null.clone();
         let s = self.settings;
         while a.block_rows * b > s.max_coarse && self.levels.len() + 1 < s.max_levels {
             let inverses = a.diagonal_inverses()?;
-            let given = self.first.as_ref().filter(|_| self.levels.is_empty());
+            let given = self
+                .first
+                .as_ref()
+                .zip(first_count)
+                .filter(|_| self.levels.is_empty());
             let (agg, count) = match given {
-                Some(first) => (first.aggregates.clone(), first.validate(a.block_rows)?),
+                Some((first, count)) => (first.aggregates.clone(), count),
                 None => aggregate(&a, s.strength_threshold),
             };
             if count * m >= a.block_rows * b {
                 break;
             }
             let lines = match given {
-                Some(first) => {
+                Some((first, _)) => {
                     let ranges: Vec<Range<usize>> =
                         first.lines.iter().map(|l| b * l.start..b * l.end).collect();
                     let mut jacobi = BlockJacobi::new(ranges);
@@ -942,9 +952,12 @@ impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
     ///
     /// # Errors
     /// [`SolveError::DimensionMismatch`] for a near-null space of another
-    /// size than the matrix's; [`SolveError::Factorization`] for a
-    /// diagonal block that is not positive definite or a coarsest level
-    /// the Cholesky factorization refuses.
+    /// size than the matrix's, or a first level
+    /// ([`SmoothedAggregation::with_lines`]) whose aggregates or lines do
+    /// not fit it (checked even where the matrix is factored whole);
+    /// [`SolveError::Factorization`] for a diagonal block that is not
+    /// positive definite or a coarsest level the Cholesky factorization
+    /// refuses.
     fn setup(&mut self, matrix: &A) -> Result<(), SolveError> {
         self.build(Bsr::from_blocks(matrix))
     }

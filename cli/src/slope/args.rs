@@ -240,9 +240,10 @@ pub struct SlopeArgs {
     /// (local Fs, displacement, strains) and its slip surface into
     /// `hpm_*.asc`/`.tif`. HPM holds one unit weight: a --layer must have
     /// that of --unit-weight (its slip springs take the strength of the
-    /// layer they cross); no --ru.
-    #[arg(long, value_name = "K", default_value_t = 0, value_parser = parse_keep, help_heading = "HPM re-analysis")]
-    pub hpm: usize,
+    /// layer they cross); no --ru. K ≥ 1; leave --hpm out for no
+    /// re-analysis.
+    #[arg(long, value_name = "K", value_parser = parse_hpm, help_heading = "HPM re-analysis")]
+    pub hpm: Option<usize>,
     /// Also run HPM's nonlinear analysis (Mohr–Coulomb slip springs, no
     /// tension) on each surface re-analysed.
     #[arg(long, requires = "hpm", help_heading = "HPM re-analysis")]
@@ -390,6 +391,17 @@ fn parse_poisson(text: &str) -> Result<f64, String> {
 
 fn parse_keep(text: &str) -> Result<usize, String> {
     whole::<u32>(text).map(|v| v as usize)
+}
+
+/// `--hpm K`, K ≥ 1: `--hpm 0` would re-analyse nothing and leave the HPM
+/// options beside it unused.
+fn parse_hpm(text: &str) -> Result<usize, String> {
+    match parse_keep(text)? {
+        0 => Err(format!(
+            "`{text}` re-analyses no surface: give K >= 1, or leave --hpm out for no re-analysis"
+        )),
+        k => Ok(k),
+    }
 }
 
 /// `MIN:MAX`, `MIN:MAX:COUNT` (where `counted`) or `V`, min ≤ max.

@@ -142,12 +142,12 @@ pub struct HpmRuns {
 /// [`DismechError::HpmGround`] for `--ru`, or a `--layer` whose unit
 /// weight is not that of `--unit-weight`.
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
-    if args.hpm == 0 {
+    let Some(hpm) = args.hpm else {
         return Ok(());
-    }
-    if args.hpm > args.keep {
+    };
+    if hpm > args.keep {
         return Err(SlopeError::HpmAboveKeep {
-            hpm: args.hpm,
+            hpm,
             keep: args.keep,
         });
     }
@@ -177,7 +177,7 @@ pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     };
     Err(SlopeError::argument(
         "--hpm",
-        &args.hpm.to_string(),
+        &hpm.to_string(),
         DismechError::HpmGround { reason },
     ))
 }
@@ -196,7 +196,12 @@ pub fn reanalyse<S: TrialSurface + Copy>(
     };
     let nonlinear = NonlinearSettings::default();
     let mut runs = HpmRuns::default();
-    for (k, c) in result.critical.iter().take(args.hpm).enumerate() {
+    for (k, c) in result
+        .critical
+        .iter()
+        .take(args.hpm.unwrap_or(0))
+        .enumerate()
+    {
         let CriticalSurface {
             trial,
             surface,

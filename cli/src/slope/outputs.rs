@@ -213,7 +213,7 @@ pub fn write<S: TrialSurface + Copy>(
     let mut kept = result.clone();
     kept.critical.truncate(keep);
     let text = kept.critical_csv();
-    let text = if args.hpm == 0 {
+    let text = if args.hpm.is_none() {
         text
     } else {
         with_hpm_columns(&text, &hpm.surfaces)
@@ -350,7 +350,7 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
             "depth_m": l.depth,
             "direction_deg": l.direction_deg,
         },
-        "hpm": if args.hpm == 0 {
+        "hpm": if args.hpm.is_none() {
             serde_json::Value::Null
         } else {
             serde_json::json!({
