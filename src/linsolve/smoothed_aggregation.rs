@@ -498,7 +498,8 @@ pub struct AggregationSettings {
     /// Power iterations estimating `ρ(D⁻¹ A)` for the prolongator's damping.
     pub power_iterations: usize,
     /// Block Gauss–Seidel sweeps before the coarse correction (forward)
-    /// and after it (backward).
+    /// and after it (backward); on a level with lines
+    /// ([`SmoothedAggregation::with_lines`]), damped line-Jacobi sweeps.
     pub sweeps: usize,
 }
 
@@ -724,7 +725,11 @@ impl SmoothedAggregation {
 
     /// The hierarchy with the finest level's aggregates and line smoother
     /// given by `first` (see the module documentation); checked against
-    /// the matrix at [`Preconditioner::setup`].
+    /// the matrix at [`Preconditioner::setup`]. Where the matrix has at
+    /// most [`AggregationSettings::max_coarse`] unknowns, or the given
+    /// aggregates would not make a smaller level (`aggregates × modes` not
+    /// below the unknowns), no level is built and the matrix is factored
+    /// whole ([`SmoothedAggregation::level_sizes`] then has one entry).
     pub fn with_lines(mut self, first: LineLevel) -> Self {
         self.first = Some(first);
         self

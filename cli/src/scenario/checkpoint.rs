@@ -276,9 +276,11 @@ pub fn step_of(name: &str) -> Option<u64> {
 
 /// Remove from `dir` the checkpoints of steps below `newest` (the one just
 /// written) but the `keep − 1` of the highest steps: `keep` checkpoints
-/// are left, the newest included. Files of other names, and checkpoints
-/// of steps above `newest` (an earlier run's, in the same folder; the run
-/// writes over them as it gets there), are left alone.
+/// are left, the newest included. Files of other names, anything that is
+/// not a file, and checkpoints of steps above `newest` (an earlier run's,
+/// in the same folder; the run writes over them as it gets there), are
+/// left alone. Two runs given one folder share its step names, and so
+/// prune (and overwrite) each other's checkpoints.
 ///
 /// # Errors
 /// [`DismechError::Output`] naming the folder when it cannot be listed, or
@@ -295,6 +297,11 @@ pub fn prune(dir: &Path, newest: u64, keep: usize) -> Result<(), DismechError> {
         let Some(step) = name.to_str().and_then(step_of) else {
             continue;
         };
+        // Only files: a folder that happens to bear a checkpoint's name is
+        // not one.
+        if !entry.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
         if step < newest {
             older.push((step, entry.path()));
         }
@@ -461,6 +468,9 @@ mod tests {
         for other in ["notes.txt", "step-12.ckpt", ".step-0000000060.ckpt.tmp1"] {
             std::fs::write(dir.join(other), b"x").unwrap();
         }
+        // A folder named like an old checkpoint is neither removed nor an
+        // error.
+        std::fs::create_dir(file_name(&dir, 5)).unwrap();
         prune(&dir, 40, 2).unwrap();
         let mut names: Vec<String> = std::fs::read_dir(&dir)
             .unwrap()
@@ -472,6 +482,7 @@ mod tests {
             [
                 ".step-0000000060.ckpt.tmp1",
                 "notes.txt",
+                "step-0000000005.ckpt",
                 "step-0000000030.ckpt",
                 "step-0000000040.ckpt",
                 "step-0000000050.ckpt",
