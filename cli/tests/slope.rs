@@ -5,7 +5,10 @@
 //! option and the value at fault and the exit status of bad input, and
 //! leaves the output folder as it was.
 
-use std::path::{Path, PathBuf};
+mod slope_common;
+use slope_common::{scratch, terrain_file};
+
+use std::path::Path;
 use std::process::{Command, Output};
 
 use dismech::grid::{read_esri_ascii, read_raster, Raster};
@@ -15,22 +18,11 @@ use dismech::slope::{
     SurfaceLimits, Terrain, TrialFamily,
 };
 
-fn terrain_file() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/data/terrain/jacksboro_fault.asc")
-}
-
 fn dismech(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_dismech"))
         .args(args)
         .output()
         .expect("the dismech binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dismech-slope-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// The material of every run here.

@@ -4,7 +4,10 @@
 //! for bit; summary.json names the method; the lowest Fs lies above
 //! Hovland's.
 
-use std::path::{Path, PathBuf};
+mod slope_common;
+use slope_common::{scratch, terrain_file};
+
+use std::path::Path;
 use std::process::{Command, Output};
 
 use dismech::grid::read_esri_ascii;
@@ -12,20 +15,6 @@ use dismech::law::friction_from_degrees;
 use dismech::slope::{
     search, Method, SearchSettings, SlopeLoads, SlopeMaterial, SphereGrid, Steps, Terrain,
 };
-
-fn terrain_file() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/data/terrain/jacksboro_fault.asc")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "dismech-slope-bishop-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// The sphere grid of the runs below.
 const FAMILY: [&str; 8] = [
@@ -66,7 +55,7 @@ fn slope(out: &Path, method: &str) -> Output {
 
 #[test]
 fn method_bishop_is_the_library_search_by_bishop() {
-    let dir = scratch("run");
+    let dir = scratch("bishop-run");
     let (bishop_out, hovland_out) = (dir.join("bishop"), dir.join("hovland"));
     for (out, method) in [(&bishop_out, "bishop"), (&hovland_out, "hovland")] {
         let run = slope(out, method);

@@ -4,22 +4,11 @@
 //! `--hpm`; and where no surface gives an Fs over a `--bedrock`, the
 //! message names the bedrock as a cause.
 
-use std::path::{Path, PathBuf};
+mod slope_common;
+use slope_common::{scratch, terrain_file};
+
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn terrain_file() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/data/terrain/jacksboro_fault.asc")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "dismech-slope-refusals-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// `dismech slope` over `dem` with a small sphere grid and `extra`.
 fn slope(dem: &Path, out: &Path, extra: &[&str]) -> Output {
@@ -64,7 +53,7 @@ fn refused(run: &Output, needles: &[&str]) -> String {
 /// surface gave a factor of safety", and that message does not come.
 #[test]
 fn a_bad_prj_is_refused_before_the_search() {
-    let dir = scratch("prj");
+    let dir = scratch("refusals-prj");
     let dem = dir.join("dem.asc");
     std::fs::copy(terrain_file(), &dem).unwrap();
     let prj = dir.join("dem.prj");
@@ -95,7 +84,7 @@ fn a_bad_prj_is_refused_before_the_search() {
 /// mention one.
 #[test]
 fn no_surface_over_a_bedrock_names_the_bedrock() {
-    let dir = scratch("bedrock");
+    let dir = scratch("refusals-bedrock");
     let rock = dir.join("rock.asc");
     std::fs::copy(terrain_file(), &rock).unwrap();
     let run = slope(
@@ -125,7 +114,7 @@ fn no_surface_over_a_bedrock_names_the_bedrock() {
 /// this check.
 #[test]
 fn hpm_above_keep_is_refused_naming_both() {
-    let dir = scratch("keep");
+    let dir = scratch("refusals-keep");
     let run = slope(
         &terrain_file(),
         &dir.join("out"),
@@ -142,7 +131,7 @@ fn hpm_above_keep_is_refused_naming_both() {
 /// the parser naming the flag and `--hpm` (they used to be ignored).
 #[test]
 fn hpm_moduli_without_hpm_are_refused() {
-    let dir = scratch("moduli");
+    let dir = scratch("refusals-moduli");
     for (flag, value) in [("--youngs-modulus", "5e8"), ("--poisson-ratio", "0.3")] {
         let run = slope(&terrain_file(), &dir.join("out"), &[flag, value]);
         refused(&run, &[flag, "--hpm <K>"]);
@@ -156,7 +145,7 @@ fn hpm_moduli_without_hpm_are_refused() {
 /// naming the value and saying to leave `--hpm` out.
 #[test]
 fn hpm_zero_is_refused_and_does_not_let_the_hpm_options_through() {
-    let dir = scratch("zero");
+    let dir = scratch("refusals-zero");
     for extra in [
         &["--hpm", "0"][..],
         &["--hpm", "0", "--youngs-modulus", "5e8"][..],
