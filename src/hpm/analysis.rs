@@ -620,11 +620,7 @@ impl HpmSolver<ConjugateGradient<SmoothedAggregation>> {
         aggregation: AggregationSettings,
         modes: usize,
     ) -> Result<Self> {
-        settings.validate()?;
-        let preconditioner =
-            SmoothedAggregation::new(aggregation, linear_motions(model, modes)?, modes);
-        let solver = ConjugateGradient::new(settings, preconditioner);
-        Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
+        Self::multigrid_with(model, settings, aggregation, modes, None)
     }
 
     /// [`HpmSolver::multigrid`] whose finest level is built from the grid
@@ -653,9 +649,25 @@ impl HpmSolver<ConjugateGradient<SmoothedAggregation>> {
                 requirement: "must be at least 1",
             });
         }
-        let preconditioner =
-            SmoothedAggregation::new(aggregation, linear_motions(model, modes)?, modes)
-                .with_lines(column_lines(model, plan));
+        let lines = column_lines(model, plan);
+        Self::multigrid_with(model, settings, aggregation, modes, Some(lines))
+    }
+
+    /// The multigrid solver of `model`, its finest level `lines` where
+    /// given.
+    fn multigrid_with(
+        model: &HpmModel,
+        settings: CgSettings,
+        aggregation: AggregationSettings,
+        modes: usize,
+        lines: Option<LineLevel>,
+    ) -> Result<Self> {
+        settings.validate()?;
+        let mut preconditioner =
+            SmoothedAggregation::new(aggregation, linear_motions(model, modes)?, modes);
+        if let Some(lines) = lines {
+            preconditioner = preconditioner.with_lines(lines);
+        }
         let solver = ConjugateGradient::new(settings, preconditioner);
         Self::with_solver(model.stiffness(), solver).map_err(|e| name_ill_conditioning(model, e))
     }
