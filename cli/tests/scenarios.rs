@@ -577,14 +577,19 @@ fn a_moving_wall_drives_the_limit_analysis() {
     );
     let zero = refused(&pushed.replacen("velocity = [1.0, 0.0]", "velocity = [0.0, 0.0]", 1));
     assert!(zero.contains("`bodies[2].velocity`"), "{zero}");
+    // The implicit driver translates a moving wall at its velocity (see
+    // the penalty pushover's scenario); a zero velocity is refused there
+    // too.
     let dda = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap();
-    let implicit = refused(&dda.replacen(
+    let pushing = dda.replacen(
         "[law]",
         "[[bodies]]\nkind = \"wall\"\nstart = [-3.0, 1.0]\nend = [-3.0, 0.0]\nvelocity = [1.0, 0.0]\n\n[law]",
         1,
-    ));
+    );
+    assert!(scenario::prepare(Path::new("model.toml"), &pushing, Overrides::default()).is_ok());
+    let implicit = refused(&pushing.replacen("velocity = [1.0, 0.0]", "velocity = [0.0, 0.0]", 1));
     assert!(
-        implicit.contains("`driver.kind` and `bodies[2].velocity`"),
+        implicit.contains("model.toml:") && implicit.contains("`bodies[2].velocity`"),
         "{implicit}"
     );
 }
@@ -778,6 +783,164 @@ fn block_wall_dda_scenario_equals_the_composition_bit_for_bit() {
         );
         assert!(moved.norm() < 1e-8, "{k}: {moved:?}");
     }
+}
+
+/// The penalty pushover of paper 002's rolling U-model from its file: the
+/// composition's model (`compositions::penalty_vs_lp::pushover_model` of
+/// the default `UModelPushover`'s lattice at its stiffest penalty: its
+/// elements, walls, laws per pair of groups, moving plate and settings)
+/// advanced as `pushover` advances it ends in the same bits: every body's
+/// displacement and centroid, the plate's contact force (the load of the
+/// composition's curve at its last step), the time and the halvings.
+#[test]
+fn penalty_vs_lp_scenario_equals_the_composition_bit_for_bit() {
+    use dismech_cli::compositions::penalty_vs_lp::{pushover, pushover_model, UModelPushover};
+    let setup = UModelPushover::default();
+    let penalty = *setup.penalties.last().unwrap();
+    assert_eq!(penalty, 1e5);
+    let limit = setup.lattice.build().unwrap();
+    let travel = setup.travel_force / penalty;
+    let curve = pushover(&limit, penalty, setup.search, travel, setup.steps).unwrap();
+    assert!(curve.contacts_match);
+    // The composition's model, advanced as `pushover` advances it.
+    let mut pushed = pushover_model(&limit, penalty, setup.search).unwrap();
+    let dt = travel / (setup.steps as f64 * pushed.speed);
+    let mut halvings = 0;
+    for _ in 0..setup.steps {
+        halvings += pushed.model.advance(dt).unwrap().reductions;
+    }
+    assert_eq!(halvings, curve.reductions);
+    assert_eq!(
+        pushed.plate_load().to_bits(),
+        curve.load.last().unwrap().to_bits()
+    );
+    let summary = run("penalty_vs_lp.toml", Overrides::default());
+    assert_eq!(summary["steps"].as_u64(), Some(setup.steps as u64));
+    assert_eq!(
+        summary["outcome"]["halvings"].as_u64(),
+        Some(halvings as u64)
+    );
+    assert_eq!(bits(&summary["time"]), pushed.model.time().to_bits());
+    assert_eq!(
+        summary["contacts"].as_u64(),
+        Some(pushed.model.contacts().len() as u64)
+    );
+    let bodies = summary["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), pushed.model.bodies().len());
+    assert_eq!(pushed.plate, 19);
+    for (k, (b, body)) in bodies.iter().zip(pushed.model.bodies()).enumerate() {
+        for d in 0..3 {
+            assert_eq!(
+                bits(&b["displacement"][d]),
+                body.displacement[d].to_bits(),
+                "body {k}, displacement {d}"
+            );
+        }
+        assert_eq!(bits(&b["centroid"][0]), body.centroid().x.to_bits(), "{k}");
+        assert_eq!(bits(&b["centroid"][1]), body.centroid().y.to_bits(), "{k}");
+    }
+    let force = pushed.model.contact_force_on(pushed.plate);
+    let plate = &bodies[pushed.plate]["contact_force"];
+    assert_eq!(bits(&plate[0]), force.x.to_bits());
+    assert_eq!(bits(&plate[1]), force.y.to_bits());
+    // The plate moves along -x: its load is the x component of the force
+    // on it.
+    assert_eq!(bits(&plate[0]), curve.load.last().unwrap().to_bits());
+    // The plate moved by its travel.
+    assert_eq!(
+        bits(&bodies[pushed.plate]["displacement"][0]),
+        (-pushed.model.time()).to_bits()
+    );
+}
+
+/// The keys of the laws per pair of groups and of the implicit driver's
+/// moving wall: bad values refused by file, line, column and key.
+#[test]
+fn pair_laws_and_moving_walls_are_checked() {
+    let name = "penalty_vs_lp.toml";
+    let unknown_group = refusal_of(name, "groups = [0, 2]", "groups = [0, 9]");
+    assert!(
+        unknown_group.contains("model.toml:")
+            && unknown_group.contains("`pair_laws[1].groups`")
+            && unknown_group.contains("no body is in group 9"),
+        "{unknown_group}"
+    );
+    let twice = refusal_of(name, "groups = [0, 2]", "groups = [1, 0]");
+    assert!(
+        twice.contains("`pair_laws[0].groups` and `pair_laws[1].groups`")
+            && twice.contains("(0, 1) is given two laws"),
+        "{twice}"
+    );
+    let negative = refusal_of(
+        name,
+        "penalty = 1e5, friction = 0.0, cohesion = 2.0 }\n\n[[pair_laws]]\n# Elements on the far",
+        "penalty = -1e5, friction = 0.0, cohesion = 2.0 }\n\n[[pair_laws]]\n# Elements on the far",
+    );
+    assert!(
+        negative.contains("`pair_laws[0].law.penalty`") && negative.contains("-100000"),
+        "{negative}"
+    );
+    let other_type = refusal_of(
+        name,
+        "law = { kind = \"penalty-coulomb\", penalty = 1e5, friction = 0.0, cohesion = 0.0 }",
+        "law = { kind = \"spring-dashpot-coulomb\", normal_stiffness = 1e5, stiffness_ratio = 1.0, friction = 0.0 }",
+    );
+    assert!(
+        other_type.contains("`law.kind` and `pair_laws[2].law.kind`"),
+        "{other_type}"
+    );
+    let group = refusal_of(name, "group = 4", "group = -4");
+    assert!(group.contains("`bodies[19].group`"), "{group}");
+    let velocity = refusal_of(name, "velocity = [-1.0, 0.0]", "velocity = [-1.0, nan]");
+    assert!(
+        velocity.contains("model.toml:") && velocity.contains("`bodies[19].velocity`"),
+        "{velocity}"
+    );
+    // Groups choose the implicit driver's laws; the limit driver refuses
+    // them.
+    let limit = refusal_of(
+        "polygon_lp.toml",
+        "kind = \"wall\"",
+        "kind = \"wall\"\ngroup = 1",
+    );
+    assert!(
+        limit.contains("`driver.kind` and `bodies[1].group`"),
+        "{limit}"
+    );
+    let explicit = refusal_of(
+        "katsuki_example1.toml",
+        "[law]",
+        "[[pair_laws]]\ngroups = [0, 0]\nlaw = { kind = \"katsuki\", youngs_modulus = 1e9, poisson_ratio = 0.2, stiffness_ratio = 0.25, friction = 0.5 }\n\n[law]",
+    );
+    assert!(
+        explicit.contains("`driver.kind` and `pair_laws`"),
+        "{explicit}"
+    );
+}
+
+/// The moving wall's velocity is a function the implicit driver's
+/// checkpoint cannot compare: the scenario's checkpoint refuses a run
+/// whose plate moves at another velocity; the unchanged file resumes.
+#[test]
+fn a_checkpoint_of_another_wall_velocity_is_refused() {
+    let dir = scratch("resume-wall");
+    let file = variant("penalty_vs_lp.toml", "checkpoint_every = 10", &dir);
+    let text = std::fs::read_to_string(&file).unwrap();
+    run_file(&file, "a", Some(20), None);
+    let ckpt = dir.join("a.checkpoints/step-0000000020.ckpt");
+    for to in ["velocity = [-2.0, 0.0]", "velocity = [-1.0, 1e-9]"] {
+        let edited = dir.join("edited.toml");
+        std::fs::write(&edited, text.replacen("velocity = [-1.0, 0.0]", to, 1)).unwrap();
+        let refused = resume_refusal(&edited, &ckpt, Some(30));
+        assert!(
+            refused.contains("moving walls' velocities"),
+            "{to}: {refused}"
+        );
+    }
+    let straight = run_file(&file, "c", Some(30), None);
+    let resumed = run_file(&file, "b", Some(30), Some(&ckpt));
+    assert_eq!(straight, resumed);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The limit driver finds the contacts of circles and ellipses by the

@@ -17,7 +17,8 @@ pub enum BodySpec {
     /// A rectangle, centred and turned.
     Rectangle(RectangleSpec),
     /// A wall segment (implicit and limit drivers), the bodies on its
-    /// left; the limit driver's may move (the plate).
+    /// left; it may move at a constant velocity (the limit driver's
+    /// plate; the implicit driver's translated wall).
     Wall(WallSpec),
     /// Circles in a running bond in an open box ([`dismech::scene::CircleRows`]).
     CircleRows(CircleRowsSpec),
@@ -118,6 +119,9 @@ pub struct CircleSpec {
     pub angular_velocity: Option<f64>,
     /// Prescribed motion (implicit driver).
     pub motion: Option<MotionSpec>,
+    /// Contact group (implicit driver): `[[pair_laws]]` give laws per
+    /// pair of groups; 0 by default.
+    pub group: Option<usize>,
 }
 
 /// An ellipse.
@@ -146,6 +150,9 @@ pub struct EllipseSpec {
     pub angular_velocity: Option<f64>,
     /// Prescribed motion (implicit driver).
     pub motion: Option<MotionSpec>,
+    /// Contact group (implicit driver): `[[pair_laws]]` give laws per
+    /// pair of groups; 0 by default.
+    pub group: Option<usize>,
 }
 
 /// A polygon.
@@ -168,6 +175,9 @@ pub struct PolygonSpec {
     pub angular_velocity: Option<f64>,
     /// Prescribed motion (implicit driver).
     pub motion: Option<MotionSpec>,
+    /// Contact group (implicit driver): `[[pair_laws]]` give laws per
+    /// pair of groups; 0 by default.
+    pub group: Option<usize>,
 }
 
 /// A rectangle.
@@ -196,6 +206,9 @@ pub struct RectangleSpec {
     pub angular_velocity: Option<f64>,
     /// Prescribed motion (implicit driver).
     pub motion: Option<MotionSpec>,
+    /// Contact group (implicit driver): `[[pair_laws]]` give laws per
+    /// pair of groups; 0 by default.
+    pub group: Option<usize>,
 }
 
 /// A wall segment, fixed or (limit driver) moving.
@@ -206,9 +219,13 @@ pub struct WallSpec {
     pub start: [f64; 2],
     /// End point (m); the bodies lie on the left of start → end.
     pub end: [f64; 2],
-    /// Velocity (limit driver): the wall is the plate that drives the
-    /// collapse; fixed when absent.
+    /// Velocity: in the limit driver the wall is the plate that drives
+    /// the collapse; in the implicit driver the wall is translated at it
+    /// (`u(t) = v t`). Fixed when absent.
     pub velocity: Option<[f64; 2]>,
+    /// Contact group (implicit driver): `[[pair_laws]]` give laws per
+    /// pair of groups; 0 by default.
+    pub group: Option<usize>,
 }
 
 /// Circles in a running bond, filling an open box from the floor.
@@ -310,6 +327,21 @@ impl BodySpec {
             Self::Polygon(b) => Some(b.common()),
             Self::Rectangle(b) => Some(b.common()),
             Self::Wall(_) | Self::CircleRows(_) | Self::Lattice(_) | Self::GridColumns(_) => None,
+        }
+    }
+}
+
+impl BodySpec {
+    /// The contact group given by the `group` key of a single body or a
+    /// wall (none for a generator, which takes no such key).
+    pub fn group(&self) -> Option<usize> {
+        match self {
+            Self::Circle(b) => b.group,
+            Self::Ellipse(b) => b.group,
+            Self::Polygon(b) => b.group,
+            Self::Rectangle(b) => b.group,
+            Self::Wall(b) => b.group,
+            Self::CircleRows(_) | Self::Lattice(_) | Self::GridColumns(_) => None,
         }
     }
 }

@@ -17,7 +17,7 @@
 //! | 21–28 | sub-steps accepted (implicit driver; 0 for the explicit one) |
 //! | 29–36 | step halvings (implicit driver; 0 for the explicit one) |
 //! | 37–44 | the bits of the driver's `dt` |
-//! | 45–52 | the FNV-1a 64-bit hash of the explicit driver's settings; for the implicit one (whose checkpoint compares its settings itself), of its bodies' `sine` motions, 0 without one |
+//! | 45–52 | the FNV-1a 64-bit hash of the explicit driver's settings; for the implicit one (whose checkpoint compares its settings itself), of its bodies' `sine` motions and its moving walls' velocities, 0 without either |
 //! | 53–60 | the length of the driver's checkpoint in bytes |
 //! | 61–68 | the FNV-1a 64-bit checksum of bytes 0–60 and of the driver's checkpoint |
 //! | 69– | the driver's checkpoint, as [`dismech::checkpoint`] writes it |
@@ -84,7 +84,8 @@ pub struct RunCounters {
     /// The bits of the driver's `dt`.
     pub dt_bits: u64,
     /// The hash of the explicit driver's settings ([`fingerprint`]); of
-    /// the implicit driver's sine motions (`implicit::motions`).
+    /// the implicit driver's sine motions and moving walls' velocities
+    /// (`implicit::motions`).
     pub settings: u64,
 }
 

@@ -343,7 +343,10 @@ fn restore(
             same_step(
                 &counters,
                 m.dt,
-                ("bodies' sine motions", m.motions),
+                (
+                    "bodies' sine motions and moving walls' velocities",
+                    m.motions,
+                ),
                 &origin,
             )
             .map_err(run_error)?;

@@ -78,9 +78,19 @@ pub enum SteppingLaw {
 
 /// The law of `[law]` for the explicit or implicit driver.
 pub fn stepping_law(source: &Source<'_>, spec: &ScenarioSpec) -> Result<SteppingLaw, Refusal> {
-    let table = KeyPath::root("law");
+    stepping_law_at(source, &spec.law, &KeyPath::root("law"))
+}
+
+/// The law `law`, read from the table `table` (`[law]`, or a pair's law
+/// of `[[pair_laws]]`), for the explicit or implicit driver.
+pub fn stepping_law_at(
+    source: &Source<'_>,
+    law: &LawSpec,
+    table: &KeyPath,
+) -> Result<SteppingLaw, Refusal> {
+    let table = table.clone();
     let with = |e| named(source, &table, LAW_NAMES, e);
-    Ok(match &spec.law {
+    Ok(match law {
         LawSpec::Katsuki(p) => {
             let mu = check::friction(source, &table, p.friction, p.friction_angle, None)?;
             SteppingLaw::Spring(

@@ -127,6 +127,9 @@ pub const KEYS: &[&str] = &[
     "width",
     "height",
     "penalty",
+    "group",
+    "groups",
+    "pair_laws",
 ];
 
 /// Table headers put in place of a header.
@@ -150,6 +153,7 @@ pub const HEADERS: &[&str] = &[
     "[law.extra]",
     "[[loads.forces]]",
     "[[loads.tractions]]",
+    "[[pair_laws]]",
 ];
 
 /// The `kind` values of every slot, put in place of a `kind`.

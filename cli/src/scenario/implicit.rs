@@ -4,7 +4,8 @@
 
 use dismech::error::DismechError;
 use dismech::implicit::{
-    Body, BodyMaterial, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor, Prescribed,
+    Body, BodyMaterial, ContactLaws, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
+    Prescribed,
 };
 use dismech::integrate::{
     ImplicitCoefficients, ImplicitIntegrator, Newmark, QuasiStatic, Restarting,
@@ -21,7 +22,7 @@ use super::check::{
 };
 use super::driver::{ImplicitSpec, PredictorSpec};
 use super::explicit::{
-    finite, gravity, limit_steps, stepping_law, SteppingLaw, MAX_BODIES, MAX_STEPS,
+    finite, gravity, limit_steps, stepping_law, stepping_law_at, SteppingLaw, MAX_BODIES, MAX_STEPS,
 };
 use super::run::RunSpec;
 use super::solvers::{IntegratorSpec, KinematicsSpec};
@@ -82,16 +83,28 @@ pub struct ImplicitModel {
     pub dt: f64,
     /// Calls of `advance`.
     pub steps: u64,
-    /// The hash of the bodies' sine motions ([`motions`]): a motion is a
-    /// function, which the driver's checkpoint cannot compare.
+    /// The hash of the bodies' sine motions and the moving walls'
+    /// velocities ([`motions`]): a motion is a function, which the
+    /// driver's checkpoint cannot compare.
     pub motions: u64,
 }
 
 /// The FNV-1a hash of each body's sine motion as given (body index,
-/// amplitude, frequency and direction bits; 0 without one).
+/// amplitude, frequency and direction bits) and of each moving wall's
+/// velocity (`wall`, the body index and the velocity's bits); 0 without
+/// either.
 pub fn motions(spec: &ScenarioSpec) -> u64 {
     let mut bytes = Vec::new();
     for (k, entry) in spec.bodies.iter().enumerate() {
+        if let BodySpec::Wall(w) = entry {
+            if let Some(v) = w.velocity {
+                bytes.extend_from_slice(b"wall");
+                bytes.extend_from_slice(&(k as u64).to_le_bytes());
+                for c in v {
+                    bytes.extend_from_slice(&c.to_bits().to_le_bytes());
+                }
+            }
+        }
         if let Some(common) = entry.common() {
             if let Some(MotionSpec::Sine(s)) = common.motion {
                 let d = s.direction.unwrap_or([1.0, 0.0]);
@@ -117,7 +130,7 @@ pub fn build(
     overrides: Overrides,
 ) -> Result<ImplicitModel, Refusal> {
     refuse_other_slots(source, spec)?;
-    let law = stepping_law(source, spec)?;
+    let law = contact_laws(source, spec)?;
     let scheme = scheme(source, spec)?;
     let driver_path = KeyPath::root("driver");
     let dt = positive(source, &driver_path.key("dt"), settings.dt)?;
@@ -127,7 +140,7 @@ pub fn build(
     let driver = if affine {
         let bodies = bodies::<6>(source, spec, true)?;
         match law {
-            SteppingLaw::Spring(l) => ImplicitDriver::AffineSpring(Box::new(compose(
+            SteppingLaws::Spring(l) => ImplicitDriver::AffineSpring(Box::new(compose(
                 source,
                 spec,
                 bodies,
@@ -136,7 +149,7 @@ pub fn build(
                 scheme,
                 implicit_settings,
             )?)),
-            SteppingLaw::Penalty(l) => ImplicitDriver::AffinePenalty(Box::new(compose(
+            SteppingLaws::Penalty(l) => ImplicitDriver::AffinePenalty(Box::new(compose(
                 source,
                 spec,
                 bodies,
@@ -149,7 +162,7 @@ pub fn build(
     } else {
         let bodies = bodies::<3>(source, spec, false)?;
         match law {
-            SteppingLaw::Spring(l) => ImplicitDriver::RigidSpring(Box::new(compose(
+            SteppingLaws::Spring(l) => ImplicitDriver::RigidSpring(Box::new(compose(
                 source,
                 spec,
                 bodies,
@@ -158,7 +171,7 @@ pub fn build(
                 scheme,
                 implicit_settings,
             )?)),
-            SteppingLaw::Penalty(l) => ImplicitDriver::RigidPenalty(Box::new(compose(
+            SteppingLaws::Penalty(l) => ImplicitDriver::RigidPenalty(Box::new(compose(
                 source,
                 spec,
                 bodies,
@@ -177,6 +190,70 @@ pub fn build(
     })
 }
 
+/// The contact laws of the implicit driver, all of one type.
+enum SteppingLaws {
+    /// Spring–dashpot laws.
+    Spring(ContactLaws<SpringDashpotCoulomb>),
+    /// Penalty laws.
+    Penalty(ContactLaws<PenaltyCoulomb>),
+}
+
+/// The contact laws: `[law]` between groups that no entry of
+/// `[[pair_laws]]` names, each entry's law between its two groups
+/// ([`ContactLaws::with_pair`]). Refused: a pair given twice, a group no
+/// body is in, a pair's law of another type than `[law]`'s.
+fn contact_laws(source: &Source<'_>, spec: &ScenarioSpec) -> Result<SteppingLaws, Refusal> {
+    let mut laws = match stepping_law(source, spec)? {
+        SteppingLaw::Spring(l) => SteppingLaws::Spring(ContactLaws::uniform(l)),
+        SteppingLaw::Penalty(l) => SteppingLaws::Penalty(ContactLaws::uniform(l)),
+    };
+    let groups: Vec<usize> = spec.bodies.iter().map(|b| b.group().unwrap_or(0)).collect();
+    let mut given: Vec<((usize, usize), KeyPath)> = Vec::with_capacity(spec.pair_laws.len());
+    for (i, pair) in spec.pair_laws.iter().enumerate() {
+        let path = KeyPath::root("pair_laws").index(i);
+        let [a, b] = pair.groups;
+        for g in [a, b] {
+            if !groups.contains(&g) {
+                return Err(Box::new(source.at_key(
+                    &path.key("groups"),
+                    format!(
+                        "no body is in group {g} (a body's group is its `group` key, 0 by default)"
+                    ),
+                )));
+            }
+        }
+        let key = (a.min(b), a.max(b));
+        if let Some((_, first)) = given.iter().find(|(k, _)| *k == key) {
+            return Err(combination(
+                source,
+                &[&first.key("groups"), &path.key("groups")],
+                &format!(
+                    "the pair of groups ({}, {}) is given two laws",
+                    key.0, key.1
+                ),
+            ));
+        }
+        given.push((key, path.clone()));
+        let table = path.key("law");
+        laws = match (laws, stepping_law_at(source, &pair.law, &table)?) {
+            (SteppingLaws::Spring(l), SteppingLaw::Spring(p)) => {
+                SteppingLaws::Spring(l.with_pair(a, b, p))
+            }
+            (SteppingLaws::Penalty(l), SteppingLaw::Penalty(p)) => {
+                SteppingLaws::Penalty(l.with_pair(a, b, p))
+            }
+            _ => {
+                return Err(combination(
+                    source,
+                    &[&KeyPath::root("law").key("kind"), &table.key("kind")],
+                    "a pair's law is of the type of `[law]`: `penalty-coulomb` beside `penalty-coulomb`, `katsuki` or `spring-dashpot-coulomb` beside either of those",
+                ))
+            }
+        };
+    }
+    Ok(laws)
+}
+
 /// [`ImplicitDynamics::compose`], its errors placed at the keys that gave
 /// the values.
 fn compose<const N: usize, K, L>(
@@ -184,7 +261,7 @@ fn compose<const N: usize, K, L>(
     spec: &ScenarioSpec,
     bodies: Vec<Body<N>>,
     kinematics: K,
-    law: L,
+    laws: ContactLaws<L>,
     scheme: Scheme,
     settings: ImplicitSettings,
 ) -> Result<Implicit<N, K, L>, Refusal>
@@ -197,7 +274,7 @@ where
     ImplicitDynamics::compose(
         bodies,
         kinematics,
-        law,
+        laws,
         scheme,
         SparseLu::default(),
         settings,
@@ -395,19 +472,26 @@ fn bodies<const N: usize>(
     let mut bodies = Vec::with_capacity(spec.bodies.len());
     for (k, entry) in spec.bodies.iter().enumerate() {
         let path = KeyPath::root("bodies").index(k);
-        let body = match entry {
+        let mut body = match entry {
             BodySpec::Wall(w) => {
-                if w.velocity.is_some() {
-                    return Err(combination(
-                        source,
-                        &[&driver_kind, &path.key("velocity")],
-                        "the implicit driver's walls are fixed; a moving wall is the limit driver's plate",
-                    ));
-                }
                 let start = finite2(source, &path.key("start"), w.start)?;
                 let end = finite2(source, &path.key("end"), w.end)?;
                 let segment = Segment::new(Point::new(start[0], start[1]), Point::new(end[0], end[1]));
-                Body::wall(segment, k).map_err(|e| Box::new(source.at_key(&path, e.to_string())))?
+                let mut wall = Body::wall(segment, k)
+                    .map_err(|e| Box::new(source.at_key(&path, e.to_string())))?;
+                if let Some(v) = w.velocity {
+                    let key = path.key("velocity");
+                    let v = finite2(source, &key, v)?;
+                    if v == [0.0, 0.0] {
+                        return Err(Box::new(source.at_key(
+                            &key,
+                            "[0, 0] is refused: a moving wall needs a velocity other than zero (leave the key out for a fixed wall)",
+                        )));
+                    }
+                    let velocity = Vec2::new(v[0], v[1]);
+                    wall.prescribed = Some(Prescribed::translation(move |t| velocity * t));
+                }
+                wall
             }
             BodySpec::CircleRows(_) | BodySpec::Lattice(_) | BodySpec::GridColumns(_) => {
                 return Err(combination(
@@ -418,6 +502,7 @@ fn bodies<const N: usize>(
             }
             _ => single(source, entry, &path, k, affine)?,
         };
+        body.group = entry.group().unwrap_or(0);
         bodies.push(body);
     }
     for (i, t) in spec.loads.tractions.iter().enumerate() {

@@ -32,6 +32,19 @@ impl LawSpec {
     }
 }
 
+/// One entry of `[[pair_laws]]` (implicit driver): the law of the
+/// contacts between bodies of two groups (the bodies' `group` keys), in
+/// place of `[law]`'s ([`dismech::implicit::ContactLaws::with_pair`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PairLawSpec {
+    /// The two groups, in either order (twice the same group: the
+    /// contacts inside it).
+    pub groups: [usize; 2],
+    /// The law, its keys as `[law]`'s and of the same kind.
+    pub law: LawSpec,
+}
+
 /// Paper 000's law: `k_n` from the contact width (eq. 19), critical
 /// dashpots.
 #[derive(Debug, Clone, Deserialize)]

@@ -3,7 +3,7 @@
 //!
 //! A scenario's tables are the slots of a composition (see the crate docs
 //! of [`dismech`]): `[driver]`, `[kinematics]`, `[boundary]`,
-//! `[[bodies]]`, `[law]`, `[integrator]`, `[linear_solver]`,
+//! `[[bodies]]`, `[law]`, `[[pair_laws]]`, `[integrator]`, `[linear_solver]`,
 //! `[lp_solver]`, `[loads]`, `[run]`, `[limit_analysis]` and `[output]`.
 //! A slot's `kind`
 //! chooses its piece; a combination the library cannot compose is refused
@@ -15,7 +15,7 @@
 //! |---|---|
 //! | the file's text, its spanned tree, errors placed in it | `source.rs` |
 //! | the `kind` tag moved out so that values keep their spans | `retag.rs` |
-//! | the tables, one file each | `driver.rs`, `bodies.rs`, `boundary.rs`, `law.rs`, `solvers.rs`, `loads.rs`, `run.rs`, `output.rs` |
+//! | the tables, one file each (`[[pair_laws]]` in `law.rs`) | `driver.rs`, `bodies.rs`, `boundary.rs`, `law.rs`, `solvers.rs`, `loads.rs`, `run.rs`, `output.rs` |
 //! | values checked and library errors named by their keys | `check.rs` |
 //! | the models built for each driver | `explicit.rs`, `implicit.rs`, `limit.rs`, `hpm.rs` |
 //! | the limit analysis of the explicit driver's final packing | `analysis.rs` |
@@ -67,6 +67,10 @@ pub struct ScenarioSpec {
     pub bodies: Vec<bodies::BodySpec>,
     /// `[law]`.
     pub law: law::LawSpec,
+    /// `[[pair_laws]]` (implicit driver): laws per pair of body groups,
+    /// in place of `[law]`'s.
+    #[serde(default)]
+    pub pair_laws: Vec<law::PairLawSpec>,
     /// `[integrator]`.
     pub integrator: Option<solvers::IntegratorSpec>,
     /// `[linear_solver]` (implicit driver; sparse LU by default).
@@ -252,6 +256,9 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
             "`[limit_analysis]` analyses the explicit driver's final packing; the limit driver analyses bodies given in the file",
         )));
     }
+    if !matches!(spec.driver, driver::DriverSpec::Implicit(_)) {
+        refuse_groups(&source, &spec)?;
+    }
     let model = match &spec.driver {
         driver::DriverSpec::Explicit(settings) => {
             Model::Explicit(explicit::build(&source, &spec, settings, overrides)?)
@@ -272,6 +279,29 @@ pub fn prepare(file: &Path, text: &str, overrides: Overrides) -> Result<Prepared
         model,
         checkpoints,
     })
+}
+
+/// Refuse the contact groups (`[[pair_laws]]`, a body's `group`) beside
+/// a driver other than the implicit one, which alone takes a law per pair
+/// of groups.
+fn refuse_groups(source: &Source<'_>, spec: &ScenarioSpec) -> Result<(), Box<Located>> {
+    let kind = KeyPath::root("driver").key("kind");
+    let why = "contact groups choose the implicit driver's law per pair of groups; this driver takes the one `[law]`";
+    if !spec.pair_laws.is_empty() {
+        return Err(check::combination(
+            source,
+            &[&kind, &KeyPath::root("pair_laws")],
+            why,
+        ));
+    }
+    match spec.bodies.iter().position(|b| b.group().is_some()) {
+        Some(k) => Err(check::combination(
+            source,
+            &[&kind, &KeyPath::root("bodies").index(k).key("group")],
+            why,
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Read the scenario `file` and [`prepare`] it.

@@ -26,6 +26,10 @@ pub const TAGGED_SECTIONS: [&str; 8] = [
 /// elements.
 pub const TAGGED_ARRAYS: [(&str, &[&str]); 1] = [("bodies", &["motion"])];
 
+/// The arrays of untagged tables, and the tagged tables inside their
+/// elements (`[[pair_laws]]`: each entry's `law`).
+pub const ARRAYS_OF_TAGGED: [(&str, &[&str]); 1] = [("pair_laws", &["law"])];
+
 /// The variant name given to a table that has no `kind` key, so that
 /// serde refuses it with the list of the kinds it knows.
 pub const MISSING_KIND: &str = "";
@@ -40,16 +44,27 @@ pub fn retag(tree: &mut Spanned<DeTable<'_>>) {
         }
     }
     for (array, inner) in TAGGED_ARRAYS {
-        if let Some(value) = root.get_mut(array) {
-            if let DeValue::Array(items) = value.get_mut() {
-                for item in items.iter_mut() {
-                    if let DeValue::Table(table) = item.get_mut() {
-                        for key in inner {
-                            if let Some(v) = table.get_mut(*key) {
-                                retag_value(v);
-                            }
+        retag_array(root, array, inner, true);
+    }
+    for (array, inner) in ARRAYS_OF_TAGGED {
+        retag_array(root, array, inner, false);
+    }
+}
+
+/// Retag the tables `inner` of each element of the top-level array
+/// `array`, and with `tagged` the element itself.
+fn retag_array(root: &mut DeTable<'_>, array: &str, inner: &[&str], tagged: bool) {
+    if let Some(value) = root.get_mut(array) {
+        if let DeValue::Array(items) = value.get_mut() {
+            for item in items.iter_mut() {
+                if let DeValue::Table(table) = item.get_mut() {
+                    for key in inner {
+                        if let Some(v) = table.get_mut(*key) {
+                            retag_value(v);
                         }
                     }
+                }
+                if tagged {
                     retag_value(item);
                 }
             }
