@@ -1,9 +1,20 @@
 //! Typed errors for misuse and for runs that cannot go on.
+//!
+//! One error per module for the grid files ([`crate::grid::GridError`]),
+//! HPM ([`crate::hpm::HpmError`]) and the slope search
+//! ([`crate::slope::SlopeError`]), joined into [`DismechError`] by its
+//! variants [`DismechError::Grid`], [`DismechError::Hpm`] and
+//! [`DismechError::Slope`] (transparent: the same message, and `From`, so
+//! that `?` turns one into a [`DismechError`]); the rest, shared by several
+//! modules or of the other methods, are variants of [`DismechError`]
+//! itself.
 
 /// Every error dismech returns to a caller.
 ///
 /// Each variant names the offending value, so that a message read on its own
-/// says what to change.
+/// says what to change. The errors of the grid files, HPM and the slope
+/// search are their modules' own, joined here ([`DismechError::Grid`],
+/// [`DismechError::Hpm`], [`DismechError::Slope`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DismechError {
     /// A parameter is outside its admissible range (non-finite, negative, zero…).
@@ -177,14 +188,15 @@ pub enum DismechError {
     /// ([`crate::grid::GridError`]).
     #[error(transparent)]
     Grid(#[from] crate::grid::GridError),
-    /// No cell has its slip surface below the ground surface.
-    #[error("no valid column: the slip surface of {slip} lies nowhere below the ground surface of {ground}")]
-    NoValidColumn {
-        /// The ground-surface file.
-        ground: String,
-        /// The slip-surface file.
-        slip: String,
-    },
+    /// An HPM model or analysis that cannot be built or run, or whose
+    /// safety factor is undefined ([`crate::hpm::HpmError`]).
+    #[error(transparent)]
+    Hpm(#[from] crate::hpm::HpmError),
+    /// A slope search whose terrain, ground or trial surfaces cannot be
+    /// used, or ground an HPM re-analysis of its surfaces cannot take
+    /// ([`crate::slope::SlopeError`]).
+    #[error(transparent)]
+    Slope(#[from] crate::slope::SlopeError),
     /// A polygon block is not a valid simple polygon.
     #[error("block {block} is not a valid polygon: {reason}")]
     InvalidPolygon {
@@ -311,14 +323,6 @@ pub enum DismechError {
         /// What does not fit.
         reason: crate::vtk::VtkProblem,
     },
-    /// Maps asked of a result on a grid it does not belong to: an HPM or
-    /// Hovland result of another model, or a model of another grid
-    /// ([`crate::hpm::ColumnMaps`]).
-    #[error("maps: {reason}")]
-    MapData {
-        /// What does not fit.
-        reason: crate::hpm::MapProblem,
-    },
     /// Writing an output failed.
     #[error("cannot write {path}: {message}")]
     Output {
@@ -326,43 +330,6 @@ pub enum DismechError {
         path: String,
         /// The operating system's message.
         message: String,
-    },
-    /// Every valid column of the grids has zero thickness: the model has
-    /// no element.
-    #[error("no HPM element: the {valid} valid column(s) of `{ground}` over `{slip}` have zero thickness at all four corners (the slip surface meets the ground there); lower the slip surface under the slide")]
-    EmptyHpmModel {
-        /// The ground-surface raster.
-        ground: String,
-        /// The slip-surface raster.
-        slip: String,
-        /// Number of valid columns.
-        valid: usize,
-    },
-    /// The stiffness of an HPM model could not be factored, and the model
-    /// has features that make it ill-conditioned.
-    #[error(
-        "the HPM stiffness could not be factored ({reason}); the model is ill-conditioned: {}",
-        join(causes)
-    )]
-    IllConditioned {
-        /// What makes the model ill-conditioned, each with what to change.
-        causes: Vec<crate::hpm::IllConditioning>,
-        /// The linear solver's error.
-        reason: SolveError,
-    },
-    /// A strength-reduction search found equilibrium at every factor it
-    /// tried, up to its limit.
-    #[error("strength reduction: equilibrium at every factor tried up to F = {factor:.4e}; nothing drives this slide to failure (check the slip surface and the loads)")]
-    StrengthReductionNoFailure {
-        /// The largest factor tried.
-        factor: f64,
-    },
-    /// A strength-reduction search found no equilibrium at any factor it
-    /// tried, down to its limit.
-    #[error("strength reduction: no equilibrium even at F = {factor:.4e} (strength multiplied by {:.4e}); the slide cannot stand with a strength near the material's (see the nonlinear solve's residual)", 1.0 / .factor)]
-    StrengthReductionNoEquilibrium {
-        /// The smallest factor tried.
-        factor: f64,
     },
     /// Two rigid elements of a limit analysis share their reference point.
     #[error("element {body} has its reference point at ({x}, {y}), within {distance:.1e} m of that of element {existing}: two rigid elements cannot share a point (an element declared twice would double its strength and load)")]
@@ -401,85 +368,6 @@ pub enum DismechError {
         /// The largest number of elements accepted.
         limit: usize,
     },
-    /// An HPM model that, with what its linear solver adds, would take
-    /// more memory than its budget ([`crate::hpm::HpmSettings::memory_budget`])
-    /// or, with no budget set, than the system's allocator gives; refused
-    /// before that memory is taken.
-    #[error("an HPM model of {columns} columns × {layers} layers = {elements} elements needs about {bytes} bytes ({}) for {what}, {}", Bytes(*bytes), over_budget(*budget))]
-    HpmModelTooLarge {
-        /// Valid columns of the grid.
-        columns: usize,
-        /// Layers per column ([`crate::hpm::HpmSettings::layers`]).
-        layers: usize,
-        /// Their exact product.
-        elements: u128,
-        /// What the bytes count: the model
-        /// ([`crate::hpm::HpmModel::memory_estimate`]) and the part of the
-        /// linear solver being made (for the sparse Cholesky, the entries
-        /// of its factor once the symbolic analysis has counted them).
-        what: crate::hpm::MemoryParts,
-        /// The memory counted.
-        bytes: u128,
-        /// The budget it is over ([`crate::hpm::HpmSettings::memory_budget`]);
-        /// `None` where no budget was set and the system's allocator
-        /// refused the memory.
-        budget: Option<u64>,
-    },
-    /// A grid too small for a grid-column slope analysis: the corner
-    /// heights and the slopes of the surfaces are interpolated between cell
-    /// centres, which needs two of them along each axis.
-    #[error("{file}: a grid of {rows} row(s) × {columns} column(s) is too small for a slope analysis: corner heights and the slopes of the surfaces are interpolated between cell centres, which needs at least 2 rows and 2 columns; extend the grids by a cell beyond the slide on each side")]
-    GridTooSmall {
-        /// The file (or the name given to the raster).
-        file: String,
-        /// Grid rows.
-        rows: usize,
-        /// Grid columns.
-        columns: usize,
-    },
-    /// A safety factor asked of a slide that nothing drives along the
-    /// direction it is measured in: the ratio of resisting to driving
-    /// forces is undefined (infinite for a slide at rest on level ground,
-    /// meaningless against a direction up the slope).
-    #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}, or a driving force so small beside the resisting one that their ratio overflows), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
-    NothingDrivesSliding {
-        /// Which safety factor, and the force that drives it.
-        what: crate::hpm::SafetyFactorTerm,
-        /// The driving force along the slip direction (N).
-        driving: f64,
-        /// The weight of the slide (N).
-        weight: f64,
-        /// The smallest driving force, as a share of the weight, that
-        /// counts ([`crate::hpm::MIN_DRIVING_RATIO`]).
-        ratio: f64,
-    },
-    /// A safety factor asked of a slide whose slip surface has no strength
-    /// left: its strength `Σ (c + σ tan φ) A` is not positive, because the
-    /// load puts the surface in tension beyond the apex of its
-    /// Mohr–Coulomb law (σ < −c / tan φ, where `c + σ tan φ` is negative)
-    /// over so much of it (a large seismic coefficient), or is so small
-    /// beside the driving force that their ratio is zero. A zero or
-    /// negative ratio of resisting to driving forces is no factor of
-    /// safety: the slide is lifted off the surface there, not sheared
-    /// along it.
-    #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
-    SlipSurfaceInTension {
-        /// Which safety factor, and the force that drives it.
-        what: crate::hpm::SafetyFactorTerm,
-        /// The slip surface's strength `Σ (c + σ tan φ) A` (N).
-        strength: f64,
-        /// The driving force it is set against (N).
-        driving: f64,
-        /// Grid cells `(row, column)` of the columns where the strength
-        /// `c + σ tan φ` is negative under some part of the base, in the
-        /// order of [`crate::hpm::HpmModel::columns`].
-        cells: Vec<(usize, usize)>,
-        /// Columns of the model.
-        columns: usize,
-        /// Share of the slip surface's area where the strength is negative,
-        /// in [0, 1].
-        area_share: f64,
-    },
     /// A limit analysis without a limit load was asked for one.
     #[error("the limit analysis has no limit load (status {status:?}): {what} needs a collapse")]
     NoLimitLoad {
@@ -507,78 +395,6 @@ pub enum DismechError {
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]
     UnknownStudy(String, String),
-    /// A digital elevation model with no cell of ground data, given to a
-    /// slope search ([`crate::slope`]).
-    #[error("{file}: none of its {rows} row(s) × {columns} column(s) has ground data (every cell is no-data); a slope search needs a digital elevation model with data")]
-    NoGroundData {
-        /// The file (or the name given to the raster).
-        file: String,
-        /// Grid rows.
-        rows: usize,
-        /// Grid columns.
-        columns: usize,
-    },
-    /// A digital elevation model too small for a slope search
-    /// ([`crate::slope`]): a trial surface may not touch the grid's edge, so
-    /// at least one cell must lie inside it.
-    #[error("{file}: a grid of {rows} row(s) × {columns} column(s) is too small for a slope search: a trial surface whose columns touch the edge of the grid leaves it and is refused, so at least 3 rows and 3 columns are needed (one inner cell); extend the grid beyond the slope")]
-    DemTooSmall {
-        /// The file (or the name given to the raster).
-        file: String,
-        /// Grid rows.
-        rows: usize,
-        /// Grid columns.
-        columns: usize,
-    },
-    /// A strength layer of the ground of a slope search that cannot be
-    /// used ([`crate::slope::Layer`]): its bottom raster off the DEM's
-    /// grid, a bottom missing or given where it must not be, no layer.
-    #[error("layer `{layer}`: {problem}")]
-    InvalidLayer {
-        /// The layer's name.
-        layer: String,
-        /// What is wrong, with the offending file or value.
-        problem: crate::slope::LayerProblem,
-    },
-    /// Ground that an HPM re-analysis of a trial surface
-    /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold
-    /// one unit weight and it takes pore water from a water table.
-    #[error("HPM re-analysis cannot take this ground: {reason}")]
-    HpmGround {
-        /// What the ground has that HPM cannot take.
-        reason: String,
-    },
-    /// A pore-pressure ratio r_u outside `[0, 1)` ([`crate::slope::PoreRatio`]).
-    #[error("pore-pressure ratio r_u = {} from {source_name} at {}: must be finite, >= 0 and < 1 (u = r_u sigma_v; r_u = 1 would leave no effective stress)", Number(*value), cell_name(cell))]
-    PoreRatioOutOfRange {
-        /// The constant, or the raster's file.
-        source_name: String,
-        /// The raster's cell `(row, column)`, from 0 at the top left;
-        /// `None` for a constant (every cell).
-        cell: Option<(usize, usize)>,
-        /// The value given.
-        value: f64,
-    },
-    /// Two sources of pore pressure given at once to a slope search: the
-    /// water table and a pore-pressure ratio r_u.
-    #[error("pore pressure given twice: the water table {water} and the pore-pressure ratio r_u {ratio}; give one of them")]
-    PorePressureTwice {
-        /// The water table's file.
-        water: String,
-        /// The r_u constant or file.
-        ratio: String,
-    },
-    /// A range of values whose lower bound lies above its upper bound
-    /// (e.g. the radii of a search of trial spheres).
-    #[error("invalid {name}: its lower bound {} lies above its upper bound {}; give min <= max", Number(*low), Number(*high))]
-    InvalidRange {
-        /// The range's name (e.g. `radius range`).
-        name: &'static str,
-        /// The lower bound given.
-        low: f64,
-        /// The upper bound given.
-        high: f64,
-    },
     /// A checkpoint that cannot be saved, read or restored into this
     /// model (see [`crate::checkpoint`]).
     #[error("checkpoint {origin}: {problem}")]
@@ -651,27 +467,10 @@ fn overlap_note(overlap: &Option<crate::explicit::OverlapReached>) -> String {
     overlap.map(|o| format!(" at {o}")).unwrap_or_default()
 }
 
-/// `row R, column C` for a raster's cell, `every cell` for none.
-fn cell_name(cell: &Option<(usize, usize)>) -> String {
-    match cell {
-        Some((row, column)) => format!("row {row}, column {column}"),
-        None => "every cell".to_string(),
-    }
-}
-
-/// The messages of `items`, separated by semicolons.
-fn join<T: std::fmt::Display>(items: &[T]) -> String {
-    items
-        .iter()
-        .map(|i| i.to_string())
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
 /// A number in a message: as Rust writes it where that is short, in
 /// scientific notation where it is very small or very large (a subnormal
 /// written out in full takes 300 digits).
-struct Number(f64);
+pub(crate) struct Number(pub(crate) f64);
 
 impl std::fmt::Display for Number {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -685,7 +484,7 @@ impl std::fmt::Display for Number {
 }
 
 /// A byte count in binary units.
-struct Bytes(u128);
+pub(crate) struct Bytes(pub(crate) u128);
 
 impl std::fmt::Display for Bytes {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -697,38 +496,6 @@ impl std::fmt::Display for Bytes {
             write!(f, "{:.1} MiB", b / (1024.0 * 1024.0))
         }
     }
-}
-
-/// Why the memory of an HPM model is refused and what to change.
-fn over_budget(budget: Option<u64>) -> String {
-    match budget {
-        Some(budget) => format!(
-            "more than its memory budget HpmSettings::memory_budget = {budget} bytes ({}); raise HpmSettings::memory_budget where the machine has the memory (None asks the system), or use fewer layers, or crop or coarsen the grid",
-            Bytes(u128::from(budget))
-        ),
-        None => "more than the system's allocator gives (HpmSettings::memory_budget is None, so the system was asked); use fewer layers, crop or coarsen the grid, or run on a machine with more memory".into(),
-    }
-}
-
-/// ` (grid cells (row, column) (r, c), …)` naming the first few of
-/// `cells`, or nothing.
-fn cell_list(cells: &[(usize, usize)]) -> String {
-    const SHOWN: usize = 6;
-    if cells.is_empty() {
-        return String::new();
-    }
-    let mut text = String::from(" (grid cells (row, column) ");
-    let shown: Vec<String> = cells
-        .iter()
-        .take(SHOWN)
-        .map(|(r, c)| format!("({r}, {c})"))
-        .collect();
-    text.push_str(&shown.join(", "));
-    if cells.len() > SHOWN {
-        text.push_str(&format!(" and {} more", cells.len() - SHOWN));
-    }
-    text.push(')');
-    text
 }
 
 /// Shorthand for results with [`DismechError`].

@@ -17,6 +17,7 @@ use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
 use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::grid::Raster;
+use dismech::hpm::HpmError;
 use dismech::hpm::{
     hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
 };
@@ -489,9 +490,9 @@ fn slope_case() -> impl Strategy<Value = SlopeCase> {
 /// Build a slab on a dipping plane and analyse it (elastic HPM and
 /// Hovland): `Err` is a typed refusal; a safety factor returned is finite
 /// and positive, and one that is not given is refused because nothing
-/// drives the slide ([`DismechError::NothingDrivesSliding`]) or because
+/// drives the slide ([`HpmError::NothingDrivesSliding`]) or because
 /// the slip surface has no strength left
-/// ([`DismechError::SlipSurfaceInTension`]: a seismic load that puts it in
+/// ([`HpmError::SlipSurfaceInTension`]: a seismic load that puts it in
 /// tension beyond `c / tan φ`, where the ratio used to come out negative).
 fn run_slope(case: &SlopeCase) -> Result<bool, DismechError> {
     let slope = case.dip_deg.to_radians().tan();
@@ -530,8 +531,8 @@ fn run_slope(case: &SlopeCase) -> Result<bool, DismechError> {
         match fs {
             Ok(fs) => assert!(fs.is_finite() && fs > 0.0, "{name} Fs {fs}"),
             Err(
-                DismechError::NothingDrivesSliding { .. }
-                | DismechError::SlipSurfaceInTension { .. },
+                DismechError::Hpm(HpmError::NothingDrivesSliding { .. })
+                | DismechError::Hpm(HpmError::SlipSurfaceInTension { .. }),
             ) => {}
             Err(other) => panic!("{name}: {other:?}"),
         }

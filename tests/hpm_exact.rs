@@ -4,6 +4,7 @@
 
 use dismech::error::DismechError;
 use dismech::grid::{parse_esri_ascii, GridCellProblem, GridError, Raster};
+use dismech::hpm::HpmError;
 use dismech::hpm::*;
 use dismech::linsolve::{AggregationSettings, CgSettings, LinearSolver, SparseCholesky};
 use dismech::reference::PlanarSlab;
@@ -845,7 +846,7 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     let high = named("slip.asc", "11 11 11\n11 11 11\n11 11 11\n");
     assert!(matches!(
         SlopeGrids::new(ground(), high, None).unwrap_err(),
-        DismechError::NoValidColumn { .. }
+        DismechError::Hpm(HpmError::NoValidColumn { .. })
     ));
     // NaN in a file is refused with its line and column.
     let nan = parse_esri_ascii(&format!("{GRID}1 1 1\n1 NaN 1\n1 1 1\n"), "slip.asc").unwrap_err();
@@ -959,11 +960,11 @@ fn empty_hpm_model_is_refused() {
     .unwrap();
     assert_eq!(grids.valid_cells(), vec![(1, 1)]);
     match HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()) {
-        Err(DismechError::EmptyHpmModel {
+        Err(DismechError::Hpm(HpmError::EmptyHpmModel {
             ground,
             slip,
             valid,
-        }) => {
+        })) => {
             assert_eq!(
                 (ground.as_str(), slip.as_str(), valid),
                 ("ground.asc", "slip.asc", 1)
@@ -1047,7 +1048,7 @@ fn slip_surface_at_the_ground_is_named_when_the_factorization_fails() {
     let grids = slab(3, 4, 22.0, 270.0, 1e-7, None);
     let model = HpmModel::new(&grids, &material(), &HpmSettings::default()).unwrap();
     match HpmSolver::new(&model) {
-        Err(DismechError::IllConditioned { causes, .. }) => {
+        Err(DismechError::Hpm(HpmError::IllConditioned { causes, .. })) => {
             assert_eq!(causes.len(), 1, "{causes:?}");
             let IllConditioning::ThinColumn {
                 thickness,
@@ -1108,7 +1109,7 @@ fn strength_reduction_without_any_equilibrium_gives_no_factor() {
     };
     let mut solver = HpmSolver::new(&model).unwrap();
     match strength_reduction(&mut solver, &model, &Seismic::none(), &settings, 0.02) {
-        Err(DismechError::StrengthReductionNoEquilibrium { factor }) => {
+        Err(DismechError::Hpm(HpmError::StrengthReductionNoEquilibrium { factor })) => {
             assert!(factor < MIN_REDUCTION_FACTOR, "{factor}");
         }
         other => panic!("{other:?}"),
@@ -1122,7 +1123,7 @@ fn strength_reduction_without_any_failure_gives_no_factor() {
     let mut solver = HpmSolver::new(&model).unwrap();
     let settings = NonlinearSettings::default();
     match strength_reduction(&mut solver, &model, &Seismic::none(), &settings, 0.02) {
-        Err(DismechError::StrengthReductionNoFailure { factor }) => {
+        Err(DismechError::Hpm(HpmError::StrengthReductionNoFailure { factor })) => {
             assert!(factor > MAX_REDUCTION_FACTOR, "{factor}");
         }
         other => panic!("{other:?}"),

@@ -12,6 +12,7 @@ use dismech::grid::{
     read_esri_ascii, to_esri_ascii, FileKind, GridError, GridFormatProblem, Raster,
     MAX_BYTES_PER_VALUE, MAX_HEADER_BYTES,
 };
+use dismech::hpm::HpmError;
 use dismech::hpm::*;
 use dismech::linsolve::CgSettings;
 /// The horizontal unit vector at `deg` degrees counter-clockwise from +x.
@@ -108,14 +109,14 @@ fn hpm_layers_beyond_memory_budget_are_refused() {
         });
         let result = result.unwrap();
         match &result {
-            Err(DismechError::HpmModelTooLarge {
+            Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
                 columns: c,
                 layers: l,
                 elements,
                 bytes,
                 budget,
                 ..
-            }) => {
+            })) => {
                 assert_eq!((*c, *l), (columns, layers));
                 assert_eq!(*elements, columns as u128 * layers as u128);
                 assert_eq!(*budget, memory_budget);
@@ -247,14 +248,14 @@ fn hpm_memory_budget_is_a_setting_named_in_a_refusal() {
     // setting.
     let tiny = build(Some(1000));
     match &tiny {
-        Err(DismechError::HpmModelTooLarge {
+        Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
             columns: c,
             layers: 3,
             elements,
             bytes,
             budget: Some(1000),
             what,
-        }) => {
+        })) => {
             assert_eq!(*what, MemoryParts::Model);
             assert_eq!((*c, *elements), (columns, 3 * columns as u128));
             assert_eq!(*bytes, HpmModel::memory_estimate(columns, 3));
@@ -289,12 +290,12 @@ fn hpm_memory_budget_is_a_setting_named_in_a_refusal() {
     let m = build(Some(budget)).unwrap();
     let refused = HpmSolver::new(&m);
     match &refused {
-        Err(DismechError::HpmModelTooLarge {
+        Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
             bytes,
             budget: b,
             what,
             ..
-        }) => {
+        })) => {
             assert_eq!(*what, MemoryParts::CholeskyOrdering);
             assert_eq!((*bytes, *b), (analysis, Some(budget)));
         }
@@ -359,12 +360,12 @@ fn hpm_cholesky_refused_after_its_symbolic_analysis_names_the_factor() {
     let mut refused = None;
     let memory = allocation_counter::measure(|| refused = Some(HpmSolver::new(&m)));
     match refused.unwrap() {
-        Err(DismechError::HpmModelTooLarge {
+        Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
             bytes,
             budget: b,
             what,
             ..
-        }) => {
+        })) => {
             assert_eq!((bytes, b), (direct, Some(budget)));
             assert_eq!(what, MemoryParts::CholeskyFactor { entries });
             let what = what.to_string();
@@ -427,14 +428,14 @@ fn hpm_iterative_column_blocks_beyond_memory_budget_are_refused() {
     };
     let model = HpmModel::new(&grids, &HpmMaterial::paper(), &settings).unwrap();
     match HpmSolver::iterative(&model, CgSettings::default()) {
-        Err(DismechError::HpmModelTooLarge {
+        Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
             columns,
             layers,
             bytes,
             budget,
             what,
             ..
-        }) => {
+        })) => {
             assert_eq!((columns, layers), (4, 2000));
             assert!(bytes > 4 * (12u128 * 2000).pow(2) * 8, "{bytes}");
             assert_eq!(
@@ -597,11 +598,11 @@ fn slope_grids_of_one_row_or_one_column_are_refused_naming_their_size() {
     // along-slope Fs of NaN, all returned without error.
     for (rows, columns) in [(1, 2), (2, 1), (1, 1), (1, 30)] {
         match grids(rows, columns, 20.0, 5.0) {
-            Err(DismechError::GridTooSmall {
+            Err(DismechError::Hpm(HpmError::GridTooSmall {
                 file,
                 rows: r,
                 columns: c,
-            }) => assert_eq!((file.as_str(), r, c), ("ground.asc", rows, columns)),
+            })) => assert_eq!((file.as_str(), r, c), ("ground.asc", rows, columns)),
             other => panic!("{rows} × {columns}: {other:?}"),
         }
     }
@@ -621,12 +622,12 @@ fn slope_grids_of_one_row_or_one_column_are_refused_naming_their_size() {
 /// weight, or a panic.
 fn nothing_drives(result: dismech::error::Result<f64>, model: &HpmModel) -> f64 {
     match result {
-        Err(DismechError::NothingDrivesSliding {
+        Err(DismechError::Hpm(HpmError::NothingDrivesSliding {
             driving,
             weight,
             ratio,
             ..
-        }) => {
+        })) => {
             assert_eq!(weight, model.total_weight());
             assert_eq!(ratio, MIN_DRIVING_RATIO);
             assert!(driving <= ratio * weight, "{driving}");
@@ -664,7 +665,7 @@ fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
             ),
         ] {
             match result {
-                Err(DismechError::NothingDrivesSliding { what, .. }) => assert_eq!(
+                Err(DismechError::Hpm(HpmError::NothingDrivesSliding { what, .. })) => assert_eq!(
                     what,
                     SafetyFactorTerm {
                         factor,
@@ -677,7 +678,7 @@ fn hpm_fs_on_level_ground_says_nothing_drives_sliding() {
     }
     let hov = hovland(&m, &Seismic::none(), towards_deg(270.0));
     let driving = match &hov {
-        Err(DismechError::NothingDrivesSliding { driving, what, .. }) => {
+        Err(DismechError::Hpm(HpmError::NothingDrivesSliding { driving, what, .. })) => {
             assert!(
                 matches!(
                     what,
@@ -739,9 +740,9 @@ fn hovland_towards_up_the_slope_says_nothing_drives_sliding() {
     );
     for towards in [90.0, 0.0] {
         match hovland(&m, &Seismic::none(), towards_deg(towards)) {
-            Err(DismechError::NothingDrivesSliding {
+            Err(DismechError::Hpm(HpmError::NothingDrivesSliding {
                 driving, weight, ..
-            }) => {
+            })) => {
                 assert_eq!(weight, m.total_weight());
                 if towards == 90.0 {
                     // −W sin β of the slab.
@@ -935,7 +936,7 @@ fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
         .elastic(&m, &Seismic::none())
         .unwrap();
     match result.safety_factor(&m) {
-        Err(DismechError::NothingDrivesSliding { what, .. }) => assert_eq!(
+        Err(DismechError::Hpm(HpmError::NothingDrivesSliding { what, .. })) => assert_eq!(
             what,
             // The resultant drives it; the ratio to the springs' shear
             // overflows.
@@ -947,7 +948,7 @@ fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
         other => panic!("{other:?}"),
     }
     match hovland(&m, &Seismic::none(), towards_deg(270.0)) {
-        Err(DismechError::NothingDrivesSliding { .. }) => {}
+        Err(DismechError::Hpm(HpmError::NothingDrivesSliding { .. })) => {}
         Ok(h) => assert!(h.safety_factor.is_finite(), "{}", h.safety_factor),
         Err(other) => panic!("{other:?}"),
     }
@@ -989,7 +990,7 @@ fn seismic_coefficient_above_ten_is_refused() {
     assert!(up.is_finite() && up > 0.0, "{up}");
     assert!(matches!(
         hovland(&m, &ten(270.0), towards_deg(270.0)),
-        Err(DismechError::SlipSurfaceInTension { .. })
+        Err(DismechError::Hpm(HpmError::SlipSurfaceInTension { .. }))
     ));
 }
 
@@ -1018,14 +1019,14 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
     let every_cell: Vec<(usize, usize)> = m.columns.iter().map(|c| c.cell).collect();
     assert_eq!(every_cell.len(), 12);
     let tension = |result: Result<f64, DismechError>| match result {
-        Err(DismechError::SlipSurfaceInTension {
+        Err(DismechError::Hpm(HpmError::SlipSurfaceInTension {
             strength,
             driving,
             cells,
             columns,
             area_share,
             ..
-        }) => (strength, driving, cells, columns, area_share),
+        })) => (strength, driving, cells, columns, area_share),
         other => panic!("{other:?}"),
     };
 
@@ -1065,7 +1066,7 @@ fn hpm_fs_of_a_slip_surface_in_tension_is_refused_naming_the_columns() {
     }
     // Each refusal names its factor and the force set against no strength.
     let what = |result: Result<f64, DismechError>| match result {
-        Err(DismechError::SlipSurfaceInTension { what, .. }) => what,
+        Err(DismechError::Hpm(HpmError::SlipSurfaceInTension { what, .. })) => what,
         other => panic!("{other:?}"),
     };
     assert_eq!(
@@ -1144,17 +1145,20 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
         hov.maps(&small, &other).unwrap_err(),
     ] {
         let message = e.to_string();
-        assert!(matches!(e, DismechError::MapData { .. }), "{e}");
+        assert!(
+            matches!(e, DismechError::Hpm(HpmError::MapData { .. })),
+            "{e}"
+        );
         assert!(
             matches!(
                 &e,
-                DismechError::MapData {
+                DismechError::Hpm(HpmError::MapData {
                     reason: MapProblem::GridSize {
                         model: (4, 4, _),
                         rasters: (5, 4, _),
                         ..
                     }
-                }
+                })
             ),
             "{e}"
         );
@@ -1178,7 +1182,7 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
     .unwrap();
     let e = result.maps(&small, &shifted).unwrap_err();
     assert!(
-        matches!(&e, DismechError::MapData { reason: MapProblem::CornerOff { ground, .. } } if ground == "moved.asc"),
+        matches!(&e, DismechError::Hpm(HpmError::MapData { reason: MapProblem::CornerOff { ground, .. } }) if ground == "moved.asc"),
         "{e}"
     );
     let e = e.to_string();
@@ -1189,9 +1193,9 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
     assert!(
         matches!(
             &e,
-            DismechError::MapData {
+            DismechError::Hpm(HpmError::MapData {
                 reason: MapProblem::NotThisResult { .. }
-            }
+            })
         ),
         "{e}"
     );
@@ -1201,9 +1205,9 @@ fn maps_on_another_grid_or_of_another_model_are_refused() {
     assert!(
         matches!(
             &e,
-            DismechError::MapData {
+            DismechError::Hpm(HpmError::MapData {
                 reason: MapProblem::NotThisHovland { .. }
-            }
+            })
         ),
         "{e}"
     );

@@ -8,6 +8,7 @@ use dismech::grid::{write_esri_ascii, Raster};
 use dismech::hpm::{
     hovland, HpmModel, HpmSettings, HpmSolver, NamedRaster, NonlinearSettings, Seismic, SlopeGrids,
 };
+use dismech::slope::SlopeError;
 use dismech::slope::*;
 
 /// A valley side descending towards −y at about 25° with a bump, 48 × 40
@@ -222,7 +223,7 @@ fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
     for (ground, words) in [(&layered(heavy), "topsoil 18000"), (&ratio, "r_u")] {
         let e = run(ground).unwrap_err();
         assert!(
-            matches!(&e, DismechError::HpmGround { reason } if reason.contains(words)),
+            matches!(&e, DismechError::Slope(SlopeError::HpmGround { reason }) if reason.contains(words)),
             "{e}"
         );
     }

@@ -8,6 +8,7 @@ use dismech::grid::GridError;
 use dismech::grid::Raster;
 use dismech::hpm::NamedRaster;
 use dismech::nalgebra::Vector3;
+use dismech::slope::SlopeError;
 use dismech::slope::*;
 
 /// A valley side descending towards −y at about 25° with a bump, 48 × 40
@@ -428,7 +429,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     ])
     .unwrap();
     match Evaluator::new(&t, &g, &loads, &lim).unwrap_err() {
-        DismechError::InvalidLayer { layer, problem } => {
+        DismechError::Slope(SlopeError::InvalidLayer { layer, problem }) => {
             assert_eq!(layer, "sand");
             let message = problem.to_string();
             assert!(
@@ -453,7 +454,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     ])
     .unwrap_err()
     {
-        DismechError::InvalidLayer { layer, problem } => {
+        DismechError::Slope(SlopeError::InvalidLayer { layer, problem }) => {
             assert_eq!(layer, "peat");
             let message = problem.to_string();
             assert!(message.contains("-5"), "{message}");
@@ -467,38 +468,38 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     // A layer other than the last without a bottom; the last with one; none.
     let e = Ground::layered(vec![layer("a", None, soil()), layer("b", None, soil())]).unwrap_err();
     assert!(
-        matches!(&e, DismechError::InvalidLayer { layer, .. } if layer == "a"),
+        matches!(&e, DismechError::Slope(SlopeError::InvalidLayer { layer, .. }) if layer == "a"),
         "{e}"
     );
     assert!(
         matches!(
             &e,
-            DismechError::InvalidLayer {
+            DismechError::Slope(SlopeError::InvalidLayer {
                 problem: LayerProblem::NoBottom { index: 1, count: 2 },
                 ..
-            }
+            })
         ),
         "{e}"
     );
     let e = Ground::layered(vec![layer("a", Some(below(&dem, 1.0, "a.asc")), soil())]).unwrap_err();
     assert!(
-        matches!(&e, DismechError::InvalidLayer { layer, problem } if layer == "a" && problem.to_string().contains("a.asc")),
+        matches!(&e, DismechError::Slope(SlopeError::InvalidLayer { layer, problem }) if layer == "a" && problem.to_string().contains("a.asc")),
         "{e}"
     );
     assert!(
-        matches!(&e, DismechError::InvalidLayer { problem: LayerProblem::LastHasBottom { bottom }, .. } if bottom == "a.asc"),
+        matches!(&e, DismechError::Slope(SlopeError::InvalidLayer { problem: LayerProblem::LastHasBottom { bottom }, .. }) if bottom == "a.asc"),
         "{e}"
     );
     assert!(matches!(
         Ground::layered(vec![]).unwrap_err(),
-        DismechError::InvalidLayer { .. }
+        DismechError::Slope(SlopeError::InvalidLayer { .. })
     ));
     assert!(matches!(
         Ground::layered(vec![]).unwrap_err(),
-        DismechError::InvalidLayer {
+        DismechError::Slope(SlopeError::InvalidLayer {
             problem: LayerProblem::NoLayer,
             ..
-        }
+        })
     ));
     // r_u outside [0, 1).
     for v in [1.0, -0.1, f64::NAN, 1.5] {
@@ -506,7 +507,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
             .with_pore_ratio(PoreRatio::Constant(v))
             .unwrap_err()
         {
-            DismechError::PoreRatioOutOfRange { value, cell, .. } => {
+            DismechError::Slope(SlopeError::PoreRatioOutOfRange { value, cell, .. }) => {
                 assert!(value.to_bits() == v.to_bits());
                 assert_eq!(cell, None);
             }
@@ -525,11 +526,11 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
         .unwrap_err();
     assert!(err.to_string().contains("at row 0, column 25:"), "{err}");
     match err {
-        DismechError::PoreRatioOutOfRange {
+        DismechError::Slope(SlopeError::PoreRatioOutOfRange {
             source_name,
             cell,
             value,
-        } => {
+        }) => {
             assert_eq!(source_name, "ru.asc");
             assert_eq!(cell, Some((0, 25)));
             assert_eq!(value, 1.2);
@@ -567,7 +568,7 @@ fn bad_layers_and_ratios_are_refused_with_typed_errors() {
     )
     .unwrap_err();
     match &e {
-        DismechError::PorePressureTwice { water, ratio } => {
+        DismechError::Slope(SlopeError::PorePressureTwice { water, ratio }) => {
             assert_eq!(water, "water.asc");
             assert!(ratio.contains("0.2"));
         }

@@ -8,6 +8,7 @@ use dismech::grid::GridError;
 use dismech::grid::{read_esri_ascii, Raster};
 use dismech::hpm::NamedRaster;
 use dismech::nalgebra::Vector3;
+use dismech::slope::SlopeError;
 use dismech::slope::*;
 
 /// A valley side descending towards −y at about 25° with a bump, 48 × 40
@@ -392,17 +393,17 @@ fn bad_input_is_refused_with_typed_errors() {
     let none = Raster::new(4, 4, 0.0, 0.0, 1.0, vec![None; 16]).unwrap();
     let e = Terrain::new(NamedRaster::new("empty.asc", none), None).unwrap_err();
     assert!(
-        matches!(e, DismechError::NoGroundData { ref file, rows: 4, columns: 4 } if file == "empty.asc")
+        matches!(e, DismechError::Slope(SlopeError::NoGroundData { ref file, rows: 4, columns: 4 }) if file == "empty.asc")
     );
     let tiny = Raster::from_fn(2, 5, 0.0, 0.0, 1.0, |_, _| Some(1.0)).unwrap();
     let e = Terrain::new(NamedRaster::new("tiny.asc", tiny), None).unwrap_err();
     assert!(matches!(
         e,
-        DismechError::DemTooSmall {
+        DismechError::Slope(SlopeError::DemTooSmall {
             rows: 5,
             columns: 2,
             ..
-        }
+        })
     ));
     assert!(e.to_string().contains("tiny.asc"));
     // NaN in a raster, at construction.
@@ -433,7 +434,7 @@ fn bad_input_is_refused_with_typed_errors() {
     assert!(matches!(e, DismechError::InvalidParameter { value, .. } if value == -5.0));
     let e = Steps::checked("radius range", 20.0, 10.0, 3, true).unwrap_err();
     assert!(
-        matches!(e, DismechError::InvalidRange { low, high, .. } if low == 20.0 && high == 10.0)
+        matches!(e, DismechError::Slope(SlopeError::InvalidRange { low, high, .. }) if low == 20.0 && high == 10.0)
     );
     assert!(e.to_string().contains("20") && e.to_string().contains("10"));
     let e = Steps::checked("radius range", 5.0, 10.0, 0, true).unwrap_err();
@@ -541,7 +542,7 @@ fn bad_input_is_refused_with_typed_errors() {
     };
     let e = run(d.0, d.1, SearchSettings { limits, ..d.2 });
     assert!(
-        matches!(e, DismechError::InvalidRange { low, high, .. } if low == 100.0 && high == 10.0)
+        matches!(e, DismechError::Slope(SlopeError::InvalidRange { low, high, .. }) if low == 100.0 && high == 10.0)
     );
     limits.volume = (0.0, f64::NAN);
     let e = run(d.0, d.1, SearchSettings { limits, ..d.2 });

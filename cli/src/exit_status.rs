@@ -5,7 +5,9 @@
 use std::process::ExitCode;
 
 use dismech::error::{DismechError, SolveError};
+use dismech::hpm::HpmError;
 use dismech::limit::LimitStatus;
+use dismech::slope::SlopeError;
 
 /// What the command's exit code says.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -95,6 +97,8 @@ impl Exit {
     /// The status of a run stopped by `error`.
     pub fn of_error(error: &DismechError) -> Self {
         use DismechError as E;
+        use HpmError as H;
+        use SlopeError as S;
         match error {
             E::Output { .. } => Exit::OutputFailed,
             E::Solve(SolveError::InvalidSetting { .. }) => Exit::BadInput,
@@ -103,19 +107,19 @@ impl Exit {
             | E::ParticleLeftFrame { .. }
             | E::EnergyBlowUp { .. }
             | E::StepFailed { .. }
-            | E::IllConditioned { .. }
+            | E::Hpm(H::IllConditioned { .. })
             | E::NoLimitLoad { .. }
             | E::UncertifiedOptimum { .. } => Exit::SolverFailure,
             // Strength reduction: no factor fails the slope (it cannot
             // collapse), or none holds it (it collapses under its weight).
-            E::StrengthReductionNoFailure { .. } => Exit::Locked,
+            E::Hpm(H::StrengthReductionNoFailure { .. }) => Exit::Locked,
             // Nothing drives the slide: its safety factor is undefined
             // (infinite on level ground), as a slope that cannot fail.
-            E::NothingDrivesSliding { .. } => Exit::Locked,
-            E::StrengthReductionNoEquilibrium { .. } => Exit::Unbounded,
+            E::Hpm(H::NothingDrivesSliding { .. }) => Exit::Locked,
+            E::Hpm(H::StrengthReductionNoEquilibrium { .. }) => Exit::Unbounded,
             // The slip surface is lifted off beyond its tensile strength:
             // the slide fails under its loads, with no factor of safety.
-            E::SlipSurfaceInTension { .. } => Exit::Unbounded,
+            E::Hpm(H::SlipSurfaceInTension { .. }) => Exit::Unbounded,
             E::InvalidParameter { .. }
             | E::UnstableTimeStep { .. }
             | E::StartsInsideWall { .. }
@@ -127,10 +131,22 @@ impl Exit {
             | E::DrivingSupportCount(_)
             | E::NoDeadLoads
             | E::Grid(_)
-            | E::NoValidColumn { .. }
-            | E::NoGroundData { .. }
-            | E::DemTooSmall { .. }
-            | E::InvalidRange { .. }
+            | E::Hpm(
+                H::NoValidColumn { .. }
+                | H::EmptyHpmModel { .. }
+                | H::HpmModelTooLarge { .. }
+                | H::GridTooSmall { .. }
+                | H::MapData { .. },
+            )
+            | E::Slope(
+                S::NoGroundData { .. }
+                | S::DemTooSmall { .. }
+                | S::InvalidRange { .. }
+                | S::InvalidLayer { .. }
+                | S::PoreRatioOutOfRange { .. }
+                | S::PorePressureTwice { .. }
+                | S::HpmGround { .. },
+            )
             | E::InvalidPolygon { .. }
             | E::LawUndefinedForShape { .. }
             | E::InvalidBlock { .. }
@@ -140,24 +156,16 @@ impl Exit {
             | E::TimeStepTooSmall { .. }
             | E::BlocksOverlap { .. }
             | E::BlocksCross { .. }
-            | E::EmptyHpmModel { .. }
             | E::DuplicateBody { .. }
             | E::DuplicateContact { .. }
             | E::LatticeTooLarge { .. }
-            | E::HpmModelTooLarge { .. }
-            | E::GridTooSmall { .. }
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
             | E::SelfContact { .. }
             | E::UnknownStudy(..)
             | E::VtkData { .. }
-            | E::MapData { .. }
-            | E::Checkpoint { .. }
-            | E::InvalidLayer { .. }
-            | E::PoreRatioOutOfRange { .. }
-            | E::PorePressureTwice { .. }
-            | E::HpmGround { .. } => Exit::BadInput,
+            | E::Checkpoint { .. } => Exit::BadInput,
         }
     }
 }
@@ -200,40 +208,40 @@ mod tests {
 
     #[test]
     fn a_slide_nothing_drives_exits_as_locked_and_a_model_too_large_as_bad_input() {
-        let nothing = DismechError::NothingDrivesSliding {
+        let nothing = DismechError::Hpm(HpmError::NothingDrivesSliding {
             what: hovland_term(),
             driving: 0.0,
             weight: 1.0,
             ratio: 1e-6,
-        };
+        });
         assert_eq!(Exit::of_error(&nothing), Exit::Locked);
-        let large = DismechError::HpmModelTooLarge {
+        let large = DismechError::Hpm(HpmError::HpmModelTooLarge {
             columns: 1,
             layers: usize::MAX,
             elements: u128::from(u64::MAX),
             what: dismech::hpm::MemoryParts::Model,
             bytes: u128::MAX,
             budget: Some(1),
-        };
+        });
         assert_eq!(Exit::of_error(&large), Exit::BadInput);
-        let small = DismechError::GridTooSmall {
+        let small = DismechError::Hpm(HpmError::GridTooSmall {
             file: "g.asc".into(),
             rows: 1,
             columns: 2,
-        };
+        });
         assert_eq!(Exit::of_error(&small), Exit::BadInput);
     }
 
     #[test]
     fn a_slip_surface_in_tension_exits_as_unbounded() {
-        let lifted = DismechError::SlipSurfaceInTension {
+        let lifted = DismechError::Hpm(HpmError::SlipSurfaceInTension {
             what: hovland_term(),
             strength: -1.0,
             driving: 1.0,
             cells: vec![(0, 0)],
             columns: 1,
             area_share: 1.0,
-        };
+        });
         assert_eq!(Exit::of_error(&lifted), Exit::Unbounded);
         let text = lifted.to_string();
         assert!(

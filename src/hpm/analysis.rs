@@ -24,7 +24,7 @@
 //! solve ([`HpmResult::ill_conditioning`], from
 //! [`HpmModel::ill_conditioning`]), each with what to change; a
 //! factorization that fails on such a model is a
-//! [`DismechError::IllConditioned`] naming them.
+//! [`HpmError::IllConditioned`] naming them.
 //!
 //! **Safety factors.** The paper states Fs for each run (§5, Table 2) but
 //! not its formula; two definitions are offered.
@@ -65,7 +65,7 @@
 //! 3 × 4 cells on level ground) while Hovland's Fs is infinite, and the Fs
 //! along the sliding direction 2.6e14 (a direction of rounding); none of
 //! them means anything, and
-//! both are refused with [`DismechError::NothingDrivesSliding`] naming the
+//! both are refused with [`HpmError::NothingDrivesSliding`] naming the
 //! driving force and the weight. The local factors
 //! ([`HpmResult::local_safety_factors`]) stay the stress ratio of each
 //! column, a measure of the strength mobilised there.
@@ -79,7 +79,7 @@
 //! with the paper's), but where it is not positive, as under a seismic
 //! coefficient that lifts the slide off the surface, the ratio would be
 //! zero or negative, which is no factor of safety: every Fs is refused
-//! there with [`DismechError::SlipSurfaceInTension`], naming the columns
+//! there with [`HpmError::SlipSurfaceInTension`], naming the columns
 //! in tension beyond the apex and their share of the area (Hovland's Fs
 //! likewise, column by column). A local factor is 0 where the column's
 //! strength is not positive. The nonlinear analysis' springs carry no
@@ -88,6 +88,7 @@
 use nalgebra::Vector3;
 
 use super::conditioning::IllConditioning;
+use super::error::HpmError;
 use super::material::Seismic;
 use super::model::{HpmModel, MemoryParts, SlipSpring};
 use super::stiffness::BlockMatrix;
@@ -154,7 +155,7 @@ impl NonlinearSettings {
 /// The smallest driving force, as a share of the slide's weight, for which
 /// a safety factor is given: below it (or a driving force that points up
 /// the slope) nothing drives sliding, and the ratio of resisting to driving
-/// forces is refused with [`DismechError::NothingDrivesSliding`] rather
+/// forces is refused with [`HpmError::NothingDrivesSliding`] rather
 /// than returned as a huge, negative or NaN number. At 1e-6 of the weight
 /// the Fs of a frictional slide would be about a million; a level slip
 /// surface leaves a driving force of rounding (and of the nonlinear
@@ -203,8 +204,8 @@ impl Tension {
 }
 
 /// Which safety factor of a slide a refusal concerns
-/// ([`DismechError::NothingDrivesSliding`],
-/// [`DismechError::SlipSurfaceInTension`]).
+/// ([`HpmError::NothingDrivesSliding`],
+/// [`HpmError::SlipSurfaceInTension`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SafetyFactorKind {
     /// HPM's stress ratio `Σ(c + σ tan φ)A / Σ|τ|A`
@@ -284,11 +285,11 @@ impl std::fmt::Display for SafetyFactorTerm {
 /// The safety factor `resisting / driving` of a slide of weight `weight`.
 ///
 /// # Errors
-/// [`DismechError::NothingDrivesSliding`] (naming the forces as `what`
+/// [`HpmError::NothingDrivesSliding`] (naming the forces as `what`
 /// says) where the driving force is not above [`MIN_DRIVING_RATIO`] of the
 /// weight (`>` is false for NaN: a NaN driving force drives nothing) or so
 /// small beside the resisting one that the ratio overflows (a unit weight
-/// of 1e-308); else [`DismechError::SlipSurfaceInTension`] (naming where,
+/// of 1e-308); else [`HpmError::SlipSurfaceInTension`] (naming where,
 /// as `tension()` says) where the ratio is not positive: the resisting
 /// strength `Σ (c + σ tan φ) A` is zero or negative (the surface in
 /// tension beyond `c / tan φ`), or so small that the ratio underflows.
@@ -301,12 +302,12 @@ pub(super) fn resisting_over_driving(
 ) -> Result<f64> {
     let ratio = resisting / driving;
     if !(driving > MIN_DRIVING_RATIO * weight && ratio.is_finite()) {
-        return Err(DismechError::NothingDrivesSliding {
+        return Err(DismechError::Hpm(HpmError::NothingDrivesSliding {
             what,
             driving,
             weight,
             ratio: MIN_DRIVING_RATIO,
-        });
+        }));
     }
     if ratio > 0.0 {
         Ok(ratio)
@@ -316,14 +317,14 @@ pub(super) fn resisting_over_driving(
             columns,
             area_share,
         } = tension();
-        Err(DismechError::SlipSurfaceInTension {
+        Err(DismechError::Hpm(HpmError::SlipSurfaceInTension {
             what,
             strength: resisting,
             driving,
             cells,
             columns,
             area_share,
-        })
+        }))
     }
 }
 
@@ -494,10 +495,10 @@ impl HpmSolver<SparseCholesky> {
     /// triangle and [`SparseCholesky::factor_bytes`]).
     ///
     /// # Errors
-    /// [`DismechError::HpmModelTooLarge`] when the model and the solver
+    /// [`HpmError::HpmModelTooLarge`] when the model and the solver
     /// would take more memory than the budget (or, with none, than the
     /// system's allocator gives), naming the bytes and the factor's
-    /// entries; a failed factorization: [`DismechError::IllConditioned`]
+    /// entries; a failed factorization: [`HpmError::IllConditioned`]
     /// naming what to change when the model has a feature that makes it
     /// ill-conditioned ([`HpmModel::ill_conditioning`]), the solver's error
     /// otherwise.
@@ -571,7 +572,7 @@ impl HpmSolver<ConjugateGradient<BlockJacobi>> {
     ///
     /// # Errors
     /// Settings out of range ([`CgSettings::validate`]);
-    /// [`DismechError::HpmModelTooLarge`] when the model and the dense
+    /// [`HpmError::HpmModelTooLarge`] when the model and the dense
     /// column blocks, `(12 × layers)²` numbers a column, would take more
     /// memory than the budget (or, with none, than the system's allocator
     /// gives), refused before they are made; a failed factorization of a
@@ -963,7 +964,7 @@ fn name_ill_conditioning(model: &HpmModel, error: DismechError) -> DismechError 
             if causes.is_empty() {
                 DismechError::Solve(reason)
             } else {
-                DismechError::IllConditioned { causes, reason }
+                DismechError::Hpm(HpmError::IllConditioned { causes, reason })
             }
         }
         other => other,
@@ -1004,13 +1005,13 @@ impl HpmResult {
     /// ratio) with the material's own c and φ.
     ///
     /// # Errors
-    /// [`DismechError::NothingDrivesSliding`] when the horizontal part of
+    /// [`HpmError::NothingDrivesSliding`] when the horizontal part of
     /// the springs' resultant shear force `Σ τ A`, the force that pushes the
     /// slide along the ground, is not above [`MIN_DRIVING_RATIO`] of the
     /// slide's weight (a level slip surface without seismic load): the
     /// springs' `|τ|` are then the squeeze of the soil on the surface, not
     /// a push that strength resists, and Hovland's Fs is infinite.
-    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength
+    /// [`HpmError::SlipSurfaceInTension`] when the springs' strength
     /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
     /// `c / tan φ`, as under a large seismic coefficient), so that the
     /// ratio would be zero or negative.
@@ -1056,7 +1057,7 @@ impl HpmResult {
     }
 
     /// The plan direction of the resultant shear force, or the
-    /// [`DismechError::NothingDrivesSliding`] of `what` when its horizontal
+    /// [`HpmError::NothingDrivesSliding`] of `what` when its horizontal
     /// part is not above [`MIN_DRIVING_RATIO`] of the weight.
     fn driven(&self, model: &HpmModel, factor: SafetyFactorKind) -> Result<(f64, f64)> {
         let resultant = self.resultant_shear(model);
@@ -1066,7 +1067,7 @@ impl HpmResult {
         if plan > MIN_DRIVING_RATIO * weight {
             Ok((resultant.x / plan, resultant.y / plan))
         } else {
-            Err(DismechError::NothingDrivesSliding {
+            Err(DismechError::Hpm(HpmError::NothingDrivesSliding {
                 what: SafetyFactorTerm {
                     factor,
                     force: DrivingForce::ResultantShear,
@@ -1074,7 +1075,7 @@ impl HpmResult {
                 driving: plan,
                 weight,
                 ratio: MIN_DRIVING_RATIO,
-            })
+            }))
         }
     }
 
@@ -1094,11 +1095,11 @@ impl HpmResult {
     /// module documentation).
     ///
     /// # Errors
-    /// [`DismechError::NothingDrivesSliding`] when there is no sliding
+    /// [`HpmError::NothingDrivesSliding`] when there is no sliding
     /// direction (the springs' resultant shear force has no horizontal part
     /// above [`MIN_DRIVING_RATIO`] of the weight), or the shear along it is
     /// not above that share of the weight;
-    /// [`DismechError::SlipSurfaceInTension`] when the springs' strength is
+    /// [`HpmError::SlipSurfaceInTension`] when the springs' strength is
     /// not positive (see [`HpmResult::safety_factor_along`]).
     pub fn sliding_safety_factor(&self, model: &HpmModel) -> Result<f64> {
         let plan = self.driven(model, SafetyFactorKind::SlidingDirection)?;
@@ -1111,11 +1112,11 @@ impl HpmResult {
     ///
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a `plan` that is not finite or
-    /// is zero; [`DismechError::NothingDrivesSliding`] when the driving
+    /// is zero; [`HpmError::NothingDrivesSliding`] when the driving
     /// shear `Σ (τ · d_i) A` is not above [`MIN_DRIVING_RATIO`] of the
     /// slide's weight: nothing pushes the slide that way (a direction up
     /// the slope gives a negative one);
-    /// [`DismechError::SlipSurfaceInTension`] when the strength
+    /// [`HpmError::SlipSurfaceInTension`] when the strength
     /// `Σ (c + σ tan φ) A` is not positive (springs in tension beyond
     /// `c / tan φ`), naming the columns where it is negative.
     pub fn safety_factor_along(&self, model: &HpmModel, plan: (f64, f64)) -> Result<f64> {

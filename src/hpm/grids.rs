@@ -14,6 +14,7 @@
 
 use std::path::Path;
 
+use super::error::HpmError;
 use crate::error::{DismechError, Result};
 use crate::grid::{read_raster, GridCellProblem, GridError, GridExtent, Raster};
 
@@ -89,14 +90,14 @@ impl SlopeGrids {
     /// # Errors
     /// Rasters on different grids ([`GridError::Mismatch`]); a grid
     /// of fewer than [`MIN_GRID_SIDE`] rows or columns
-    /// ([`DismechError::GridTooSmall`], naming its size: the corner heights
+    /// ([`HpmError::GridTooSmall`], naming its size: the corner heights
     /// and slopes need two cell centres along each axis);
     /// a cell of the slide without ground data
     /// ([`GridCellProblem::NoGround`]), a slip-surface hole inside the
     /// slide ([`GridCellProblem::SlipSurfaceHole`]), or a water table
     /// without data over a valid column ([`GridCellProblem::NoWaterTable`])
     /// ([`GridError::Cell`], naming file, row and column); no valid
-    /// column ([`DismechError::NoValidColumn`]).
+    /// column ([`HpmError::NoValidColumn`]).
     pub fn new(ground: NamedRaster, slip: NamedRaster, water: Option<NamedRaster>) -> Result<Self> {
         for other in std::iter::once(&slip).chain(water.as_ref()) {
             other.require_grid_of(&ground)?;
@@ -105,11 +106,11 @@ impl SlopeGrids {
         if rows < MIN_GRID_SIDE || columns < MIN_GRID_SIDE {
             // One cell centre along an axis gives no slope along it: a
             // slope along a single row would be analysed as level ground.
-            return Err(DismechError::GridTooSmall {
+            return Err(DismechError::Hpm(HpmError::GridTooSmall {
                 file: ground.name.clone(),
                 rows,
                 columns,
-            });
+            }));
         }
         let mut valid = vec![false; rows * columns];
         for r in 0..rows {
@@ -139,10 +140,10 @@ impl SlopeGrids {
             }
         }
         if !valid.iter().any(|&v| v) {
-            return Err(DismechError::NoValidColumn {
+            return Err(DismechError::Hpm(HpmError::NoValidColumn {
                 ground: ground.name.clone(),
                 slip: slip.name.clone(),
-            });
+            }));
         }
         if let Some(w) = &water {
             for (k, _) in valid.iter().enumerate().filter(|(_, &v)| v) {

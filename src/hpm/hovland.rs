@@ -17,15 +17,16 @@
 //! seismic load `Σ T` is zero (the Fs would be infinite, or a huge number
 //! of either sign from rounding), and towards a direction up the slope it
 //! is negative (a negative Fs means nothing): both are refused with
-//! [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding), naming `Σ T` and `Σ W`.
+//! [`HpmError::NothingDrivesSliding`](super::HpmError::NothingDrivesSliding),
+//! naming `Σ T` and `Σ W`.
 //!
 //! A column whose load pulls it off its base (`N < 0`, a seismic force
 //! that outweighs the weight's normal part) has a strength `c A + N tan φ`
 //! that falls below zero beyond `N = −c A / tan φ`. Where the columns'
 //! strengths sum to zero or less, the Fs would be zero or negative, which
 //! is no factor of safety, and is refused with
-//! [`DismechError::SlipSurfaceInTension`](crate::error::DismechError::SlipSurfaceInTension), naming those columns and
-//! their share of the base area.
+//! [`HpmError::SlipSurfaceInTension`](super::HpmError::SlipSurfaceInTension),
+//! naming those columns and their share of the base area.
 
 use nalgebra::Vector3;
 
@@ -63,12 +64,13 @@ pub struct Hovland {
 /// # Errors
 /// An invalid seismic load ([`Seismic::validate`]) or a direction that is
 /// not finite or has zero length ([`DismechError::InvalidParameter`](crate::error::DismechError::InvalidParameter));
-/// [`DismechError::NothingDrivesSliding`](crate::error::DismechError::NothingDrivesSliding) when the driving force `Σ T` is
-/// not above [`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO) of the columns' weight `Σ W`: level
-/// ground, or a direction up the slope;
-/// [`DismechError::SlipSurfaceInTension`](crate::error::DismechError::SlipSurfaceInTension) when the strength
-/// `Σ (c A + N tan φ)` is not positive: columns pulled off their base
-/// beyond `c A / tan φ` (a large seismic coefficient).
+/// [`HpmError::NothingDrivesSliding`](super::HpmError::NothingDrivesSliding)
+/// when the driving force `Σ T` is not above
+/// [`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO) of the columns'
+/// weight `Σ W`: level ground, or a direction up the slope;
+/// [`HpmError::SlipSurfaceInTension`](super::HpmError::SlipSurfaceInTension)
+/// when the strength `Σ (c A + N tan φ)` is not positive: columns pulled
+/// off their base beyond `c A / tan φ` (a large seismic coefficient).
 pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Result<Hovland> {
     seismic.validate()?;
     let (dx, dy) = horizontal_unit("sliding direction (length)", towards)?;

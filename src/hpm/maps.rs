@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use super::analysis::HpmResult;
+use super::error::HpmError;
 use super::grids::SlopeGrids;
 use super::hovland::Hovland;
 use super::model::HpmModel;
@@ -15,7 +16,7 @@ use crate::grid::{write_rasters, Raster, RasterFormat};
 use crate::kinematics::affine3::ELEMENT_DOF;
 
 /// Why maps cannot be made of a result on a grid
-/// ([`DismechError::MapData`]): the model is not one of the grid, or the
+/// ([`HpmError::MapData`]): the model is not one of the grid, or the
 /// result not one of the model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MapProblem {
@@ -140,7 +141,7 @@ fn column_cells(model: &HpmModel, grids: &SlopeGrids) -> Result<Vec<usize>> {
     let raster = &grids.ground().raster;
     let (rows, columns, d) = model.grid;
     let ground = || grids.ground().name.clone();
-    let mismatch = |reason: MapProblem| DismechError::MapData { reason };
+    let mismatch = |reason: MapProblem| DismechError::Hpm(HpmError::MapData { reason });
     let rasters = (raster.rows(), raster.columns(), raster.cell_size());
     if (rows, columns, d) != rasters {
         return Err(mismatch(MapProblem::GridSize {
@@ -210,7 +211,7 @@ impl HpmResult {
     /// [`ColumnMaps`]), each a raster on the grid of `grids`.
     ///
     /// # Errors
-    /// [`DismechError::MapData`] when `model` was not built on the grid of
+    /// [`HpmError::MapData`] when `model` was not built on the grid of
     /// `grids` ([`MapProblem::GridSize`], [`MapProblem::CellOutside`],
     /// [`MapProblem::CornerOff`]), or this result is not an analysis of
     /// `model` ([`MapProblem::NotThisResult`]: its displacements not 12 per
@@ -219,14 +220,14 @@ impl HpmResult {
         if self.displacements.len() != ELEMENT_DOF * model.elements.len()
             || self.tractions.len() != model.slip.len()
         {
-            return Err(DismechError::MapData {
+            return Err(DismechError::Hpm(HpmError::MapData {
                 reason: MapProblem::NotThisResult {
                     displacements: self.displacements.len(),
                     tractions: self.tractions.len(),
                     elements: model.elements.len(),
                     springs: model.slip.len(),
                 },
-            });
+            }));
         }
         let cells = column_cells(model, grids)?;
         let local = self.local_safety_factors(model);
@@ -254,18 +255,18 @@ impl Hovland {
     /// driving force T ([`HOVLAND_MAP_NAMES`]).
     ///
     /// # Errors
-    /// [`DismechError::MapData`] when `model` was not built on the grid of
+    /// [`HpmError::MapData`] when `model` was not built on the grid of
     /// `grids` ([`MapProblem::GridSize`], [`MapProblem::CellOutside`],
     /// [`MapProblem::CornerOff`]), or these are not Hovland's terms of
     /// `model` ([`MapProblem::NotThisHovland`]: not one per column).
     pub fn maps(&self, model: &HpmModel, grids: &SlopeGrids) -> Result<ColumnMaps> {
         if self.columns.len() != model.columns.len() {
-            return Err(DismechError::MapData {
+            return Err(DismechError::Hpm(HpmError::MapData {
                 reason: MapProblem::NotThisHovland {
                     hovland: self.columns.len(),
                     model: model.columns.len(),
                 },
-            });
+            }));
         }
         let cells = column_cells(model, grids)?;
         let strengths = model.column_strengths();

@@ -206,7 +206,7 @@ pub struct HpmSettings {
     /// [`HpmSolver::iterative`](super::HpmSolver::iterative) the column
     /// blocks). Checked before each part is allocated; a model over it is
     /// refused with
-    /// [`DismechError::HpmModelTooLarge`](crate::error::DismechError::HpmModelTooLarge).
+    /// [`HpmError::HpmModelTooLarge`](crate::hpm::HpmError::HpmModelTooLarge).
     ///
     /// `None` (the default) asks the system: the bytes are requested from
     /// the allocator and given back at once, so that a model larger than

@@ -23,6 +23,7 @@
 //! | Hovland's column method | `hovland.rs` | ref. 1 (Hovland 1977) |
 //! | the results as maps for a GIS (ESRI ASCII, GeoTIFF) | `maps.rs` | (beyond the paper) |
 //! | strength-reduction Fs | `strength_reduction.rs` | (beyond the paper) |
+//! | errors ([`HpmError`], joined into [`DismechError::Hpm`](crate::error::DismechError::Hpm)) | `error.rs` | (beyond the paper) |
 //!
 //! Composition, on the engine's slots:
 //!
@@ -57,6 +58,7 @@
 
 mod analysis;
 mod conditioning;
+mod error;
 mod face;
 mod grids;
 mod hovland;
@@ -76,6 +78,7 @@ pub use analysis::{
     EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
+pub use error::HpmError;
 pub use face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 pub use grids::{NamedRaster, SlopeGrids, MIN_GRID_SIDE};
 pub use hovland::{hovland, Hovland, HovlandColumn};

@@ -14,6 +14,7 @@
 
 use nalgebra::{Point3, Vector3};
 
+use super::error::HpmError;
 use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, SlipPoint};
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
@@ -144,7 +145,7 @@ fn per_columns(
 const MODEL_PARTS: &str = "its elements, springs, block stiffness and solution vectors";
 
 /// What the memory of an HPM model refused for its size counts
-/// ([`DismechError::HpmModelTooLarge`]).
+/// ([`HpmError::HpmModelTooLarge`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum MemoryParts {
     /// The model: its elements, springs, block stiffness and solution
@@ -292,14 +293,14 @@ impl HpmModel {
         if fits {
             return Ok(());
         }
-        Err(DismechError::HpmModelTooLarge {
+        Err(DismechError::Hpm(HpmError::HpmModelTooLarge {
             columns,
             layers,
             elements: columns as u128 * layers as u128,
             what,
             bytes,
             budget,
-        })
+        }))
     }
 
     /// The strength of each column's slip springs, in the order of
@@ -348,12 +349,12 @@ impl HpmModel {
     /// # Errors
     /// An invalid material or setting ([`DismechError::InvalidParameter`],
     /// naming it: see [`HpmMaterial::validate`] and
-    /// [`HpmSettings::validate`]); [`DismechError::HpmModelTooLarge`] when
+    /// [`HpmSettings::validate`]); [`HpmError::HpmModelTooLarge`] when
     /// the valid columns times the layers would take more memory
     /// ([`HpmModel::memory_estimate`]) than the budget
     /// [`HpmSettings::memory_budget`], or, with none set, than the system's
     /// allocator gives, refused before any element is made;
-    /// [`DismechError::EmptyHpmModel`]
+    /// [`HpmError::EmptyHpmModel`]
     /// when every valid column has zero thickness at all four corners (its
     /// slip corners, lowered to the ground, leave no volume), so that there
     /// is no element to analyse.
@@ -435,11 +436,11 @@ impl HpmModel {
         }
 
         if elements.is_empty() {
-            return Err(DismechError::EmptyHpmModel {
+            return Err(DismechError::Hpm(HpmError::EmptyHpmModel {
                 ground: grids.ground().name.clone(),
                 slip: grids.slip().name.clone(),
                 valid: grids.valid_cells().len(),
-            });
+            }));
         }
 
         let mut interfaces =

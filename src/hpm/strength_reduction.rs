@@ -12,6 +12,7 @@
 //! error rather than a factor that was never bracketed.
 
 use super::analysis::{Convergence, HpmSolver, NonlinearSettings};
+use super::error::HpmError;
 use super::material::Seismic;
 use super::model::HpmModel;
 use super::stiffness::BlockMatrix;
@@ -43,9 +44,9 @@ pub struct StrengthReduction {
 /// A resolution that is not finite and positive, or settings out of range
 /// ([`NonlinearSettings::validate`]), each a
 /// [`DismechError::InvalidParameter`] naming it; a failed solve;
-/// [`DismechError::StrengthReductionNoFailure`] when every factor up to
+/// [`HpmError::StrengthReductionNoFailure`] when every factor up to
 /// past [`MAX_REDUCTION_FACTOR`] finds equilibrium, and
-/// [`DismechError::StrengthReductionNoEquilibrium`] when none down to
+/// [`HpmError::StrengthReductionNoEquilibrium`] when none down to
 /// below [`MIN_REDUCTION_FACTOR`] does.
 pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
     solver: &mut HpmSolver<S>,
@@ -73,7 +74,9 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
             }
             lo = hi;
             if lo > MAX_REDUCTION_FACTOR {
-                return Err(DismechError::StrengthReductionNoFailure { factor: lo });
+                return Err(DismechError::Hpm(HpmError::StrengthReductionNoFailure {
+                    factor: lo,
+                }));
             }
         }
     } else {
@@ -84,7 +87,9 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
             }
             hi = lo;
             if hi < MIN_REDUCTION_FACTOR {
-                return Err(DismechError::StrengthReductionNoEquilibrium { factor: hi });
+                return Err(DismechError::Hpm(
+                    HpmError::StrengthReductionNoEquilibrium { factor: hi },
+                ));
             }
         }
     }

@@ -5,6 +5,7 @@
 //! r.slope.stability's random sampling (Mergili et al. 2014), of spheres
 //! and of ellipsoids along the fall line.
 
+use super::error::SlopeError;
 use crate::error::{require_finite, require_positive, DismechError, Result};
 
 use super::surface::{Ellipsoid, Refusal, Sphere, TrialSurface};
@@ -19,7 +20,7 @@ pub trait TrialFamily: Sync {
     /// checks them again before the first trial).
     ///
     /// # Errors
-    /// [`DismechError::InvalidParameter`] or [`DismechError::InvalidRange`]
+    /// [`DismechError::InvalidParameter`] or [`SlopeError::InvalidRange`]
     /// naming the offending value, as the family's constructor.
     fn validate(&self) -> Result<()>;
 
@@ -57,7 +58,7 @@ impl Steps {
     /// # Errors
     /// [`DismechError::InvalidParameter`] named `name` for a bound that is
     /// not finite (or not positive, where `positive`) or no value;
-    /// [`DismechError::InvalidRange`] for `min > max`.
+    /// [`SlopeError::InvalidRange`] for `min > max`.
     pub fn checked(
         name: &'static str,
         min: f64,
@@ -104,11 +105,11 @@ fn check_interval(name: &'static str, min: f64, max: f64, positive: bool) -> Res
         require_finite(name, max)?;
     }
     if min > max {
-        return Err(DismechError::InvalidRange {
+        return Err(DismechError::Slope(SlopeError::InvalidRange {
             name,
             low: min,
             high: max,
-        });
+        }));
     }
     Ok(())
 }
@@ -134,7 +135,7 @@ impl SphereGrid {
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for a stride of
     /// 0, heights that are not finite, radii that are not finite and
-    /// positive, or no height or radius; [`DismechError::InvalidRange`] for
+    /// positive, or no height or radius; [`SlopeError::InvalidRange`] for
     /// a range whose minimum lies above its maximum.
     pub fn new(stride: usize, heights: Steps, radii: Steps) -> Result<Self> {
         require_positive("sphere grid stride (cells)", stride as f64)?;
@@ -263,7 +264,7 @@ impl SphereRandom {
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for no trial,
     /// heights that are not finite or radii that are not finite and
-    /// positive; [`DismechError::InvalidRange`] for a range whose minimum
+    /// positive; [`SlopeError::InvalidRange`] for a range whose minimum
     /// lies above its maximum.
     pub fn new(count: u64, seed: u64, heights: (f64, f64), radii: (f64, f64)) -> Result<Self> {
         require_positive("random search: number of trials", count as f64)?;
@@ -336,7 +337,7 @@ impl EllipsoidRandom {
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for no trial,
     /// heights that are not finite or semi-axes or ratios that are not
-    /// finite and positive; [`DismechError::InvalidRange`] for a range
+    /// finite and positive; [`SlopeError::InvalidRange`] for a range
     /// whose minimum lies above its maximum.
     pub fn new(
         count: u64,

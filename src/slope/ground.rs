@@ -31,8 +31,9 @@
 //! above. It is a constant or a raster on the DEM's grid
 //! ([`PoreRatio`]), each value in `[0, 1)`, and replaces the water table:
 //! a terrain with a water table and a ground with r_u together are an
-//! error ([`crate::error::DismechError::PorePressureTwice`]).
+//! error ([`crate::slope::SlopeError::PorePressureTwice`]).
 
+use super::error::SlopeError;
 use crate::error::{DismechError, Result};
 use crate::hpm::NamedRaster;
 
@@ -73,26 +74,28 @@ impl PoreRatio {
     /// Check every value is finite and in `[0, 1)`.
     ///
     /// # Errors
-    /// [`DismechError::PoreRatioOutOfRange`] naming the constant, or the
+    /// [`SlopeError::PoreRatioOutOfRange`] naming the constant, or the
     /// raster's file and cell, and the value.
     pub fn validate(&self) -> Result<()> {
         let bad = |v: f64| !(v.is_finite() && (0.0..1.0).contains(&v));
         match self {
-            PoreRatio::Constant(v) if bad(*v) => Err(DismechError::PoreRatioOutOfRange {
-                source_name: "the constant".to_string(),
-                cell: None,
-                value: *v,
-            }),
+            PoreRatio::Constant(v) if bad(*v) => {
+                Err(DismechError::Slope(SlopeError::PoreRatioOutOfRange {
+                    source_name: "the constant".to_string(),
+                    cell: None,
+                    value: *v,
+                }))
+            }
             PoreRatio::Constant(_) => Ok(()),
             PoreRatio::Raster(r) => {
                 let columns = r.raster.columns();
                 for (i, v) in r.raster.values().iter().enumerate() {
                     if let Some(v) = v.filter(|v| bad(*v)) {
-                        return Err(DismechError::PoreRatioOutOfRange {
+                        return Err(DismechError::Slope(SlopeError::PoreRatioOutOfRange {
                             source_name: r.name.clone(),
                             cell: Some((i / columns, i % columns)),
                             value: v,
-                        });
+                        }));
                     }
                 }
                 Ok(())
@@ -178,7 +181,7 @@ impl Ground {
     /// raster, the last unbounded below.
     ///
     /// # Errors
-    /// [`DismechError::InvalidLayer`] naming the layer for no layer at all
+    /// [`SlopeError::InvalidLayer`] naming the layer for no layer at all
     /// ([`LayerProblem::NoLayer`]), a layer other than the last without a
     /// bottom ([`LayerProblem::NoBottom`]), the last with one
     /// ([`LayerProblem::LastHasBottom`]), or a material that fails
@@ -187,15 +190,17 @@ impl Ground {
     pub fn layered(layers: Vec<Layer>) -> Result<Self> {
         let n = layers.len();
         if n == 0 {
-            return Err(DismechError::InvalidLayer {
+            return Err(DismechError::Slope(SlopeError::InvalidLayer {
                 layer: "(none)".to_string(),
                 problem: LayerProblem::NoLayer,
-            });
+            }));
         }
         for (i, layer) in layers.iter().enumerate() {
-            let fail = |problem: LayerProblem| DismechError::InvalidLayer {
-                layer: layer.name.clone(),
-                problem,
+            let fail = |problem: LayerProblem| {
+                DismechError::Slope(SlopeError::InvalidLayer {
+                    layer: layer.name.clone(),
+                    problem,
+                })
             };
             layer
                 .material
@@ -247,21 +252,23 @@ impl Ground {
     ///
     /// # Errors
     /// For a one-layer ground, those of [`SlopeMaterial::validate`] as
-    /// they are; for several layers, [`DismechError::InvalidLayer`] naming
+    /// they are; for several layers, [`SlopeError::InvalidLayer`] naming
     /// the layer for a material that fails it ([`LayerProblem::Material`])
     /// or a bottom raster on another grid ([`LayerProblem::BottomOffGrid`],
     /// naming both files); [`crate::grid::GridError::Mismatch`] for an r_u
     /// raster on another grid; those of [`PoreRatio::validate`];
-    /// [`DismechError::PorePressureTwice`] naming both when the terrain has
+    /// [`SlopeError::PorePressureTwice`] naming both when the terrain has
     /// a water table and the ground an r_u.
     pub fn validate_on(&self, terrain: &Terrain) -> Result<()> {
         if let [only] = self.layers.as_slice() {
             only.material.validate()?;
         }
         for layer in &self.layers {
-            let fail = |problem: LayerProblem| DismechError::InvalidLayer {
-                layer: layer.name.clone(),
-                problem,
+            let fail = |problem: LayerProblem| {
+                DismechError::Slope(SlopeError::InvalidLayer {
+                    layer: layer.name.clone(),
+                    problem,
+                })
             };
             layer
                 .material
@@ -278,10 +285,10 @@ impl Ground {
                 r.require_grid_of(terrain.dem())?;
             }
             if let Some(w) = terrain.water() {
-                return Err(DismechError::PorePressureTwice {
+                return Err(DismechError::Slope(SlopeError::PorePressureTwice {
                     water: w.name.clone(),
                     ratio: ratio.describe(),
-                });
+                }));
             }
         }
         Ok(())

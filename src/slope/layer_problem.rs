@@ -1,5 +1,5 @@
 //! Why a strength layer of a slope's ground cannot be used
-//! ([`DismechError::InvalidLayer`]).
+//! ([`SlopeError::InvalidLayer`](super::SlopeError::InvalidLayer)).
 
 use crate::error::DismechError;
 

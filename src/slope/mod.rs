@@ -23,6 +23,7 @@
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
 //! | HPM re-analysis of a surface (paper 001) | [`hpm_reanalysis`], [`HpmReanalysis`], [`HpmStiffness`], [`surface_raster`] | `reanalysis.rs` |
 //! | outputs | rasters on the DEM's grid (ESRI ASCII, GeoTIFF), [`SearchResult::write_maps`], [`SearchResult::write_maps_as`], [`SearchResult::write_critical_csv`] | `output.rs` |
+//! | errors | [`SlopeError`] (joined into [`DismechError::Slope`](crate::error::DismechError::Slope)), [`LayerProblem`] | `error.rs`, `layer_problem.rs` |
 //!
 //! No HPM model is built per surface of the search (that would be far
 //! too slow for thousands of surfaces; the few most critical are
@@ -48,6 +49,7 @@
 //! ```
 
 mod bishop;
+mod error;
 mod family;
 mod ground;
 mod hovland;
@@ -63,6 +65,7 @@ pub use bishop::{
     bishop_columns, bishop_ground, BishopFailure, BISHOP_MAX_ITERATIONS, BISHOP_TOLERANCE,
     MIN_M_ALPHA,
 };
+pub use error::SlopeError;
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};
 pub use ground::{ColumnGround, Ground, Layer, PoreRatio, ToGround};
 pub use hovland::{hovland_columns, hovland_ground, Evaluator, Method, SurfaceFs};

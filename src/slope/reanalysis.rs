@@ -18,7 +18,7 @@
 //! ([`HpmModel::set_column_strength`], as the search's Hovland takes it).
 //! Layered ground is therefore taken where its layers share one unit
 //! weight; layers of different unit weights, or a pore-pressure ratio, are
-//! refused ([`DismechError::HpmGround`]). The water table of the
+//! refused ([`SlopeError::HpmGround`]). The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
 //! weight `γ − γ_w` (eqs. 8–10), where Hovland's method of the search
 //! keeps the total weight and takes the pore pressure `γ_w h_p` off the
@@ -26,6 +26,7 @@
 //! effective normal force. The seismic coefficient acts along the
 //! surface's sliding direction of Hovland's method (eqs. 11–13).
 
+use super::error::SlopeError;
 use crate::error::{DismechError, Result};
 use crate::grid::Raster;
 use crate::hpm::{
@@ -164,12 +165,12 @@ impl HpmReanalysis {
 fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Option<Ground>)> {
     let ground = ground.to_ground();
     if let Some(ratio) = ground.pore_ratio() {
-        return Err(DismechError::HpmGround {
+        return Err(DismechError::Slope(SlopeError::HpmGround {
             reason: format!(
                 "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only",
                 ratio.describe()
             ),
-        });
+        }));
     }
     let layers = ground.layers();
     let first = layers[0].material;
@@ -180,7 +181,7 @@ fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Optio
         .iter()
         .any(|l| l.material.unit_weight != first.unit_weight)
     {
-        return Err(DismechError::HpmGround {
+        return Err(DismechError::Slope(SlopeError::HpmGround {
             reason: format!(
                 "the layered ground's unit weights differ ({}); HPM's elements hold one unit weight (paper 001, §3), its slip springs the strength of the layer they cross",
                 layers
@@ -189,7 +190,7 @@ fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Optio
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-        });
+        }));
     }
     Ok((first, Some(ground)))
 }
@@ -201,11 +202,11 @@ fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Optio
 /// and the discretisation `settings` (see the module's documentation).
 ///
 /// # Errors
-/// [`DismechError::HpmGround`] for layers of different unit weights, a
+/// [`SlopeError::HpmGround`] for layers of different unit weights, a
 /// pore-pressure ratio or a layer's bottom without data under a column; those of [`HpmStiffness::material`], [`Seismic::validate`],
 /// [`SlopeGrids::new`] (a surface that stays above the ground:
-/// [`DismechError::NoValidColumn`]), [`HpmModel::new`], [`HpmSolver::new`]
-/// and of the analyses.
+/// [`HpmError::NoValidColumn`](crate::hpm::HpmError::NoValidColumn)),
+/// [`HpmModel::new`], [`HpmSolver::new`] and of the analyses.
 #[allow(clippy::too_many_arguments)]
 pub fn hpm_reanalysis<S: TrialSurface>(
     terrain: &Terrain,
@@ -248,11 +249,11 @@ pub fn hpm_reanalysis<S: TrialSurface>(
                 .zip(grids.slip().raster.get(r, c))
                 .and_then(|(g, z)| layered.column(r, c, g, z));
             let Some(at) = at else {
-                return Err(DismechError::HpmGround {
+                return Err(DismechError::Slope(SlopeError::HpmGround {
                     reason: format!(
                         "a layer's bottom has no data at cell (row {r}, column {c}), a column of the slide"
                     ),
-                });
+                }));
             };
             model.set_column_strength(
                 k,

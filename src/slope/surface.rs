@@ -11,6 +11,7 @@
 //! the DEM's boundary. Every column is kept, also where the footprint cuts
 //! the ground in separate patches.
 
+use super::error::SlopeError;
 use crate::error::{require_finite, require_positive, Result};
 
 use super::terrain::Terrain;
@@ -259,7 +260,7 @@ impl SurfaceLimits {
     /// # Errors
     /// [`crate::error::DismechError::InvalidParameter`] for no column
     /// allowed (`min_columns` 0) or a bound that is negative or NaN (an
-    /// upper bound may be infinite); [`crate::error::DismechError::InvalidRange`]
+    /// upper bound may be infinite); [`crate::slope::SlopeError::InvalidRange`]
     /// for a range whose minimum lies above its maximum.
     pub fn validate(&self) -> Result<()> {
         require_positive("surface limits: min_columns", self.min_columns as f64)?;
@@ -277,11 +278,13 @@ impl SurfaceLimits {
                 });
             }
             if lo > hi {
-                return Err(crate::error::DismechError::InvalidRange {
-                    name,
-                    low: lo,
-                    high: hi,
-                });
+                return Err(crate::error::DismechError::Slope(
+                    SlopeError::InvalidRange {
+                        name,
+                        low: lo,
+                        high: hi,
+                    },
+                ));
             }
         }
         Ok(())

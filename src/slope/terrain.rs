@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use super::error::SlopeError;
 use crate::error::{DismechError, Result};
 use crate::hpm::NamedRaster;
 
@@ -32,8 +33,8 @@ impl Terrain {
     /// Check the DEM and the water table.
     ///
     /// # Errors
-    /// [`DismechError::DemTooSmall`] for a DEM of fewer than
-    /// [`MIN_DEM_SIDE`] rows or columns; [`DismechError::NoGroundData`]
+    /// [`SlopeError::DemTooSmall`] for a DEM of fewer than
+    /// [`MIN_DEM_SIDE`] rows or columns; [`SlopeError::NoGroundData`]
     /// when no cell of the DEM has data; [`crate::grid::GridError::Mismatch`]
     /// naming both files when the water table lies on another grid (shape,
     /// corner or cell size). (A raster holds no NaN or infinite value:
@@ -41,18 +42,18 @@ impl Terrain {
     pub fn new(dem: NamedRaster, water: Option<NamedRaster>) -> Result<Self> {
         let (rows, columns) = (dem.raster.rows(), dem.raster.columns());
         if rows < MIN_DEM_SIDE || columns < MIN_DEM_SIDE {
-            return Err(DismechError::DemTooSmall {
+            return Err(DismechError::Slope(SlopeError::DemTooSmall {
                 file: dem.name.clone(),
                 rows,
                 columns,
-            });
+            }));
         }
         if dem.raster.values().iter().all(Option::is_none) {
-            return Err(DismechError::NoGroundData {
+            return Err(DismechError::Slope(SlopeError::NoGroundData {
                 file: dem.name.clone(),
                 rows,
                 columns,
-            });
+            }));
         }
         if let Some(w) = &water {
             w.require_grid_of(&dem)?;

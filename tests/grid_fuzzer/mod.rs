@@ -304,6 +304,10 @@ fn kind(error: &DismechError) -> String {
     match error {
         // The grid-file errors, as `GridFormat`, `GridHeader`, ...
         DismechError::Grid(grid) => format!("Grid{}", first(format!("{grid:?}"))),
+        // The HPM and slope-search errors under their own names, as
+        // `NoValidColumn`, `GridTooSmall`, ...
+        DismechError::Hpm(hpm) => first(format!("{hpm:?}")),
+        DismechError::Slope(slope) => first(format!("{slope:?}")),
         other => first(format!("{other:?}")),
     }
 }

@@ -3,6 +3,7 @@
 //! the offending value.
 
 use dismech::error::DismechError;
+use dismech::slope::SlopeError;
 
 use super::source::{KeyPath, Located, Source};
 
@@ -26,7 +27,7 @@ pub fn named(
         DismechError::InvalidParameter { name, .. } | DismechError::InvalidBlock { name, .. } => {
             names.iter().find(|(n, _)| n == name).map(|(_, key)| *key)
         }
-        DismechError::InvalidRange { name, .. } => {
+        DismechError::Slope(SlopeError::InvalidRange { name, .. }) => {
             names.iter().find(|(n, _)| n == name).map(|(_, key)| *key)
         }
         _ => None,

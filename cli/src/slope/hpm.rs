@@ -139,8 +139,8 @@ pub struct HpmRuns {
 /// # Errors
 /// [`SlopeError::HpmAboveKeep`] for `--hpm K` above `--keep`;
 /// [`SlopeError::Argument`] naming `--hpm` with
-/// [`DismechError::HpmGround`] for `--ru`, or a `--layer` whose unit
-/// weight is not that of `--unit-weight`.
+/// [`dismech::slope::SlopeError::HpmGround`] for `--ru`, or a `--layer`
+/// whose unit weight is not that of `--unit-weight`.
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     let Some(hpm) = args.hpm else {
         return Ok(());
@@ -178,7 +178,7 @@ pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     Err(SlopeError::argument(
         "--hpm",
         &hpm.to_string(),
-        DismechError::HpmGround { reason },
+        DismechError::Slope(dismech::slope::SlopeError::HpmGround { reason }),
     ))
 }
 

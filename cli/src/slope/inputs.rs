@@ -149,7 +149,7 @@ pub fn ground(args: &SlopeArgs, terrain: &Terrain) -> Result<Ground, SlopeError>
         });
         let ground = Ground::layered(layers).map_err(|e| {
             let l = match &e {
-                DismechError::InvalidLayer { layer, .. } => {
+                DismechError::Slope(dismech::slope::SlopeError::InvalidLayer { layer, .. }) => {
                     args.layers.iter().find(|l| &l.name == layer)
                 }
                 _ => None,
