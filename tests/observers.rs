@@ -299,3 +299,137 @@ fn phase_times_count_the_steps_and_builds_and_change_nothing() {
     timed.time_phases();
     assert_eq!(timed.phase_times().unwrap().steps, 0);
 }
+
+/// A 4 × 5-column slab 6 m thick on a slip plane dipping 20° (c = 5 kPa),
+/// for HPM's nonlinear analysis and strength reduction.
+fn cohesive_slab() -> dismech::hpm::HpmModel {
+    use dismech::grid::Raster;
+    use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, NamedRaster, SlopeGrids};
+    let slope = 20f64.to_radians().tan();
+    let plane = |offset: f64| {
+        Raster::from_fn(5, 4, 0.0, 0.0, 10.0, move |x, _| {
+            Some(500.0 + slope * x + offset)
+        })
+        .unwrap()
+    };
+    let grids = SlopeGrids::new(
+        NamedRaster::new("ground", plane(6.0)),
+        NamedRaster::new("slip", plane(0.0)),
+        None,
+    )
+    .unwrap();
+    let material = HpmMaterial {
+        cohesion: 5.0e3,
+        ..HpmMaterial::paper()
+    };
+    HpmModel::new(&grids, &material, &HpmSettings::default()).unwrap()
+}
+
+#[test]
+fn hpm_analyses_tell_every_iterate_and_trial_and_change_nothing() {
+    use dismech::hpm::{
+        strength_reduction, strength_reduction_observed, HpmIterate, HpmSolver, NonlinearSettings,
+        Seismic,
+    };
+    let model = cohesive_slab();
+    let settings = NonlinearSettings::default();
+    let none = Seismic::none();
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let plain = solver.nonlinear(&model, &none, 1.3, &settings).unwrap();
+
+    // Every iterate of the nonlinear solve, the start and the one returned
+    // included, with the displacements of the iterate.
+    let mut seen: Vec<(usize, f64, f64, Vec<f64>)> = Vec::new();
+    let mut record = |it: &HpmIterate<'_>, event: &Event<'_>| {
+        if let Event::Iteration {
+            iteration,
+            residual,
+        } = *event
+        {
+            seen.push((iteration, residual, it.reduction, it.displacements.to_vec()));
+        }
+        Ok(())
+    };
+    let observed = solver
+        .nonlinear_observed(&model, &none, 1.3, &settings, &mut record)
+        .unwrap();
+    assert_eq!(observed, plain);
+    assert!(
+        plain.convergence.iterations() > 1,
+        "{:?}",
+        plain.convergence
+    );
+    assert_eq!(seen.len(), plain.convergence.iterations() + 1);
+    for (k, (iteration, _, reduction, u)) in seen.iter().enumerate() {
+        assert_eq!(*iteration, k);
+        assert_eq!(*reduction, 1.3);
+        assert_eq!(u.len(), plain.displacements.len());
+    }
+    assert!(seen[0].3.iter().all(|u| *u == 0.0), "the start is U = 0");
+    let last = seen.last().unwrap();
+    assert_eq!(last.1, plain.convergence.residual());
+    assert_eq!(last.3, plain.displacements);
+
+    // The strength reduction: one `Trial` per factor tried, in order, each
+    // after the iterates of its analysis; the same search.
+    let srf = strength_reduction(&mut solver, &model, &none, &settings, 0.01).unwrap();
+    let mut events: Vec<String> = Vec::new();
+    let mut trials: Vec<(f64, bool)> = Vec::new();
+    let mut watch = |it: &HpmIterate<'_>, event: &Event<'_>| {
+        match *event {
+            Event::Iteration { iteration, .. } => {
+                events.push(format!("i{iteration}@{}", it.reduction))
+            }
+            Event::Trial { factor, converged } => {
+                assert_eq!(factor, it.reduction);
+                trials.push((factor, converged));
+                events.push(format!("t@{factor}"));
+            }
+            _ => panic!("an HPM analysis sends iterations and trials only: {event:?}"),
+        }
+        Ok(())
+    };
+    let observed =
+        strength_reduction_observed(&mut solver, &model, &none, &settings, 0.01, &mut watch)
+            .unwrap();
+    assert_eq!(observed, srf);
+    let expected: Vec<(f64, bool)> = srf
+        .trials
+        .iter()
+        .map(|(f, c)| (*f, c.converged()))
+        .collect();
+    assert_eq!(trials, expected);
+    let iterates: usize = srf.trials.iter().map(|(_, c)| c.iterations() + 1).sum();
+    assert_eq!(events.len(), iterates + srf.trials.len());
+    // Each trial's events: its iterates 0, 1, … at its factor, then the trial.
+    let mut k = 0;
+    for (factor, convergence) in &srf.trials {
+        for i in 0..=convergence.iterations() {
+            assert_eq!(events[k], format!("i{i}@{factor}"));
+            k += 1;
+        }
+        assert_eq!(events[k], format!("t@{factor}"));
+        k += 1;
+    }
+
+    // An observer's error stops the analysis at that iterate.
+    let mut stop_at_two = |_: &HpmIterate<'_>, event: &Event<'_>| match event {
+        Event::Iteration { iteration: 2, .. } => Err(DismechError::InvalidParameter {
+            name: "test stop",
+            value: 2.0,
+            requirement: "stops the analysis",
+        }),
+        _ => Ok(()),
+    };
+    let stopped = solver.nonlinear_observed(&model, &none, 1.3, &settings, &mut stop_at_two);
+    assert!(
+        matches!(
+            stopped,
+            Err(DismechError::InvalidParameter {
+                name: "test stop",
+                ..
+            })
+        ),
+        "{stopped:?}"
+    );
+}

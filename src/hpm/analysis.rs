@@ -99,6 +99,7 @@ use crate::linsolve::{
     AggregationSettings, BlockJacobi, CgSettings, ConjugateGradient, LineLevel, LinearSolver,
     SmoothedAggregation, SolveStats, SparseCholesky,
 };
+use crate::observe::{Event, Observer, Unobserved};
 
 /// Relative out-of-balance force `‖F − F_int‖ / ‖F‖` accepted as
 /// equilibrium: by the elastic analysis always, by the nonlinear one by
@@ -353,6 +354,22 @@ impl Convergence {
     /// Whether equilibrium was found.
     pub fn converged(&self) -> bool {
         matches!(self, Convergence::Converged { .. })
+    }
+
+    /// Iterations made, converged or not.
+    pub fn iterations(&self) -> usize {
+        match *self {
+            Convergence::Converged { iterations, .. }
+            | Convergence::NotConverged { iterations, .. } => iterations,
+        }
+    }
+
+    /// The last relative out-of-balance force, converged or not.
+    pub fn residual(&self) -> f64 {
+        match *self {
+            Convergence::Converged { residual, .. }
+            | Convergence::NotConverged { residual, .. } => residual,
+        }
     }
 }
 
@@ -786,6 +803,68 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         reduction: f64,
         settings: &NonlinearSettings,
     ) -> Result<HpmResult> {
+        self.nonlinear_observed(model, seismic, reduction, settings, &mut Unobserved)
+    }
+
+    /// [`HpmSolver::nonlinear`], telling `observer` of every iterate
+    /// ([`Event::Iteration`]: its number and relative out-of-balance force,
+    /// with the iterate as an [`HpmIterate`]), the start included and the
+    /// one returned last. The iterates and the result are those of
+    /// [`HpmSolver::nonlinear`], bit for bit.
+    ///
+    /// ```
+    /// # fn main() -> dismech::error::Result<()> {
+    /// use dismech::grid::Raster;
+    /// use dismech::hpm::{
+    ///     HpmIterate, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster,
+    ///     NonlinearSettings, Seismic, SlopeGrids,
+    /// };
+    /// use dismech::observe::Event;
+    /// // A planar slab 8 m thick on a slip plane dipping 25°, 5 × 7 columns of 10 m.
+    /// let plane = |offset: f64| {
+    ///     Raster::from_fn(7, 5, 0.0, 0.0, 10.0, move |x, _| {
+    ///         Some(500.0 - 25f64.to_radians().tan() * x + offset)
+    ///     })
+    /// };
+    /// let grids = SlopeGrids::new(
+    ///     NamedRaster::new("ground", plane(8.0)?),
+    ///     NamedRaster::new("slip", plane(0.0)?),
+    ///     None,
+    /// )?;
+    /// let material = HpmMaterial { cohesion: 10.0e3, ..HpmMaterial::paper() };
+    /// let model = HpmModel::new(&grids, &material, &HpmSettings::default())?;
+    /// let mut solver = HpmSolver::new(&model)?;
+    /// let mut residuals = Vec::new();
+    /// let mut record = |_: &HpmIterate<'_>, event: &Event<'_>| {
+    ///     if let Event::Iteration { residual, .. } = event {
+    ///         residuals.push(*residual);
+    ///     }
+    ///     Ok(())
+    /// };
+    /// let settings = NonlinearSettings::default();
+    /// let seismic = Seismic::none();
+    /// let result = solver.nonlinear_observed(&model, &seismic, 1.0, &settings, &mut record)?;
+    /// // One event per iterate: the start and each correction; the last is
+    /// // the result's.
+    /// assert_eq!(residuals.len(), result.convergence.iterations() + 1);
+    /// assert_eq!(residuals.last(), Some(&result.convergence.residual()));
+    /// # Ok(()) }
+    /// ```
+    ///
+    /// # Errors
+    /// Those of [`HpmSolver::nonlinear`], and the first error the observer
+    /// returns, which stops the analysis.
+    pub fn nonlinear_observed<O>(
+        &mut self,
+        model: &HpmModel,
+        seismic: &Seismic,
+        reduction: f64,
+        settings: &NonlinearSettings,
+        observer: &mut O,
+    ) -> Result<HpmResult>
+    where
+        O: for<'a> Observer<HpmIterate<'a>> + ?Sized,
+    {
         seismic.validate()?;
         settings.validate()?;
         crate::error::require_positive("strength reduction factor", reduction)?;
@@ -811,6 +890,17 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         loop {
             let (residual, tractions) = self.out_of_balance(model, &laws, &f, &u);
             let relative = relative_to(norm(&residual), f_norm);
+            observer.observe(
+                &HpmIterate {
+                    model,
+                    reduction,
+                    displacements: &u,
+                },
+                &Event::Iteration {
+                    iteration: iterations,
+                    residual: relative,
+                },
+            )?;
             let done = relative <= settings.tolerance;
             if done || iterations >= settings.max_iterations || !relative.is_finite() {
                 let convergence = if done {
@@ -933,6 +1023,23 @@ fn elastic_result(
         ill_conditioning: diagnosis(model, &convergence),
         convergence,
     }
+}
+
+/// What an observer of an HPM analysis reads at each event
+/// ([`HpmSolver::nonlinear_observed`],
+/// [`super::strength_reduction_observed`]): the model, the factor its
+/// strength is divided by, and the displacements of the iterate (for an
+/// [`Event::Trial`], those the trial's analysis returned), borrowed, not
+/// copied.
+#[derive(Debug, Clone, Copy)]
+pub struct HpmIterate<'a> {
+    /// The model analysed.
+    pub model: &'a HpmModel,
+    /// The strength-reduction factor of the analysis (1 for the
+    /// material's own strength).
+    pub reduction: f64,
+    /// The displacements of the iterate, in the model's unknowns.
+    pub displacements: &'a [f64],
 }
 
 /// `residual / reference`, the relative out-of-balance force; under no

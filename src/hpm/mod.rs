@@ -73,9 +73,9 @@ pub use crate::kinematics::affine3::{
     ELEMENT_DOF,
 };
 pub use analysis::{
-    linear_motions, Convergence, DrivingForce, HpmIterativeSolver, HpmMultigridSolver, HpmResult,
-    HpmSolver, NonlinearSettings, SafetyFactorKind, SafetyFactorTerm, SpringTraction, SurfacePoint,
-    EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
+    linear_motions, Convergence, DrivingForce, HpmIterate, HpmIterativeSolver, HpmMultigridSolver,
+    HpmResult, HpmSolver, NonlinearSettings, SafetyFactorKind, SafetyFactorTerm, SpringTraction,
+    SurfacePoint, EQUILIBRIUM_TOLERANCE, MIN_DRIVING_RATIO,
 };
 pub use conditioning::{IllConditioning, INCOMPRESSIBLE_MARGIN, STIFF_PENALTY, THIN_COLUMN_RATIO};
 pub use error::HpmError;
@@ -89,5 +89,6 @@ pub use model::{
 };
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{
-    strength_reduction, StrengthReduction, MAX_REDUCTION_FACTOR, MIN_REDUCTION_FACTOR,
+    strength_reduction, strength_reduction_observed, StrengthReduction, MAX_REDUCTION_FACTOR,
+    MIN_REDUCTION_FACTOR,
 };

@@ -11,13 +11,14 @@
 //! first, or at none down to the second, has no bracket and gets a typed
 //! error rather than a factor that was never bracketed.
 
-use super::analysis::{Convergence, HpmSolver, NonlinearSettings};
+use super::analysis::{Convergence, HpmIterate, HpmSolver, NonlinearSettings};
 use super::error::HpmError;
 use super::material::Seismic;
 use super::model::HpmModel;
 use super::stiffness::BlockMatrix;
 use crate::error::{require_positive, DismechError, Result};
 use crate::linsolve::LinearSolver;
+use crate::observe::{Event, Observer, Unobserved};
 
 /// The largest factor the search steps up to (past 1000).
 pub const MAX_REDUCTION_FACTOR: f64 = 1e3;
@@ -55,13 +56,56 @@ pub fn strength_reduction<S: LinearSolver<BlockMatrix>>(
     settings: &NonlinearSettings,
     resolution: f64,
 ) -> Result<StrengthReduction> {
+    strength_reduction_observed(
+        solver,
+        model,
+        seismic,
+        settings,
+        resolution,
+        &mut Unobserved,
+    )
+}
+
+/// [`strength_reduction`], telling `observer` of every iterate of every
+/// trial's nonlinear analysis ([`Event::Iteration`], as
+/// [`HpmSolver::nonlinear_observed`] does) and of the end of each trial
+/// ([`Event::Trial`]: the factor and whether it found equilibrium, with the
+/// trial's displacements). The search and its result are those of
+/// [`strength_reduction`], bit for bit.
+///
+/// # Errors
+/// Those of [`strength_reduction`], and the first error the observer
+/// returns, which stops the search.
+pub fn strength_reduction_observed<S, O>(
+    solver: &mut HpmSolver<S>,
+    model: &HpmModel,
+    seismic: &Seismic,
+    settings: &NonlinearSettings,
+    resolution: f64,
+    observer: &mut O,
+) -> Result<StrengthReduction>
+where
+    S: LinearSolver<BlockMatrix>,
+    O: for<'a> Observer<HpmIterate<'a>> + ?Sized,
+{
     require_positive("strength-reduction resolution", resolution)?;
     settings.validate()?;
     seismic.validate()?;
     let mut trials = Vec::new();
     let mut converges = |f: f64, trials: &mut Vec<(f64, Convergence)>| -> Result<bool> {
-        let r = solver.nonlinear(model, seismic, f, settings)?;
+        let r = solver.nonlinear_observed(model, seismic, f, settings, observer)?;
         trials.push((f, r.convergence));
+        observer.observe(
+            &HpmIterate {
+                model,
+                reduction: f,
+                displacements: &r.displacements,
+            },
+            &Event::Trial {
+                factor: f,
+                converged: r.convergence.converged(),
+            },
+        )?;
         Ok(r.convergence.converged())
     };
     let step = 1.25;

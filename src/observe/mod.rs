@@ -51,6 +51,10 @@
 //! |---|---|---|
 //! | explicit ([`crate::explicit::ExplicitDynamics`]) | [`run_to_rest_observed`](crate::explicit::ExplicitDynamics::run_to_rest_observed), [`run_steps_observed`](crate::explicit::ExplicitDynamics::run_steps_observed) | [`Event::Step`] after every step, [`Event::Check`] at every rest check, [`Event::Finished`] |
 //! | implicit ([`crate::implicit::ImplicitDynamics`], DDA) | [`advance_observed`](crate::implicit::ImplicitDynamics::advance_observed) | [`Event::SubStep`] after every accepted sub-step, [`Event::Halved`] with the failure at every halving, [`Event::Finished`] at the end of the interval |
+//! | HPM ([`crate::hpm::HpmSolver`]), read as a [`crate::hpm::HpmIterate`] | [`nonlinear_observed`](crate::hpm::HpmSolver::nonlinear_observed), [`strength_reduction_observed`](crate::hpm::strength_reduction_observed) | [`Event::Iteration`] at every iterate of the nonlinear solve; [`Event::Trial`] after each factor of the strength reduction |
+//!
+//! The limit analysis is one call of its LP solver, with no steps to
+//! observe. An elastic HPM analysis is one linear solve.
 
 use crate::error::Result;
 
@@ -93,6 +97,25 @@ pub enum Event<'a> {
         dt: f64,
         /// Why.
         reason: &'a crate::implicit::StepFailure,
+    },
+    /// An iterate of an iterative analysis was evaluated (HPM's nonlinear
+    /// solve, [`crate::hpm::HpmSolver::nonlinear_observed`]): its number,
+    /// 0 for the start, and its relative out-of-balance force. The last
+    /// one sent is the iterate the analysis returns.
+    Iteration {
+        /// Corrections applied so far.
+        iteration: usize,
+        /// `‖F − F_int(U)‖ / ‖F‖` at the iterate.
+        residual: f64,
+    },
+    /// A trial of a search ended (a factor of HPM's strength reduction,
+    /// [`crate::hpm::strength_reduction_observed`]): the factor tried and
+    /// whether its analysis found equilibrium.
+    Trial {
+        /// The factor tried.
+        factor: f64,
+        /// Whether the analysis at it converged.
+        converged: bool,
     },
     /// The run ended (at rest, or at a limit; for the implicit driver, the
     /// interval of the call was integrated); not sent when it stops with
@@ -143,7 +166,8 @@ impl<W: ?Sized> Observer<W> for Unobserved {
 }
 
 /// An observer called at every `n`-th [`Event::Step`] (steps `n`, `2n`,
-/// … of the driver's count), at every `n`-th [`Event::SubStep`] it is told
+/// … of the driver's count), at every `n`-th [`Event::Iteration`] (by its
+/// number: 0, `n`, `2n`, …), at every `n`-th [`Event::SubStep`] it is told
 /// of (counted across the calls it observes, so that `every(5, o)` over
 /// calls of one sub-step each sees every fifth), and at every other event.
 #[derive(Debug, Clone)]
@@ -174,6 +198,7 @@ impl<W: ?Sized, O: Observer<W>> Observer<W> for Every<O> {
     fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         match event {
             Event::Step { step, .. } if step % self.n != 0 => Ok(()),
+            Event::Iteration { iteration, .. } if iteration % self.n as usize != 0 => Ok(()),
             Event::SubStep { .. } => {
                 self.substeps += 1;
                 if self.substeps % self.n == 0 {

@@ -58,7 +58,11 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> Observer<ExplicitDynamics<L, I>> f
     fn observe(&mut self, dem: &ExplicitDynamics<L, I>, event: &Event<'_>) -> Result<()> {
         let time = match *event {
             Event::Step { time, .. } | Event::Finished { time, .. } => time,
-            Event::Check { .. } | Event::SubStep { .. } | Event::Halved { .. } => return Ok(()),
+            Event::Check { .. }
+            | Event::SubStep { .. }
+            | Event::Halved { .. }
+            | Event::Iteration { .. }
+            | Event::Trial { .. } => return Ok(()),
         };
         if self.series.last_time() == Some(time) {
             return Ok(());

@@ -627,7 +627,10 @@ where
                     }
                 }
             }
-            Event::SubStep { .. } | Event::Halved { .. } => {}
+            Event::SubStep { .. }
+            | Event::Halved { .. }
+            | Event::Iteration { .. }
+            | Event::Trial { .. } => {}
         }
         Ok(())
     };
