@@ -79,6 +79,12 @@ pub(crate) struct SupernodalLu {
     /// Row order chosen inside each supernode (local indices).
     pivots: Vec<usize>,
     map: Vec<usize>,
+    /// The rows of a descendant's update, as positions in the panel it
+    /// updates (`map` read once per update, not once per column).
+    relative: Vec<usize>,
+    /// `relative` cut into runs of consecutive positions: (first row of
+    /// the update, its position in the panel, length).
+    runs: Vec<(usize, usize, usize)>,
     head: Vec<usize>,
     link: Vec<usize>,
     next: Vec<usize>,
@@ -124,6 +130,8 @@ impl SupernodalLu {
             u: vec![0.0; structure.u_ptr[ns]],
             pivots: vec![0; n],
             map: vec![0; n],
+            relative: Vec::with_capacity(n),
+            runs: Vec::new(),
             head: vec![NONE; ns],
             link: vec![NONE; ns],
             next: vec![0; ns],
@@ -233,10 +241,19 @@ impl SupernodalLu {
         self.tmp.resize(nr * n1, 0.0);
         product(&mut self.tmp, ld, ud.subrows(0, n1));
         let ls = &mut l_after[..st.l_ptr[s + 1] - st.l_ptr[s]];
-        for (jj, &col) in reach[..n1].iter().enumerate() {
-            let base = (col - f) * (w + p);
-            for (ii, &row) in reach.iter().enumerate() {
-                ls[base + self.map[row]] -= self.tmp[ii + jj * nr];
+        self.relative.clear();
+        self.relative.extend(reach.iter().map(|&row| self.map[row]));
+        runs_of(&self.relative, 0, &mut self.runs);
+        for (&at, update) in self.relative[..n1].iter().zip(self.tmp.chunks_exact(nr)) {
+            // `at` is the column's place among the rows: its column in s.
+            let column = &mut ls[at * (w + p)..(at + 1) * (w + p)];
+            for &(from, to, len) in &self.runs {
+                for (target, value) in column[to..to + len]
+                    .iter_mut()
+                    .zip(&update[from..from + len])
+                {
+                    *target -= value;
+                }
             }
         }
         // Rows of s beyond its columns: U.
@@ -245,10 +262,15 @@ impl SupernodalLu {
             self.tmp.resize(n2 * n1, 0.0);
             product(&mut self.tmp, ud.subrows(n1, n2), ld.subrows(0, n1));
             let us = &mut u_after[..st.u_ptr[s + 1] - st.u_ptr[s]];
-            for (jj, &row) in reach[..n1].iter().enumerate() {
-                let base = (row - f) * p;
-                for (ii, &col) in reach[n1..].iter().enumerate() {
-                    us[base + self.map[col] - w] -= self.tmp[ii + jj * n2];
+            runs_of(&self.relative[n1..], w, &mut self.runs);
+            for (&at, update) in self.relative[..n1].iter().zip(self.tmp.chunks_exact(n2)) {
+                let row = &mut us[at * p..(at + 1) * p];
+                for &(from, to, len) in &self.runs {
+                    for (target, value) in
+                        row[to..to + len].iter_mut().zip(&update[from..from + len])
+                    {
+                        *target -= value;
+                    }
                 }
             }
         }
@@ -385,6 +407,19 @@ impl SupernodalLu {
         }
         for (yi, &to) in y.iter().zip(&st.perm) {
             x[to] = *yi;
+        }
+    }
+}
+
+/// Cut `positions` (increasing) into runs of consecutive values, each
+/// `(index in positions, its value − offset, length)`, into `runs`.
+fn runs_of(positions: &[usize], offset: usize, runs: &mut Vec<(usize, usize, usize)>) {
+    runs.clear();
+    let mut start = 0;
+    for k in 1..=positions.len() {
+        if k == positions.len() || positions[k] != positions[k - 1] + 1 {
+            runs.push((start, positions[start] - offset, k - start));
+            start = k;
         }
     }
 }
