@@ -47,9 +47,9 @@ enum Command {
         quiet: bool,
     },
     /// Run a model described in a scenario file (TOML): build it from its
-    /// slots, run it, and write ParaView frames (`.pvd` indices) and
-    /// `summary.json` into the output folder, replaced whole once all is
-    /// written. `docs/scenarios.md` lists every key.
+    /// slots, run it, and write ParaView frames (`.pvd` indices), the HPM
+    /// driver's maps (ESRI ASCII and GeoTIFF) and `summary.json` into the
+    /// output folder, replaced whole once all is written. `docs/scenarios.md` lists every key.
     Run {
         /// The scenario file.
         file: PathBuf,

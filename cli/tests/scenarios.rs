@@ -2036,6 +2036,299 @@ fn hpm_keys_are_checked() {
     }
 }
 
+/// The representative slope of paper 001 on the grids of the HPM
+/// scenarios, with the reproduction's material and settings (those the
+/// files give), and the load of `yamaguchi_hpm_seismic.toml` where
+/// `seismic`.
+fn yamaguchi_hpm_model(
+    seismic: bool,
+) -> (
+    dismech::hpm::SlopeGrids,
+    dismech::hpm::HpmModel,
+    dismech::hpm::Seismic,
+) {
+    use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, Seismic, SlopeGrids};
+    let grids = SlopeGrids::read(
+        &scenarios().join("yamaguchi_hpm/ground.asc"),
+        &scenarios().join("yamaguchi_hpm/slip.asc"),
+        None,
+    )
+    .unwrap();
+    let model = HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()).unwrap();
+    let toe = 270f64.to_radians();
+    let load = if seismic {
+        Seismic {
+            coefficient: 0.15,
+            direction: (toe.cos(), toe.sin()),
+        }
+    } else {
+        Seismic::none()
+    };
+    (grids, model, load)
+}
+
+/// Run the scenario `name` with `from` replaced by `to` (read as if from
+/// its own file) into a scratch folder named `tag`, which is kept: its
+/// summary and the folder.
+fn run_hpm_variant(name: &str, from: &str, to: &str, tag: &str) -> (Value, PathBuf) {
+    let file = scenarios().join(name);
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replacen(from, to, 1);
+    let out = scratch(tag);
+    let prepared = scenario::prepare(&file, &text, Overrides::default()).unwrap();
+    let finished = scenario::execute(prepared, &file, &out, false).unwrap();
+    (finished.summary, out)
+}
+
+/// Each map of `maps` was written into `out` as `{prefix}_{name}.asc` and
+/// `.tif`, each read back by the library's readers equal to the map to
+/// the bit, on the grid of `ground` (its corner, cell size and size).
+fn assert_maps_written(
+    out: &Path,
+    prefix: &str,
+    maps: &dismech::hpm::ColumnMaps,
+    ground: &dismech::grid::Raster,
+) {
+    use dismech::grid::{read_esri_ascii, read_geotiff};
+    use dismech::hpm::HPM_MAP_NAMES;
+    assert_eq!(maps.maps.len(), HPM_MAP_NAMES.len());
+    for name in HPM_MAP_NAMES {
+        let expected = maps.get(name).unwrap();
+        let asc = read_esri_ascii(&out.join(format!("{prefix}_{name}.asc"))).unwrap();
+        let tif = read_geotiff(&out.join(format!("{prefix}_{name}.tif"))).unwrap();
+        for read in [&asc, &tif] {
+            assert!(read.same_grid(ground), "{prefix}_{name}");
+            assert_eq!(read.cell_size().to_bits(), ground.cell_size().to_bits());
+            let (x, y) = read.lower_left();
+            let (gx, gy) = ground.lower_left();
+            assert_eq!((x.to_bits(), y.to_bits()), (gx.to_bits(), gy.to_bits()));
+            assert_eq!(
+                (read.rows(), read.columns()),
+                (ground.rows(), ground.columns())
+            );
+            assert_eq!(read.values().len(), expected.values().len());
+            for (a, b) in read.values().iter().zip(expected.values()) {
+                assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "{prefix}_{name}");
+            }
+        }
+        assert!(
+            expected.values().iter().any(Option::is_some),
+            "{prefix}_{name}: no data at all"
+        );
+    }
+}
+
+/// The HPM scenario writes the elastic analysis' maps on the ground grid
+/// (ESRI ASCII and GeoTIFF), equal to the bit to the library's
+/// `HpmResult::maps` for the same model, and no nonlinear maps unless
+/// asked.
+#[test]
+fn hpm_scenario_maps_equal_the_librarys_bit_for_bit() {
+    use dismech::hpm::HpmSolver;
+    let (summary, out) = run_hpm_variant("yamaguchi_hpm.toml", "", "", "hpm-maps");
+    let (grids, model, seismic) = yamaguchi_hpm_model(false);
+    let result = HpmSolver::new(&model)
+        .unwrap()
+        .elastic(&model, &seismic)
+        .unwrap();
+    let maps = result.maps(&model, &grids).unwrap();
+    assert_maps_written(&out, "elastic", &maps, &grids.ground().raster);
+    let listed: Vec<&str> = summary["maps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(listed.len(), 14, "{listed:?}");
+    for name in &listed {
+        assert!(out.join(name).is_file(), "{name}");
+    }
+    // No nonlinear analysis, no `.prj` (the ground grid has none).
+    assert!(summary.get("nonlinear").is_none(), "{summary}");
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(!name.starts_with("nonlinear_"), "{name}");
+        assert!(!name.ends_with(".prj"), "{name}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `driver.nonlinear = true` (yamaguchi_hpm_seismic.toml): the nonlinear
+/// analysis' Fs, convergence and maps equal to the bit the library's
+/// `HpmSolver::nonlinear` with the default settings on the same model,
+/// beside the elastic ones; `tolerance` and `max_iterations` are its
+/// settings.
+#[test]
+fn hpm_nonlinear_scenario_equals_the_library_bit_for_bit() {
+    use dismech::hpm::{Convergence, HpmSolver, NonlinearSettings};
+    let (grids, model, seismic) = yamaguchi_hpm_model(true);
+    let mut solver = HpmSolver::new(&model).unwrap();
+    let elastic = solver.elastic(&model, &seismic).unwrap();
+    for (settings, from, to) in [
+        (NonlinearSettings::default(), "", ""),
+        (
+            NonlinearSettings {
+                tolerance: 1e-3,
+                max_iterations: 4,
+            },
+            "nonlinear = true",
+            "nonlinear = true\ntolerance = 1e-3\nmax_iterations = 4",
+        ),
+    ] {
+        let (summary, out) =
+            run_hpm_variant("yamaguchi_hpm_seismic.toml", from, to, "hpm-nonlinear");
+        let nl = solver.nonlinear(&model, &seismic, 1.0, &settings).unwrap();
+        let got = &summary["nonlinear"];
+        assert_eq!(
+            bits(&got["safety_factor"]),
+            nl.safety_factor(&model).unwrap().to_bits(),
+            "{got}"
+        );
+        assert_eq!(
+            bits(&got["sliding_safety_factor"]),
+            nl.sliding_safety_factor(&model).unwrap().to_bits(),
+            "{got}"
+        );
+        let (status, iterations, residual) = match nl.convergence {
+            Convergence::Converged {
+                iterations,
+                residual,
+            } => ("Converged", iterations, residual),
+            Convergence::NotConverged {
+                iterations,
+                residual,
+            } => ("NotConverged", iterations, residual),
+        };
+        assert_eq!(got["status"], status, "{got}");
+        assert_eq!(got["iterations"].as_u64(), Some(iterations as u64));
+        assert_eq!(bits(&got["residual"]), residual.to_bits());
+        assert_eq!(bits(&got["tolerance"]), settings.tolerance.to_bits());
+        assert_eq!(
+            got["max_iterations"].as_u64(),
+            Some(settings.max_iterations as u64)
+        );
+        // The elastic keys stay those of the elastic analysis.
+        assert_eq!(
+            bits(&summary["safety_factor"]),
+            elastic.safety_factor(&model).unwrap().to_bits()
+        );
+        assert_eq!(
+            bits(&summary["sliding_safety_factor"]),
+            elastic.sliding_safety_factor(&model).unwrap().to_bits()
+        );
+        let ground = &grids.ground().raster;
+        assert_maps_written(
+            &out,
+            "elastic",
+            &elastic.maps(&model, &grids).unwrap(),
+            ground,
+        );
+        assert_maps_written(&out, "nonlinear", &nl.maps(&model, &grids).unwrap(), ground);
+        assert_eq!(summary["maps"].as_array().unwrap().len(), 28);
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+    // The default run converged; four iterations do not reach 1e-3.
+    let default = solver
+        .nonlinear(&model, &seismic, 1.0, &NonlinearSettings::default())
+        .unwrap();
+    assert!(default.convergence.converged());
+}
+
+/// A coordinate system beside the ground grid (its `.prj`) is copied
+/// beside every ESRI ASCII map and kept inside every GeoTIFF; one a
+/// GeoTIFF cannot keep is refused at `bodies[0].ground`.
+#[test]
+fn hpm_maps_carry_the_ground_grids_coordinate_system() {
+    let dir = scratch("hpm-prj");
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["ground.asc", "slip.asc"] {
+        std::fs::copy(scenarios().join("yamaguchi_hpm").join(name), dir.join(name)).unwrap();
+    }
+    let wkt = "PROJCS[\"WGS_1984_UTM_Zone_16N\",GEOGCS[\"GCS_WGS_1984\"]]\n";
+    std::fs::write(dir.join("ground.prj"), wkt).unwrap();
+    let text = std::fs::read_to_string(scenarios().join("yamaguchi_hpm.toml"))
+        .unwrap()
+        .replace("yamaguchi_hpm/", "");
+    let file = dir.join("model.toml");
+    std::fs::write(&file, &text).unwrap();
+    let out = dir.join("out");
+    let prepared = scenario::load(&file, Overrides::default()).unwrap();
+    let finished = scenario::execute(prepared, &file, &out, false).unwrap();
+    for name in dismech::hpm::HPM_MAP_NAMES {
+        let prj = out.join(format!("elastic_{name}.prj"));
+        assert_eq!(std::fs::read_to_string(&prj).unwrap(), wkt, "{prj:?}");
+        let tif = std::fs::read(out.join(format!("elastic_{name}.tif"))).unwrap();
+        let needle = b"ESRI PE String = PROJCS";
+        assert!(tif.windows(needle.len()).any(|w| w == needle), "{name}");
+    }
+    assert_eq!(finished.summary["maps"].as_array().unwrap().len(), 21);
+    std::fs::write(dir.join("ground.prj"), "PROJCS[\"a|b\"]").unwrap();
+    match scenario::load(&file, Overrides::default()) {
+        Err(ScenarioError::Invalid(located)) => {
+            let m = located.to_string();
+            assert!(m.contains("`bodies[0].ground`"), "{m}");
+            assert!(m.contains("ground.prj"), "{m}");
+        }
+        Err(e) => panic!("not a placed refusal: {e}"),
+        Ok(_) => panic!("a coordinate system a GeoTIFF cannot keep was accepted"),
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The nonlinear analysis' keys: a value of the wrong type or one
+/// `NonlinearSettings::validate` refuses, or a setting without
+/// `nonlinear = true`, is refused naming the key.
+#[test]
+fn hpm_nonlinear_keys_are_checked() {
+    let refused = |to: &str| -> String {
+        let file = scenarios().join("yamaguchi_hpm.toml");
+        let text = std::fs::read_to_string(&file).unwrap().replacen(
+            "penalty = 100.0",
+            &format!("penalty = 100.0\n{to}"),
+            1,
+        );
+        match scenario::prepare(&file, &text, Overrides::default()) {
+            Err(ScenarioError::Invalid(located)) => located.to_string(),
+            Err(e) => panic!("not a placed refusal: {e}"),
+            Ok(_) => panic!("accepted: {to}"),
+        }
+    };
+    let kind = refused("nonlinear = \"yes\"");
+    assert!(kind.contains("`driver.nonlinear`"), "{kind}");
+    assert!(kind.contains("yamaguchi_hpm.toml:23:13"), "{kind}");
+    for (to, key) in [
+        (
+            "nonlinear = true\ntolerance = 1.5",
+            "`driver.tolerance` = 1.5",
+        ),
+        (
+            "nonlinear = true\ntolerance = 0.0",
+            "`driver.tolerance` = 0.0",
+        ),
+        ("nonlinear = true\ntolerance = nan", "`driver.tolerance`"),
+        (
+            "nonlinear = true\nmax_iterations = 0",
+            "`driver.max_iterations` = 0",
+        ),
+        (
+            "nonlinear = true\nmax_iterations = -3",
+            "`driver.max_iterations`",
+        ),
+        ("tolerance = 1e-3", "`driver.tolerance`"),
+        (
+            "nonlinear = false\nmax_iterations = 10",
+            "`driver.max_iterations`",
+        ),
+    ] {
+        let m = refused(to);
+        assert!(m.contains(key), "{to}: {m}");
+        assert!(m.contains("yamaguchi_hpm.toml:"), "{to}: {m}");
+    }
+    let without = refused("nonlinear = false\nmax_iterations = 10");
+    assert!(without.contains("`driver.nonlinear`"), "{without}");
+}
+
 /// The cross-composition of ellipses settled by the implicit driver from
 /// its file: run for the steps the composition took to rest, the same
 /// time, sub-steps, halvings and centres, to the bit, as

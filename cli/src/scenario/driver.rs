@@ -14,7 +14,8 @@ pub enum DriverSpec {
     /// Rigid-plastic limit analysis by LP: [`dismech::limit::analyse`].
     Limit(LimitSpec),
     /// The hybrid penalty method on grid columns (paper 001):
-    /// [`dismech::hpm::HpmSolver::elastic`].
+    /// [`dismech::hpm::HpmSolver::elastic`] (and
+    /// [`dismech::hpm::HpmSolver::nonlinear`]).
     Hpm(HpmSpec),
 }
 
@@ -109,4 +110,13 @@ pub struct HpmSpec {
     pub layers: Option<usize>,
     /// Penalty factor p between elements; 100 by default.
     pub penalty: Option<f64>,
+    /// Run the nonlinear analysis too
+    /// ([`dismech::hpm::HpmSolver::nonlinear`]); false by default.
+    pub nonlinear: Option<bool>,
+    /// The nonlinear analysis' relative out-of-balance force accepted as
+    /// equilibrium ([`dismech::hpm::NonlinearSettings::tolerance`]).
+    pub tolerance: Option<f64>,
+    /// The nonlinear analysis' iteration limit
+    /// ([`dismech::hpm::NonlinearSettings::max_iterations`]).
+    pub max_iterations: Option<usize>,
 }

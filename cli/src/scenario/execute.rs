@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use dismech::checkpoint::CheckpointProblem;
 use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
-use dismech::hpm::HpmSolver;
+use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
+use dismech::hpm::{ColumnMaps, Convergence, HpmSolver};
 use dismech::implicit::ImplicitDynamics;
 use dismech::integrate::ExplicitEuler;
 use dismech::io::write_atomically;
@@ -504,7 +505,11 @@ fn run(
         }
         Model::Hpm(plan) => {
             let bar = bar(1, "solve");
-            bar.set_message("solving the HPM's elastic equations");
+            bar.set_message(if plan.nonlinear.is_some() {
+                "solving the HPM's elastic and nonlinear equations"
+            } else {
+                "solving the HPM's elastic equations"
+            });
             let value = run_hpm(*plan, &dir).map_err(run_error)?;
             bar.finish_and_clear();
             (value, None)
@@ -861,17 +866,67 @@ where
     Ok(Some((value, Some(result.status))))
 }
 
-/// Solve the HPM's elastic equations and write the columns (one frame at
-/// time 0).
+/// The prefix of the elastic analysis' maps (`elastic_local_fs.asc`...).
+const HPM_ELASTIC_PREFIX: &str = "elastic";
+/// The prefix of the nonlinear analysis' maps.
+const HPM_NONLINEAR_PREFIX: &str = "nonlinear";
+
+/// Solve the HPM's elastic equations (and, where asked, the nonlinear
+/// ones) and write the columns (one frame at time 0, of the elastic
+/// analysis) and the maps of each analysis on the ground grid.
 fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
-    let HpmPlan { model, seismic } = plan;
+    let HpmPlan {
+        model,
+        seismic,
+        grids,
+        crs,
+        nonlinear,
+    } = plan;
     let mut solver = HpmSolver::new(&model)?;
     let result = solver.elastic(&model, &seismic)?;
     let safety_factor = result.safety_factor(&model)?;
     let sliding = result.sliding_safety_factor(&model)?;
     let mut series = PvdSeries::new(dir)?;
     series.write_frame(0.0, &hpm_frame(&model, &result)?)?;
-    Ok(json!({
+    let mut maps = vec![write_maps(
+        dir,
+        HPM_ELASTIC_PREFIX,
+        &result.maps(&model, &grids)?,
+        crs.as_deref(),
+    )?];
+    let nonlinear = match nonlinear {
+        None => None,
+        Some(settings) => {
+            let result = solver.nonlinear(&model, &seismic, 1.0, &settings)?;
+            let (status, iterations, residual) = match result.convergence {
+                Convergence::Converged {
+                    iterations,
+                    residual,
+                } => ("Converged", iterations, residual),
+                Convergence::NotConverged {
+                    iterations,
+                    residual,
+                } => ("NotConverged", iterations, residual),
+            };
+            let value = json!({
+                "status": status,
+                "safety_factor": result.safety_factor(&model)?,
+                "sliding_safety_factor": result.sliding_safety_factor(&model)?,
+                "iterations": iterations,
+                "residual": residual,
+                "tolerance": settings.tolerance,
+                "max_iterations": settings.max_iterations,
+            });
+            maps.push(write_maps(
+                dir,
+                HPM_NONLINEAR_PREFIX,
+                &result.maps(&model, &grids)?,
+                crs.as_deref(),
+            )?);
+            Some(value)
+        }
+    };
+    let mut value = json!({
         "outcome": { "status": "Elastic" },
         "safety_factor": safety_factor,
         "sliding_safety_factor": sliding,
@@ -880,5 +935,34 @@ fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
         "elements": model.elements.len(),
         "layers": model.settings.layers,
         "frames": series.frames(),
-    }))
+        "maps": maps.concat(),
+    });
+    if let (Some(nonlinear), Value::Object(map)) = (nonlinear, &mut value) {
+        map.insert("nonlinear".into(), nonlinear);
+    }
+    Ok(value)
+}
+
+/// Write `maps` into `dir` as `{prefix}_{name}.asc` and `.tif`, each
+/// atomically, the GeoTIFFs with the coordinate system `crs` inside and a
+/// `.prj` holding it beside each ESRI ASCII grid; returns the names of
+/// the files written.
+fn write_maps(
+    dir: &Path,
+    prefix: &str,
+    maps: &ColumnMaps,
+    crs: Option<&str>,
+) -> Result<Vec<String>> {
+    let list: Vec<(&str, &Raster)> = maps.maps.iter().map(|(n, r)| (*n, r)).collect();
+    let mut names = Vec::new();
+    let name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
+    for path in write_rasters_with_crs(dir, prefix, &list, &RasterFormat::ALL, crs)? {
+        names.extend(name(&path));
+        if let (Some(text), RasterFormat::EsriAscii) = (crs, RasterFormat::of_path(&path)) {
+            let prj = path.with_extension("prj");
+            write_atomically(&prj, text.as_bytes())?;
+            names.extend(name(&prj));
+        }
+    }
+    Ok(names)
 }

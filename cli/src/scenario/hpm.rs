@@ -1,10 +1,12 @@
 //! The HPM driver's model: paper 001's columns between a ground and a slip
 //! surface read from ESRI ASCII grids, the soil and slip-surface springs
-//! of `[law] kind = "hpm"`, and a static or seismic elastic analysis.
+//! of `[law] kind = "hpm"`, and a static or seismic elastic analysis
+//! (and, with `driver.nonlinear`, the nonlinear one), written as ParaView
+//! frames and per-column maps on the ground grid.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, Seismic, SlopeGrids};
+use dismech::hpm::{HpmMaterial, HpmModel, HpmSettings, NonlinearSettings, Seismic, SlopeGrids};
 
 use super::bodies::{BodySpec, GridColumnsSpec};
 use super::check::{self, combination, count, named, Refusal};
@@ -19,7 +21,24 @@ pub struct HpmPlan {
     pub model: HpmModel,
     /// The seismic load (none by default).
     pub seismic: Seismic,
+    /// The grids the columns were built on (the maps' grid).
+    pub grids: SlopeGrids,
+    /// The coordinate system of the ground grid: the text of the `.prj`
+    /// beside it, where there is one (copied beside every ESRI ASCII map,
+    /// kept inside every GeoTIFF map).
+    pub crs: Option<String>,
+    /// The nonlinear analysis' settings, where `driver.nonlinear = true`.
+    pub nonlinear: Option<NonlinearSettings>,
 }
+
+/// The library's names of the nonlinear settings and their keys.
+const NONLINEAR_NAMES: check::Names<'static> = &[
+    (
+        "NonlinearSettings::tolerance (relative out-of-balance force)",
+        "tolerance",
+    ),
+    ("NonlinearSettings::max_iterations", "max_iterations"),
+];
 
 /// The library's names of the material's and the settings' values and
 /// the keys that give them.
@@ -60,7 +79,7 @@ pub fn build(
             return Err(combination(
                 source,
                 &[&kind, &KeyPath::root(table)],
-                "the HPM driver analyses grid columns under their weight (and `loads.seismic`) in one elastic solve: it takes `[[bodies]]` (one `grid-columns`), `[law]` (`hpm`), `[loads] seismic` and `[output]`; remove this table",
+                "the HPM driver analyses grid columns under their weight (and `loads.seismic`) in one elastic solve (and, with `nonlinear = true`, a nonlinear one): it takes `[[bodies]]` (one `grid-columns`), `[law]` (`hpm`), `[loads] seismic` and `[output]`; remove this table",
             ));
         }
     }
@@ -88,6 +107,11 @@ pub fn build(
         ));
     };
     let grids = grids(source, columns, &path, file)?;
+    let crs = crs(
+        source,
+        &path.key("ground"),
+        &folder(file).join(&columns.ground),
+    )?;
     let mu = check::friction(source, &law, soil.friction, soil.friction_angle, None)?;
     let submerged = match (soil.submerged_unit_weight, &columns.water) {
         (Some(g), _) => g,
@@ -150,9 +174,90 @@ pub fn build(
             seismic
         }
     };
+    let nonlinear = nonlinear(source, settings, &driver)?;
     let model = HpmModel::new(&grids, &material, &hpm_settings)
         .map_err(|e| combination(source, &[&path, &law, &driver], &e.to_string()))?;
-    Ok(HpmPlan { model, seismic })
+    Ok(HpmPlan {
+        model,
+        seismic,
+        grids,
+        crs,
+        nonlinear,
+    })
+}
+
+/// The nonlinear analysis' settings of `[driver]` at `driver`: none
+/// unless `nonlinear = true`; `tolerance` and `max_iterations` (the
+/// library's defaults where not given) checked by
+/// [`NonlinearSettings::validate`], and refused without `nonlinear = true`.
+fn nonlinear(
+    source: &Source<'_>,
+    settings: &HpmSpec,
+    driver: &KeyPath,
+) -> Result<Option<NonlinearSettings>, Refusal> {
+    if settings.nonlinear != Some(true) {
+        for (given, key) in [
+            (settings.tolerance.is_some(), "tolerance"),
+            (settings.max_iterations.is_some(), "max_iterations"),
+        ] {
+            if given {
+                let mut keys = vec![driver.key(key)];
+                if settings.nonlinear.is_some() {
+                    keys.push(driver.key("nonlinear"));
+                }
+                let keys: Vec<&KeyPath> = keys.iter().collect();
+                return Err(combination(
+                    source,
+                    &keys,
+                    "the tolerance and iteration limit are the nonlinear analysis': give `nonlinear = true` or remove this key",
+                ));
+            }
+        }
+        return Ok(None);
+    }
+    let defaults = NonlinearSettings::default();
+    let nonlinear = NonlinearSettings {
+        tolerance: settings.tolerance.unwrap_or(defaults.tolerance),
+        max_iterations: settings.max_iterations.unwrap_or(defaults.max_iterations),
+    };
+    nonlinear
+        .validate()
+        .map_err(|e| named(source, driver, NONLINEAR_NAMES, e))?;
+    Ok(Some(nonlinear))
+}
+
+/// The folder of the scenario `file`, against which its paths are read.
+fn folder(file: &Path) -> &Path {
+    file.parent().unwrap_or(Path::new(""))
+}
+
+/// The coordinate system of the ground grid `ground` (given at `key`):
+/// the text of the `.prj` beside it where there is one, checked to be one
+/// a GeoTIFF keeps ([`dismech::grid::check_crs_wkt`]).
+fn crs(source: &Source<'_>, key: &KeyPath, ground: &Path) -> Result<Option<String>, Refusal> {
+    let prj: PathBuf = ground.with_extension("prj");
+    if prj == ground || !prj.is_file() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&prj).map_err(|e| {
+        Box::new(source.at_key(
+            key,
+            format!(
+                "{}: the coordinate system beside the ground grid cannot be read: {e}",
+                prj.display()
+            ),
+        ))
+    })?;
+    dismech::grid::check_crs_wkt(&text).map_err(|problem| {
+        Box::new(source.at_key(
+            key,
+            format!(
+                "{}: the coordinate system beside the ground grid cannot be kept in the GeoTIFF maps: {problem}",
+                prj.display()
+            ),
+        ))
+    })?;
+    Ok(Some(text))
 }
 
 /// The grids of a `grid-columns` entry, read from their files.
@@ -162,7 +267,7 @@ fn grids(
     path: &KeyPath,
     file: &Path,
 ) -> Result<SlopeGrids, Refusal> {
-    let folder = file.parent().unwrap_or(Path::new(""));
+    let folder = folder(file);
     let mut paths = Vec::new();
     for (key, given) in [
         ("ground", Some(&columns.ground)),
