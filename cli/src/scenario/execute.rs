@@ -9,7 +9,7 @@ use dismech::checkpoint::CheckpointProblem;
 use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
 use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
-use dismech::hpm::{ColumnMaps, Convergence, HpmSolver};
+use dismech::hpm::{ColumnMaps, Convergence, HpmIterate, HpmSolver};
 use dismech::implicit::ImplicitDynamics;
 use dismech::integrate::ExplicitEuler;
 use dismech::io::write_atomically;
@@ -510,7 +510,7 @@ fn run(
             } else {
                 "solving the HPM's elastic equations"
             });
-            let value = run_hpm(*plan, &dir).map_err(run_error)?;
+            let value = run_hpm(*plan, &dir, &bar).map_err(run_error)?;
             bar.finish_and_clear();
             (value, None)
         }
@@ -873,8 +873,9 @@ const HPM_NONLINEAR_PREFIX: &str = "nonlinear";
 
 /// Solve the HPM's elastic equations (and, where asked, the nonlinear
 /// ones) and write the columns (one frame at time 0, of the elastic
-/// analysis) and the maps of each analysis on the ground grid.
-fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
+/// analysis) and the maps of each analysis on the ground grid; `bar` tells
+/// the nonlinear iterates.
+fn run_hpm(plan: HpmPlan, dir: &Path, bar: &ProgressBar) -> Result<Value> {
     let HpmPlan {
         model,
         seismic,
@@ -897,7 +898,21 @@ fn run_hpm(plan: HpmPlan, dir: &Path) -> Result<Value> {
     let nonlinear = match nonlinear {
         None => None,
         Some(settings) => {
-            let result = solver.nonlinear(&model, &seismic, 1.0, &settings)?;
+            // The bar tells each iterate's out-of-balance force.
+            let mut show = |_: &HpmIterate<'_>, event: &Event<'_>| {
+                if let Event::Iteration {
+                    iteration,
+                    residual,
+                } = *event
+                {
+                    bar.set_message(format!(
+                        "nonlinear HPM: iteration {iteration}, residual {residual:.2e} (to {:.0e})",
+                        settings.tolerance
+                    ));
+                }
+                Ok(())
+            };
+            let result = solver.nonlinear_observed(&model, &seismic, 1.0, &settings, &mut show)?;
             let (status, iterations, residual) = match result.convergence {
                 Convergence::Converged {
                     iterations,
