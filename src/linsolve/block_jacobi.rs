@@ -104,20 +104,32 @@ impl BlockJacobi {
 
     fn invert(&mut self, blocks: Vec<DMatrix<f64>>) -> Result<(), SolveError> {
         self.inverses.clear();
-        for (index, block) in blocks.into_iter().enumerate() {
-            if !block.is_square() {
-                return Err(SolveError::DimensionMismatch {
-                    what: "block-Jacobi block columns",
-                    expected: block.nrows(),
-                    found: block.ncols(),
-                });
-            }
-            let factor = block.cholesky().ok_or(SolveError::Factorization(
-                FactorizationFailure::BlockNotPositiveDefinite { block: index },
-            ))?;
-            self.inverses.push(factor.inverse());
-        }
+        // In parallel; the first failing block in order is reported.
+        let inverses: Vec<Result<DMatrix<f64>, SolveError>> = blocks
+            .into_par_iter()
+            .enumerate()
+            .map(|(index, block)| {
+                if !block.is_square() {
+                    return Err(SolveError::DimensionMismatch {
+                        what: "block-Jacobi block columns",
+                        expected: block.nrows(),
+                        found: block.ncols(),
+                    });
+                }
+                let factor = block.cholesky().ok_or(SolveError::Factorization(
+                    FactorizationFailure::BlockNotPositiveDefinite { block: index },
+                ))?;
+                Ok(factor.inverse())
+            })
+            .collect();
+        self.inverses = inverses.into_iter().collect::<Result<_, _>>()?;
         Ok(())
+    }
+
+    /// The ranges of unknowns and the inverses of their blocks (empty
+    /// before [`Preconditioner::setup`]).
+    pub(crate) fn parts(&self) -> (&[Range<usize>], &[DMatrix<f64>]) {
+        (&self.ranges, &self.inverses)
     }
 
     /// Number of unknowns covered.
