@@ -126,12 +126,6 @@ impl BlockJacobi {
         Ok(())
     }
 
-    /// The ranges of unknowns and the inverses of their blocks (empty
-    /// before [`Preconditioner::setup`]).
-    pub(crate) fn parts(&self) -> (&[Range<usize>], &[DMatrix<f64>]) {
-        (&self.ranges, &self.inverses)
-    }
-
     /// Number of unknowns covered.
     pub fn dimension(&self) -> usize {
         self.ranges.last().map_or(0, |r| r.end)

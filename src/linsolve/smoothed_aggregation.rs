@@ -68,8 +68,8 @@ use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::{
-    BlockJacobi, DiagonalBlocks, FactorizationFailure, LinearSolver, LinearSolverInfo,
-    Preconditioner, SolveError, SparseCholesky, SparseMatrix, SparsePattern,
+    DiagonalBlocks, FactorizationFailure, LinearSolver, LinearSolverInfo, Preconditioner,
+    SolveError, SparseCholesky, SparseMatrix, SparsePattern,
 };
 
 /// Fewest block rows a parallel task takes: below this the threads'
@@ -467,12 +467,96 @@ impl LineLevel {
 /// The damped line-Jacobi smoother of a level with lines.
 #[derive(Debug)]
 struct LineSmoother {
-    jacobi: BlockJacobi,
+    /// The lines, in unknowns (consecutive from 0).
+    ranges: Vec<Range<usize>>,
+    /// The Cholesky factor `L` of each line's `D_L = L Lᵀ`, its lower
+    /// triangle packed by rows, the lines one after another: half the
+    /// numbers of an explicit inverse, for as many operations a solve.
+    factors: Vec<f64>,
+    /// Where each line's factor starts in `factors`.
+    offsets: Vec<usize>,
     /// `w = 1 / ρ(D_L⁻¹ A)`.
     weight: f64,
 }
 
+/// `v ← (L Lᵀ)⁻¹ v` for `L` packed by rows (`v.len()` rows).
+fn cholesky_solve(factor: &[f64], v: &mut [f64]) {
+    let n = v.len();
+    // L y = v, by rows.
+    for i in 0..n {
+        let row = &factor[i * (i + 1) / 2..(i + 1) * (i + 2) / 2];
+        let s = v[i] - dot(&row[..i], &v[..i]);
+        v[i] = s / row[i];
+    }
+    // Lᵀ x = y, by the rows of L from the last.
+    for i in (0..n).rev() {
+        let row = &factor[i * (i + 1) / 2..(i + 1) * (i + 2) / 2];
+        let xi = v[i] / row[i];
+        v[i] = xi;
+        for (vj, lij) in v[..i].iter_mut().zip(&row[..i]) {
+            *vj -= xi * lij;
+        }
+    }
+}
+
 impl LineSmoother {
+    /// Factor the diagonal blocks of `a` over `ranges` (in unknowns).
+    fn new(a: &Bsr, ranges: Vec<Range<usize>>) -> Result<Self, SolveError> {
+        let blocks = a.diagonal_blocks(&ranges)?;
+        let factors: Vec<Result<Vec<f64>, SolveError>> = blocks
+            .into_par_iter()
+            .enumerate()
+            .map(|(index, block)| {
+                let l = block
+                    .cholesky()
+                    .ok_or(SolveError::Factorization(
+                        FactorizationFailure::BlockNotPositiveDefinite { block: index },
+                    ))?
+                    .unpack();
+                let n = l.nrows();
+                let mut packed = Vec::with_capacity(n * (n + 1) / 2);
+                for i in 0..n {
+                    packed.extend((0..=i).map(|j| l[(i, j)]));
+                }
+                Ok(packed)
+            })
+            .collect();
+        // The first failing line in order is reported.
+        let factors = factors.into_iter().collect::<Result<Vec<_>, _>>()?;
+        let mut offsets = Vec::with_capacity(factors.len() + 1);
+        offsets.push(0);
+        for f in &factors {
+            offsets.push(offsets.last().copied().unwrap_or(0) + f.len());
+        }
+        Ok(Self {
+            ranges,
+            factors: factors.concat(),
+            offsets,
+            weight: 1.0,
+        })
+    }
+
+    /// The factor of line `l`.
+    fn factor(&self, l: usize) -> &[f64] {
+        &self.factors[self.offsets[l]..self.offsets[l + 1]]
+    }
+
+    /// `z = D_L⁻¹ r`, the lines in parallel.
+    fn solve(&self, r: &[f64], z: &mut [f64]) {
+        z.copy_from_slice(r);
+        let mut parts = Vec::with_capacity(self.ranges.len());
+        let mut rest = z;
+        for range in &self.ranges {
+            let (part, tail) = std::mem::take(&mut rest).split_at_mut(range.len());
+            parts.push(part);
+            rest = tail;
+        }
+        parts
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(l, part)| cholesky_solve(self.factor(l), part));
+    }
+
     /// `x ← x + w D_L⁻¹ (b − A x)`; `x` is zero when `from_zero`.
     fn sweep(&self, a: &Bsr, rhs: &[f64], x: &mut [f64], from_zero: bool) {
         let mut residual = rhs.to_vec();
@@ -491,7 +575,7 @@ impl LineSmoother {
     /// `x ← x + w D_L⁻¹ r`.
     fn correct(&self, residual: &[f64], x: &mut [f64]) {
         let mut z = vec![0.0; x.len()];
-        Preconditioner::<SparseMatrix>::apply(&self.jacobi, residual, &mut z);
+        self.solve(residual, &mut z);
         x.par_iter_mut()
             .with_min_len(MIN_NUMBERS_A_TASK)
             .zip(&z)
@@ -763,16 +847,16 @@ fn smooth_by_blocks(mut at: Bsr, t: &Bsr, agg: &[usize], inverses: &[f64], omega
 }
 
 /// The prolongator `P = T − ω D_L⁻¹ A T` from `at = A T`, `D_L` the dense
-/// diagonal blocks of the lines of `jacobi` (each of whole blocks). A
+/// diagonal blocks of the lines of `smoother` (each of whole blocks). A
 /// line's rows of `P` share one block pattern: the union of its rows'
 /// patterns in `A T` and `T`.
-fn smooth_by_lines(at: &Bsr, t: &Bsr, agg: &[usize], jacobi: &BlockJacobi, omega: f64) -> Bsr {
+fn smooth_by_lines(at: &Bsr, t: &Bsr, agg: &[usize], smoother: &LineSmoother, omega: f64) -> Bsr {
     let (rb, cb) = (at.rows, at.cols);
-    let (ranges, inverses) = jacobi.parts();
+    let ranges = &smoother.ranges;
     let lines: Vec<(Vec<usize>, Vec<f64>)> = ranges
         .par_iter()
-        .zip(inverses)
-        .map(|(range, inverse)| {
+        .enumerate()
+        .map(|(l, range)| {
             let blocks = range.start / rb..range.end / rb;
             let mut cols: Vec<usize> = blocks
                 .clone()
@@ -792,7 +876,11 @@ fn smooth_by_lines(at: &Bsr, t: &Bsr, agg: &[usize], jacobi: &BlockJacobi, omega
                     }
                 }
             }
-            let y = inverse * x;
+            // D_L⁻¹ X, column by column (stored by columns).
+            let mut y = x;
+            for column in y.as_mut_slice().chunks_exact_mut(range.len()) {
+                cholesky_solve(smoother.factor(l), column);
+            }
             let mut values = Vec::with_capacity(range.len() * cols.len() * cb);
             for i in blocks.clone() {
                 let r0 = (i - blocks.start) * rb;
@@ -923,18 +1011,10 @@ impl SmoothedAggregation {
                 Some((first, _)) => {
                     let ranges: Vec<Range<usize>> =
                         first.lines.iter().map(|l| b * l.start..b * l.end).collect();
-                    let mut jacobi = BlockJacobi::new(ranges);
-                    Preconditioner::<Bsr>::setup(&mut jacobi, &a)?;
-                    let rho = power_iterations(&a, s.power_iterations, |y, z| {
-                        Preconditioner::<SparseMatrix>::apply(&jacobi, y, z)
-                    });
-                    Some((
-                        LineSmoother {
-                            jacobi,
-                            weight: 1.0 / rho,
-                        },
-                        rho,
-                    ))
+                    let mut smoother = LineSmoother::new(&a, ranges)?;
+                    let rho = power_iterations(&a, s.power_iterations, |y, z| smoother.solve(y, z));
+                    smoother.weight = 1.0 / rho;
+                    Some((smoother, rho))
                 }
                 None => None,
             };
@@ -942,7 +1022,7 @@ impl SmoothedAggregation {
             let at = a.multiply(&t);
             let p = match &lines {
                 Some((smoother, rho)) => {
-                    smooth_by_lines(&at, &t, &agg, &smoother.jacobi, 4.0 / (3.0 * rho))
+                    smooth_by_lines(&at, &t, &agg, smoother, 4.0 / (3.0 * rho))
                 }
                 None => {
                     let rho = spectral_radius(&a, &inverses, s.power_iterations);
@@ -1117,9 +1197,7 @@ impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
                     + l.p.values.len()
                     + l.r.values.len()
                     + l.inverses.len()
-                    + l.lines
-                        .as_ref()
-                        .map_or(0, |s| Preconditioner::<SparseMatrix>::entries(&s.jacobi))
+                    + l.lines.as_ref().map_or(0, |s| s.factors.len())
             })
             .sum();
         let coarse = self
