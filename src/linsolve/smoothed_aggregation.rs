@@ -994,12 +994,18 @@ impl SmoothedAggregation {
         let mut near_null = self.near_null.clone();
         let s = self.settings;
         while a.block_rows * b > s.max_coarse && self.levels.len() + 1 < s.max_levels {
-            let inverses = a.diagonal_inverses()?;
             let given = self
                 .first
                 .as_ref()
                 .zip(first_count)
                 .filter(|_| self.levels.is_empty());
+            // A level with lines needs no `D⁻¹`: neither its smoother nor
+            // its prolongator uses them (the lines' factorization refuses a
+            // block that is not positive definite).
+            let inverses = match given {
+                Some(_) => Vec::new(),
+                None => a.diagonal_inverses()?,
+            };
             let (agg, count) = match given {
                 Some((first, count)) => (first.aggregates.clone(), count),
                 None => aggregate(&a, s.strength_threshold),
@@ -1033,12 +1039,8 @@ impl SmoothedAggregation {
             let r = p.transpose();
             let ap = a.multiply(&p);
             let coarse = r.multiply(&ap);
-            // A level with lines needs neither `D⁻¹` (checked above: its
-            // blocks are positive definite) nor Gauss–Seidel, but `A P`.
-            let (inverses, ap) = match lines {
-                Some(_) => (Vec::new(), Some(ap)),
-                None => (inverses, None),
-            };
+            // A level with lines keeps `A P` for its residual update.
+            let ap = lines.as_ref().map(|_| ap);
             self.levels.push(Level {
                 a,
                 inverses,
