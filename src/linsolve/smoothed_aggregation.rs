@@ -1210,3 +1210,91 @@ impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
         levels + coarse
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain of `n` blocks of 2 unknowns, block tridiagonal and
+    /// diagonally dominant (symmetric positive definite).
+    struct Chain(usize);
+
+    impl BlockSparse for Chain {
+        fn block_size(&self) -> usize {
+            2
+        }
+        fn block_count(&self) -> usize {
+            self.0
+        }
+        fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64])) {
+            for i in 0..self.0 {
+                visit(i, i, &[4.0, 1.0, 1.0, 3.0 + 0.01 * i as f64]);
+                if i + 1 < self.0 {
+                    visit(i, i + 1, &[-1.0, -0.2, -0.2, -1.0]);
+                    visit(i + 1, i, &[-1.0, -0.2, -0.2, -1.0]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn packed_cholesky_solve_matches_the_dense_solve() {
+        let n = 7;
+        let m = DMatrix::from_fn(n, n, |i, j| 1.0 / (1.0 + i as f64 + j as f64));
+        let spd = &m * m.transpose() + DMatrix::identity(n, n);
+        let l = spd.clone().cholesky().unwrap().unpack();
+        let packed: Vec<f64> = (0..n)
+            .flat_map(|i| (0..=i).map(move |j| (i, j)))
+            .map(|(i, j)| l[(i, j)])
+            .collect();
+        let b: Vec<f64> = (0..n).map(|i| (i as f64).sin() + 2.0).collect();
+        let mut x = b.clone();
+        cholesky_solve(&packed, &mut x);
+        let expected = spd
+            .cholesky()
+            .unwrap()
+            .solve(&nalgebra::DVector::from_column_slice(&b));
+        for (a, e) in x.iter().zip(expected.iter()) {
+            assert!((a - e).abs() <= 1e-12 * e.abs().max(1.0), "{a} vs {e}");
+        }
+    }
+
+    /// The V-cycle with a level of lines (smoother and prolongator by
+    /// lines, residual updated by `A P`) is symmetric positive definite.
+    #[test]
+    fn a_cycle_with_lines_is_symmetric_and_positive() {
+        let blocks = 40;
+        let settings = AggregationSettings {
+            max_coarse: 4,
+            ..AggregationSettings::default()
+        };
+        let near_null = vec![1.0; blocks * 2];
+        let first = LineLevel {
+            aggregates: (0..blocks).map(|i| i / 4).collect(),
+            lines: (0..blocks / 2).map(|l| 2 * l..2 * l + 2).collect(),
+        };
+        for sweeps in [1, 2] {
+            let mut amg = SmoothedAggregation::new(
+                AggregationSettings { sweeps, ..settings },
+                near_null.clone(),
+                1,
+            )
+            .with_lines(first.clone());
+            Preconditioner::<Chain>::setup(&mut amg, &Chain(blocks)).unwrap();
+            assert!(amg.level_sizes().len() >= 2, "{:?}", amg.level_sizes());
+            let u: Vec<f64> = (0..2 * blocks).map(|i| (0.3 * i as f64).cos()).collect();
+            let v: Vec<f64> = (0..2 * blocks)
+                .map(|i| 1.0 + (0.7 * i as f64).sin())
+                .collect();
+            let (mut mu, mut mv) = (vec![0.0; u.len()], vec![0.0; v.len()]);
+            Preconditioner::<Chain>::apply(&amg, &u, &mut mu);
+            Preconditioner::<Chain>::apply(&amg, &v, &mut mv);
+            let (vmu, umv) = (dot(&v, &mu), dot(&u, &mv));
+            assert!(
+                (vmu - umv).abs() <= 1e-12 * vmu.abs().max(umv.abs()),
+                "{vmu} vs {umv}"
+            );
+            assert!(dot(&u, &mu) > 0.0 && dot(&v, &mv) > 0.0);
+        }
+    }
+}
