@@ -15,7 +15,9 @@
 //! linear motions as near-null space, `sweeps=2` for two Gauss–Seidel
 //! sweeps a side; `plan=2` for the column multigrid, whose finest level
 //! solves whole columns and aggregates squares of 2 × 2 columns
-//! (`HpmSolver::column_multigrid`); `mtx=DIR` writes the stiffness, the load vector and the
+//! (`HpmSolver::column_multigrid`); the multigrid runs also print the CPU
+//! time of all threads, which, unlike the wall time, does not grow while
+//! other processes share the cores; `mtx=DIR` writes the stiffness, the load vector and the
 //! rigid motions (`B.mtx`; `B12.mtx` with the uniform strains) in Matrix
 //! Market files under DIR for `benches/hpm_pyamg.py` and stops).
 
@@ -33,6 +35,23 @@ fn peak_memory_mib() -> Option<f64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib / 1024.0)
+}
+
+/// CPU time of this process (all its threads, user and system), in
+/// seconds, where /proc has it: unlike the wall time, it does not grow
+/// when other processes share the cores.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name (in parentheses): utime and stime are
+    // the 12th and 13th, in clock ticks (100 a second).
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let ticks: f64 = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|t| t.parse::<f64>().ok())
+        .sum();
+    ticks / 100.0
 }
 
 /// Write the stiffness (`K.mtx`, symmetric, lower triangle), the loads
@@ -127,12 +146,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             sweeps: std::env::args()
                 .find_map(|a| a.strip_prefix("sweeps=").and_then(|t| t.parse().ok()))
                 .unwrap_or(1),
+            max_levels: std::env::var("DISMECH_LEVELS")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(10),
+            max_coarse: std::env::var("DISMECH_COARSE")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(2000),
             ..AggregationSettings::default()
         };
         let modes = std::env::args()
             .find_map(|a| a.strip_prefix("modes=").and_then(|t| t.parse().ok()))
             .unwrap_or(6);
         let t1 = Instant::now();
+        let c1 = cpu_seconds();
         let plan: Option<usize> =
             std::env::args().find_map(|a| a.strip_prefix("plan=").and_then(|t| t.parse().ok()));
         let mut solver = match plan {
@@ -140,11 +168,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             None => HpmSolver::multigrid(&model, settings, aggregation, modes)?,
         };
         let t2 = Instant::now();
+        let c2 = cpu_seconds();
         let result = solver.elastic(&model, &Seismic::none())?;
         let t3 = Instant::now();
+        let c3 = cpu_seconds();
         let amg = solver.linear_solver().preconditioner();
         println!(
-            "HPM elastic by PCG + smoothed aggregation ({modes} modes), {n} x {n} columns, {layers} layers: {} elements, {} DOF; levels {:?} unknowns, operator complexity {:.2}; model {:.2} s; assembly + hierarchy {:.2} s; PCG {:.2} s; setup + PCG {:.2} s; {:?}; Fs = {:.8}; peak resident memory {:?} MiB",
+            "HPM elastic by PCG + smoothed aggregation ({modes} modes), {n} x {n} columns, {layers} layers: {} elements, {} DOF; levels {:?} unknowns, operator complexity {:.2}; model {:.2} s; assembly + hierarchy {:.2} s; PCG {:.2} s; setup + PCG {:.2} s; CPU time (all threads) of the hierarchy {:.2} s and of PCG {:.2} s; {:?}; Fs = {:.8}; peak resident memory {:?} MiB",
             model.elements.len(),
             model.dof(),
             amg.level_sizes(),
@@ -153,6 +183,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             (t2 - t1).as_secs_f64(),
             (t3 - t2).as_secs_f64(),
             (t3 - t1).as_secs_f64(),
+            c2 - c1,
+            c3 - c2,
             result.convergence,
             result.safety_factor(&model)?,
             peak_memory_mib()

@@ -645,9 +645,10 @@ impl HpmSolver<ConjugateGradient<SmoothedAggregation>> {
     /// columns ([`LineLevel`]): its smoother solves each column (all its
     /// layers, coupled by the stiff springs between them, eqs. 20–22)
     /// whole, and its aggregates are the columns of `plan × plan` grid
-    /// cells. A smoother on single elements leaves errors smooth along a
-    /// column and rough across columns, which cost the element-block
-    /// multigrid most of its iterations.
+    /// cells; its prolongator is smoothed by the same columns. A smoother
+    /// on single elements leaves errors smooth along a column and rough
+    /// across columns, which cost the element-block multigrid most of its
+    /// iterations.
     ///
     /// # Errors
     /// As [`HpmSolver::multigrid`], and [`DismechError::InvalidParameter`]

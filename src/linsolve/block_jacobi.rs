@@ -104,19 +104,25 @@ impl BlockJacobi {
 
     fn invert(&mut self, blocks: Vec<DMatrix<f64>>) -> Result<(), SolveError> {
         self.inverses.clear();
-        for (index, block) in blocks.into_iter().enumerate() {
-            if !block.is_square() {
-                return Err(SolveError::DimensionMismatch {
-                    what: "block-Jacobi block columns",
-                    expected: block.nrows(),
-                    found: block.ncols(),
-                });
-            }
-            let factor = block.cholesky().ok_or(SolveError::Factorization(
-                FactorizationFailure::BlockNotPositiveDefinite { block: index },
-            ))?;
-            self.inverses.push(factor.inverse());
-        }
+        // In parallel; the first failing block in order is reported.
+        let inverses: Vec<Result<DMatrix<f64>, SolveError>> = blocks
+            .into_par_iter()
+            .enumerate()
+            .map(|(index, block)| {
+                if !block.is_square() {
+                    return Err(SolveError::DimensionMismatch {
+                        what: "block-Jacobi block columns",
+                        expected: block.nrows(),
+                        found: block.ncols(),
+                    });
+                }
+                let factor = block.cholesky().ok_or(SolveError::Factorization(
+                    FactorizationFailure::BlockNotPositiveDefinite { block: index },
+                ))?;
+                Ok(factor.inverse())
+            })
+            .collect();
+        self.inverses = inverses.into_iter().collect::<Result<_, _>>()?;
         Ok(())
     }
 
