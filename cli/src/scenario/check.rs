@@ -91,6 +91,22 @@ pub fn finite2(source: &Source<'_>, path: &KeyPath, value: [f64; 2]) -> Result<[
     }
 }
 
+/// A moving wall's velocity at `path`: finite and not zero.
+pub fn wall_velocity(
+    source: &Source<'_>,
+    path: &KeyPath,
+    value: [f64; 2],
+) -> Result<[f64; 2], Refusal> {
+    let v = finite2(source, path, value)?;
+    if v == [0.0, 0.0] {
+        return Err(Box::new(source.at_key(
+            path,
+            "[0, 0] is refused: a moving wall needs a velocity other than zero (leave the key out for a fixed wall)",
+        )));
+    }
+    Ok(v)
+}
+
 /// A refusal of a combination of keys that the library cannot compose.
 pub fn combination(source: &Source<'_>, paths: &[&KeyPath], message: &str) -> Refusal {
     Box::new(source.at_keys(paths, message))

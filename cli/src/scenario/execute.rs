@@ -9,7 +9,7 @@ use dismech::checkpoint::CheckpointProblem;
 use dismech::dem::DemSimulation;
 use dismech::error::{DismechError, Result};
 use dismech::grid::{write_rasters_with_crs, Raster, RasterFormat};
-use dismech::hpm::{ColumnMaps, Convergence, HpmIterate, HpmSolver};
+use dismech::hpm::{ColumnMaps, HpmIterate, HpmSolver};
 use dismech::implicit::ImplicitDynamics;
 use dismech::integrate::ExplicitEuler;
 use dismech::io::write_atomically;
@@ -913,16 +913,13 @@ fn run_hpm(plan: HpmPlan, dir: &Path, bar: &ProgressBar) -> Result<Value> {
                 Ok(())
             };
             let result = solver.nonlinear_observed(&model, &seismic, 1.0, &settings, &mut show)?;
-            let (status, iterations, residual) = match result.convergence {
-                Convergence::Converged {
-                    iterations,
-                    residual,
-                } => ("Converged", iterations, residual),
-                Convergence::NotConverged {
-                    iterations,
-                    residual,
-                } => ("NotConverged", iterations, residual),
+            let convergence = &result.convergence;
+            let status = if convergence.converged() {
+                "Converged"
+            } else {
+                "NotConverged"
             };
+            let (iterations, residual) = (convergence.iterations(), convergence.residual());
             let value = json!({
                 "status": status,
                 "safety_factor": result.safety_factor(&model)?,

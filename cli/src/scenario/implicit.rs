@@ -18,7 +18,8 @@ use dismech::shape::Segment;
 
 use super::bodies::{BodySpec, Common, MotionSpec, PlaneSpec};
 use super::check::{
-    self, combination, count, finite2, named, positive, refuse_beside_driver, Refusal,
+    self, combination, count, finite2, named, positive, refuse_beside_driver, wall_velocity,
+    Refusal,
 };
 use super::driver::{ImplicitSpec, PredictorSpec};
 use super::explicit::{
@@ -480,14 +481,7 @@ fn bodies<const N: usize>(
                 let mut wall = Body::wall(segment, k)
                     .map_err(|e| Box::new(source.at_key(&path, e.to_string())))?;
                 if let Some(v) = w.velocity {
-                    let key = path.key("velocity");
-                    let v = finite2(source, &key, v)?;
-                    if v == [0.0, 0.0] {
-                        return Err(Box::new(source.at_key(
-                            &key,
-                            "[0, 0] is refused: a moving wall needs a velocity other than zero (leave the key out for a fixed wall)",
-                        )));
-                    }
+                    let v = wall_velocity(source, &path.key("velocity"), v)?;
                     let velocity = Vec2::new(v[0], v[1]);
                     wall.prescribed = Some(Prescribed::translation(move |t| velocity * t));
                 }

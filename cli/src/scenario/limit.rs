@@ -13,7 +13,9 @@ use dismech::math::{Point, Pose2, Vec2};
 use dismech::shape::AnyShape2;
 
 use super::bodies::{BodySpec, LatticeModel};
-use super::check::{self, combination, count, finite2, non_negative, positive, Refusal};
+use super::check::{
+    self, combination, count, finite2, non_negative, positive, wall_velocity, Refusal,
+};
 use super::driver::LimitSpec;
 use super::explicit::{gravity, MAX_BODIES};
 use super::law::{LawSpec, RigidPlasticSpec};
@@ -259,13 +261,7 @@ fn shapes_plan(
                 None => Vec2::zeros(),
                 Some(v) => {
                     let key = path.key("velocity");
-                    let v = finite2(source, &key, v)?;
-                    if v == [0.0, 0.0] {
-                        return Err(Box::new(source.at_key(
-                            &key,
-                            "[0, 0] is refused: a moving wall needs a velocity other than zero (leave the key out for a fixed wall)",
-                        )));
-                    }
+                    let v = wall_velocity(source, &key, v)?;
                     if let Some(first) = &moving {
                         return Err(combination(
                             source,
