@@ -469,3 +469,24 @@ fn small_m_alpha_is_refused_naming_the_column_and_the_search_agrees() {
     let lowest = result.lowest().unwrap();
     assert_eq!((lowest.result.safety_factor, lowest.trial), best);
 }
+
+/// A refusal prints as words, each its own, and a Bishop failure that
+/// carries one prints those words, not the variant's name.
+#[test]
+fn refusals_print_as_words() {
+    let texts: Vec<String> = Refusal::ALL.iter().map(|r| r.to_string()).collect();
+    for (r, text) in Refusal::ALL.iter().zip(&texts) {
+        assert!(text.len() > 20 && text.contains(' '), "{r:?}: {text}");
+        assert_ne!(*text, format!("{r:?}"));
+    }
+    let mut unique = texts.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), texts.len());
+    let failure = BishopFailure::Refused(Refusal::LeavesDem);
+    assert_eq!(
+        failure.to_string(),
+        format!("surface refused: {}", Refusal::LeavesDem)
+    );
+    assert!(!failure.to_string().contains("LeavesDem"));
+}

@@ -124,7 +124,7 @@ pub enum BishopFailure {
 impl std::fmt::Display for BishopFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::Refused(r) => write!(f, "surface refused: {r:?}"),
+            Self::Refused(r) => write!(f, "surface refused: {r}"),
             Self::SmallMAlpha {
                 row,
                 column,

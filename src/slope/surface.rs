@@ -350,6 +350,30 @@ impl Refusal {
     }
 }
 
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::CentreOffDem => {
+                "its centre lies outside the grid or over a cell without ground data"
+            }
+            Self::LeavesDem => "a column lies on the grid's edge: the surface goes on beyond the DEM",
+            Self::NoData => {
+                "its footprint covers a cell without ground data, or a column has no water-table or bedrock data"
+            }
+            Self::TooFewColumns => "it cuts fewer columns than the limits' least",
+            Self::Volume => "its volume lies outside the limits",
+            Self::Area => "its plan area lies outside the limits",
+            Self::Depth => "its depth lies outside the limits",
+            Self::NothingDrives => "nothing drives the slide (level ground)",
+            Self::NoStrength => {
+                "its strength is not positive (pore pressure or a seismic force lifts the columns off their bases)"
+            }
+            Self::SmallMAlpha => "a column's m_alpha is at or below Bishop's floor",
+            Self::NotConverged => "Bishop's iteration of F did not settle",
+        })
+    }
+}
+
 /// The columns the trial surface cuts out of the terrain, into `columns`
 /// (cleared first), in grid order (row by row from the top). Over a
 /// bedrock ([`Terrain::with_bedrock`]) a base below it is raised to it and
