@@ -2414,3 +2414,24 @@ fn a_checkpoint_of_another_sine_motion_is_refused() {
     run_file(&file, "b", Some(40), Some(&ckpt));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `driver.slip_reversal_quantile` reaches the implicit driver's settings
+/// and is refused outside [0, 1) naming its key.
+#[test]
+fn the_slip_reversal_quantile_is_read_and_checked() {
+    let from = "search_distance = 0.02";
+    for bad in ["1.0", "-0.1", "nan"] {
+        let message = refusal_of(
+            "dda_sliding_block.toml",
+            from,
+            &format!("{from}\nslip_reversal_quantile = {bad}"),
+        );
+        assert!(
+            message.contains("model.toml:22:") && message.contains("driver.slip_reversal_quantile"),
+            "{message}"
+        );
+    }
+    let text = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap();
+    let text = text.replacen(from, &format!("{from}\nslip_reversal_quantile = 0.2"), 1);
+    assert!(scenario::prepare(Path::new("model.toml"), &text, Overrides::default()).is_ok());
+}

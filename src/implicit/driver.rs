@@ -392,6 +392,7 @@ where
             histories: histories_of(&self.history, contacts),
             dt,
             slip_regularization: self.settings.slip_regularization,
+            slip_reversal_quantile: self.settings.slip_reversal_quantile,
             search: self.search,
         };
         let parts: Parts<N> = data.parts(
@@ -435,6 +436,7 @@ where
             histories: histories_of(&self.history, &contacts),
             dt,
             slip_regularization: self.settings.slip_regularization,
+            slip_reversal_quantile: self.settings.slip_reversal_quantile,
             search: self.search,
         };
         let parts: Parts<N> = data.parts(

@@ -126,6 +126,9 @@ pub(super) struct StepData<'a, const N: usize, K, L: TangentLaw<2>> {
     /// Fraction of the normal stiffness added to the shear stiffness of a
     /// slipping contact in the tangent ([`super::ImplicitSettings::slip_regularization`]).
     pub slip_regularization: f64,
+    /// The quantile of the stick points at which an update is stopped
+    /// ([`super::ImplicitSettings::slip_reversal_quantile`]).
+    pub slip_reversal_quantile: f64,
     /// The step's search distance: the largest motion of a boundary point
     /// in one Newton update.
     pub search: f64,
@@ -655,6 +658,7 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
             self.regime_at(k, c, &x)
         };
         let mut bound = 1.0f64;
+        let mut sticks = Vec::new();
         for ((k, &now), _) in regimes
             .iter()
             .enumerate()
@@ -682,6 +686,12 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
                 }
             }
             bound = bound.min(high);
+            sticks.push(high);
+        }
+        if self.slip_reversal_quantile > 0.0 && !sticks.is_empty() {
+            sticks.sort_by(f64::total_cmp);
+            let k = (sticks.len() as f64 * self.slip_reversal_quantile) as usize;
+            return Ok(sticks[k.min(sticks.len() - 1)]);
         }
         Ok(bound)
     }

@@ -74,6 +74,8 @@ pub struct ImplicitSpec {
     /// Share of a slipping contact's normal stiffness added to its shear
     /// stiffness in Newton's matrix.
     pub slip_regularization: Option<f64>,
+    /// The quantile of the stick points at which an update stops.
+    pub slip_reversal_quantile: Option<f64>,
     /// Mass-proportional damping α (1/s).
     pub mass_damping: Option<f64>,
 }

@@ -131,6 +131,7 @@ pub const KEYS: &[&str] = &[
     "tolerance",
     "max_iterations",
     "group",
+    "slip_reversal_quantile",
     "groups",
     "pair_laws",
 ];

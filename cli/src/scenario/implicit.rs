@@ -312,6 +312,7 @@ fn compose_error(source: &Source<'_>, spec: &ScenarioSpec, error: DismechError) 
                 "max_search_distance" => "max_search_distance",
                 "residual tolerance" => "residual_tolerance",
                 "slip regularization" => "slip_regularization",
+                "slip_reversal_quantile" => "slip_reversal_quantile",
                 "mass damping" => "mass_damping",
                 "min_dt_ratio" => "min_dt_ratio",
                 "gravity" => {
@@ -411,6 +412,7 @@ fn implicit_settings(
             Some(PredictorSpec::StartOfStep) => Predictor::StartOfStep,
         },
         slip_regularization: s.slip_regularization.unwrap_or(d.slip_regularization),
+        slip_reversal_quantile: s.slip_reversal_quantile.unwrap_or(d.slip_reversal_quantile),
         mass_damping: s.mass_damping.unwrap_or(d.mass_damping),
     })
 }
