@@ -669,6 +669,16 @@ pub enum FactorizationFailure {
         /// Index of the block.
         block: usize,
     },
+    /// A line of a multigrid level with lines (a grid column of HPM's
+    /// column multigrid), its diagonal blocks taken together, is not
+    /// positive definite.
+    #[error(
+        "line {line} of a multigrid level (its diagonal blocks together) is not positive definite"
+    )]
+    LineNotPositiveDefinite {
+        /// Index of the line, in the order given.
+        line: usize,
+    },
     /// A block row of a multigrid level has no diagonal block.
     #[error("block {block} has no diagonal block")]
     NoDiagonalBlock {

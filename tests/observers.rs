@@ -340,13 +340,16 @@ fn hpm_analyses_tell_every_iterate_and_trial_and_change_nothing() {
     // Every iterate of the nonlinear solve, the start and the one returned
     // included, with the displacements of the iterate.
     let mut seen: Vec<(usize, f64, f64, Vec<f64>)> = Vec::new();
+    let mut lasts = Vec::new();
     let mut record = |it: &HpmIterate<'_>, event: &Event<'_>| {
         if let Event::Iteration {
             iteration,
             residual,
+            last,
         } = *event
         {
             seen.push((iteration, residual, it.reduction, it.displacements.to_vec()));
+            lasts.push(last);
         }
         Ok(())
     };
@@ -366,6 +369,9 @@ fn hpm_analyses_tell_every_iterate_and_trial_and_change_nothing() {
         assert_eq!(u.len(), plain.displacements.len());
     }
     assert!(seen[0].3.iter().all(|u| *u == 0.0), "the start is U = 0");
+    // Only the iterate returned is the last.
+    assert_eq!(lasts.iter().filter(|l| **l).count(), 1);
+    assert_eq!(lasts.last(), Some(&true));
     let last = seen.last().unwrap();
     assert_eq!(last.1, plain.convergence.residual());
     assert_eq!(last.3, plain.displacements);

@@ -2311,6 +2311,10 @@ fn hpm_nonlinear_keys_are_checked() {
             "nonlinear = true\nmax_iterations = -3",
             "`driver.max_iterations`",
         ),
+        (
+            "nonlinear = true\nmax_iterations = 1000001",
+            "`driver.max_iterations` = 1000001",
+        ),
         ("tolerance = 1e-3", "`driver.tolerance`"),
         (
             "nonlinear = false\nmax_iterations = 10",

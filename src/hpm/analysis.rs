@@ -652,7 +652,10 @@ impl HpmSolver<ConjugateGradient<SmoothedAggregation>> {
     ///
     /// # Errors
     /// As [`HpmSolver::multigrid`], and [`DismechError::InvalidParameter`]
-    /// naming `plan` when it is 0.
+    /// naming `plan` when it is 0; a grid column whose elements' diagonal
+    /// blocks together are not positive definite is
+    /// [`crate::linsolve::FactorizationFailure::LineNotPositiveDefinite`]
+    /// naming its index in [`HpmModel::columns`].
     pub fn column_multigrid(
         model: &HpmModel,
         settings: CgSettings,
@@ -891,6 +894,8 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
         loop {
             let (residual, tractions) = self.out_of_balance(model, &laws, &f, &u);
             let relative = relative_to(norm(&residual), f_norm);
+            let done = relative <= settings.tolerance;
+            let last = done || iterations >= settings.max_iterations || !relative.is_finite();
             observer.observe(
                 &HpmIterate {
                     model,
@@ -900,10 +905,10 @@ impl<S: LinearSolver<BlockMatrix>> HpmSolver<S> {
                 &Event::Iteration {
                     iteration: iterations,
                     residual: relative,
+                    last,
                 },
             )?;
-            let done = relative <= settings.tolerance;
-            if done || iterations >= settings.max_iterations || !relative.is_finite() {
+            if last {
                 let convergence = if done {
                     Convergence::Converged {
                         iterations,

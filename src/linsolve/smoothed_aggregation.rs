@@ -510,7 +510,7 @@ impl LineSmoother {
                 let l = block
                     .cholesky()
                     .ok_or(SolveError::Factorization(
-                        FactorizationFailure::BlockNotPositiveDefinite { block: index },
+                        FactorizationFailure::LineNotPositiveDefinite { line: index },
                     ))?
                     .unpack();
                 let n = l.nrows();
@@ -1101,7 +1101,9 @@ impl SmoothedAggregation {
         r.apply(&residual, &mut coarse_rhs);
         let mut coarse_x = vec![0.0; nc];
         self.cycle(level + 1, &coarse_rhs, &mut coarse_x);
-        if let (Some(ap), Some(lines)) = (ap, lines) {
+        // Without sweeps there is no post-sweep to start from r (and none
+        // before, so the plain correction keeps the cycle symmetric).
+        if let (Some(ap), Some(lines), true) = (ap, lines, self.settings.sweeps > 0) {
             // r ← r − (A P) e, x ← x + P e, then the first post-sweep from r.
             let mut correction = vec![0.0; x.len()];
             ap.apply(&coarse_x, &mut correction);
@@ -1237,6 +1239,54 @@ mod tests {
         }
     }
 
+    /// A chain whose block `bad` is indefinite.
+    struct IndefiniteAt(usize, usize);
+
+    impl BlockSparse for IndefiniteAt {
+        fn block_size(&self) -> usize {
+            2
+        }
+        fn block_count(&self) -> usize {
+            self.0
+        }
+        fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64])) {
+            Chain(self.0).visit_blocks(&mut |i, j, values| {
+                if i == j && i == self.1 {
+                    visit(i, j, &[-4.0, 1.0, 1.0, 3.0]);
+                } else {
+                    visit(i, j, values);
+                }
+            });
+        }
+    }
+
+    /// A line whose blocks together are not positive definite is named by
+    /// its index among the lines given.
+    #[test]
+    fn an_indefinite_line_is_named() {
+        let blocks = 40;
+        let settings = AggregationSettings {
+            max_coarse: 4,
+            ..AggregationSettings::default()
+        };
+        let first = LineLevel {
+            aggregates: (0..blocks).map(|i| i / 4).collect(),
+            lines: (0..blocks / 2).map(|l| 2 * l..2 * l + 2).collect(),
+        };
+        let mut amg =
+            SmoothedAggregation::new(settings, vec![1.0; blocks * 2], 1).with_lines(first);
+        let failure = Preconditioner::<IndefiniteAt>::setup(&mut amg, &IndefiniteAt(blocks, 13));
+        assert!(
+            matches!(
+                failure,
+                Err(SolveError::Factorization(
+                    FactorizationFailure::LineNotPositiveDefinite { line: 6 }
+                ))
+            ),
+            "{failure:?}"
+        );
+    }
+
     #[test]
     fn packed_cholesky_solve_matches_the_dense_solve() {
         let n = 7;
@@ -1260,7 +1310,9 @@ mod tests {
     }
 
     /// The V-cycle with a level of lines (smoother and prolongator by
-    /// lines, residual updated by `A P`) is symmetric positive definite.
+    /// lines, residual updated by `A P`) is symmetric positive definite,
+    /// with 1 and 2 sweeps, and symmetric with none (the coarse
+    /// correction alone).
     #[test]
     fn a_cycle_with_lines_is_symmetric_and_positive() {
         let blocks = 40;
@@ -1273,7 +1325,7 @@ mod tests {
             aggregates: (0..blocks).map(|i| i / 4).collect(),
             lines: (0..blocks / 2).map(|l| 2 * l..2 * l + 2).collect(),
         };
-        for sweeps in [1, 2] {
+        for sweeps in [0, 1, 2] {
             let mut amg = SmoothedAggregation::new(
                 AggregationSettings { sweeps, ..settings },
                 near_null.clone(),

@@ -58,8 +58,10 @@
 
 use crate::error::Result;
 
-/// What just happened in an observed run.
+/// What just happened in an observed run. More kinds of event may come
+/// (a match on it needs a `_` arm).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Event<'a> {
     /// A step was taken: the driver's step count and time after it.
     Step {
@@ -100,13 +102,16 @@ pub enum Event<'a> {
     },
     /// An iterate of an iterative analysis was evaluated (HPM's nonlinear
     /// solve, [`crate::hpm::HpmSolver::nonlinear_observed`]): its number,
-    /// 0 for the start, and its relative out-of-balance force. The last
-    /// one sent is the iterate the analysis returns.
+    /// 0 for the start, its relative out-of-balance force, and whether it
+    /// is the iterate the analysis returns (converged, at its iteration
+    /// limit, or not finite).
     Iteration {
         /// Corrections applied so far.
         iteration: usize,
         /// `‖F − F_int(U)‖ / ‖F‖` at the iterate.
         residual: f64,
+        /// Whether the analysis stops at this iterate.
+        last: bool,
     },
     /// A trial of a search ended (a factor of HPM's strength reduction,
     /// [`crate::hpm::strength_reduction_observed`]): the factor tried and
@@ -167,7 +172,7 @@ impl<W: ?Sized> Observer<W> for Unobserved {
 
 /// An observer called at every `n`-th [`Event::Step`] (steps `n`, `2n`,
 /// … of the driver's count), at every `n`-th [`Event::Iteration`] (by its
-/// number: 0, `n`, `2n`, …), at every `n`-th [`Event::SubStep`] it is told
+/// number: 0, `n`, `2n`, …) and at the last, at every `n`-th [`Event::SubStep`] it is told
 /// of (counted across the calls it observes, so that `every(5, o)` over
 /// calls of one sub-step each sees every fifth), and at every other event.
 #[derive(Debug, Clone)]
@@ -198,7 +203,9 @@ impl<W: ?Sized, O: Observer<W>> Observer<W> for Every<O> {
     fn observe(&mut self, world: &W, event: &Event<'_>) -> Result<()> {
         match event {
             Event::Step { step, .. } if step % self.n != 0 => Ok(()),
-            Event::Iteration { iteration, .. } if iteration % self.n as usize != 0 => Ok(()),
+            Event::Iteration {
+                iteration, last, ..
+            } if !*last && (*iteration as u64) % self.n != 0 => Ok(()),
             Event::SubStep { .. } => {
                 self.substeps += 1;
                 if self.substeps % self.n == 0 {
@@ -232,6 +239,26 @@ mod tests {
         assert!(seen[0].starts_with("Step { step: 3,"), "{seen:?}");
         assert!(seen[1].starts_with("Step { step: 6,"), "{seen:?}");
         assert!(seen[2].starts_with("Finished"), "{seen:?}");
+    }
+
+    #[test]
+    fn every_passes_every_nth_iteration_and_the_last() {
+        let mut seen = Vec::new();
+        let mut o = every(10, |_: &(), e: &Event<'_>| {
+            if let Event::Iteration { iteration, .. } = e {
+                seen.push(*iteration);
+            }
+            Ok(())
+        });
+        for iteration in 0..=95 {
+            let event = Event::Iteration {
+                iteration,
+                residual: 1.0,
+                last: iteration == 95,
+            };
+            o.observe(&(), &event).unwrap();
+        }
+        assert_eq!(seen, [0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 95]);
     }
 
     #[test]

@@ -632,10 +632,8 @@ where
                     }
                 }
             }
-            Event::SubStep { .. }
-            | Event::Halved { .. }
-            | Event::Iteration { .. }
-            | Event::Trial { .. } => {}
+            // The implicit driver's and HPM's events.
+            _ => {}
         }
         Ok(())
     };
@@ -903,6 +901,7 @@ fn run_hpm(plan: HpmPlan, dir: &Path, bar: &ProgressBar) -> Result<Value> {
                 if let Event::Iteration {
                     iteration,
                     residual,
+                    ..
                 } = *event
                 {
                     bar.set_message(format!(

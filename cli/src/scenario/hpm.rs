@@ -218,7 +218,11 @@ fn nonlinear(
     let defaults = NonlinearSettings::default();
     let nonlinear = NonlinearSettings {
         tolerance: settings.tolerance.unwrap_or(defaults.tolerance),
-        max_iterations: settings.max_iterations.unwrap_or(defaults.max_iterations),
+        max_iterations: match settings.max_iterations {
+            // As the other drivers' step counts, at most 10⁶.
+            Some(n) => count(source, &driver.key("max_iterations"), n, 1, 1_000_000)?,
+            None => defaults.max_iterations,
+        },
     };
     nonlinear
         .validate()
