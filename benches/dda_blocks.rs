@@ -20,7 +20,8 @@
 //! Run: `cargo bench --bench dda_blocks` (optionally sizes, e.g. `-- 100
 //! 400`, `steps=N` (50 by default), `touching` or `settling` for one state,
 //! `penalty=1` or `penalty=10` for one penalty (× E × 1 m), `trace` for a
-//! line per step (milliseconds, solves, open–close iterations, halvings);
+//! line per step (milliseconds, solves, open–close iterations, halvings),
+//! `quantile=Q` for [`DdaSettings::slip_reversal_quantile`] (0 by default);
 //! for one core,
 //! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench --bench dda_blocks`).
 
@@ -122,9 +123,14 @@ fn run(
     integration: FrictionIntegration,
     steps: usize,
     trace: bool,
+    quantile: f64,
 ) -> Result<Run, Box<dyn std::error::Error>> {
     let law = PenaltyCoulomb::new(penalty, 0.6, integration)?;
-    let mut model = DdaModel::new(blocks, law, DdaSettings::default())?;
+    let settings = DdaSettings {
+        slip_reversal_quantile: quantile,
+        ..DdaSettings::default()
+    };
+    let mut model = DdaModel::new(blocks, law, settings)?;
     let weight: f64 = model.blocks()[1..]
         .iter()
         .map(|b| b.area() * DENSITY * 9.8)
@@ -189,6 +195,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or(50usize)
         .max(1);
     let trace = args.iter().any(|a| a == "trace");
+    let quantile = args
+        .iter()
+        .find_map(|a| a.strip_prefix("quantile=").and_then(|s| s.parse().ok()))
+        .unwrap_or(0.0f64);
     let states: Vec<(&str, f64, f64)> = [("touching", 0.0, 0.0), ("settling", 1e-5, 0.002)]
         .into_iter()
         .filter(|(name, _, _)| {
@@ -229,7 +239,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ] {
                     let blocks = wall(courses, c, bed, head)?;
                     let count = blocks.len() - 1;
-                    let r = run(blocks, k * E, integration, steps, trace)?;
+                    let r = run(blocks, k * E, integration, steps, trace, quantile)?;
                     println!(
                         "{count:>6} {state:>9} {:>7} {:>5} {:>8.1} {:>8.1} {:>8.1} {:>7.2} {:>6.2} {:>9} {:>9} {:>8.5}  {}{}",
                         format!("{k} E"),

@@ -197,8 +197,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{DismechError, Result};
 
-/// The version of the checkpoint format this build writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+/// The version of the checkpoint format this build writes and reads (2:
+/// the implicit driver's settings gained `slip_reversal_quantile`).
+pub const FORMAT_VERSION: u32 = 2;
 
 /// The first eight bytes of every checkpoint.
 const SIGNATURE: [u8; 8] = *b"dismechK";

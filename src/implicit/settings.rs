@@ -90,11 +90,12 @@ pub struct ImplicitSettings {
     /// of those fractions. 0 (the default) stops it where the first one
     /// sticks, so that none jumps across its stick band; on a wall of
     /// hundreds of such contacts that one contact shortens the update of
-    /// every block. With 0.2 four in five of them are stopped inside their
-    /// band and the others go on, to be stopped at a later update. Measured
-    /// with 0.2 against 0 (`benches/dda_blocks.rs`, return mapping, 1 610
-    /// bricks, 30 steps of 1 ms, 40 for the first row), linear solves a
-    /// step and halvings:
+    /// every block. With 0.2 the update stops where a fifth of them have
+    /// stuck: those may jump across their band and are stopped at a later
+    /// update; the other four in five have not reached theirs. Measured
+    /// with 0.2 against 0 (`benches/dda_blocks.rs` with `quantile=0.2`,
+    /// return mapping, 1 610 bricks, 30 steps of 1 ms, 40 for the first
+    /// row), linear solves a step and halvings:
     ///
     /// | wall | 0 | 0.2 |
     /// |---|---|---|

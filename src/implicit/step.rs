@@ -621,7 +621,8 @@ impl<const N: usize, K: Kinematics<N>, L: TangentLaw<2>> StepData<'_, N, K, L> {
     /// no slipping contact (`regimes`) whose slip has reversed before in
     /// this step's iteration (`reversed`) across its stick band to slip the
     /// other way again: the fraction at which the first such contact
-    /// sticks.
+    /// sticks (with [`super::ImplicitSettings::slip_reversal_quantile`] `q
+    /// > 0`, the `q`-quantile of the fractions at which they stick).
     ///
     /// The stick band of a contact is narrow — the shear travel `2 μ t_n /
     /// k_s` between the two slip limits, micrometres for a stiff penalty —

@@ -301,8 +301,8 @@ pub enum Refusal {
     /// A column lies in the grid's outermost row or column: the surface
     /// would go on beyond the DEM.
     LeavesDem,
-    /// The footprint covers a no-data cell of the DEM, or a column has no
-    /// water-table data.
+    /// The footprint covers a no-data cell of the DEM, or a column lacks
+    /// data it needs (water table, bedrock, a layer's bottom, r_u).
     NoData,
     /// Fewer columns than [`SurfaceLimits::min_columns`] (none where the
     /// surface stays above the ground).
@@ -358,7 +358,7 @@ impl std::fmt::Display for Refusal {
             }
             Self::LeavesDem => "a column lies on the grid's edge: the surface goes on beyond the DEM",
             Self::NoData => {
-                "its footprint covers a cell without ground data, or a column has no water-table or bedrock data"
+                "its footprint covers a cell without ground data, or a column lacks data it needs (water table, bedrock, a layer's bottom, r_u)"
             }
             Self::TooFewColumns => "it cuts fewer columns than the limits' least",
             Self::Volume => "its volume lies outside the limits",
