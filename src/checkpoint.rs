@@ -556,11 +556,20 @@ mod tests {
         other[0] = b'x';
         assert_eq!(refusal(&other), CheckpointProblem::NotACheckpoint);
         let mut newer = bytes.clone();
-        newer[8..12].copy_from_slice(&2u32.to_le_bytes());
+        newer[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
         assert_eq!(
             refusal(&newer),
             CheckpointProblem::UnsupportedVersion {
-                found: 2,
+                found: FORMAT_VERSION + 1,
+                supported: FORMAT_VERSION
+            }
+        );
+        let mut older = bytes.clone();
+        older[8..12].copy_from_slice(&(FORMAT_VERSION - 1).to_le_bytes());
+        assert_eq!(
+            refusal(&older),
+            CheckpointProblem::UnsupportedVersion {
+                found: FORMAT_VERSION - 1,
                 supported: FORMAT_VERSION
             }
         );
