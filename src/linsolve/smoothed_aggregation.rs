@@ -86,8 +86,13 @@ pub trait BlockSparse {
     /// Number of block rows.
     fn block_count(&self) -> usize;
     /// Call `visit(a, b, values)` for every stored block `A_ab` of both
-    /// triangles and the diagonal, `values` its `block_size²` entries by
-    /// rows; a block visited twice is summed.
+    /// triangles and the diagonal (`a`, `b` below [`Self::block_count`]),
+    /// `values` its `block_size²` entries by rows; a block visited twice is
+    /// summed. The multigrid calls it twice, for the pattern and then the
+    /// numbers: both calls must visit the same blocks in the same order
+    /// (a matrix that does not is refused with
+    /// [`SolveError::DimensionMismatch`], as is a block out of the matrix
+    /// or of another size).
     fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64]));
 }
 
@@ -162,14 +167,38 @@ impl Bsr {
     }
 
     /// Assemble from unsorted `(row, col, values)` blocks, summing
-    /// duplicates.
-    fn from_blocks<M: BlockSparse + ?Sized>(matrix: &M) -> Self {
+    /// duplicates; [`SolveError::DimensionMismatch`] for a block out of the
+    /// matrix or of another size, or a second visit unlike the first.
+    fn from_blocks<M: BlockSparse + ?Sized>(matrix: &M) -> Result<Self, SolveError> {
         let b = matrix.block_size();
         let n = matrix.block_count();
         // The blocks' positions first, then their numbers straight into
-        // place (no copy of the matrix on the way).
+        // place (no copy of the matrix on the way). A block out of the
+        // matrix, of the wrong size, or a second visit that differs from
+        // the first is refused.
+        let mismatch = |what, expected, found| SolveError::DimensionMismatch {
+            what,
+            expected,
+            found,
+        };
+        let mut problem = None;
         let mut list: Vec<(usize, usize, usize)> = Vec::new();
-        matrix.visit_blocks(&mut |i, j, _| list.push((i, j, list.len())));
+        matrix.visit_blocks(&mut |i, j, v| {
+            if problem.is_some() {
+                return;
+            }
+            if i.max(j) >= n {
+                problem = Some(mismatch("block index of visit_blocks", n, i.max(j)));
+            } else if v.len() != b * b {
+                problem = Some(mismatch("block values of visit_blocks", b * b, v.len()));
+            } else {
+                list.push((i, j, list.len()));
+            }
+        });
+        if let Some(problem) = problem {
+            return Err(problem);
+        }
+        let order: Vec<(usize, usize)> = list.iter().map(|&(i, j, _)| (i, j)).collect();
         list.par_sort_unstable();
         let mut out = Self {
             block_rows: n,
@@ -195,14 +224,26 @@ impl Bsr {
         }
         out.values = vec![0.0; out.col.len() * b * b];
         let mut visit = 0;
-        matrix.visit_blocks(&mut |_, _, v| {
+        let mut same = true;
+        matrix.visit_blocks(&mut |i, j, v| {
+            if !same || order.get(visit) != Some(&(i, j)) || v.len() != b * b {
+                same = false;
+                return;
+            }
             let k = place[visit];
             visit += 1;
             for (x, y) in out.values[k * b * b..(k + 1) * b * b].iter_mut().zip(v) {
                 *x += y;
             }
         });
-        out
+        if !same || visit != order.len() {
+            return Err(mismatch(
+                "blocks visited a second time by visit_blocks",
+                order.len(),
+                visit,
+            ));
+        }
+        Ok(out)
     }
 
     /// `y = A x` (rows in parallel).
@@ -1174,15 +1215,17 @@ impl<A: BlockSparse + ?Sized> Preconditioner<A> for SmoothedAggregation {
     /// Build the hierarchy (see the module documentation).
     ///
     /// # Errors
-    /// [`SolveError::DimensionMismatch`] for a near-null space of another
-    /// size than the matrix's, or a first level
+    /// [`SolveError::DimensionMismatch`] for a matrix whose
+    /// [`BlockSparse::visit_blocks`] breaks its contract (a block out of
+    /// the matrix or of another size, a second visit unlike the first), a
+    /// near-null space of another size than the matrix's, or a first level
     /// ([`SmoothedAggregation::with_lines`]) whose aggregates or lines do
     /// not fit it (checked even where the matrix is factored whole);
     /// [`SolveError::Factorization`] for a diagonal block that is not
     /// positive definite or a coarsest level the Cholesky factorization
     /// refuses.
     fn setup(&mut self, matrix: &A) -> Result<(), SolveError> {
-        self.build(Bsr::from_blocks(matrix))
+        self.build(Bsr::from_blocks(matrix)?)
     }
 
     fn apply(&self, r: &[f64], z: &mut [f64]) {
@@ -1257,6 +1300,55 @@ mod tests {
                     visit(i, j, values);
                 }
             });
+        }
+    }
+
+    /// A matrix whose blocks come out of range, of another size, or
+    /// differently on the second visit.
+    struct Unruly {
+        kind: usize,
+        visits: std::cell::Cell<usize>,
+    }
+
+    impl BlockSparse for Unruly {
+        fn block_size(&self) -> usize {
+            2
+        }
+        fn block_count(&self) -> usize {
+            10
+        }
+        fn visit_blocks(&self, visit: &mut dyn FnMut(usize, usize, &[f64])) {
+            let second = self.visits.get() > 0;
+            self.visits.set(self.visits.get() + 1);
+            Chain(10).visit_blocks(&mut |i, j, values| match self.kind {
+                0 if i == 9 && j == 9 => visit(10, 10, values),
+                1 if i == 3 && j == 3 => visit(i, j, &values[..3]),
+                2 if second && i == 5 && j == 5 => {}
+                _ => visit(i, j, values),
+            });
+        }
+    }
+
+    /// A matrix that breaks `visit_blocks`' contract is refused, not a
+    /// panic.
+    #[test]
+    fn a_matrix_breaking_the_visit_contract_is_refused() {
+        for (kind, what) in [
+            (0, "block index of visit_blocks"),
+            (1, "block values of visit_blocks"),
+            (2, "blocks visited a second time by visit_blocks"),
+        ] {
+            let matrix = Unruly {
+                kind,
+                visits: std::cell::Cell::new(0),
+            };
+            let mut amg =
+                SmoothedAggregation::new(AggregationSettings::default(), vec![1.0; 20], 1);
+            let refused = Preconditioner::<Unruly>::setup(&mut amg, &matrix);
+            assert!(
+                matches!(refused, Err(SolveError::DimensionMismatch { what: w, .. }) if w == what),
+                "{kind}: {refused:?}"
+            );
         }
     }
 
