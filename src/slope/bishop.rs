@@ -283,8 +283,7 @@ fn bishop_core(
     for k in columns {
         let g = at(k).ok_or(Refusal::NoData)?;
         let t = column_terms(k, &g, cell_area, setup.direction, loads);
-        let effective = (t.normal - t.pore_pressure * t.base_area).max(0.0);
-        resisting += t.cohesion * t.base_area + effective * t.friction;
+        resisting += t.resisting();
         driving += t.along;
         let (x, y) = dem.cell_centre(k.row, k.column);
         let (rx, ry, rz) = (x - centre.0, y - centre.1, k.base - centre.2);

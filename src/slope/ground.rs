@@ -58,6 +58,24 @@ pub struct Layer {
     pub material: SlopeMaterial,
 }
 
+impl Layer {
+    /// [`SlopeError::InvalidLayer`] naming this layer, for `problem`.
+    fn invalid(&self, problem: LayerProblem) -> DismechError {
+        DismechError::Slope(SlopeError::InvalidLayer {
+            layer: self.name.clone(),
+            problem,
+        })
+    }
+
+    /// Its material checked ([`SlopeMaterial::validate`]); a failure is
+    /// [`LayerProblem::Material`] naming the layer.
+    fn check_material(&self) -> Result<()> {
+        self.material
+            .validate()
+            .map_err(|e| self.invalid(LayerProblem::Material(Box::new(e))))
+    }
+}
+
 /// A pore-pressure ratio r_u (Bishop & Morgenstern 1960): the pore
 /// pressure on a base is `u = r_u σ_v`, with `σ_v = Σ γ_i t_i` the
 /// vertical stress of the layers above it.
@@ -196,25 +214,16 @@ impl Ground {
             }));
         }
         for (i, layer) in layers.iter().enumerate() {
-            let fail = |problem: LayerProblem| {
-                DismechError::Slope(SlopeError::InvalidLayer {
-                    layer: layer.name.clone(),
-                    problem,
-                })
-            };
-            layer
-                .material
-                .validate()
-                .map_err(|e| fail(LayerProblem::Material(Box::new(e))))?;
+            layer.check_material()?;
             match (&layer.bottom, i + 1 == n) {
                 (None, false) => {
-                    return Err(fail(LayerProblem::NoBottom {
+                    return Err(layer.invalid(LayerProblem::NoBottom {
                         index: i + 1,
                         count: n,
                     }))
                 }
                 (Some(b), true) => {
-                    return Err(fail(LayerProblem::LastHasBottom {
+                    return Err(layer.invalid(LayerProblem::LastHasBottom {
                         bottom: b.name.clone(),
                     }))
                 }
@@ -264,19 +273,10 @@ impl Ground {
             only.material.validate()?;
         }
         for layer in &self.layers {
-            let fail = |problem: LayerProblem| {
-                DismechError::Slope(SlopeError::InvalidLayer {
-                    layer: layer.name.clone(),
-                    problem,
-                })
-            };
-            layer
-                .material
-                .validate()
-                .map_err(|e| fail(LayerProblem::Material(Box::new(e))))?;
+            layer.check_material()?;
             if let Some(b) = &layer.bottom {
                 b.require_grid_of(terrain.dem())
-                    .map_err(|e| fail(LayerProblem::BottomOffGrid(Box::new(e))))?;
+                    .map_err(|e| layer.invalid(LayerProblem::BottomOffGrid(Box::new(e))))?;
             }
         }
         if let Some(ratio) = &self.pore_ratio {

@@ -226,6 +226,18 @@ pub(super) struct ColumnTerms {
     pub friction: f64,
 }
 
+impl ColumnTerms {
+    /// The column's share of Hovland's resisting sum, `c A + N' tan φ`.
+    /// A column whose pore pressure (or seismic lift) exceeds its normal
+    /// force has no frictional strength left, not a negative one: the
+    /// effective normal force `N'` is taken as zero there, as
+    /// limit-equilibrium codes do (Scoops3D; Reid et al. 2015).
+    pub(super) fn resisting(&self) -> f64 {
+        let effective = (self.normal - self.pore_pressure * self.base_area).max(0.0);
+        self.cohesion * self.base_area + effective * self.friction
+    }
+}
+
 /// The quantities of column `k` on ground `g` along the plan sliding
 /// direction `(sx, sy)` (see the module's documentation).
 pub(super) fn column_terms(
@@ -277,12 +289,7 @@ fn hovland_core(
     for k in columns {
         let g = at(k).ok_or(Refusal::NoData)?;
         let t = column_terms(k, &g, cell_area, setup.direction, loads);
-        // A column whose pore pressure (or seismic lift) exceeds its normal
-        // force has no frictional strength left, not a negative one: the
-        // effective normal force is taken as zero there, as
-        // limit-equilibrium codes do (Scoops3D; Reid et al. 2015).
-        let effective = (t.normal - t.pore_pressure * t.base_area).max(0.0);
-        resisting += t.cohesion * t.base_area + effective * t.friction;
+        resisting += t.resisting();
         driving += t.along;
     }
     finish(setup, columns.len(), resisting, driving)
