@@ -766,6 +766,23 @@ fn named(name: &str, values: &str) -> NamedRaster {
     )
 }
 
+/// `error` is a [`GridError::Cell`] of the file, row and column `at` with
+/// `problem`.
+fn assert_cell_error(error: DismechError, at: (&str, usize, usize), problem: GridCellProblem) {
+    match error {
+        DismechError::Grid(GridError::Cell {
+            file,
+            row,
+            column,
+            problem: found,
+        }) => {
+            assert_eq!((file.as_str(), row, column), at);
+            assert_eq!(found, problem);
+        }
+        e => panic!("{e}"),
+    }
+}
+
 #[test]
 fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     let ground = || named("ground.asc", "10 10 10\n10 10 10\n10 10 10\n");
@@ -796,52 +813,30 @@ fn bad_grids_get_typed_errors_naming_file_row_and_column() {
     }
     // A hole in the slip surface inside the slide.
     let holed = named("slip.asc", "5 5 5\n5 -9999 5\n5 5 5\n");
-    match SlopeGrids::new(ground(), holed, None).unwrap_err() {
-        DismechError::Grid(GridError::Cell {
-            file,
-            row,
-            column,
-            problem,
-        }) => {
-            assert_eq!((file.as_str(), row, column), ("slip.asc", 1, 1));
-            assert_eq!(problem, GridCellProblem::SlipSurfaceHole);
-        }
-        e => panic!("{e}"),
-    }
+    assert_cell_error(
+        SlopeGrids::new(ground(), holed, None).unwrap_err(),
+        ("slip.asc", 1, 1),
+        GridCellProblem::SlipSurfaceHole,
+    );
     // No ground data where the slip surface is given.
     let g = named("ground.asc", "10 10 10\n10 10 10\n10 -9999 10\n");
-    match SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err() {
-        DismechError::Grid(GridError::Cell {
-            file,
-            row,
-            column,
-            problem,
-        }) => {
-            assert_eq!((file.as_str(), row, column), ("ground.asc", 2, 1));
-            assert_eq!(problem, GridCellProblem::NoGround);
-        }
-        e => panic!("{e}"),
-    }
+    assert_cell_error(
+        SlopeGrids::new(g, named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"), None).unwrap_err(),
+        ("ground.asc", 2, 1),
+        GridCellProblem::NoGround,
+    );
     // Water table missing over a valid column.
     let w = named("water.asc", "1 1 1\n1 1 -9999\n1 1 1\n");
-    match SlopeGrids::new(
-        ground(),
-        named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"),
-        Some(w),
-    )
-    .unwrap_err()
-    {
-        DismechError::Grid(GridError::Cell {
-            file,
-            row,
-            column,
-            problem,
-        }) => {
-            assert_eq!((file.as_str(), row, column), ("water.asc", 1, 2));
-            assert_eq!(problem, GridCellProblem::NoWaterTable);
-        }
-        e => panic!("{e}"),
-    }
+    assert_cell_error(
+        SlopeGrids::new(
+            ground(),
+            named("slip.asc", "5 5 5\n5 5 5\n5 5 5\n"),
+            Some(w),
+        )
+        .unwrap_err(),
+        ("water.asc", 1, 2),
+        GridCellProblem::NoWaterTable,
+    );
     // Slip surface above the ground everywhere.
     let high = named("slip.asc", "11 11 11\n11 11 11\n11 11 11\n");
     assert!(matches!(
