@@ -918,6 +918,61 @@ fn pair_laws_and_moving_walls_are_checked() {
     );
 }
 
+/// A point, a vector or a pair of groups is an array of exactly two
+/// numbers: one with a third (or only one) is refused at its key, not read
+/// as its first two.
+#[test]
+fn arrays_of_another_length_are_refused_by_key() {
+    let cases = [
+        (
+            "penalty_vs_lp.toml",
+            "groups = [0, 2]",
+            "groups = [0, 2, 1]",
+            "pair_laws[1].groups",
+            3,
+        ),
+        (
+            "penalty_vs_lp.toml",
+            "velocity = [-1.0, 0.0]",
+            "velocity = [-1.0, 0.0, 7.0]",
+            "velocity",
+            3,
+        ),
+        (
+            "affine_disc.toml",
+            "gravity = [0.0, -9.81]",
+            "gravity = [0.0, -9.81, 0.0]",
+            "loads.gravity",
+            3,
+        ),
+        (
+            "affine_disc.toml",
+            "gravity = [0.0, -9.81]",
+            "gravity = [-9.81]",
+            "loads.gravity",
+            1,
+        ),
+        (
+            "block_wall_dda.toml",
+            "vertices = [[0.0, 0.0], [0.4, 0.0],",
+            "vertices = [[0.0, 0.0, 0.0], [0.4, 0.0],",
+            "vertices",
+            3,
+        ),
+    ];
+    for (name, from, to, key, length) in cases {
+        let refused = refusal_of(name, from, to);
+        assert!(
+            refused.contains("model.toml:")
+                && refused.contains(key)
+                && refused.contains(&format!(
+                    "invalid length {length}, expected an array of length 2"
+                )),
+            "{to}: {refused}"
+        );
+    }
+}
+
 /// The moving wall's velocity is a function the implicit driver's
 /// checkpoint cannot compare: the scenario's checkpoint refuses a run
 /// whose plate moves at another velocity; the unchanged file resumes.

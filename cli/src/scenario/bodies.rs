@@ -94,6 +94,7 @@ pub struct SineSpec {
     /// Frequency f (Hz).
     pub frequency: f64,
     /// Unit direction of the motion ([1, 0] by default).
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub direction: Option<[f64; 2]>,
 }
 
@@ -102,6 +103,7 @@ pub struct SineSpec {
 #[serde(deny_unknown_fields)]
 pub struct CircleSpec {
     /// Centre (m).
+    #[serde(deserialize_with = "super::exact::array")]
     pub centre: [f64; 2],
     /// Radius (m).
     pub radius: f64,
@@ -114,6 +116,7 @@ pub struct CircleSpec {
     /// `stress` (the default) or `strain`: the implicit driver's bodies.
     pub plane: Option<PlaneSpec>,
     /// Velocity of the centre (m/s) at the start; zero by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub velocity: Option<[f64; 2]>,
     /// Angular velocity (rad/s) at the start; zero by default.
     pub angular_velocity: Option<f64>,
@@ -129,6 +132,7 @@ pub struct CircleSpec {
 #[serde(deny_unknown_fields)]
 pub struct EllipseSpec {
     /// Centre (m).
+    #[serde(deserialize_with = "super::exact::array")]
     pub centre: [f64; 2],
     /// Semi-major axis a (m).
     pub semi_major: f64,
@@ -145,6 +149,7 @@ pub struct EllipseSpec {
     /// `stress` (the default) or `strain`: the implicit driver's bodies.
     pub plane: Option<PlaneSpec>,
     /// Velocity of the centre (m/s) at the start; zero by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub velocity: Option<[f64; 2]>,
     /// Angular velocity (rad/s) at the start; zero by default.
     pub angular_velocity: Option<f64>,
@@ -160,6 +165,7 @@ pub struct EllipseSpec {
 #[serde(deny_unknown_fields)]
 pub struct PolygonSpec {
     /// Vertices (m), counter-clockwise.
+    #[serde(deserialize_with = "super::exact::each")]
     pub vertices: Vec<[f64; 2]>,
     /// Density ρ (kg/m³).
     pub density: Option<f64>,
@@ -170,6 +176,7 @@ pub struct PolygonSpec {
     /// `stress` (the default) or `strain`: the implicit driver's bodies.
     pub plane: Option<PlaneSpec>,
     /// Velocity of the centre (m/s) at the start; zero by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub velocity: Option<[f64; 2]>,
     /// Angular velocity (rad/s) at the start; zero by default.
     pub angular_velocity: Option<f64>,
@@ -185,6 +192,7 @@ pub struct PolygonSpec {
 #[serde(deny_unknown_fields)]
 pub struct RectangleSpec {
     /// Centre (m).
+    #[serde(deserialize_with = "super::exact::array")]
     pub centre: [f64; 2],
     /// Width (m).
     pub width: f64,
@@ -201,6 +209,7 @@ pub struct RectangleSpec {
     /// `stress` (the default) or `strain`: the implicit driver's bodies.
     pub plane: Option<PlaneSpec>,
     /// Velocity of the centre (m/s) at the start; zero by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub velocity: Option<[f64; 2]>,
     /// Angular velocity (rad/s) at the start; zero by default.
     pub angular_velocity: Option<f64>,
@@ -216,12 +225,15 @@ pub struct RectangleSpec {
 #[serde(deny_unknown_fields)]
 pub struct WallSpec {
     /// Start point (m).
+    #[serde(deserialize_with = "super::exact::array")]
     pub start: [f64; 2],
     /// End point (m); the bodies lie on the left of start → end.
+    #[serde(deserialize_with = "super::exact::array")]
     pub end: [f64; 2],
     /// Velocity: in the limit driver the wall is the plate that drives
     /// the collapse; in the implicit driver the wall is translated at it
     /// (`u(t) = v t`). Fixed when absent.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub velocity: Option<[f64; 2]>,
     /// Contact group (implicit driver): `[[pair_laws]]` give laws per
     /// pair of groups; 0 by default.

@@ -41,6 +41,7 @@ pub struct OpenBoxSpec {
 pub struct WallsSpec {
     /// The points the walls join, in order (m); wall k runs from point k
     /// to point k + 1.
+    #[serde(deserialize_with = "super::exact::each")]
     pub points: Vec<[f64; 2]>,
     /// A name per wall (`wall0`, `wall1`, … by default).
     pub names: Option<Vec<String>>,

@@ -40,6 +40,7 @@ impl LawSpec {
 pub struct PairLawSpec {
     /// The two groups, in either order (twice the same group: the
     /// contacts inside it).
+    #[serde(deserialize_with = "super::exact::array")]
     pub groups: [usize; 2],
     /// The law, its keys as `[law]`'s and of the same kind.
     pub law: LawSpec,

@@ -8,6 +8,7 @@ use serde::Deserialize;
 #[serde(deny_unknown_fields)]
 pub struct LoadsSpec {
     /// Gravitational acceleration (m/s²); [0, -9.81] by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub gravity: Option<[f64; 2]>,
     /// Constant forces at bodies' centres (explicit driver).
     #[serde(default)]
@@ -29,8 +30,10 @@ pub struct LiveLoadSpec {
     /// Index of the body, counted over the `[[bodies]]` that are not walls.
     pub body: usize,
     /// Reference force (N per m of thickness).
+    #[serde(deserialize_with = "super::exact::array")]
     pub force: [f64; 2],
     /// Point of application (m); the body's centre by default.
+    #[serde(default, deserialize_with = "super::exact::optional")]
     pub point: Option<[f64; 2]>,
 }
 
@@ -41,6 +44,7 @@ pub struct SeismicSpec {
     /// The seismic coefficient k_h.
     pub coefficient: f64,
     /// The horizontal direction of the force (x, y), normalised.
+    #[serde(deserialize_with = "super::exact::array")]
     pub direction: [f64; 2],
 }
 
@@ -51,6 +55,7 @@ pub struct ForceSpec {
     /// Index of the body, counted over the bodies as built.
     pub body: usize,
     /// Force (N per m of thickness).
+    #[serde(deserialize_with = "super::exact::array")]
     pub force: [f64; 2],
 }
 
@@ -63,5 +68,6 @@ pub struct TractionSpec {
     /// Edge k runs from vertex k to vertex k + 1.
     pub edge: usize,
     /// Traction (Pa), in world axes.
+    #[serde(deserialize_with = "super::exact::array")]
     pub traction: [f64; 2],
 }

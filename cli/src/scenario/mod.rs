@@ -28,6 +28,7 @@ pub mod boundary;
 mod check;
 pub mod checkpoint;
 pub mod driver;
+mod exact;
 mod execute;
 mod explicit;
 pub mod fuzz;
