@@ -142,17 +142,38 @@ fn hpm_moduli_without_hpm_are_refused() {
 
 /// `--hpm 0` re-analyses nothing, so the HPM options beside it would be
 /// ignored as they are without `--hpm`: it is refused by the parser,
-/// naming the value and saying to leave `--hpm` out.
+/// naming the value, the HPM options it would leave unused and saying to
+/// leave `--hpm` out; alone, with the moduli given explicitly, or with
+/// `--hpm-nonlinear`.
 #[test]
 fn hpm_zero_is_refused_and_does_not_let_the_hpm_options_through() {
     let dir = scratch("refusals-zero");
     for extra in [
         &["--hpm", "0"][..],
         &["--hpm", "0", "--youngs-modulus", "5e8"][..],
+        &["--hpm", "0", "--poisson-ratio", "0.3"][..],
+        &[
+            "--hpm",
+            "0",
+            "--youngs-modulus",
+            "5e8",
+            "--poisson-ratio",
+            "0.3",
+        ][..],
         &["--hpm", "0", "--hpm-nonlinear"][..],
     ] {
         let run = slope(&terrain_file(), &dir.join("out"), extra);
-        refused(&run, &["--hpm", "`0`", "leave --hpm out"]);
+        refused(
+            &run,
+            &[
+                "--hpm",
+                "`0`",
+                "leave --hpm out",
+                "--youngs-modulus",
+                "--poisson-ratio",
+                "--hpm-nonlinear",
+            ],
+        );
     }
     assert!(!dir.join("out").exists());
     std::fs::remove_dir_all(&dir).unwrap();

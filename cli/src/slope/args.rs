@@ -394,11 +394,12 @@ fn parse_keep(text: &str) -> Result<usize, String> {
 }
 
 /// `--hpm K`, K ≥ 1: `--hpm 0` would re-analyse nothing and leave the HPM
-/// options beside it unused.
+/// options beside it (`--hpm-nonlinear`, `--youngs-modulus`,
+/// `--poisson-ratio`) unused, so it is refused naming them.
 fn parse_hpm(text: &str) -> Result<usize, String> {
     match parse_keep(text)? {
         0 => Err(format!(
-            "`{text}` re-analyses no surface: give K >= 1, or leave --hpm out for no re-analysis"
+            "`{text}` re-analyses no surface, so --hpm-nonlinear, --youngs-modulus and --poisson-ratio would be ignored: give K >= 1, or leave --hpm out (and those options with it) for no re-analysis"
         )),
         k => Ok(k),
     }
