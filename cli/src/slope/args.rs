@@ -271,9 +271,10 @@ pub struct SlopeArgs {
     /// elastic, and nonlinear with --hpm-nonlinear; their Fs go into
     /// critical.csv and summary.json, the maps of the most critical one
     /// (local Fs, displacement, strains) and its slip surface into
-    /// `hpm_*.asc`/`.tif`. HPM holds one unit weight: a --layer must have
-    /// that of --unit-weight (its slip springs take the strength of the
-    /// layer they cross); no --ru. K ≥ 1; leave --hpm out for no
+    /// `hpm_*.asc`/`.tif`. With --layer each HPM column takes its layers
+    /// at its cell centre: its slip springs the strength of the layer
+    /// the surface crosses, its elements the unit weights of the layers
+    /// over their height; --ru is refused. K ≥ 1; leave --hpm out for no
     /// re-analysis.
     #[arg(long, value_name = "K", value_parser = parse_hpm, help_heading = "HPM re-analysis")]
     pub hpm: Option<usize>,
