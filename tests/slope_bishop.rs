@@ -179,7 +179,16 @@ fn both<S: TrialSurface>(
     surface_columns(terrain, surface, &mut slip).unwrap();
     let lim = SurfaceLimits::default();
     let h = hovland_columns(&slip, terrain.cell_size(), material, loads, &lim).unwrap();
-    let b = bishop_columns(&slip, terrain, material, loads, &lim, surface.centre()).unwrap();
+    let b = bishop_columns(
+        &slip,
+        terrain,
+        material,
+        loads,
+        &lim,
+        surface.centre(),
+        &BishopSettings::default(),
+    )
+    .unwrap();
     assert_eq!(h.direction, b.direction);
     (h.safety_factor, b.safety_factor)
 }
@@ -419,16 +428,29 @@ fn small_m_alpha_is_refused_naming_the_column_and_the_search_agrees() {
     surface_columns(&terrain, &sphere, &mut slip).unwrap();
     let lim = SurfaceLimits::default();
     let loads = SlopeLoads::default();
-    match bishop_columns(&slip, &terrain, &material, &loads, &lim, sphere.centre()) {
+    let default = BishopSettings::default();
+    assert_eq!(default.m_alpha_floor(), MIN_M_ALPHA);
+    assert_eq!(MIN_M_ALPHA, 0.2);
+    match bishop_columns(
+        &slip,
+        &terrain,
+        &material,
+        &loads,
+        &lim,
+        sphere.centre(),
+        &default,
+    ) {
         Err(
             e @ BishopFailure::SmallMAlpha {
                 row,
                 column,
                 m_alpha,
+                floor,
                 ..
             },
         ) => {
             assert!(m_alpha <= MIN_M_ALPHA);
+            assert_eq!(floor, MIN_M_ALPHA);
             assert!(slip.iter().any(|k| (k.row, k.column) == (row, column)));
             let text = e.to_string();
             assert!(
@@ -489,4 +511,127 @@ fn refusals_print_as_words() {
         format!("surface refused: {}", Refusal::LeavesDem)
     );
     assert!(!failure.to_string().contains("LeavesDem"));
+}
+
+/// The sphere that the default floor 0.2 refuses for a small m_α: the
+/// floor as a setting. At a floor below the m_α it was refused for (and
+/// below every column's m_α along the way) it gives an Fs, finite and
+/// positive, above Hovland's as on the other surfaces; a floor just above
+/// 0.2 refuses it too, naming that floor; the default settings give the
+/// refusal of the default floor exactly. A floor outside (0, 1] is
+/// refused by name and value. A search at the lower floor counts no more
+/// m_α refusals than at 0.2, evaluates no fewer surfaces, and its lowest
+/// Fs is no higher.
+#[test]
+fn m_alpha_floor_is_a_setting() {
+    let dem = Raster::from_fn(40, 40, 0.0, 0.0, 1.0, |_, y| Some(0.6 * y)).unwrap();
+    let terrain = Terrain::new(NamedRaster::new("plane", dem), None).unwrap();
+    let material = SlopeMaterial {
+        cohesion: 2e3,
+        friction_coefficient: 1.0,
+        unit_weight: 20e3,
+    };
+    let sphere = Sphere::new(20.0, 20.0, 12.0, 8.0).unwrap();
+    let mut slip = Vec::new();
+    surface_columns(&terrain, &sphere, &mut slip).unwrap();
+    let (lim, loads) = (SurfaceLimits::default(), SlopeLoads::default());
+    let bishop = |settings: &BishopSettings| {
+        bishop_columns(
+            &slip,
+            &terrain,
+            &material,
+            &loads,
+            &lim,
+            sphere.centre(),
+            settings,
+        )
+    };
+    let at_default = bishop(&BishopSettings::default());
+    let Err(BishopFailure::SmallMAlpha { m_alpha, floor, .. }) = at_default else {
+        panic!("{at_default:?}");
+    };
+    assert_eq!(floor, 0.2);
+    let explicit = BishopSettings::default().with_m_alpha_floor(0.2).unwrap();
+    assert_eq!(explicit, BishopSettings::default());
+    assert_eq!(bishop(&explicit), at_default);
+    // Just above 0.2: refused as well, naming the floor given.
+    let higher = BishopSettings::default().with_m_alpha_floor(0.25).unwrap();
+    match bishop(&higher) {
+        Err(e @ BishopFailure::SmallMAlpha { floor, .. }) => {
+            assert_eq!(floor, 0.25);
+            assert!(e.to_string().contains("floor 0.25"), "{e}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Lower floors: accepted once the floor lies below every column's m_α
+    // on the way to F.
+    let mut accepted = None;
+    for lower in [0.1, 0.05, 0.02, 0.01] {
+        assert!(lower < m_alpha);
+        let settings = BishopSettings::default().with_m_alpha_floor(lower).unwrap();
+        assert_eq!(settings.m_alpha_floor(), lower);
+        if let Ok(fs) = bishop(&settings) {
+            accepted = Some((lower, fs));
+            break;
+        }
+    }
+    let (lower, fs) = accepted.expect("a lower floor accepts the sphere");
+    assert!(fs.safety_factor.is_finite() && fs.safety_factor > 0.0);
+    let hovland = hovland_columns(&slip, terrain.cell_size(), &material, &loads, &lim).unwrap();
+    assert!(fs.safety_factor > hovland.safety_factor);
+    // Bad floors, refused by name and value.
+    for bad in [0.0, -0.1, 1.5, f64::NAN, f64::INFINITY] {
+        let e = BishopSettings::default()
+            .with_m_alpha_floor(bad)
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                dismech::error::DismechError::Slope(SlopeError::MAlphaFloorOutOfRange { value })
+                    if value.to_bits() == bad.to_bits()
+            ),
+            "{e:?}"
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains("m_alpha floor") && text.contains("(0, 1]"),
+            "{text}"
+        );
+    }
+    assert!(BishopSettings::default().with_m_alpha_floor(1.0).is_ok());
+    // A search: fewer m_α refusals at the lower floor, no higher minimum.
+    let family = SphereGrid::new(
+        3,
+        Steps::checked("heights", 0.0, 12.0, 5, false).unwrap(),
+        Steps::checked("radii", 4.0, 14.0, 6, true).unwrap(),
+    )
+    .unwrap();
+    let run = |bishop: BishopSettings| {
+        let settings = SearchSettings {
+            method: Method::Bishop,
+            bishop,
+            ..SearchSettings::default()
+        };
+        search(&terrain, &material, &loads, &family, &settings, |_, _| {}).unwrap()
+    };
+    let (at_02, at_lower) = (
+        run(BishopSettings::default()),
+        run(BishopSettings::default().with_m_alpha_floor(lower).unwrap()),
+    );
+    let small = |r: &SearchResult<Sphere>| r.counts.refused_for(Refusal::SmallMAlpha);
+    println!(
+        "m_alpha refusals: {} at 0.2, {} at {lower}; evaluated {} and {}",
+        small(&at_02),
+        small(&at_lower),
+        at_02.counts.evaluated,
+        at_lower.counts.evaluated
+    );
+    // A surface refused at the lower floor is refused at 0.2 (its iterates
+    // are the same up to the first m_α at or below 0.2).
+    assert!(small(&at_lower) <= small(&at_02));
+    assert!(at_lower.counts.evaluated >= at_02.counts.evaluated);
+    assert!(
+        at_lower.lowest().unwrap().result.safety_factor
+            <= at_02.lowest().unwrap().result.safety_factor
+    );
 }

@@ -149,7 +149,8 @@ fn reanalysis_equals_a_direct_hpm_run_on_the_surface_raster_bit_for_bit() {
 /// Layered ground of one unit weight: each HPM column's slip springs take
 /// the strength of the layer the surface crosses at its cell centre (a
 /// weak layer 2 m thick over the soil), and the Fs falls below the single
-/// soil's; layers of different unit weights and r_u are refused.
+/// soil's; layers of different unit weights are taken (the weights of the
+/// layers over each element's height), r_u is refused.
 #[test]
 fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
     let dem = valley_dem();
@@ -220,13 +221,310 @@ fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
     let ratio = Ground::from(soil())
         .with_pore_ratio(PoreRatio::Constant(0.2))
         .unwrap();
-    for (ground, words) in [(&layered(heavy), "topsoil 18000"), (&ratio, "r_u")] {
-        let e = run(ground).unwrap_err();
+    // A lighter weak layer: taken, lighter than the one of the soil's
+    // unit weight, with the same springs.
+    let light = run(&layered(heavy)).unwrap();
+    assert!(light.model.total_weight() < two.model.total_weight());
+    assert_eq!(light.model.slip, two.model.slip);
+    let e = run(&ratio).unwrap_err();
+    assert!(
+        matches!(&e, DismechError::Slope(SlopeError::HpmGround { reason }) if reason.contains("r_u")),
+        "{e}"
+    );
+}
+
+/// The bottom of the upper layer `depth` below the valley's ground.
+fn bottom_below(depth: f64) -> NamedRaster {
+    let dem = valley_dem();
+    let values = dem.values().iter().map(|v| v.map(|g| g - depth)).collect();
+    let (x0, y0) = dem.lower_left();
+    NamedRaster::new(
+        "upper.asc",
+        Raster::new(48, 40, x0, y0, 2.0, values).unwrap(),
+    )
+}
+
+/// Two layers: `upper` down to `bottom`, `lower` below.
+fn two_layers(upper: SlopeMaterial, bottom: NamedRaster, lower: SlopeMaterial) -> Ground {
+    Ground::layered(vec![
+        Layer {
+            name: "upper".into(),
+            bottom: Some(bottom),
+            material: upper,
+        },
+        Layer {
+            name: "lower".into(),
+            bottom: None,
+            material: lower,
+        },
+    ])
+    .unwrap()
+}
+
+/// The worst surface of the valley's search on `terrain`, re-analysed on
+/// `ground`, elastic and nonlinear.
+fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmReanalysis> {
+    let result = searched(terrain);
+    let worst = result.lowest().unwrap();
+    hpm_reanalysis(
+        terrain,
+        ground,
+        &SlopeLoads::default(),
+        &worst.surface,
+        &worst.result,
+        &HpmStiffness::default(),
+        &HpmSettings::default(),
+        Some(&NonlinearSettings::default()),
+    )
+}
+
+/// The valley dry, and under a water table 3 m below its ground (a
+/// level one would leave most of the slope dry).
+fn dry_and_wet() -> [Terrain; 2] {
+    let dem = valley_dem();
+    let water = dem.values().iter().map(|v| v.map(|g| g - 3.0)).collect();
+    let (x0, y0) = dem.lower_left();
+    let water = Raster::new(48, 40, x0, y0, 2.0, water).unwrap();
+    [
+        Terrain::new(NamedRaster::new("valley", dem.clone()), None).unwrap(),
+        Terrain::new(
+            NamedRaster::new("valley", dem),
+            Some(NamedRaster::new("water", water)),
+        )
+        .unwrap(),
+    ]
+}
+
+fn elastic_fs(re: &HpmReanalysis) -> f64 {
+    re.elastic.sliding_safety_factor(&re.model).unwrap()
+}
+
+/// Two layers of one material, their boundary 4 m down through the slide,
+/// dry and under a water table: the one-layer re-analysis bit for bit
+/// (every element's weight, every spring, the elastic and nonlinear
+/// results).
+#[test]
+fn equal_layers_give_the_one_layer_reanalysis_bit_for_bit() {
+    for terrain in dry_and_wet() {
+        let one = reanalysed(&terrain, &Ground::from(soil())).unwrap();
+        let two = reanalysed(&terrain, &two_layers(soil(), bottom_below(4.0), soil())).unwrap();
+        // The boundary crosses the slide: some columns' bases lie above it.
+        let crossed = two
+            .model
+            .columns
+            .iter()
+            .filter(|c| {
+                let (r, k) = c.cell;
+                two.grids.slip().raster.get(r, k).unwrap() > valley_dem().get(r, k).unwrap() - 4.0
+            })
+            .count();
         assert!(
-            matches!(&e, DismechError::Slope(SlopeError::HpmGround { reason }) if reason.contains(words)),
-            "{e}"
+            crossed > 0 && crossed < two.model.columns.len(),
+            "{crossed}"
         );
+        assert_eq!(one.model.elements, two.model.elements);
+        assert_eq!(one.model.slip, two.model.slip);
+        assert_eq!(one.elastic, two.elastic);
+        assert_eq!(one.nonlinear, two.nonlinear);
+        assert_eq!(elastic_fs(&one).to_bits(), elastic_fs(&two).to_bits());
     }
+}
+
+/// A slip surface entirely in the lower layer gives the one-layer result
+/// of the lower layer's material (to 1e-12), dry and under a water table:
+/// (a) under an upper layer of another strength and the same unit weight
+/// whose bottom lies halfway between the ground and the slip surface at
+/// every cell of the slide (every column crosses it; its springs take the
+/// lower layer's strength); (b) under an upper layer of another strength
+/// and unit weight pinched out over the whole slide (its bottom at the
+/// ground, or 5 m above it and clipped to it).
+#[test]
+fn a_slide_in_the_lower_layer_is_that_of_the_lower_layer_alone() {
+    let stronger = SlopeMaterial {
+        cohesion: 30e3,
+        friction_coefficient: 40f64.to_radians().tan(),
+        ..soil()
+    };
+    let other = SlopeMaterial {
+        unit_weight: 22e3,
+        ..stronger
+    };
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    let nl = |re: &HpmReanalysis| {
+        re.nonlinear
+            .as_ref()
+            .unwrap()
+            .sliding_safety_factor(&re.model)
+            .unwrap()
+    };
+    for terrain in dry_and_wet() {
+        let alone = reanalysed(&terrain, &Ground::from(soil())).unwrap();
+        let dem = valley_dem();
+        let slip = &alone.grids.slip().raster;
+        let halfway: Vec<Option<f64>> = (0..40 * 48)
+            .map(|i| {
+                let (r, c) = (i / 48, i % 48);
+                let g = dem.get(r, c).unwrap();
+                Some(slip.get(r, c).map_or(g - 100.0, |z| 0.5 * (g + z.min(g))))
+            })
+            .collect();
+        let (x0, y0) = dem.lower_left();
+        let halfway = NamedRaster::new(
+            "halfway.asc",
+            Raster::new(48, 40, x0, y0, 2.0, halfway).unwrap(),
+        );
+        for (upper, bottom) in [
+            (stronger, halfway),
+            (other, bottom_below(0.0)),
+            (other, bottom_below(-5.0)),
+        ] {
+            let two = reanalysed(&terrain, &two_layers(upper, bottom, soil())).unwrap();
+            assert_eq!(two.model.columns.len(), alone.model.columns.len());
+            for (s, t) in two
+                .model
+                .column_strengths()
+                .iter()
+                .zip(alone.model.column_strengths())
+            {
+                assert_eq!(*s, t);
+            }
+            assert!(near(elastic_fs(&two), elastic_fs(&alone)));
+            assert!(near(nl(&two), nl(&alone)));
+            for (a, b) in two.model.elements.iter().zip(&alone.model.elements) {
+                assert!(near(a.weight, b.weight), "{} {}", a.weight, b.weight);
+            }
+            for (a, b) in two
+                .elastic
+                .displacements
+                .iter()
+                .zip(&alone.elastic.displacements)
+            {
+                assert!((a - b).abs() <= 1e-12 * b.abs().max(1e-30), "{a} {b}");
+            }
+        }
+    }
+}
+
+/// A light upper layer (16 kN/m³) 4 m thick over a heavy lower one
+/// (21 kN/m³), of one strength, the boundary crossing the slide: each
+/// element weighs the layers over its height (an independent sum per
+/// column to 1e-12), between its weights in the all-light and the
+/// all-heavy ground, dry and under a water table. On dry ground HPM's
+/// elastic sliding Fs lies between the all-light one (higher: the same
+/// cohesion holds a lighter slide) and the all-heavy one, the nonlinear
+/// Fs likewise (measured 1.63198 > 1.57845 > 1.54657 elastic). Under the
+/// water table no such bound holds, and none is asserted: the submerged
+/// weights change the shallow and the deep elements' shares of the
+/// weight unequally (measured: elastic 2.23334 all light, 2.02126 all
+/// heavy, 1.98950 layered).
+#[test]
+fn layers_of_other_unit_weights_weigh_each_element_by_its_layers() {
+    let light = SlopeMaterial {
+        unit_weight: 16e3,
+        ..soil()
+    };
+    let heavy = SlopeMaterial {
+        unit_weight: 21e3,
+        ..soil()
+    };
+    for (t, terrain) in dry_and_wet().iter().enumerate() {
+        let all_light = reanalysed(terrain, &Ground::from(light)).unwrap();
+        let all_heavy = reanalysed(terrain, &Ground::from(heavy)).unwrap();
+        let layered = reanalysed(terrain, &two_layers(light, bottom_below(4.0), heavy)).unwrap();
+        let model = &layered.model;
+        let d = 2.0;
+        let gamma_w = if t == 0 { 0.0 } else { WATER_UNIT_WEIGHT };
+        let mut both = 0;
+        for column in &model.columns {
+            let (r, c) = column.cell;
+            let boundary = valley_dem().get(r, c).unwrap() - 4.0;
+            let (_, _, water) = layered.grids.corners(r, c);
+            let hw = water.map(|w| 0.25 * w.iter().sum::<f64>());
+            // Independent: the weight of [lo, hi] split at the boundary and
+            // the water level, each piece its layer's γ (γ − γ_w below hw).
+            let weight_of = |lo: f64, hi: f64| {
+                let mut cuts = vec![lo, hi];
+                for z in [Some(boundary), hw].into_iter().flatten() {
+                    if z > lo && z < hi {
+                        cuts.push(z);
+                    }
+                }
+                cuts.sort_by(|a, b| a.partial_cmp(b).unwrap());
+                cuts.windows(2)
+                    .map(|w| {
+                        let mid = 0.5 * (w[0] + w[1]);
+                        let g = if mid > boundary { 16e3 } else { 21e3 };
+                        let g = if hw.is_some_and(|h| mid < h) {
+                            g - gamma_w
+                        } else {
+                            g
+                        };
+                        g * (w[1] - w[0]) * d * d
+                    })
+                    .sum::<f64>()
+            };
+            let mean = |z: [f64; 4]| 0.25 * z.iter().sum::<f64>();
+            for e in column.elements.clone() {
+                let element = &model.elements[e];
+                let (lo, hi) = (mean(element.shape.bottom()), mean(element.shape.top()));
+                let expected = weight_of(lo, hi);
+                assert!(
+                    (element.weight - expected).abs() <= 1e-12 * expected,
+                    "({r}, {c}) element {e}: {} {expected}",
+                    element.weight
+                );
+                let (wl, wh) = (
+                    all_light.model.elements[e].weight,
+                    all_heavy.model.elements[e].weight,
+                );
+                assert!(wl <= element.weight && element.weight <= wh);
+                if lo < boundary && boundary < hi {
+                    both += 1;
+                }
+            }
+        }
+        assert!(both > 0, "an element crosses the boundary");
+        if t == 1 {
+            continue;
+        }
+        let (fl, fh, f) = (
+            elastic_fs(&all_light),
+            elastic_fs(&all_heavy),
+            elastic_fs(&layered),
+        );
+        println!("elastic Fs: all light {fl:.5}, layered {f:.5}, all heavy {fh:.5}");
+        assert!(fh < f && f < fl, "{fh} {f} {fl}");
+        let nl = |re: &HpmReanalysis| {
+            re.nonlinear
+                .as_ref()
+                .unwrap()
+                .sliding_safety_factor(&re.model)
+                .unwrap()
+        };
+        let (nl_l, nl_h, nl_f) = (nl(&all_light), nl(&all_heavy), nl(&layered));
+        println!("nonlinear Fs: all light {nl_l:.5}, layered {nl_f:.5}, all heavy {nl_h:.5}");
+        assert!(nl_h < nl_f && nl_f < nl_l, "{nl_h} {nl_f} {nl_l}");
+    }
+}
+
+/// Under a water table, a layer whose unit weight is not above γ_w is
+/// refused naming the layer (its submerged unit weight would not be
+/// positive); dry, it is taken.
+#[test]
+fn a_layer_lighter_than_water_is_refused_under_a_water_table_naming_it() {
+    let floating = SlopeMaterial {
+        unit_weight: 9e3,
+        ..soil()
+    };
+    let [dry, wet] = dry_and_wet();
+    let ground = two_layers(floating, bottom_below(4.0), soil());
+    assert!(reanalysed(&dry, &ground).is_ok());
+    let e = reanalysed(&wet, &ground).unwrap_err();
+    assert!(
+        matches!(&e, DismechError::Slope(SlopeError::InvalidLayer { layer, .. }) if layer == "upper"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("submerged unit weight"), "{e}");
 }
 
 /// Over a bedrock the slip raster follows the truncated surface: at every

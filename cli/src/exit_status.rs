@@ -145,6 +145,7 @@ impl Exit {
                 | S::InvalidLayer { .. }
                 | S::PoreRatioOutOfRange { .. }
                 | S::PorePressureTwice { .. }
+                | S::MAlphaFloorOutOfRange { .. }
                 | S::HpmGround { .. },
             )
             | E::InvalidPolygon { .. }

@@ -896,19 +896,6 @@ fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
         }
     }
 
-    // Layered ground: refused before the search, naming --hpm.
-    let layer = format!("soft:{}:5e3:20:18e3", dir.join("any.asc").display());
-    let refused = slope(
-        &dir.join("layered"),
-        &["--search", "spheres", "--hpm", "1", "--layer", &layer],
-    );
-    let stderr = String::from_utf8_lossy(&refused.stderr);
-    assert_eq!(refused.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("--hpm 1") && stderr.contains("layered"),
-        "{stderr}"
-    );
-    assert!(!dir.join("layered").exists());
     // A layer of the same unit weight: taken, each column's springs the
     // strength of the layer they cross; a weak colluvium 40 m thick
     // lowers HPM's Fs of the worst surface.
@@ -936,6 +923,26 @@ fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
         .as_f64()
         .unwrap();
     assert!(layered_fs < elastic_fs, "{layered_fs} {elastic_fs}");
+    // A layer of another unit weight (it used to be refused): taken, its
+    // elements weighing the layers over their height, an HPM Fs given.
+    let light = format!("colluvium:{}:5e3:22:18e3", bottom_path.display());
+    let mut light_args = args.clone();
+    light_args.extend_from_slice(&["--layer", &light]);
+    let taken = slope(&dir.join("layered_light"), &light_args);
+    assert_eq!(
+        taken.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&taken.stderr)
+    );
+    let light_summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("layered_light").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    let light_fs = light_summary["hpm"]["results"][0]["elastic"]["fs"]
+        .as_f64()
+        .unwrap();
+    assert!(light_fs.is_finite() && light_fs > 0.0, "{light_fs}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

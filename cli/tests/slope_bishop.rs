@@ -13,7 +13,8 @@ use std::process::{Command, Output};
 use dismech::grid::read_esri_ascii;
 use dismech::law::friction_from_degrees;
 use dismech::slope::{
-    search, Method, SearchSettings, SlopeLoads, SlopeMaterial, SphereGrid, Steps, Terrain,
+    search, BishopSettings, Method, Refusal, SearchResult, SearchSettings, SlopeLoads,
+    SlopeMaterial, Sphere, SphereGrid, Steps, Terrain,
 };
 
 /// The sphere grid of the runs below.
@@ -29,6 +30,10 @@ const FAMILY: [&str; 8] = [
 ];
 
 fn slope(out: &Path, method: &str) -> Output {
+    slope_with(out, method, &[])
+}
+
+fn slope_with(out: &Path, method: &str, extra: &[&str]) -> Output {
     let dem = terrain_file();
     let mut args = vec![
         "slope",
@@ -47,6 +52,7 @@ fn slope(out: &Path, method: &str) -> Output {
         method,
     ];
     args.extend_from_slice(&FAMILY);
+    args.extend_from_slice(extra);
     Command::new(env!("CARGO_BIN_EXE_dismech"))
         .args(&args)
         .output()
@@ -103,6 +109,8 @@ fn method_bishop_is_the_library_search_by_bishop() {
     let (b, h) = (summary(&bishop_out), summary(&hovland_out));
     assert_eq!(b["method"], "bishop");
     assert_eq!(h["method"], "hovland");
+    assert_eq!(b["m_alpha_floor"], 0.2);
+    assert!(h["m_alpha_floor"].is_null());
     let csv = std::fs::read_to_string(bishop_out.join("critical.csv")).unwrap();
     let first: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
@@ -127,5 +135,87 @@ fn method_bishop_is_the_library_search_by_bishop() {
         min(&hovland_map)
     );
     assert!(min(&map) > min(&hovland_map));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--m-alpha-floor 0.05`: the library's search by Bishop's method with
+/// that floor, bit for bit (the map); no more trials refused for m_alpha
+/// than at the default 0.2, no fewer evaluated, and a lowest Fs no higher; the floor
+/// in summary.json. `--m-alpha-floor 0.2` gives the default run's map bit
+/// for bit.
+#[test]
+fn m_alpha_floor_is_the_library_setting() {
+    let dir = scratch("bishop-floor");
+    let (low, given, default) = (dir.join("low"), dir.join("given"), dir.join("default"));
+    for (out, extra) in [
+        (&low, &["--m-alpha-floor", "0.05"][..]),
+        (&given, &["--m-alpha-floor", "0.2"][..]),
+        (&default, &[][..]),
+    ] {
+        let run = slope_with(out, "bishop", extra);
+        assert_eq!(
+            run.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    let dem = read_esri_ascii(&terrain_file()).unwrap();
+    let terrain = Terrain::new(dismech::hpm::NamedRaster::new("dem", dem), None).unwrap();
+    let material = SlopeMaterial {
+        cohesion: 20e3,
+        friction_coefficient: friction_from_degrees(30.0).unwrap(),
+        unit_weight: 20e3,
+    };
+    let family = SphereGrid::new(
+        12,
+        Steps::checked("heights", 75.0, 1875.0, 6, false).unwrap(),
+        Steps::checked("radii", 300.0, 2500.0, 10, true).unwrap(),
+    )
+    .unwrap();
+    let run = |bishop: BishopSettings| {
+        let settings = SearchSettings {
+            method: Method::Bishop,
+            bishop,
+            ..SearchSettings::default()
+        };
+        search(
+            &terrain,
+            &material,
+            &SlopeLoads::default(),
+            &family,
+            &settings,
+            |_, _| {},
+        )
+        .unwrap()
+    };
+    let lib_low = run(BishopSettings::default().with_m_alpha_floor(0.05).unwrap());
+    let lib_default = run(BishopSettings::default());
+    let bits = |r: &dismech::grid::Raster| -> Vec<Option<u64>> {
+        r.values().iter().map(|v| v.map(f64::to_bits)).collect()
+    };
+    let map = |out: &Path| read_esri_ascii(&out.join("slope_fs.asc")).unwrap();
+    assert_eq!(
+        bits(&map(&low)),
+        bits(&lib_low.safety_factor_raster().unwrap())
+    );
+    assert_eq!(bits(&map(&given)), bits(&map(&default)));
+    let small = |r: &SearchResult<Sphere>| r.counts.refused_for(Refusal::SmallMAlpha);
+    println!(
+        "m_alpha refusals: {} at 0.2, {} at 0.05; lowest Fs {} and {}",
+        small(&lib_default),
+        small(&lib_low),
+        lib_default.lowest().unwrap().result.safety_factor,
+        lib_low.lowest().unwrap().result.safety_factor
+    );
+    assert!(small(&lib_low) <= small(&lib_default));
+    assert!(lib_low.counts.evaluated >= lib_default.counts.evaluated);
+    assert!(
+        lib_low.lowest().unwrap().result.safety_factor
+            <= lib_default.lowest().unwrap().result.safety_factor
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(low.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["m_alpha_floor"], 0.05);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,7 +1,8 @@
 //! `dismech slope` refuses, before the search and with exit status 2, what
 //! it used to find late or ignore: a `.prj` beside the DEM that the maps
-//! cannot carry, `--hpm K` above `--keep`, and the HPM options without
-//! `--hpm`; and where no surface gives an Fs over a `--bedrock`, the
+//! cannot carry, `--hpm K` above `--keep`, the HPM options without
+//! `--hpm`, and a `--m-alpha-floor` outside (0, 1] or without `--method
+//! bishop`; and where no surface gives an Fs over a `--bedrock`, the
 //! message names the bedrock as a cause.
 
 mod slope_common;
@@ -142,17 +143,72 @@ fn hpm_moduli_without_hpm_are_refused() {
 
 /// `--hpm 0` re-analyses nothing, so the HPM options beside it would be
 /// ignored as they are without `--hpm`: it is refused by the parser,
-/// naming the value and saying to leave `--hpm` out.
+/// naming the value, the HPM options it would leave unused and saying to
+/// leave `--hpm` out; alone, with the moduli given explicitly, or with
+/// `--hpm-nonlinear`.
 #[test]
 fn hpm_zero_is_refused_and_does_not_let_the_hpm_options_through() {
     let dir = scratch("refusals-zero");
     for extra in [
         &["--hpm", "0"][..],
         &["--hpm", "0", "--youngs-modulus", "5e8"][..],
+        &["--hpm", "0", "--poisson-ratio", "0.3"][..],
+        &[
+            "--hpm",
+            "0",
+            "--youngs-modulus",
+            "5e8",
+            "--poisson-ratio",
+            "0.3",
+        ][..],
         &["--hpm", "0", "--hpm-nonlinear"][..],
     ] {
         let run = slope(&terrain_file(), &dir.join("out"), extra);
-        refused(&run, &["--hpm", "`0`", "leave --hpm out"]);
+        refused(
+            &run,
+            &[
+                "--hpm",
+                "`0`",
+                "leave --hpm out",
+                "--youngs-modulus",
+                "--poisson-ratio",
+                "--hpm-nonlinear",
+            ],
+        );
+    }
+    assert!(!dir.join("out").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--m-alpha-floor` outside (0, 1], or not a number, is refused by the
+/// parser naming the flag, the value and the range; a valid floor with
+/// Hovland's method (the default, or given) is refused naming the flag
+/// and `--method bishop`, as it would be ignored.
+#[test]
+fn m_alpha_floor_out_of_range_or_without_bishop_is_refused() {
+    let dir = scratch("refusals-m-alpha");
+    for bad in ["0", "-0.1", "1.5", "inf"] {
+        let run = slope(
+            &terrain_file(),
+            &dir.join("out"),
+            &["--method", "bishop", "--m-alpha-floor", bad],
+        );
+        refused(&run, &["--m-alpha-floor", bad, "m_alpha floor", "(0, 1]"]);
+    }
+    for bad in ["nan", "x"] {
+        let run = slope(
+            &terrain_file(),
+            &dir.join("out"),
+            &["--method", "bishop", "--m-alpha-floor", bad],
+        );
+        refused(&run, &["--m-alpha-floor", bad]);
+    }
+    for extra in [
+        &["--m-alpha-floor", "0.1"][..],
+        &["--method", "hovland", "--m-alpha-floor", "0.1"][..],
+    ] {
+        let run = slope(&terrain_file(), &dir.join("out"), extra);
+        refused(&run, &["--m-alpha-floor 0.1", "--method bishop"]);
     }
     assert!(!dir.join("out").exists());
     std::fs::remove_dir_all(&dir).unwrap();

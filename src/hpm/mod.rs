@@ -85,7 +85,8 @@ pub use hovland::{hovland, Hovland, HovlandColumn};
 pub use maps::{ColumnMaps, MapProblem, HOVLAND_MAP_NAMES, HPM_MAP_NAMES};
 pub use material::{HpmMaterial, HpmSettings, Seismic, MAX_SEISMIC_COEFFICIENT};
 pub use model::{
-    Element, GridColumn, HpmModel, Interface, MemoryParts, SlipSpring, SYMBOLIC_WORDS_PER_ENTRY,
+    Element, GridColumn, HpmModel, Interface, MemoryParts, SlipSpring, WeightStratum,
+    SYMBOLIC_WORDS_PER_ENTRY,
 };
 pub use stiffness::BlockMatrix;
 pub use strength_reduction::{

@@ -19,7 +19,7 @@ use super::face::{bilinear_face, side_face, spring_matrix, FacePoint, Side, Slip
 use super::grids::SlopeGrids;
 use super::material::{HpmMaterial, HpmSettings, Seismic};
 use super::stiffness::BlockMatrix;
-use crate::error::{DismechError, Result};
+use crate::error::{require_positive, DismechError, Result};
 use crate::kinematics::affine3::{elasticity, element_stiffness, shape_matrix, Block, ELEMENT_DOF};
 use crate::law::{MohrCoulombSpring, Strength};
 use crate::shape::Column;
@@ -192,22 +192,135 @@ fn mean(z: &[f64; 4]) -> f64 {
     0.25 * z.iter().sum::<f64>()
 }
 
-/// Weight of an element, eqs. (8)–(10).
+/// One stratum of a column's ground, for the weight of its elements
+/// ([`HpmModel::set_column_strata`]): its bottom elevation and its unit
+/// weights above and below the water table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightStratum {
+    /// Elevation of its bottom (m); `None` for the last stratum, unbounded
+    /// below. The first is unbounded above.
+    pub bottom: Option<f64>,
+    /// Total unit weight γ_t (N/m³), above the water table.
+    pub unit_weight: f64,
+    /// Submerged unit weight γ_sub (N/m³), below it.
+    pub submerged_unit_weight: f64,
+}
+
+impl WeightStratum {
+    /// The one stratum of `material`, unbounded: the material's weights.
+    fn of(material: &HpmMaterial) -> Self {
+        Self {
+            bottom: None,
+            unit_weight: material.unit_weight,
+            submerged_unit_weight: material.submerged_unit_weight,
+        }
+    }
+}
+
+/// Weight per unit plan area of the ground between the mean heights `hd`
+/// and `hu` of an element's bottom and top, eqs. (8)–(10) taken piece by
+/// piece over `strata` (top to bottom, each down to its bottom, the last
+/// unbounded below, the first unbounded above) and the mean water level
+/// `hw`: `Σ γ_k Δz_k`, summed from the bottom up, with `γ_sub` below
+/// `hw` and `γ_t` above it. Neighbouring pieces of the same unit weight
+/// are one piece, so that one stratum (or strata of equal weights) gives
+/// eqs. (8)–(10) with the same floating-point operations:
+/// `γ_t (hu − hd)`, `γ_sub (hu − hd)`, or
+/// `γ_sub (hw − hd) + γ_t (hu − hw)`.
+fn stratified_weight(strata: &[WeightStratum], hw: Option<f64>, hd: f64, hu: f64) -> f64 {
+    let mut body = 0.0;
+    // The unit weight of the piece being summed and its bottom.
+    let mut piece: Option<(f64, f64)> = None;
+    let mut add = |gamma: f64, from: f64| match piece {
+        Some((g, _)) if g == gamma => {}
+        Some((g, start)) => {
+            body += g * (from - start);
+            piece = Some((gamma, from));
+        }
+        None => piece = Some((gamma, from)),
+    };
+    for (i, stratum) in strata.iter().enumerate().rev() {
+        let low = stratum.bottom.map_or(hd, |b| b.max(hd));
+        let high = match i {
+            0 => hu,
+            _ => strata[i - 1].bottom.map_or(hu, |b| b.min(hu)),
+        };
+        if high <= low {
+            continue;
+        }
+        match hw {
+            Some(w) if w >= high => add(stratum.submerged_unit_weight, low),
+            Some(w) if w > low => {
+                add(stratum.submerged_unit_weight, low);
+                add(stratum.unit_weight, w);
+            }
+            _ => add(stratum.unit_weight, low),
+        }
+    }
+    if let Some((g, start)) = piece {
+        body += g * (hu - start);
+    }
+    body
+}
+
+/// Weight of an element, eqs. (8)–(10), over `strata`
+/// ([`stratified_weight`]).
 fn element_weight(
-    material: &HpmMaterial,
+    strata: &[WeightStratum],
     shape: &Column,
     water: Option<&[f64; 4]>,
     cell_area: f64,
 ) -> f64 {
     let (hu, hd) = (mean(&shape.top()), mean(&shape.bottom()));
-    let (gt, gs) = (material.unit_weight, material.submerged_unit_weight);
-    let body = match water.map(mean) {
-        None => gt * (hu - hd),
-        Some(hw) if hw <= hd => gt * (hu - hd),
-        Some(hw) if hw >= hu => gs * (hu - hd),
-        Some(hw) => gs * (hw - hd) + gt * (hu - hw),
+    stratified_weight(strata, water.map(mean), hd, hu) * cell_area
+}
+
+/// Check the strata of [`HpmModel::set_column_strata`].
+fn check_strata(strata: &[WeightStratum]) -> Result<()> {
+    let Some(last) = strata.last() else {
+        return Err(DismechError::InvalidParameter {
+            name: "HPM weight strata (count)",
+            value: 0.0,
+            requirement: "at least one stratum is needed",
+        });
     };
-    body * cell_area
+    if let Some(bottom) = last.bottom {
+        return Err(DismechError::InvalidParameter {
+            name: "HPM weight strata: the last stratum's bottom",
+            value: bottom,
+            requirement: "the last stratum is unbounded below (no bottom)",
+        });
+    }
+    let mut above = f64::INFINITY;
+    for stratum in strata {
+        require_positive(
+            "HPM weight stratum: unit weight gamma_t",
+            stratum.unit_weight,
+        )?;
+        require_positive(
+            "HPM weight stratum: submerged unit weight gamma_sub",
+            stratum.submerged_unit_weight,
+        )?;
+        if std::ptr::eq(stratum, last) {
+            break;
+        }
+        let Some(bottom) = stratum.bottom else {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM weight strata: a bottom (count of strata)",
+                value: strata.len() as f64,
+                requirement: "every stratum but the last needs a bottom",
+            });
+        };
+        if !bottom.is_finite() || bottom > above {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM weight stratum: bottom elevation",
+                value: bottom,
+                requirement: "must be finite and not above the bottom of the stratum above",
+            });
+        }
+        above = bottom;
+    }
+    Ok(())
 }
 
 impl HpmModel {
@@ -344,6 +457,47 @@ impl HpmModel {
         Ok(())
     }
 
+    /// Weigh the elements of column `column` (an index into
+    /// [`Self::columns`]) by the unit weights of `strata` in place of the
+    /// material's: the strata of a layered ground at the column, top to
+    /// bottom, each with its own unit weights above and below the water
+    /// table of `grids` (the grids the model was built on). Each element
+    /// weighs `Σ γ_k Δz_k d²` over the pieces of its height, between the
+    /// means of its corner heights, that the strata's bottoms and the mean
+    /// water level cut (eqs. 8–10 piece by piece); one stratum of the
+    /// material's weights gives the weights [`Self::new`] gave, bit for
+    /// bit. The stiffness does not change; every load, safety factor and
+    /// analysis takes the new weights.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a column the model does not
+    /// have, no stratum, a unit weight that is not finite and positive, a
+    /// bottom given to the last stratum or missing from another, or
+    /// bottoms that are not finite or rise downwards.
+    pub fn set_column_strata(
+        &mut self,
+        grids: &SlopeGrids,
+        column: usize,
+        strata: &[WeightStratum],
+    ) -> Result<()> {
+        let Some(grid_column) = self.columns.get(column) else {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM column index",
+                value: column as f64,
+                requirement: "must be below the model's number of columns",
+            });
+        };
+        check_strata(strata)?;
+        let (r, c) = grid_column.cell;
+        let (_, _, water) = grids.corners(r, c);
+        let d = self.grid.2;
+        for e in grid_column.elements.clone() {
+            let element = &mut self.elements[e];
+            element.weight = element_weight(strata, &element.shape, water.as_ref(), d * d);
+        }
+        Ok(())
+    }
+
     /// Build the model; validates the material and settings.
     ///
     /// # Errors
@@ -406,7 +560,12 @@ impl HpmModel {
                     layer,
                     centre: part.centroid(),
                     volume: part.volume(),
-                    weight: element_weight(material, &part, water.as_ref(), d * d),
+                    weight: element_weight(
+                        &[WeightStratum::of(material)],
+                        &part,
+                        water.as_ref(),
+                        d * d,
+                    ),
                     shape: part,
                 });
             }

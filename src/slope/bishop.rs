@@ -65,17 +65,19 @@
 //!
 //! **The known defect of Bishop's method**: where a base rises steeply in
 //! the sliding direction (sin α < 0, at the toe), `m_α` falls towards zero
-//! and N grows without bound. A column with `m_α` at or below
-//! [`MIN_M_ALPHA`] (Whitman & Bailey, J. Soil Mech. Found. Div. ASCE 93(4),
-//! 1967, advise against trusting Bishop's method there) refuses the surface,
-//! naming the column ([`BishopFailure::SmallMAlpha`]); a search counts it
-//! as [`Refusal::SmallMAlpha`].
+//! and N grows without bound. A column with `m_α` at or below a floor,
+//! [`MIN_M_ALPHA`] = 0.2 unless [`BishopSettings::with_m_alpha_floor`]
+//! sets another (Whitman & Bailey, J. Soil Mech. Found. Div. ASCE 93(4),
+//! 1967, advise against trusting Bishop's method below 0.2), refuses the
+//! surface, naming the column ([`BishopFailure::SmallMAlpha`]); a search
+//! counts it as [`Refusal::SmallMAlpha`].
 //!
 //! (Hungr's equation numbers are not given here: the text of the paper was
 //! not at hand when this was written; the equations above are derived from
 //! the method's stated assumptions and checked by the tests:
 //! tests/slope_bishop.rs.)
 
+use super::error::SlopeError;
 use super::ground::{ColumnGround, Ground};
 use super::hovland::SurfaceFs;
 use super::hovland::{column_terms, finish, surface_setup};
@@ -90,8 +92,53 @@ pub const BISHOP_TOLERANCE: f64 = 1e-12;
 /// The most iterations of Bishop's F.
 pub const BISHOP_MAX_ITERATIONS: usize = 1000;
 
-/// The smallest `m_α` a column may have (Whitman & Bailey 1967's 0.2).
+/// The default floor of `m_α` ([`BishopSettings::m_alpha_floor`]): a
+/// column at or below it refuses the surface (Whitman & Bailey 1967's
+/// 0.2).
 pub const MIN_M_ALPHA: f64 = 0.2;
+
+/// Settings of Bishop's method: the floor of `m_α`, at or below which a
+/// column refuses its surface ([`BishopFailure::SmallMAlpha`]). Always
+/// valid: the floor is checked where it is set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BishopSettings {
+    m_alpha_floor: f64,
+}
+
+impl Default for BishopSettings {
+    /// The floor [`MIN_M_ALPHA`] = 0.2 (Whitman & Bailey 1967).
+    fn default() -> Self {
+        Self {
+            m_alpha_floor: MIN_M_ALPHA,
+        }
+    }
+}
+
+impl BishopSettings {
+    /// The settings with the floor of `m_α` at `floor`, in (0, 1]: a
+    /// lower floor accepts surfaces whose toe rises more steeply, where
+    /// Bishop's normal forces grow as `1/m_α`; 1 refuses any column whose
+    /// base rises against the sliding direction on a frictional material.
+    ///
+    /// # Errors
+    /// [`SlopeError::MAlphaFloorOutOfRange`] naming the value, for a floor
+    /// that is not finite, at or below 0, or above 1.
+    pub fn with_m_alpha_floor(self, floor: f64) -> crate::error::Result<Self> {
+        if !(floor > 0.0 && floor <= 1.0) {
+            return Err(crate::error::DismechError::Slope(
+                SlopeError::MAlphaFloorOutOfRange { value: floor },
+            ));
+        }
+        Ok(Self {
+            m_alpha_floor: floor,
+        })
+    }
+
+    /// The floor of `m_α` (default [`MIN_M_ALPHA`]).
+    pub fn m_alpha_floor(&self) -> f64 {
+        self.m_alpha_floor
+    }
+}
 
 /// Why Bishop's method gave no Fs for a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,8 +146,9 @@ pub enum BishopFailure {
     /// A refusal shared with Hovland's method (limits, no data, nothing
     /// drives, no strength).
     Refused(Refusal),
-    /// A column's `m_α = cos γ + sin α tan φ / F` is at or below
-    /// [`MIN_M_ALPHA`] (at the iterate `safety_factor`).
+    /// A column's `m_α = cos γ + sin α tan φ / F` is at or below the
+    /// floor [`BishopSettings::m_alpha_floor`] (at the iterate
+    /// `safety_factor`).
     SmallMAlpha {
         /// Grid row of the column.
         row: usize,
@@ -110,6 +158,8 @@ pub enum BishopFailure {
         m_alpha: f64,
         /// The F at which it was found.
         safety_factor: f64,
+        /// The floor it is at or below.
+        floor: f64,
     },
     /// The iteration did not settle within [`BISHOP_MAX_ITERATIONS`], or
     /// gave an F that is not finite and positive.
@@ -130,9 +180,10 @@ impl std::fmt::Display for BishopFailure {
                 column,
                 m_alpha,
                 safety_factor,
+                floor,
             } => write!(
                 f,
-                "Bishop's m_alpha = {m_alpha} at the column of row {row}, column {column} (F = {safety_factor}) is at or below {MIN_M_ALPHA}: its base rises too steeply in the sliding direction for Bishop's method"
+                "Bishop's m_alpha = {m_alpha} at the column of row {row}, column {column} (F = {safety_factor}) is at or below the floor {floor}: its base rises too steeply in the sliding direction for Bishop's method"
             ),
             Self::NotConverged {
                 iterations,
@@ -167,7 +218,8 @@ impl From<BishopFailure> for Refusal {
 
 /// Bishop's 3D Fs of `columns` (of a surface over `terrain`) on one
 /// material, moments about the horizontal axis through `centre` across
-/// the sliding direction; the limits checked first. The material and
+/// the sliding direction, `m_α` floored by `settings`; the limits checked
+/// first. The material and
 /// loads are taken as given (an [`super::Evaluator`] checks them once).
 ///
 /// The result's `resisting` is `Σ (c A + N' tan φ)` with Bishop's N, and
@@ -180,7 +232,8 @@ impl From<BishopFailure> for Refusal {
 /// `Σ (W x − N f + k_h W e)` about the axis is not positive (a nearly
 /// level surface, or one whose weight lies mostly downslope of its
 /// centre), [`Refusal::NoStrength`] where the resisting moment is not;
-/// [`BishopFailure::SmallMAlpha`] naming the column;
+/// [`BishopFailure::SmallMAlpha`] naming the column, for an `m_α` at or
+/// below [`BishopSettings::m_alpha_floor`];
 /// [`BishopFailure::NotConverged`].
 pub fn bishop_columns(
     columns: &[SlipColumn],
@@ -189,10 +242,11 @@ pub fn bishop_columns(
     loads: &SlopeLoads,
     limits: &SurfaceLimits,
     centre: (f64, f64, f64),
+    settings: &BishopSettings,
 ) -> std::result::Result<SurfaceFs, BishopFailure> {
     let gamma = material.unit_weight;
     let (c, mu) = (material.cohesion, material.friction_coefficient);
-    bishop_core(columns, terrain, loads, limits, centre, |k| {
+    bishop_core(columns, terrain, loads, limits, centre, settings, |k| {
         Some(ColumnGround {
             vertical_stress: gamma * (k.ground - k.base),
             cohesion: c,
@@ -215,8 +269,9 @@ pub fn bishop_ground(
     loads: &SlopeLoads,
     limits: &SurfaceLimits,
     centre: (f64, f64, f64),
+    settings: &BishopSettings,
 ) -> std::result::Result<SurfaceFs, BishopFailure> {
-    bishop_core(columns, terrain, loads, limits, centre, |k| {
+    bishop_core(columns, terrain, loads, limits, centre, settings, |k| {
         ground.column(k.row, k.column, k.ground, k.base)
     })
 }
@@ -243,10 +298,10 @@ struct BishopColumn {
 
 impl BishopColumn {
     /// `(N, N')` at F, or the column's `m_α` where it is at or below
-    /// [`MIN_M_ALPHA`].
-    fn normal(&self, f: f64) -> Result<(f64, f64), f64> {
+    /// `floor`.
+    fn normal(&self, f: f64, floor: f64) -> Result<(f64, f64), f64> {
         let m_alpha = self.cos_gamma + self.sin_alpha * self.friction / f;
-        if m_alpha.partial_cmp(&MIN_M_ALPHA) != Some(std::cmp::Ordering::Greater) {
+        if m_alpha.partial_cmp(&floor) != Some(std::cmp::Ordering::Greater) {
             return Err(m_alpha);
         }
         let n = (self.weight
@@ -268,8 +323,10 @@ fn bishop_core(
     loads: &SlopeLoads,
     limits: &SurfaceLimits,
     centre: (f64, f64, f64),
+    settings: &BishopSettings,
     at: impl Fn(&SlipColumn) -> Option<ColumnGround>,
 ) -> std::result::Result<SurfaceFs, BishopFailure> {
+    let floor = settings.m_alpha_floor;
     let cell_size = terrain.cell_size();
     let cell_area = cell_size * cell_size;
     let setup = surface_setup(columns, cell_size, limits, &at)?;
@@ -311,12 +368,15 @@ fn bishop_core(
     for iteration in 1..=BISHOP_MAX_ITERATIONS {
         let (mut moment_resisting, mut moment_driving, mut strength) = (0.0, 0.0, 0.0);
         for b in &cols {
-            let (n, effective) = b.normal(f).map_err(|m_alpha| BishopFailure::SmallMAlpha {
-                row: b.row,
-                column: b.column,
-                m_alpha,
-                safety_factor: f,
-            })?;
+            let (n, effective) =
+                b.normal(f, floor)
+                    .map_err(|m_alpha| BishopFailure::SmallMAlpha {
+                        row: b.row,
+                        column: b.column,
+                        m_alpha,
+                        safety_factor: f,
+                        floor,
+                    })?;
             let s = b.cohesion_force + effective * b.friction;
             strength += s;
             moment_resisting += s * b.shear_arm;

@@ -75,6 +75,14 @@ pub enum SlopeError {
         /// The upper bound given.
         high: f64,
     },
+    /// A floor of Bishop's `m_α`
+    /// ([`crate::slope::BishopSettings::with_m_alpha_floor`]) outside
+    /// (0, 1].
+    #[error("Bishop's m_alpha floor = {}: must be finite and lie in (0, 1] (default 0.2, Whitman & Bailey 1967)", Number(*value))]
+    MAlphaFloorOutOfRange {
+        /// The floor given.
+        value: f64,
+    },
     /// Ground that an HPM re-analysis of a trial surface
     /// ([`crate::slope::hpm_reanalysis`]) cannot take: HPM's elements hold
     /// one unit weight and it takes pore water from a water table.

@@ -294,6 +294,45 @@ impl Ground {
         Ok(())
     }
 
+    /// The layers at cell (row, column) with ground `ground` down to the
+    /// elevation `down_to`, top to bottom: each layer's bottom, clipped as
+    /// in [`Ground::column`], and its index in [`Ground::layers`]; a layer
+    /// pinched out at the cell (thickness 0) is left out, and the first
+    /// layer whose bottom lies below `down_to` is given as the last
+    /// (`None`, unbounded below: nothing under it reaches `down_to`). The
+    /// first layer given reaches up without bound (an HPM column's top may
+    /// lie above the ground at its cell centre). `None` where a bottom
+    /// raster has no data at the cell above that depth.
+    pub fn strata(
+        &self,
+        row: usize,
+        column: usize,
+        ground: f64,
+        down_to: f64,
+    ) -> Option<Vec<(Option<f64>, usize)>> {
+        let mut top = ground;
+        let mut strata = Vec::with_capacity(self.layers.len());
+        for (index, layer) in self.layers.iter().enumerate() {
+            let bottom = match &layer.bottom {
+                Some(b) => b.raster.get(row, column)?.min(top),
+                None => f64::NEG_INFINITY,
+            };
+            if bottom == top {
+                // Pinched out at the cell: not there.
+                continue;
+            }
+            if bottom < down_to {
+                strata.push((None, index));
+                return Some(strata);
+            }
+            strata.push((Some(bottom), index));
+            top = bottom;
+        }
+        // The last layer is unbounded below (`Ground::layered`), so the
+        // loop returns.
+        None
+    }
+
     /// What the ground gives the column at cell (row, column) with ground
     /// `ground` and base `base` (< `ground`): the layered vertical stress,
     /// the strength of the layer the base passes through and the r_u pore

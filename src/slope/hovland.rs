@@ -36,6 +36,7 @@
 use crate::error::Result;
 use crate::hpm::MIN_DRIVING_RATIO;
 
+use super::bishop::BishopSettings;
 use super::ground::{ColumnGround, Ground, ToGround};
 use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::{surface_columns, Refusal, SlipColumn, SurfaceLimits, TrialSurface};
@@ -343,6 +344,7 @@ pub struct Evaluator<'a> {
     loads: SlopeLoads,
     limits: SurfaceLimits,
     method: Method,
+    bishop: BishopSettings,
 }
 
 impl<'a> Evaluator<'a> {
@@ -371,6 +373,7 @@ impl<'a> Evaluator<'a> {
             loads: *loads,
             limits: *limits,
             method: Method::Hovland,
+            bishop: BishopSettings::default(),
         })
     }
 
@@ -383,6 +386,18 @@ impl<'a> Evaluator<'a> {
     /// The method the surfaces are evaluated by.
     pub fn method(&self) -> Method {
         self.method
+    }
+
+    /// The evaluator with Bishop's settings `bishop` (its `m_α` floor),
+    /// taken where the method is [`Method::Bishop`].
+    pub fn with_bishop(mut self, bishop: BishopSettings) -> Self {
+        self.bishop = bishop;
+        self
+    }
+
+    /// Bishop's settings (default [`BishopSettings::default`]).
+    pub fn bishop(&self) -> BishopSettings {
+        self.bishop
     }
 
     /// The terrain.
@@ -426,6 +441,7 @@ impl<'a> Evaluator<'a> {
                 &self.loads,
                 &self.limits,
                 surface.centre(),
+                &self.bishop,
             )
             .map_err(Refusal::from),
         }

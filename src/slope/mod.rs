@@ -18,7 +18,7 @@
 //! | layered ground, r_u | [`Ground`] (strength [`Layer`]s bounded by elevation rasters, Scoops3D's convention), [`PoreRatio`] (Bishop & Morgenstern's r_u), [`ColumnGround`] | `ground.rs` |
 //! | trial surfaces | [`TrialSurface`]: [`Sphere`], [`Ellipsoid`]; [`surface_columns`], [`SlipColumn`], [`SurfaceLimits`], [`Refusal`] | `surface.rs` |
 //! | Hovland per surface | [`hovland_columns`], [`hovland_ground`], [`Evaluator`], [`SurfaceFs`], [`Method`] | `hovland.rs` |
-//! | Bishop's simplified method in 3D per surface (Hungr 1987) | [`bishop_columns`], [`bishop_ground`], [`BishopFailure`], [`MIN_M_ALPHA`] | `bishop.rs` |
+//! | Bishop's simplified method in 3D per surface (Hungr 1987) | [`bishop_columns`], [`bishop_ground`], [`BishopFailure`], [`BishopSettings`] (the `m_α` floor, default [`MIN_M_ALPHA`]) | `bishop.rs` |
 //! | families | [`TrialFamily`]: [`SphereGrid`] (Scoops3D), [`SphereRandom`], [`EllipsoidRandom`] (r.slope.stability); [`Steps`] | `family.rs` |
 //! | the search | [`search`], [`SearchSettings`], [`SearchResult`], [`CellMinimum`], [`CriticalSurface`], [`SearchCounts`] | `search.rs` |
 //! | HPM re-analysis of a surface (paper 001) | [`hpm_reanalysis`], [`HpmReanalysis`], [`HpmStiffness`], [`surface_raster`] | `reanalysis.rs` |
@@ -62,8 +62,8 @@ mod surface;
 mod terrain;
 
 pub use bishop::{
-    bishop_columns, bishop_ground, BishopFailure, BISHOP_MAX_ITERATIONS, BISHOP_TOLERANCE,
-    MIN_M_ALPHA,
+    bishop_columns, bishop_ground, BishopFailure, BishopSettings, BISHOP_MAX_ITERATIONS,
+    BISHOP_TOLERANCE, MIN_M_ALPHA,
 };
 pub use error::SlopeError;
 pub use family::{EllipsoidRandom, SphereGrid, SphereRandom, Steps, TrialFamily};

@@ -12,15 +12,21 @@
 //! cell-centre values (eq. 23). A re-analysis is therefore the same as an
 //! HPM run on that raster read from a file, bit for bit.
 //!
-//! **Ground.** HPM's elements hold one unit weight (§3: averaged values);
-//! its slip springs take the strength of the layer the slip surface
-//! crosses at each column's cell centre
-//! ([`HpmModel::set_column_strength`], as the search's Hovland takes it).
-//! Layered ground is therefore taken where its layers share one unit
-//! weight; layers of different unit weights, or a pore-pressure ratio, are
-//! refused ([`SlopeError::HpmGround`]). The water table of the
+//! **Ground.** On layered ground ([`Ground`]) each column takes its
+//! layers, as the search's Hovland takes them at the cell centre
+//! (Scoops3D's convention): its slip springs the strength of the layer
+//! the slip surface crosses there ([`HpmModel::set_column_strength`]),
+//! its elements the weight of the layers over their height, each layer's
+//! bottom at the cell centre a level plane through the column
+//! ([`HpmModel::set_column_strata`]: eqs. 8–10 summed layer by layer).
+//! Paper 001 averages the ground's values (§3); one material, or layers
+//! of equal unit weights and strength, give the one-material model bit for
+//! bit. A pore-pressure ratio r_u is refused ([`SlopeError::HpmGround`]):
+//! HPM's pore water is a water table's, taken as the submerged weight of
+//! the elements below it, and an `r_u σ_v` on the slip surface would be a
+//! load on the slip springs that the model does not have. The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
-//! weight `γ − γ_w` (eqs. 8–10), where Hovland's method of the search
+//! weight `γ − γ_w` of their layer (eqs. 8–10), where Hovland's method of the search
 //! keeps the total weight and takes the pore pressure `γ_w h_p` off the
 //! base's normal force; under a level water table the two give the same
 //! effective normal force. The seismic coefficient acts along the
@@ -31,12 +37,13 @@ use crate::error::{DismechError, Result};
 use crate::grid::Raster;
 use crate::hpm::{
     ColumnMaps, HpmMaterial, HpmModel, HpmResult, HpmSettings, HpmSolver, NamedRaster,
-    NonlinearSettings, Seismic, SlopeGrids,
+    NonlinearSettings, Seismic, SlopeGrids, WeightStratum,
 };
 use crate::law::Strength;
 
 use super::ground::{Ground, ToGround};
 use super::hovland::SurfaceFs;
+use super::layer_problem::LayerProblem;
 use super::material::{SlopeLoads, SlopeMaterial};
 use super::surface::TrialSurface;
 use super::terrain::Terrain;
@@ -159,51 +166,107 @@ impl HpmReanalysis {
     }
 }
 
-/// The material HPM's model is built with and, for layered ground, the
-/// ground its slip springs take their strength from; or why HPM cannot
-/// take `ground`.
-fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<(SlopeMaterial, Option<Ground>)> {
+/// The ground HPM takes: its layers (one or more), or why HPM cannot
+/// take `ground` (a pore-pressure ratio).
+fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<Ground> {
     let ground = ground.to_ground();
     if let Some(ratio) = ground.pore_ratio() {
         return Err(DismechError::Slope(SlopeError::HpmGround {
             reason: format!(
-                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only",
+                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only (the submerged weight of the elements below it), and has no pore-pressure load on its slip springs",
                 ratio.describe()
             ),
         }));
     }
-    let layers = ground.layers();
-    let first = layers[0].material;
-    if layers.len() == 1 {
-        return Ok((first, None));
-    }
-    if layers
+    Ok(ground)
+}
+
+/// HPM's material of each layer of `ground` (its unit weights: `γ`, and
+/// `γ − γ_w` below a water table), in the layers' order.
+fn layer_materials(
+    ground: &Ground,
+    stiffness: &HpmStiffness,
+    loads: &SlopeLoads,
+) -> Result<Vec<HpmMaterial>> {
+    ground
+        .layers()
         .iter()
-        .any(|l| l.material.unit_weight != first.unit_weight)
-    {
-        return Err(DismechError::Slope(SlopeError::HpmGround {
-            reason: format!(
-                "the layered ground's unit weights differ ({}); HPM's elements hold one unit weight (paper 001, §3), its slip springs the strength of the layer they cross",
-                layers
-                    .iter()
-                    .map(|l| format!("{} {} N/m³", l.name, l.material.unit_weight))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        }));
+        .map(|layer| {
+            stiffness.material(&layer.material, loads).map_err(|e| {
+                DismechError::Slope(SlopeError::InvalidLayer {
+                    layer: layer.name.clone(),
+                    problem: LayerProblem::Material(Box::new(e)),
+                })
+            })
+        })
+        .collect()
+}
+
+/// Give each column of `model` the layers of `ground` at its cell centre:
+/// its slip springs the strength of the layer the slip surface crosses,
+/// its elements the weights of the layers over their height.
+fn take_layers(
+    model: &mut HpmModel,
+    grids: &SlopeGrids,
+    terrain: &Terrain,
+    ground: &Ground,
+    materials: &[HpmMaterial],
+) -> Result<()> {
+    for k in 0..model.columns.len() {
+        let (r, c) = model.columns[k].cell;
+        let no_data = || {
+            DismechError::Slope(SlopeError::HpmGround {
+                reason: format!(
+                    "a layer's bottom has no data at cell (row {r}, column {c}), a column of the slide"
+                ),
+            })
+        };
+        let g = terrain.ground(r, c).ok_or_else(no_data)?;
+        let z = grids.slip().raster.get(r, c).ok_or_else(no_data)?;
+        // Each column's springs: the layer the slip surface crosses at the
+        // cell centre, as the search's Hovland takes it.
+        let at = ground.column(r, c, g, z).ok_or_else(no_data)?;
+        model.set_column_strength(
+            k,
+            Strength {
+                cohesion: at.cohesion,
+                friction: at.friction_coefficient,
+            },
+        )?;
+        // Its elements: the layers down to the lowest corner of its slip
+        // surface, each with HPM's unit weights of its material.
+        let lowest = model.columns[k]
+            .shape
+            .bottom()
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        let strata = ground.strata(r, c, g, lowest).ok_or_else(no_data)?;
+        let strata: Vec<WeightStratum> = strata
+            .iter()
+            .map(|&(bottom, index)| WeightStratum {
+                bottom,
+                unit_weight: materials[index].unit_weight,
+                submerged_unit_weight: materials[index].submerged_unit_weight,
+            })
+            .collect();
+        model.set_column_strata(grids, k, &strata)?;
     }
-    Ok((first, Some(ground)))
+    Ok(())
 }
 
 /// Re-analyse `surface` (a surface of a search over `terrain`, with
 /// Hovland's result `hovland` giving its sliding direction) by HPM:
 /// elastic always, nonlinear where `nonlinear` is given, on the ground
-/// `ground` (one material, or layers of one unit weight) under `loads`, with the stiffness `stiffness`
-/// and the discretisation `settings` (see the module's documentation).
+/// `ground` (one material, or layers) under `loads`, with the stiffness
+/// `stiffness` and the discretisation `settings` (see the module's
+/// documentation).
 ///
 /// # Errors
-/// [`SlopeError::HpmGround`] for layers of different unit weights, a
-/// pore-pressure ratio or a layer's bottom without data under a column; those of [`HpmStiffness::material`], [`Seismic::validate`],
+/// [`SlopeError::HpmGround`] for a pore-pressure ratio or a layer's
+/// bottom without data under a column; [`SlopeError::InvalidLayer`]
+/// naming a layer whose material HPM refuses
+/// ([`HpmStiffness::material`]: under a water table, a unit weight not
+/// above `γ_w`); those of [`HpmStiffness::material`], [`Seismic::validate`],
 /// [`SlopeGrids::new`] (a surface that stays above the ground:
 /// [`HpmError::NoValidColumn`](crate::hpm::HpmError::NoValidColumn)),
 /// [`HpmModel::new`], [`HpmSolver::new`] and of the analyses.
@@ -218,18 +281,26 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     settings: &HpmSettings,
     nonlinear: Option<&NonlinearSettings>,
 ) -> Result<HpmReanalysis> {
-    let (material, layered) = hpm_ground(ground)?;
-    let material = if terrain.water().is_some() {
-        stiffness.material(&material, loads)?
-    } else {
-        // Dry ground: no element lies below a water table, so the
-        // submerged unit weight is never taken; a unit weight at or below
-        // γ_w is no reason to refuse.
-        let dry = SlopeLoads {
+    let ground = hpm_ground(ground)?;
+    // Dry ground: no element lies below a water table, so the submerged
+    // unit weight is never taken; a unit weight at or below γ_w is no
+    // reason to refuse.
+    let loads_taken = match terrain.water() {
+        Some(_) => *loads,
+        None => SlopeLoads {
             water_unit_weight: 0.0,
             ..*loads
-        };
-        stiffness.material(&material, &dry)?
+        },
+    };
+    // One material: HPM's own model. Layers: the model of the top layer's
+    // material, each column then given its layers.
+    let layers = match ground.layers() {
+        [_] => None,
+        _ => Some(layer_materials(&ground, stiffness, &loads_taken)?),
+    };
+    let material = match &layers {
+        None => stiffness.material(&ground.layers()[0].material, &loads_taken)?,
+        Some(materials) => materials[0],
     };
     let seismic = Seismic {
         coefficient: loads.seismic_coefficient,
@@ -239,30 +310,8 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     let slip = NamedRaster::new("slip surface", surface_raster(terrain, surface)?);
     let grids = SlopeGrids::new(terrain.dem().clone(), slip, terrain.water().cloned())?;
     let mut model = HpmModel::new(&grids, &material, settings)?;
-    if let Some(layered) = &layered {
-        // Each column's springs: the layer the slip surface crosses at the
-        // cell centre, as the search's Hovland takes it.
-        for k in 0..model.columns.len() {
-            let (r, c) = model.columns[k].cell;
-            let at = terrain
-                .ground(r, c)
-                .zip(grids.slip().raster.get(r, c))
-                .and_then(|(g, z)| layered.column(r, c, g, z));
-            let Some(at) = at else {
-                return Err(DismechError::Slope(SlopeError::HpmGround {
-                    reason: format!(
-                        "a layer's bottom has no data at cell (row {r}, column {c}), a column of the slide"
-                    ),
-                }));
-            };
-            model.set_column_strength(
-                k,
-                Strength {
-                    cohesion: at.cohesion,
-                    friction: at.friction_coefficient,
-                },
-            )?;
-        }
+    if let Some(materials) = &layers {
+        take_layers(&mut model, &grids, terrain, &ground, materials)?;
     }
     let mut solver = HpmSolver::new(&model)?;
     let elastic = solver.elastic(&model, &seismic)?;

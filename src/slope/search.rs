@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use crate::error::{require_positive, Result};
 
+use super::bishop::BishopSettings;
 use super::family::TrialFamily;
 use super::ground::ToGround;
 use super::hovland::{Evaluator, Method, SurfaceFs};
@@ -39,17 +40,22 @@ pub struct SearchSettings {
     pub batch: u64,
     /// The limit-equilibrium method each surface is evaluated by.
     pub method: Method,
+    /// Bishop's settings (its `m_α` floor), taken where `method` is
+    /// [`Method::Bishop`].
+    pub bishop: BishopSettings,
 }
 
 impl Default for SearchSettings {
     /// Default limits, the 10 most critical surfaces, batches of 20 000
-    /// trials, Hovland's method.
+    /// trials, Hovland's method (Bishop's with its default `m_α` floor
+    /// 0.2, where chosen).
     fn default() -> Self {
         Self {
             limits: SurfaceLimits::default(),
             critical: 10,
             batch: 20_000,
             method: Method::Hovland,
+            bishop: BishopSettings::default(),
         }
     }
 }
@@ -267,8 +273,9 @@ pub fn search<F: TrialFamily>(
     settings: &SearchSettings,
     mut progress: impl FnMut(u64, u64),
 ) -> Result<SearchResult<F::Surface>> {
-    let evaluator =
-        Evaluator::new(terrain, ground, loads, &settings.limits)?.with_method(settings.method);
+    let evaluator = Evaluator::new(terrain, ground, loads, &settings.limits)?
+        .with_method(settings.method)
+        .with_bishop(settings.bishop);
     family.validate()?;
     require_positive("search batch (trials)", settings.batch as f64)?;
     let total = family.len(terrain);

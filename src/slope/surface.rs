@@ -320,8 +320,8 @@ pub enum Refusal {
     /// The strength `Σ (c A + N' tan φ)` is not positive (pore pressure or
     /// a seismic force lifting the columns off their bases).
     NoStrength,
-    /// Bishop's method: a column's `m_α` is at or below
-    /// [`super::MIN_M_ALPHA`] ([`super::BishopFailure::SmallMAlpha`]).
+    /// Bishop's method: a column's `m_α` is at or below the floor
+    /// [`super::BishopSettings::m_alpha_floor`] ([`super::BishopFailure::SmallMAlpha`]).
     SmallMAlpha,
     /// Bishop's method: the iteration of F did not settle
     /// ([`super::BishopFailure::NotConverged`]).

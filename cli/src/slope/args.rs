@@ -53,9 +53,35 @@ pub enum MethodArg {
     /// Bishop's simplified method in 3D (Hungr 1987): each column's normal
     /// force from its vertical equilibrium, moments about the horizontal
     /// axis through the surface's centre across the sliding direction,
-    /// iterated on Fs; a surface with a column of m_alpha <= 0.2 is
-    /// refused.
+    /// iterated on Fs; a surface with a column of m_alpha at or below
+    /// --m-alpha-floor (0.2 by default) is refused.
     Bishop,
+}
+
+impl SlopeArgs {
+    /// Bishop's settings of `--m-alpha-floor` (the library's default
+    /// without it).
+    ///
+    /// # Errors
+    /// [`SlopeError::Argument`](super::SlopeError::Argument) naming
+    /// `--m-alpha-floor` for a floor given with a method other than
+    /// Bishop's (it would be ignored), or one the library refuses.
+    pub fn bishop(&self) -> Result<dismech::slope::BishopSettings, super::SlopeError> {
+        let settings = dismech::slope::BishopSettings::default();
+        let Some(floor) = self.m_alpha_floor else {
+            return Ok(settings);
+        };
+        let refused = |e| super::SlopeError::argument("--m-alpha-floor", &floor.to_string(), e);
+        if self.method != MethodArg::Bishop {
+            return Err(refused(DismechError::InvalidParameter {
+                name: "Bishop's m_alpha floor",
+                value: floor,
+                requirement:
+                    "is an option of --method bishop only (with another method it would be ignored)",
+            }));
+        }
+        settings.with_m_alpha_floor(floor).map_err(refused)
+    }
 }
 
 impl MethodArg {
@@ -176,6 +202,13 @@ pub struct SlopeArgs {
     /// Hungr 1987).
     #[arg(long, value_enum, default_value = "hovland")]
     pub method: MethodArg,
+    /// Bishop's floor of m_alpha = cos(gamma) + sin(alpha) tan(phi) / F, in
+    /// (0, 1]: a surface with a column at or below it is refused, as
+    /// Bishop's normal forces grow as 1/m_alpha where the base rises
+    /// steeply against the sliding direction [default: 0.2, Whitman &
+    /// Bailey 1967]. Only with --method bishop.
+    #[arg(long, value_name = "M", value_parser = parse_m_alpha_floor)]
+    pub m_alpha_floor: Option<f64>,
 
     /// Cells between neighbouring sphere centres [default: a 25th of the
     /// DEM's shorter side, at least 1].
@@ -238,9 +271,10 @@ pub struct SlopeArgs {
     /// elastic, and nonlinear with --hpm-nonlinear; their Fs go into
     /// critical.csv and summary.json, the maps of the most critical one
     /// (local Fs, displacement, strains) and its slip surface into
-    /// `hpm_*.asc`/`.tif`. HPM holds one unit weight: a --layer must have
-    /// that of --unit-weight (its slip springs take the strength of the
-    /// layer they cross); no --ru. K ≥ 1; leave --hpm out for no
+    /// `hpm_*.asc`/`.tif`. With --layer each HPM column takes its layers
+    /// at its cell centre: its slip springs the strength of the layer
+    /// the surface crosses, its elements the unit weights of the layers
+    /// over their height; --ru is refused. K ≥ 1; leave --hpm out for no
     /// re-analysis.
     #[arg(long, value_name = "K", value_parser = parse_hpm, help_heading = "HPM re-analysis")]
     pub hpm: Option<usize>,
@@ -340,6 +374,14 @@ fn parse_unit_weight(text: &str) -> Result<f64, String> {
     require_positive("unit weight gamma (N/m3)", number(text)?).map_err(message)
 }
 
+fn parse_m_alpha_floor(text: &str) -> Result<f64, String> {
+    let floor = number(text)?;
+    dismech::slope::BishopSettings::default()
+        .with_m_alpha_floor(floor)
+        .map_err(message)?;
+    Ok(floor)
+}
+
 fn parse_seismic(text: &str) -> Result<f64, String> {
     let kh = number(text)?;
     let loads = dismech::slope::SlopeLoads {
@@ -394,11 +436,12 @@ fn parse_keep(text: &str) -> Result<usize, String> {
 }
 
 /// `--hpm K`, K ≥ 1: `--hpm 0` would re-analyse nothing and leave the HPM
-/// options beside it unused.
+/// options beside it (`--hpm-nonlinear`, `--youngs-modulus`,
+/// `--poisson-ratio`) unused, so it is refused naming them.
 fn parse_hpm(text: &str) -> Result<usize, String> {
     match parse_keep(text)? {
         0 => Err(format!(
-            "`{text}` re-analyses no surface: give K >= 1, or leave --hpm out for no re-analysis"
+            "`{text}` re-analyses no surface, so --hpm-nonlinear, --youngs-modulus and --poisson-ratio would be ignored: give K >= 1, or leave --hpm out (and those options with it) for no re-analysis"
         )),
         k => Ok(k),
     }
@@ -530,6 +573,12 @@ mod tests {
             .unwrap_err()
             .contains("must be finite and > 0"));
         assert!(parse_seismic("11").unwrap_err().contains("at most 10"));
+        assert_eq!(parse_m_alpha_floor("0.05").unwrap(), 0.05);
+        assert_eq!(parse_m_alpha_floor("1").unwrap(), 1.0);
+        for bad in ["0", "-0.1", "1.5", "inf"] {
+            let e = parse_m_alpha_floor(bad).unwrap_err();
+            assert!(e.contains("m_alpha floor") && e.contains("(0, 1]"), "{e}");
+        }
         assert_eq!(
             parse_stride("0").unwrap_err(),
             "the stride (cells) must be at least 1"

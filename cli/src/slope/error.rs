@@ -100,7 +100,9 @@ pub fn refusal_words(reason: Refusal) -> &'static str {
         Refusal::Depth => "depth outside --depth",
         Refusal::NothingDrives => "nothing drives the slide",
         Refusal::NoStrength => "no strength left",
-        Refusal::SmallMAlpha => "Bishop's m_alpha at or below 0.2 at a column",
+        Refusal::SmallMAlpha => {
+            "Bishop's m_alpha at or below its floor (--m-alpha-floor) at a column"
+        }
         Refusal::NotConverged => "Bishop's iteration did not settle",
     }
 }

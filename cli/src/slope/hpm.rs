@@ -139,8 +139,8 @@ pub struct HpmRuns {
 /// # Errors
 /// [`SlopeError::HpmAboveKeep`] for `--hpm K` above `--keep`;
 /// [`SlopeError::Argument`] naming `--hpm` with
-/// [`dismech::slope::SlopeError::HpmGround`] for `--ru`, or a `--layer`
-/// whose unit weight is not that of `--unit-weight`.
+/// [`dismech::slope::SlopeError::HpmGround`] for `--ru` (layers of any
+/// unit weights are taken: [`dismech::slope::hpm_reanalysis`]).
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     let Some(hpm) = args.hpm else {
         return Ok(());
@@ -151,30 +151,10 @@ pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
             keep: args.keep,
         });
     }
-    let reason = if args.ru.is_some() {
-        "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only"
-            .to_string()
-    } else if args
-        .layers
-        .iter()
-        .any(|l| l.unit_weight != args.unit_weight)
-    {
-        let weights: Vec<String> = args
-            .layers
-            .iter()
-            .map(|l| format!("{} {}", l.name, l.unit_weight))
-            .chain(std::iter::once(format!(
-                "--unit-weight {}",
-                args.unit_weight
-            )))
-            .collect();
-        format!(
-            "--layer gives layered ground of different unit weights ({} N/m³); HPM's elements hold one unit weight (paper 001, §3), its slip springs take the strength of the layer they cross",
-            weights.join(", ")
-        )
-    } else {
+    if args.ru.is_none() {
         return Ok(());
-    };
+    }
+    let reason = "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only, as the submerged weight of the elements below it, and has no pore-pressure load on its slip springs".to_string();
     Err(SlopeError::argument(
         "--hpm",
         &hpm.to_string(),

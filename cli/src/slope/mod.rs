@@ -79,12 +79,14 @@ fn run_family<F: TrialFamily>(
     family: &F,
     keep: usize,
     method: dismech::slope::Method,
+    bishop: dismech::slope::BishopSettings,
     bar: &indicatif::ProgressBar,
 ) -> dismech::error::Result<SearchResult<F::Surface>> {
     let settings = SearchSettings {
         limits: problem.limits,
         critical: keep.max(1),
         method,
+        bishop,
         ..SearchSettings::default()
     };
     bar.set_length(family.len(&problem.terrain));
@@ -111,6 +113,7 @@ where
 {
     // A target that cannot become the folder is refused before the search.
     let folder = StagedFolder::new_replacing_runs(&args.out, "summary.json")?;
+    let bishop = args.bishop()?;
     let bar = progress_bar(family.len(&problem.terrain), args.quiet);
     let threads;
     let start = Instant::now();
@@ -131,11 +134,27 @@ where
                     )
                 })?;
             threads = n;
-            pool.install(|| run_family(problem, family, args.keep, args.method.method(), &bar))?
+            pool.install(|| {
+                run_family(
+                    problem,
+                    family,
+                    args.keep,
+                    args.method.method(),
+                    bishop,
+                    &bar,
+                )
+            })?
         }
         None => {
             threads = rayon::current_num_threads();
-            run_family(problem, family, args.keep, args.method.method(), &bar)?
+            run_family(
+                problem,
+                family,
+                args.keep,
+                args.method.method(),
+                bishop,
+                &bar,
+            )?
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -180,6 +199,7 @@ where
 /// `--out` is then left as it was.
 pub fn run(args: &SlopeArgs) -> Result<Report, SlopeError> {
     hpm::check(args)?;
+    args.bishop()?;
     let terrain = inputs::terrain(args)?;
     let crs = inputs::crs(args)?;
     let problem = Problem {

@@ -329,6 +329,10 @@ fn summary_json(args: &SlopeArgs, terrain: &Terrain, report: &Report) -> serde_j
         }),
         "kh": args.kh,
         "method": args.method.name(),
+        "m_alpha_floor": match args.method {
+            super::args::MethodArg::Bishop => serde_json::json!(args.bishop().map(|b| b.m_alpha_floor()).ok()),
+            super::args::MethodArg::Hovland => serde_json::Value::Null,
+        },
         "family": report.run.family,
         "limits": {
             "min_columns": args.min_columns,
