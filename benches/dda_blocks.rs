@@ -32,6 +32,7 @@ use dismech::dda::{
     PlaneState, Prescribed,
 };
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::math::Point;
 
 const E: f64 = 10e9;
@@ -145,7 +146,9 @@ fn run(
         times.push(start.elapsed().as_secs_f64() * 1e3);
         let (report, failed) = match outcome {
             Ok(report) => (report, None),
-            Err(DismechError::StepFailed { reason, report, .. }) => (*report, Some(reason)),
+            Err(DismechError::Implicit(ImplicitError::StepFailed { reason, report, .. })) => {
+                (*report, Some(reason))
+            }
             Err(e) => return Err(e.into()),
         };
         solves += report.iterations;

@@ -1,20 +1,25 @@
 //! Typed errors for misuse and for runs that cannot go on.
 //!
 //! One error per module for the grid files ([`crate::grid::GridError`]),
-//! HPM ([`crate::hpm::HpmError`]) and the slope search
-//! ([`crate::slope::SlopeError`]), joined into [`DismechError`] by its
-//! variants [`DismechError::Grid`], [`DismechError::Hpm`] and
-//! [`DismechError::Slope`] (transparent: the same message, and `From`, so
-//! that `?` turns one into a [`DismechError`]); the rest, shared by several
-//! modules or of the other methods, are variants of [`DismechError`]
-//! itself.
+//! HPM ([`crate::hpm::HpmError`]), the slope search
+//! ([`crate::slope::SlopeError`]), the implicit driver
+//! ([`crate::implicit::ImplicitError`]) and the explicit driver
+//! ([`crate::explicit::ExplicitError`]), joined into [`DismechError`] by
+//! its variants [`DismechError::Grid`], [`DismechError::Hpm`],
+//! [`DismechError::Slope`], [`DismechError::Implicit`] and
+//! [`DismechError::Explicit`] (transparent: the same message, and `From`,
+//! so that `?` turns one into a [`DismechError`]); the rest, shared by
+//! several modules or of the other methods, are variants of
+//! [`DismechError`] itself.
 
 /// Every error dismech returns to a caller.
 ///
 /// Each variant names the offending value, so that a message read on its own
-/// says what to change. The errors of the grid files, HPM and the slope
-/// search are their modules' own, joined here ([`DismechError::Grid`],
-/// [`DismechError::Hpm`], [`DismechError::Slope`]).
+/// says what to change. The errors of the grid files, HPM, the slope
+/// search and the implicit and explicit drivers are their modules' own,
+/// joined here ([`DismechError::Grid`], [`DismechError::Hpm`],
+/// [`DismechError::Slope`], [`DismechError::Implicit`],
+/// [`DismechError::Explicit`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DismechError {
     /// A parameter is outside its admissible range (non-finite, negative, zero…).
@@ -26,55 +31,6 @@ pub enum DismechError {
         value: f64,
         /// What it must satisfy (e.g. `must be finite and > 0`).
         requirement: &'static str,
-    },
-    /// A particle starts inside a wall.
-    #[error("particle {body} starts inside wall {wall}: penetration {penetration:.3e} m exceeds the tolerance {tolerance:.3e} m{}", if *clockwise_frame { "; the frame's walls run clockwise, which puts the material outside them: list the walls counter-clockwise around what the frame holds" } else { "" })]
-    StartsInsideWall {
-        /// Index of the particle.
-        body: usize,
-        /// Index of the wall.
-        wall: usize,
-        /// Depth of the penetration.
-        penetration: f64,
-        /// Largest penetration accepted at the start.
-        tolerance: f64,
-        /// Whether the frame's walls run clockwise (material outside them).
-        clockwise_frame: bool,
-    },
-    /// A particle's state or mass properties cannot start a run.
-    #[error("particle {particle}: invalid {name} = {}: {requirement}", Number(*value))]
-    InvalidParticle {
-        /// Index of the particle.
-        particle: usize,
-        /// The quantity (position, velocity, mass…).
-        name: &'static str,
-        /// The value found.
-        value: f64,
-        /// What it must satisfy, and what to change.
-        requirement: &'static str,
-    },
-    /// A model would take more memory than its budget or than the system
-    /// gives; refused before the memory is taken.
-    #[error("{what} needs about {bytes} bytes ({}): {advice}", Bytes(*bytes))]
-    OutOfMemory {
-        /// What would be allocated, with its sizes.
-        what: crate::explicit::MemoryUse,
-        /// Bytes it needs (an estimate where it is a budget).
-        bytes: u128,
-        /// Why it is refused and what to change.
-        advice: crate::explicit::MemoryAdvice,
-    },
-    /// Two particles overlap at the start by more than the tolerance.
-    #[error("particles {a} and {b} overlap by {overlap:.3e} m at the start, more than the tolerance {tolerance:.3e} m")]
-    InitialOverlap {
-        /// First particle.
-        a: usize,
-        /// Second particle.
-        b: usize,
-        /// Their overlap.
-        overlap: f64,
-        /// Largest overlap accepted at the start.
-        tolerance: f64,
     },
     /// The walls of a frame leave a gap.
     #[error("frame does not close: wall {wall} ends at ({end_x}, {end_y}) but wall {next} starts at ({start_x}, {start_y}), a gap of {gap:.3e} m")]
@@ -101,59 +57,6 @@ pub enum DismechError {
         wall: usize,
         /// What is wrong with it.
         reason: &'static str,
-    },
-    /// The time step is above the stable limit of the explicit scheme.
-    #[error("time step {dt:.3e} s exceeds the stable limit {limit:.3e} s ({governing}{}); use dt <= {limit:.3e} s, or lower the contact stiffness", overlap_note(overlap))]
-    UnstableTimeStep {
-        /// The time step requested.
-        dt: f64,
-        /// The estimated stable limit.
-        limit: f64,
-        /// Which mode governs the limit.
-        governing: crate::explicit::GoverningMode,
-        /// Where a run's overlap outgrew the one the step was checked at
-        /// and the limit was estimated again there; `None` for the check
-        /// before a run.
-        overlap: Option<crate::explicit::OverlapReached>,
-    },
-    /// The run produced a NaN or an infinite value.
-    #[error("non-finite {quantity} of particle {body} at step {step} (t = {time:.6} s); reduce the time step or check the contact stiffness")]
-    NonFinite {
-        /// Step number at which it appeared.
-        step: u64,
-        /// Simulated time.
-        time: f64,
-        /// The particle.
-        body: usize,
-        /// Which quantity (position, velocity, force…).
-        quantity: &'static str,
-    },
-    /// A particle fell or was pushed out of the frame.
-    #[error("particle {body} left the frame at step {step} (t = {time:.6} s): its centre ({x:.3}, {y:.3}) m is farther than the frame's size from the walls; close the frame on the side it left, or check the loads on the particles there")]
-    ParticleLeftFrame {
-        /// Step number.
-        step: u64,
-        /// Simulated time.
-        time: f64,
-        /// The particle.
-        body: usize,
-        /// Centre x (m).
-        x: f64,
-        /// Centre y (m).
-        y: f64,
-    },
-    /// The kinetic energy grew beyond what the loads can supply.
-    #[error("energy blow-up at step {step}: kinetic energy {kinetic:.3e} J exceeds twice the energy supplied {available:.3e} J; the time step is above the stable limit of the packed assembly: reduce dt (the largest overlap at the start was {initial_overlap:.3e} m; the elastic energy of overlaps at the start is not counted as supplied, so if that is large, separate the particles at the start instead)")]
-    EnergyBlowUp {
-        /// Step number.
-        step: u64,
-        /// Kinetic energy at that step.
-        kinetic: f64,
-        /// Released potential energy plus initial kinetic energy.
-        available: f64,
-        /// Largest overlap between two particles, or a particle and a
-        /// wall, at the start (m).
-        initial_overlap: f64,
     },
     /// A contact was declared between bodies that do not touch.
     #[error("contact {contact} (element {body} with {partner}) is declared but the surfaces are {gap:.3e} m apart (negative: overlapping); they must touch within {tolerance:.1e} m")]
@@ -197,6 +100,15 @@ pub enum DismechError {
     /// ([`crate::slope::SlopeError`]).
     #[error(transparent)]
     Slope(#[from] crate::slope::SlopeError),
+    /// An implicit model (DDA's among them) whose bodies cannot be used or
+    /// overlap at the start, or a step of it that cannot be taken
+    /// ([`crate::implicit::ImplicitError`]).
+    #[error(transparent)]
+    Implicit(#[from] crate::implicit::ImplicitError),
+    /// An explicit run (the DEM's among them) refused before it starts or
+    /// stopped on the way ([`crate::explicit::ExplicitError`]).
+    #[error(transparent)]
+    Explicit(#[from] crate::explicit::ExplicitError),
     /// A polygon block is not a valid simple polygon.
     #[error("block {block} is not a valid polygon: {reason}")]
     InvalidPolygon {
@@ -204,93 +116,6 @@ pub enum DismechError {
         block: usize,
         /// What is wrong.
         reason: &'static str,
-    },
-    /// The contact law has no finite response for the contacts a particle
-    /// of this shape makes.
-    #[error("particle {body} is a {shape}: the contact law gives no finite force or stiffness for {contact}; {advice}")]
-    LawUndefinedForShape {
-        /// The particle.
-        body: usize,
-        /// Its shape.
-        shape: &'static str,
-        /// The contact the law was probed with.
-        contact: &'static str,
-        /// What to change.
-        advice: &'static str,
-    },
-    /// A DDA block has an invalid material value.
-    #[error("block {block}: invalid {name} = {value}: {requirement}")]
-    InvalidBlock {
-        /// Index of the block.
-        block: usize,
-        /// The parameter.
-        name: &'static str,
-        /// The value given.
-        value: f64,
-        /// What it must satisfy.
-        requirement: &'static str,
-    },
-    /// An edge traction that names no edge of its body, or is not finite.
-    #[error("body {body}: edge traction on edge {edge}: {reason}")]
-    InvalidEdgeTraction {
-        /// Index of the body.
-        body: usize,
-        /// The edge index given.
-        edge: usize,
-        /// What is wrong, with the body's edge count where that is it.
-        reason: crate::implicit::EdgeTractionProblem,
-    },
-    /// A time step too small for the clock: added to the time reached it
-    /// changes nothing, or its smallest sub-step underflows.
-    #[error("time step dt = {dt:e} s at t = {time} s: {reason}")]
-    TimeStepTooSmall {
-        /// The step asked for (s).
-        dt: f64,
-        /// The time reached (s).
-        time: f64,
-        /// Why it cannot be taken (its Display says what to change).
-        reason: crate::implicit::StepTooSmall,
-    },
-    /// Two DDA blocks overlap at the start by more than the tolerance.
-    #[error("vertex {vertex} of block {vertex_block} lies {depth:.3e} m inside block {edge_block} at the start, more than the tolerance {tolerance:.3e} m")]
-    BlocksOverlap {
-        /// Block owning the vertex.
-        vertex_block: usize,
-        /// The vertex.
-        vertex: usize,
-        /// Block it penetrates.
-        edge_block: usize,
-        /// Depth of the penetration.
-        depth: f64,
-        /// Largest penetration accepted at the start.
-        tolerance: f64,
-    },
-    /// Two polygon bodies cross at the start (edges crossing, no vertex of
-    /// either inside the other) by more than the tolerance.
-    #[error("blocks {a} and {b} cross at the start (their edges intersect), overlapping by {depth:.3e} m, more than the tolerance {tolerance:.3e} m")]
-    BlocksCross {
-        /// One block.
-        a: usize,
-        /// The other block.
-        b: usize,
-        /// Smallest overlap of their projections on their edge normals.
-        depth: f64,
-        /// Largest overlap accepted at the start.
-        tolerance: f64,
-    },
-    /// A step of the implicit driver could not be completed even at the
-    /// smallest time step; the model is left at the last accepted state.
-    #[error("implicit step failed at t = {time:.6} s with dt = {dt:.3e} s: {reason}; reduce the time step or the contact penalty")]
-    StepFailed {
-        /// Time reached (s).
-        time: f64,
-        /// The smallest step tried (s).
-        dt: f64,
-        /// What failed.
-        reason: crate::implicit::StepFailure,
-        /// The record of the call up to the failure (its sub-steps,
-        /// halvings and iterations).
-        report: Box<crate::implicit::StepReport>,
     },
     /// A limit-analysis model that has no penalty counterpart.
     #[error("the limit model cannot be turned into a penalty model: {0}")]
@@ -459,12 +284,6 @@ pub enum PenaltyRefusal {
         /// The analysis' status.
         status: crate::limit::LimitStatus,
     },
-}
-
-/// ` at the overlap reached …` where a run's overlap outgrew the checked
-/// one, or nothing.
-fn overlap_note(overlap: &Option<crate::explicit::OverlapReached>) -> String {
-    overlap.map(|o| format!(" at {o}")).unwrap_or_default()
 }
 
 /// A number in a message: as Rust writes it where that is short, in

@@ -361,12 +361,13 @@
 //! Angles are in radians. Friction is the coefficient μ = tan φ in every law
 //! and material ([`law::friction_from_degrees`] converts an angle). Misuse is an `Err` of
 //! [`error::DismechError`] naming the offending value; a run that goes
-//! unstable stops with an error saying what to change. The grid files, HPM
-//! and the slope search each have their own error, one per module
-//! ([`grid::GridError`], [`hpm::HpmError`], [`slope::SlopeError`]),
-//! joined into [`error::DismechError`] (its `Grid`, `Hpm` and `Slope`
-//! variants, each with `From` and the same message), which every fallible
-//! function returns.
+//! unstable stops with an error saying what to change. The grid files, HPM,
+//! the slope search and the implicit and explicit drivers each have their
+//! own error, one per module ([`grid::GridError`], [`hpm::HpmError`],
+//! [`slope::SlopeError`], [`implicit::ImplicitError`],
+//! [`explicit::ExplicitError`]), joined into [`error::DismechError`] (its
+//! `Grid`, `Hpm`, `Slope`, `Implicit` and `Explicit` variants, each with
+//! `From` and the same message), which every fallible function returns.
 //!
 //! ## Exact references and reproductions
 //! [`reference`](mod@reference) holds exact reference solutions (the rigid and compliant

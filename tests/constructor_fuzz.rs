@@ -21,6 +21,7 @@ use dismech::hpm::HpmError;
 use dismech::hpm::{
     hovland, HpmMaterial, HpmModel, HpmSettings, HpmSolver, NamedRaster, Seismic, SlopeGrids,
 };
+use dismech::implicit::ImplicitError;
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, RigidPlastic, SpringDashpotCoulomb};
 use dismech::limit::{analyse, analyse_static, LimitModel, LimitStatus, Partner};
@@ -308,7 +309,7 @@ fn run_dda(case: &DdaCase) -> Result<bool, DismechError> {
     let mut model = DdaModel::new(blocks, law, settings)?;
     for _ in 0..3 {
         match model.advance(case.dt) {
-            Err(DismechError::StepFailed { reason, .. }) => {
+            Err(DismechError::Implicit(ImplicitError::StepFailed { reason, .. })) => {
                 assert!(!reason.to_string().is_empty());
                 break;
             }
@@ -560,7 +561,13 @@ impl Reach {
             Ok(true) => self.stepped += 1,
             Ok(false) => {}
             Err(e) => {
-                let kind = format!("{e:?}");
+                // The implicit and explicit drivers' errors under their
+                // own names, as `StepFailed`, `EnergyBlowUp`, ...
+                let kind = match e {
+                    DismechError::Implicit(implicit) => format!("{implicit:?}"),
+                    DismechError::Explicit(explicit) => format!("{explicit:?}"),
+                    other => format!("{other:?}"),
+                };
                 let kind = kind.split([' ', '(', '{']).next().unwrap_or("").to_string();
                 *self.errors.entry(kind).or_default() += 1;
             }

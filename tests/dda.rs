@@ -10,6 +10,7 @@ use dismech::dda::{
     Prescribed,
 };
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::integrate::{Newmark, Restarting};
 use dismech::kinematics::Affine2;
 use dismech::law::{ContactInput, ContactLaw, PairProperties, Regime, TangentLaw};
@@ -432,11 +433,11 @@ fn bad_blocks_and_laws_are_refused_naming_the_block() {
     };
     assert!(matches!(
         Block::new(&rect(0.0, 0.0, 1.0, 1.0), incompressible, 3),
-        Err(DismechError::InvalidBlock {
+        Err(DismechError::Implicit(ImplicitError::InvalidBlock {
             block: 3,
             name: "Poisson's ratio",
             ..
-        })
+        }))
     ));
     for p in [0.0, -1.0, f64::NAN] {
         assert!(matches!(
@@ -451,12 +452,12 @@ fn bad_blocks_and_laws_are_refused_naming_the_block() {
     ];
     let law = PenaltyCoulomb::new(1e9, 0.5, FrictionIntegration::ReturnMapping).unwrap();
     match DdaModel::new(blocks, law, DdaSettings::default()) {
-        Err(DismechError::BlocksOverlap {
+        Err(DismechError::Implicit(ImplicitError::BlocksOverlap {
             vertex_block: 1,
             edge_block: 0,
             depth,
             ..
-        }) => {
+        })) => {
             assert!((depth - 0.01).abs() < 1e-12)
         }
         other => panic!("{other:?}"),
@@ -484,9 +485,9 @@ fn a_step_that_cannot_converge_is_reduced_then_reported() {
     };
     let mut model = DdaModel::new(blocks, law, settings).unwrap();
     match model.advance(1e-3) {
-        Err(DismechError::StepFailed {
+        Err(DismechError::Implicit(ImplicitError::StepFailed {
             dt, time, report, ..
-        }) => {
+        })) => {
             assert_eq!(report.reductions, 3);
             assert!((dt - 1e-3 / 8.0).abs() < 1e-15);
             assert_eq!(time, 0.0);

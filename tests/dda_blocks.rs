@@ -9,6 +9,7 @@ use dismech::dda::{
     Prescribed, StepFailure,
 };
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::math::Point;
 
 const E: f64 = 10e9;
@@ -282,7 +283,9 @@ fn a_penalty_stiff_to_round_off_converges_or_is_refused_naming_a_penalty() {
     assert_eq!(halvings, 0);
     assert!((ratio - 1.0).abs() <= 5e-3);
     let mut too_stiff = model(1e22);
-    let Err(DismechError::StepFailed { reason, .. }) = too_stiff.advance(1e-3) else {
+    let Err(DismechError::Implicit(ImplicitError::StepFailed { reason, .. })) =
+        too_stiff.advance(1e-3)
+    else {
         panic!("the step at 1e22 was not refused")
     };
     let reason = &reason;

@@ -6,6 +6,7 @@ mod dda_common;
 use dda_common::{material, rect};
 use dismech::dda::{Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed};
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::implicit::{EdgeTractionProblem, StepTooSmall};
 use dismech::math::{Point, Vec2};
 
@@ -36,7 +37,7 @@ fn drop_block(height: f64, dt: f64, steps: usize) -> (f64, usize, bool) {
     for _ in 0..steps {
         match model.advance(dt) {
             Ok(report) => reductions += report.reductions,
-            Err(DismechError::StepFailed { report, .. }) => {
+            Err(DismechError::Implicit(ImplicitError::StepFailed { report, .. })) => {
                 reductions += report.reductions;
                 converged = false;
             }
@@ -83,9 +84,9 @@ fn crossing_rectangles_at_the_start_are_refused() {
         Block::new(&rect(-0.1, -1.0, 0.1, 1.0), material(), 1).unwrap(),
     ];
     match DdaModel::new(blocks, law(), DdaSettings::default()) {
-        Err(DismechError::BlocksCross {
+        Err(DismechError::Implicit(ImplicitError::BlocksCross {
             a: 0, b: 1, depth, ..
-        }) => {
+        })) => {
             // the plus sign's arms overlap by 0.2 m along either axis
             assert!((depth - 0.2).abs() < 1e-12, "depth {depth}")
         }
@@ -159,7 +160,7 @@ fn conventional_law_at_penalty_1e24_is_refused_as_imprecise() {
         "{stress:?} against {reference:?} at 1e18"
     );
     match run(1e24).0 {
-        Err(DismechError::StepFailed { reason, .. }) => {
+        Err(DismechError::Implicit(ImplicitError::StepFailed { reason, .. })) => {
             println!("{reason}");
             assert!(reason.to_string().contains("lower the penalty"), "{reason}")
         }
@@ -202,16 +203,16 @@ fn subnormal_time_step_is_refused_not_halved_forever() {
     let mut model = resting_block_model(DdaSettings::default()).unwrap();
     let err = model.advance(5e-324).unwrap_err();
     assert!(
-        matches!(err, DismechError::TimeStepTooSmall { dt, .. } if dt == 5e-324),
+        matches!(err, DismechError::Implicit(ImplicitError::TimeStepTooSmall { dt, .. }) if dt == 5e-324),
         "{err}"
     );
     assert!(
         matches!(
             err,
-            DismechError::TimeStepTooSmall {
+            DismechError::Implicit(ImplicitError::TimeStepTooSmall {
                 reason: StepTooSmall::SubStepNotNormal { smallest },
                 ..
-            } if !smallest.is_normal()
+            }) if !smallest.is_normal()
         ),
         "{err}"
     );
@@ -226,16 +227,16 @@ fn time_step_lost_in_the_clock_is_refused() {
     model.advance(1e-3).unwrap();
     let err = model.advance(1e-25).unwrap_err();
     assert!(
-        matches!(err, DismechError::TimeStepTooSmall { time, .. } if time > 0.0),
+        matches!(err, DismechError::Implicit(ImplicitError::TimeStepTooSmall { time, .. }) if time > 0.0),
         "{err}"
     );
     assert!(
         matches!(
             err,
-            DismechError::TimeStepTooSmall {
+            DismechError::Implicit(ImplicitError::TimeStepTooSmall {
                 reason: StepTooSmall::ClockUnchanged,
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -286,16 +287,16 @@ fn edge_traction_on_an_edge_the_block_lacks_is_refused() {
         block.edge_tractions.push((edge, Vec2::new(0.0, -1e3)));
         let err = DdaModel::new(vec![base(), block], law(), DdaSettings::default()).unwrap_err();
         assert!(
-            matches!(err, DismechError::InvalidEdgeTraction { body: 1, edge: e, .. } if e == edge),
+            matches!(err, DismechError::Implicit(ImplicitError::InvalidEdgeTraction { body: 1, edge: e, .. }) if e == edge),
             "{err}"
         );
         assert!(
             matches!(
                 err,
-                DismechError::InvalidEdgeTraction {
+                DismechError::Implicit(ImplicitError::InvalidEdgeTraction {
                     reason: EdgeTractionProblem::NoSuchEdge { edges: 4 },
                     ..
-                }
+                })
             ),
             "{err}"
         );
@@ -307,11 +308,11 @@ fn edge_traction_on_an_edge_the_block_lacks_is_refused() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidEdgeTraction {
+            DismechError::Implicit(ImplicitError::InvalidEdgeTraction {
                 body: 1,
                 edge: 3,
                 reason: EdgeTractionProblem::NotFinite { x, y },
-            } if x.is_nan() && y == 0.0
+            }) if x.is_nan() && y == 0.0
         ),
         "{err}"
     );
@@ -327,21 +328,21 @@ fn edge_traction_on_a_disc_is_refused() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidEdgeTraction {
+            DismechError::Implicit(ImplicitError::InvalidEdgeTraction {
                 body: 1,
                 edge: 0,
                 ..
-            }
+            })
         ),
         "{err}"
     );
     assert!(
         matches!(
             err,
-            DismechError::InvalidEdgeTraction {
+            DismechError::Implicit(ImplicitError::InvalidEdgeTraction {
                 reason: EdgeTractionProblem::NotAPolygon,
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -362,11 +363,11 @@ fn load_that_overflows_is_refused_naming_the_block() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidBlock {
+            DismechError::Implicit(ImplicitError::InvalidBlock {
                 block: 1,
                 name: "load (weight and edge tractions)",
                 ..
-            }
+            })
         ),
         "{err}"
     );

@@ -2,6 +2,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulomb};
@@ -248,11 +249,11 @@ fn particle_inside_a_wall_is_refused() {
     assert!(
         matches!(
             err,
-            DismechError::StartsInsideWall {
+            DismechError::Explicit(ExplicitError::StartsInsideWall {
                 body: 0,
                 wall: 0,
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -266,12 +267,12 @@ fn overlapping_particles_are_refused_beyond_the_tolerance() {
         .unwrap();
     let err = default_simulation(scene).unwrap_err();
     match err {
-        DismechError::InitialOverlap {
+        DismechError::Explicit(ExplicitError::InitialOverlap {
             a: 0,
             b: 1,
             overlap,
             ..
-        } => approx::assert_relative_eq!(overlap, 0.01, max_relative = 1e-9),
+        }) => approx::assert_relative_eq!(overlap, 0.01, max_relative = 1e-9),
         other => panic!("{other}"),
     }
 }
@@ -290,7 +291,7 @@ fn time_step_above_the_stable_limit_is_refused_with_the_limit() {
     )
     .unwrap_err();
     match &err {
-        DismechError::UnstableTimeStep { limit, .. } => {
+        DismechError::Explicit(ExplicitError::UnstableTimeStep { limit, .. }) => {
             assert!(*limit < 1e-2 && *limit > 1e-4, "limit {limit}");
             assert!(err.to_string().contains("use dt <="), "{err}");
         }
@@ -309,11 +310,11 @@ fn non_finite_state_is_refused_naming_the_particle() {
         .unwrap();
     scene.particles[1].velocity = Vec2::new(f64::NAN, 0.0);
     match default_simulation(scene).map(|_| ()).unwrap_err() {
-        DismechError::InvalidParticle {
+        DismechError::Explicit(ExplicitError::InvalidParticle {
             particle: 1,
             name: "velocity x",
             ..
-        } => {}
+        }) => {}
         other => panic!("{other}"),
     }
 }
@@ -356,7 +357,8 @@ fn unstable_run_is_stopped_by_the_energy_watch() {
     assert!(
         matches!(
             err,
-            DismechError::EnergyBlowUp { .. } | DismechError::NonFinite { .. }
+            DismechError::Explicit(ExplicitError::EnergyBlowUp { .. })
+                | DismechError::Explicit(ExplicitError::NonFinite { .. })
         ),
         "{err}"
     );
@@ -404,7 +406,7 @@ fn twenty_thousand_coincident_discs_are_refused_at_the_first_pair() {
             .unwrap();
     }
     match default_simulation(scene).unwrap_err() {
-        DismechError::InitialOverlap { a, b, overlap, .. } => {
+        DismechError::Explicit(ExplicitError::InitialOverlap { a, b, overlap, .. }) => {
             assert!(a < b);
             approx::assert_relative_eq!(overlap, 0.14, max_relative = 1e-9);
         }
@@ -419,12 +421,12 @@ fn twenty_thousand_coincident_discs_are_refused_at_the_first_pair() {
 fn particle_flung_out_by_a_large_time_step_is_an_energy_blow_up() {
     let mut sim = unstable_stack();
     match sim.run_to_rest(&RestCriterion::default(), |_, _| {}) {
-        Err(DismechError::EnergyBlowUp {
+        Err(DismechError::Explicit(ExplicitError::EnergyBlowUp {
             kinetic,
             available,
             initial_overlap,
             ..
-        }) => {
+        })) => {
             assert!(kinetic > 2.0 * available);
             assert_eq!(initial_overlap, 0.0);
         }
@@ -496,9 +498,9 @@ fn discs_started_deep_in_each_other_are_an_energy_blow_up_naming_the_overlap() {
     .unwrap();
     match sim.run_to_rest(&RestCriterion::default(), |_, _| {}) {
         Err(
-            err @ DismechError::EnergyBlowUp {
+            err @ DismechError::Explicit(ExplicitError::EnergyBlowUp {
                 initial_overlap, ..
-            },
+            }),
         ) => {
             approx::assert_relative_eq!(initial_overlap, 0.02, max_relative = 1e-9);
             assert!(err.to_string().contains("separate the particles"), "{err}");

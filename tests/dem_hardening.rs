@@ -3,6 +3,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
@@ -129,11 +130,11 @@ fn non_finite_particle_state_is_refused_naming_the_particle() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidParticle {
+            DismechError::Explicit(ExplicitError::InvalidParticle {
                 particle: 2,
                 name: "position x",
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -143,11 +144,11 @@ fn non_finite_particle_state_is_refused_naming_the_particle() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidParticle {
+            DismechError::Explicit(ExplicitError::InvalidParticle {
                 particle: 1,
                 name: "velocity y",
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -165,11 +166,11 @@ fn disc_whose_mass_underflows_is_refused_for_its_mass() {
     assert!(
         matches!(
             err,
-            DismechError::InvalidParticle {
+            DismechError::Explicit(ExplicitError::InvalidParticle {
                 particle: 0,
                 name: "mass",
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -214,10 +215,10 @@ fn clockwise_frame_is_named_in_the_wall_error() {
     assert!(
         matches!(
             err,
-            DismechError::StartsInsideWall {
+            DismechError::Explicit(ExplicitError::StartsInsideWall {
                 clockwise_frame: true,
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -234,11 +235,17 @@ fn skin_as_large_as_the_scene_is_refused_before_the_list_is_built() {
         ..DemSettings::default()
     };
     let err = new(discs(2000), skin).unwrap_err();
-    assert!(matches!(err, DismechError::OutOfMemory { .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            DismechError::Explicit(ExplicitError::OutOfMemory { .. })
+        ),
+        "{err}"
+    );
     assert!(
         matches!(
             &err,
-            DismechError::OutOfMemory {
+            DismechError::Explicit(ExplicitError::OutOfMemory {
                 what: dismech::explicit::MemoryUse::NeighbourList {
                     skin: 1e6,
                     particles: 2000,
@@ -246,7 +253,7 @@ fn skin_as_large_as_the_scene_is_refused_before_the_list_is_built() {
                 },
                 advice: dismech::explicit::MemoryAdvice::SkinTooWide { .. },
                 ..
-            }
+            })
         ),
         "{err}"
     );

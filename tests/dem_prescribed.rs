@@ -4,6 +4,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{DemSettings, RestCriterion, RunStatus};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
@@ -217,7 +218,7 @@ fn half_prescribed_particle_is_refused() {
         .unwrap();
     scene.particles[disc].mass = f64::INFINITY;
     match DemSimulation::new(scene, law(0.5), ExplicitEuler, settings(1e-5)) {
-        Err(DismechError::InvalidParticle { particle, name, .. }) => {
+        Err(DismechError::Explicit(ExplicitError::InvalidParticle { particle, name, .. })) => {
             assert_eq!((particle, name), (disc, "mass"));
         }
         Err(other) => panic!("{other}"),

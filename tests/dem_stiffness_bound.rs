@@ -6,6 +6,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{
     critical_time_step_at, DemSettings, GoverningMode, OverlapReached, RestCriterion, RunStatus,
 };
@@ -89,12 +90,12 @@ fn the_stable_step_of_a_hertzian_law_falls_as_the_overlap_to_the_minus_one_quart
     };
     assert!(DemSimulation::new(drop(), law, ExplicitEuler, settings(0.99 * limit)).is_ok());
     match DemSimulation::new(drop(), law, ExplicitEuler, settings(1.01 * limit)) {
-        Err(DismechError::UnstableTimeStep {
+        Err(DismechError::Explicit(ExplicitError::UnstableTimeStep {
             limit: l,
             governing,
             overlap,
             ..
-        }) => {
+        })) => {
             assert_eq!(l, limit);
             // Checked before the run: the mode of the estimate, no overlap
             // reached yet.
@@ -152,12 +153,12 @@ fn a_run_whose_overlaps_outgrow_the_checked_one_is_stopped_naming_the_overlap() 
     let result = sim.run_to_rest(&criterion, |_, _| {});
     let message = result.as_ref().err().map(ToString::to_string);
     match result {
-        Err(DismechError::UnstableTimeStep {
+        Err(DismechError::Explicit(ExplicitError::UnstableTimeStep {
             dt: taken,
             limit,
             governing,
             overlap: Some(reached),
-        }) => {
+        })) => {
             assert_eq!(taken, dt);
             let (ratio, particle, target) = sim.largest_overlap_ratio().unwrap();
             assert_eq!(particle, 0);
@@ -261,7 +262,12 @@ fn a_restored_run_keeps_checking_its_overlaps() {
     let mut resumed = DemSimulation::restore(law, ExplicitEuler, &bytes).unwrap();
     let again = resumed.run_to_rest(&criterion, |_, _| {});
     assert!(
-        matches!(straight, Err(DismechError::UnstableTimeStep { .. })),
+        matches!(
+            straight,
+            Err(DismechError::Explicit(
+                ExplicitError::UnstableTimeStep { .. }
+            ))
+        ),
         "{straight:?}"
     );
     assert_eq!(again, straight);

@@ -5,6 +5,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{Damping, NormalStiffness, SpringDashpotCoulomb};
@@ -93,7 +94,7 @@ fn particle_pushed_out_of_the_frame_stops_the_run_naming_it() {
             .unwrap();
     let mut sim = DemSimulation::new(scene, law, ExplicitEuler, DemSettings::default()).unwrap();
     match sim.run_to_rest(&RestCriterion::default(), |_, _| {}) {
-        Err(DismechError::ParticleLeftFrame { body, x, .. }) => {
+        Err(DismechError::Explicit(ExplicitError::ParticleLeftFrame { body, x, .. })) => {
             assert_eq!(body, 1);
             assert!(x < 0.0, "it left on the side it was pushed to: x = {x}");
         }

@@ -2,6 +2,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{
     critical_time_step, ContactTarget, DemSettings, GoverningMode, ModePartner, OscillationMode,
 };
@@ -130,11 +131,11 @@ fn eq19_stiffness_is_refused_for_polygons() {
     assert!(
         matches!(
             err,
-            DismechError::LawUndefinedForShape {
+            DismechError::Explicit(ExplicitError::LawUndefinedForShape {
                 body: 0,
                 shape: "polygon",
                 ..
-            }
+            })
         ),
         "{err}"
     );
@@ -215,12 +216,12 @@ fn a_time_step_above_a_polygon_face_limit_names_the_face_mode() {
     };
     let err = DemSimulation::new(scene, damped, ExplicitEuler, settings).unwrap_err();
     match err {
-        DismechError::UnstableTimeStep {
+        DismechError::Explicit(ExplicitError::UnstableTimeStep {
             dt,
             limit: l,
             governing,
             overlap: None,
-        } => {
+        }) => {
             assert_eq!(dt, 2.0 * limit.dt);
             assert_eq!(l, limit.dt);
             assert_eq!(governing, limit.governing);
@@ -325,12 +326,12 @@ fn crossing_rectangles_are_refused_at_the_start() {
         ..DemSettings::default()
     };
     match DemSimulation::new(scene, law(1e7, Damping::Critical), ExplicitEuler, settings) {
-        Err(DismechError::InitialOverlap {
+        Err(DismechError::Explicit(ExplicitError::InitialOverlap {
             a: 0,
             b: 1,
             overlap,
             ..
-        }) => {
+        })) => {
             assert!((overlap - 0.1).abs() < 1e-12, "overlap {overlap}")
         }
         other => panic!("expected an overlap, got {other:?}"),

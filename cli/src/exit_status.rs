@@ -5,7 +5,9 @@
 use std::process::ExitCode;
 
 use dismech::error::{DismechError, SolveError};
+use dismech::explicit::ExplicitError;
 use dismech::hpm::HpmError;
+use dismech::implicit::ImplicitError;
 use dismech::limit::LimitStatus;
 use dismech::slope::SlopeError;
 
@@ -97,16 +99,18 @@ impl Exit {
     /// The status of a run stopped by `error`.
     pub fn of_error(error: &DismechError) -> Self {
         use DismechError as E;
+        use ExplicitError as X;
         use HpmError as H;
+        use ImplicitError as I;
         use SlopeError as S;
         match error {
             E::Output { .. } => Exit::OutputFailed,
             E::Solve(SolveError::InvalidSetting { .. }) => Exit::BadInput,
             E::Solve(_)
-            | E::NonFinite { .. }
-            | E::ParticleLeftFrame { .. }
-            | E::EnergyBlowUp { .. }
-            | E::StepFailed { .. }
+            | E::Explicit(
+                X::NonFinite { .. } | X::ParticleLeftFrame { .. } | X::EnergyBlowUp { .. },
+            )
+            | E::Implicit(I::StepFailed { .. })
             | E::Hpm(H::IllConditioned { .. })
             | E::NoLimitLoad { .. }
             | E::UncertifiedOptimum { .. } => Exit::SolverFailure,
@@ -121,9 +125,14 @@ impl Exit {
             // the slide fails under its loads, with no factor of safety.
             E::Hpm(H::SlipSurfaceInTension { .. }) => Exit::Unbounded,
             E::InvalidParameter { .. }
-            | E::UnstableTimeStep { .. }
-            | E::StartsInsideWall { .. }
-            | E::InitialOverlap { .. }
+            | E::Explicit(
+                X::UnstableTimeStep { .. }
+                | X::StartsInsideWall { .. }
+                | X::InitialOverlap { .. }
+                | X::LawUndefinedForShape { .. }
+                | X::InvalidParticle { .. }
+                | X::OutOfMemory { .. },
+            )
             | E::FrameNotClosed { .. }
             | E::DegenerateWall { .. }
             | E::ContactNotTouching { .. }
@@ -148,15 +157,14 @@ impl Exit {
                 | S::MAlphaFloorOutOfRange { .. }
                 | S::HpmGround { .. },
             )
+            | E::Implicit(
+                I::InvalidBlock { .. }
+                | I::InvalidEdgeTraction { .. }
+                | I::TimeStepTooSmall { .. }
+                | I::BlocksOverlap { .. }
+                | I::BlocksCross { .. },
+            )
             | E::InvalidPolygon { .. }
-            | E::LawUndefinedForShape { .. }
-            | E::InvalidBlock { .. }
-            | E::InvalidEdgeTraction { .. }
-            | E::InvalidParticle { .. }
-            | E::OutOfMemory { .. }
-            | E::TimeStepTooSmall { .. }
-            | E::BlocksOverlap { .. }
-            | E::BlocksCross { .. }
             | E::DuplicateBody { .. }
             | E::DuplicateContact { .. }
             | E::LatticeTooLarge { .. }
@@ -197,6 +205,185 @@ mod tests {
         assert_eq!(Exit::of_limit(&status), Exit::SolverFailure);
         assert_eq!(Exit::of_limit(&LimitStatus::Locked), Exit::Locked);
         assert_eq!(Exit::of_limit(&LimitStatus::Collapse), Exit::Success);
+    }
+
+    /// Each error of the implicit and explicit drivers exits with the code
+    /// it had as a variant of `DismechError`: a run stopped on the way
+    /// (non-finite, out of the frame, energy blow-up, a step failed at its
+    /// smallest size) as a solver failure, a refusal before the run as bad
+    /// input.
+    #[test]
+    fn the_drivers_errors_exit_as_before() {
+        use dismech::explicit::{GoverningMode, MemoryAdvice, MemoryUse};
+        use dismech::implicit::{
+            EdgeTractionProblem, Halvings, StepFailure, StepReport, StepTooSmall,
+        };
+        let report = StepReport {
+            substeps: 0,
+            reductions: 0,
+            halvings: Halvings::default(),
+            redetections: 0,
+            smallest_dt: 1e-6,
+            residuals: Vec::new(),
+            step_lengths: Vec::new(),
+            open_close_iterations: 0,
+            iterations: 0,
+        };
+        let cases: Vec<(DismechError, Exit)> = vec![
+            (
+                ExplicitError::StartsInsideWall {
+                    body: 0,
+                    wall: 1,
+                    penetration: 1e-3,
+                    tolerance: 1e-9,
+                    clockwise_frame: false,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::InvalidParticle {
+                    particle: 0,
+                    name: "mass",
+                    value: 0.0,
+                    requirement: "must be > 0",
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::OutOfMemory {
+                    what: MemoryUse::Dem { particles: 1 },
+                    bytes: u128::MAX,
+                    advice: MemoryAdvice::AddressSpace,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::InitialOverlap {
+                    a: 0,
+                    b: 1,
+                    overlap: 1e-3,
+                    tolerance: 1e-9,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::UnstableTimeStep {
+                    dt: 1.0,
+                    limit: 1e-3,
+                    governing: GoverningMode::NoContactMode,
+                    overlap: None,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::LawUndefinedForShape {
+                    body: 0,
+                    shape: "polygon",
+                    contact: "a vertex on an edge",
+                    advice: "use another law",
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ExplicitError::NonFinite {
+                    step: 1,
+                    time: 0.0,
+                    body: 0,
+                    quantity: "velocity",
+                }
+                .into(),
+                Exit::SolverFailure,
+            ),
+            (
+                ExplicitError::ParticleLeftFrame {
+                    step: 1,
+                    time: 0.0,
+                    body: 0,
+                    x: 9.0,
+                    y: 9.0,
+                }
+                .into(),
+                Exit::SolverFailure,
+            ),
+            (
+                ExplicitError::EnergyBlowUp {
+                    step: 1,
+                    kinetic: 3.0,
+                    available: 1.0,
+                    initial_overlap: 0.0,
+                }
+                .into(),
+                Exit::SolverFailure,
+            ),
+            (
+                ImplicitError::InvalidBlock {
+                    block: 0,
+                    name: "density",
+                    value: 0.0,
+                    requirement: "must be finite and > 0",
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ImplicitError::InvalidEdgeTraction {
+                    body: 0,
+                    edge: 9,
+                    reason: EdgeTractionProblem::NoSuchEdge { edges: 4 },
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ImplicitError::TimeStepTooSmall {
+                    dt: 5e-324,
+                    time: 0.0,
+                    reason: StepTooSmall::SubStepNotNormal { smallest: 0.0 },
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ImplicitError::BlocksOverlap {
+                    vertex_block: 0,
+                    vertex: 2,
+                    edge_block: 1,
+                    depth: 1e-3,
+                    tolerance: 1e-9,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ImplicitError::BlocksCross {
+                    a: 0,
+                    b: 1,
+                    depth: 1e-3,
+                    tolerance: 1e-9,
+                }
+                .into(),
+                Exit::BadInput,
+            ),
+            (
+                ImplicitError::StepFailed {
+                    time: 0.5,
+                    dt: 1e-6,
+                    reason: StepFailure::NonFiniteResidual,
+                    report: Box::new(report),
+                }
+                .into(),
+                Exit::SolverFailure,
+            ),
+        ];
+        for (error, exit) in &cases {
+            assert_eq!(Exit::of_error(error), *exit, "{error:?}");
+        }
     }
 
     /// Hovland's factor towards 270°, driven by `Σ T`.

@@ -80,15 +80,15 @@ impl DdaModel {
     /// for a setting out of its range ([`ImplicitSettings::validate`]) or an
     /// elliptical block near another at the start whose aspect ratio is
     /// above [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO);
-    /// [`DismechError::InvalidEdgeTraction`](crate::error::DismechError::InvalidEdgeTraction)
+    /// [`ImplicitError::InvalidEdgeTraction`](crate::implicit::ImplicitError::InvalidEdgeTraction)
     /// for an edge traction on an edge the block does not have or that is
     /// not finite;
-    /// [`DismechError::InvalidBlock`](crate::error::DismechError::InvalidBlock)
+    /// [`ImplicitError::InvalidBlock`](crate::implicit::ImplicitError::InvalidBlock)
     /// for a block whose load (weight and edge tractions) is not finite;
-    /// [`DismechError::BlocksOverlap`](crate::error::DismechError::BlocksOverlap)
+    /// [`ImplicitError::BlocksOverlap`](crate::implicit::ImplicitError::BlocksOverlap)
     /// naming the vertex and both blocks when a vertex lies inside another
     /// block by more than `settings.overlap_tolerance`, and
-    /// [`DismechError::BlocksCross`](crate::error::DismechError::BlocksCross)
+    /// [`ImplicitError::BlocksCross`](crate::implicit::ImplicitError::BlocksCross)
     /// when two blocks' edges cross by more than it.
     pub fn new(blocks: Vec<Block>, law: PenaltyCoulomb, settings: DdaSettings) -> Result<Self> {
         Self::with_integrator(blocks, law, Newmark::dda(), settings)

@@ -13,6 +13,7 @@ use super::super::neighbours::ListState;
 use super::{DemSettings, ExplicitDynamics};
 use crate::checkpoint::{self as format, Driver, Piece, IN_MEMORY};
 use crate::error::{DismechError, Result};
+use crate::explicit::ExplicitError;
 use crate::integrate::ExplicitIntegrator;
 use crate::law::{BoundedStiffness, ContactLaw};
 use crate::math::Vec2;
@@ -108,7 +109,7 @@ where
     /// do not fit each other), or
     /// [`ModelMismatch`](crate::checkpoint::CheckpointProblem::ModelMismatch)
     /// naming the contact law's or the integrator's type or parameters
-    /// when they are not the run's; [`DismechError::OutOfMemory`] for a
+    /// when they are not the run's; [`ExplicitError::OutOfMemory`] for a
     /// scene whose run the allocator refuses.
     pub fn restore(law: L, integrator: I, checkpoint: &[u8]) -> Result<Self>
     where
@@ -185,7 +186,7 @@ where
         }
         let mut sim = Self::assemble(state.scene.into_owned(), law, integrator, state.settings)
             .map_err(|e| match e {
-                DismechError::OutOfMemory { .. } => e,
+                DismechError::Explicit(ExplicitError::OutOfMemory { .. }) => e,
                 refused => format::corrupt(
                     origin,
                     format!("the driver refuses its scene or settings: {refused}"),

@@ -1,5 +1,6 @@
 //! Checks of a DEM set-up that concern the law and the shapes together.
 
+use super::error::ExplicitError;
 use crate::broad_phase::CellGrid;
 use crate::error::{DismechError, Result};
 use crate::law::{BoundedStiffness, ContactInput, ContactLaw, PairProperties};
@@ -53,12 +54,12 @@ pub(crate) fn check_initial_overlaps(
         }
         largest = largest.max(overlap);
         if overlap > tolerance {
-            return Err(DismechError::InitialOverlap {
+            return Err(DismechError::Explicit(ExplicitError::InitialOverlap {
                 a,
                 b,
                 overlap,
                 tolerance,
-            });
+            }));
         }
         Ok(())
     })?;
@@ -75,13 +76,13 @@ pub(crate) fn check_initial_overlaps(
             let penetration = deepest(manifold);
             largest = largest.max(penetration);
             if penetration > tolerance {
-                return Err(DismechError::StartsInsideWall {
+                return Err(DismechError::Explicit(ExplicitError::StartsInsideWall {
                     body: i,
                     wall: w,
                     penetration,
                     tolerance,
                     clockwise_frame: scene.frame.runs_clockwise(),
-                });
+                }));
             }
         }
     }
@@ -124,12 +125,12 @@ pub(crate) fn check_particles(scene: &Scene) -> Result<()> {
             } else {
                 continue;
             };
-            return Err(DismechError::InvalidParticle {
+            return Err(DismechError::Explicit(ExplicitError::InvalidParticle {
                 particle: i,
                 name,
                 value,
                 requirement,
-            });
+            }));
         }
     }
     Ok(())
@@ -185,7 +186,7 @@ pub(crate) fn check_neighbour_budget(
     // Every pair, where the skin spans the scene; at least the budget.
     let all = (n as u128) * (n as u128 - 1) / 2;
     let smallest = smallest_bounding_radius(scene);
-    Err(DismechError::OutOfMemory {
+    Err(DismechError::Explicit(ExplicitError::OutOfMemory {
         what: super::MemoryUse::NeighbourList {
             skin,
             particles: n,
@@ -196,7 +197,7 @@ pub(crate) fn check_neighbour_budget(
         advice: super::MemoryAdvice::SkinTooWide {
             smallest_radius: smallest,
         },
-    })
+    }))
 }
 
 /// The geometry of a polygon's contact point: a vertex (radius of curvature
@@ -283,12 +284,12 @@ pub(crate) fn check_law_for_polygons<L: ContactLaw<2>>(
             .chain(response.spring_force.iter())
             .all(|v| v.is_finite());
         if !(bound_finite && response_finite) {
-            return Err(DismechError::LawUndefinedForShape {
+            return Err(DismechError::Explicit(ExplicitError::LawUndefinedForShape {
                 body,
                 shape: "polygon",
                 contact: "a vertex on an edge (radii of curvature 0 and infinite, contact width 0)",
                 advice: "a stiffness from the radii of curvature (paper 000 eq. 19) has no value there: use a constant normal stiffness",
-            });
+            }));
         }
     }
     Ok(())

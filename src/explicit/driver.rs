@@ -8,6 +8,7 @@ use super::checks::{
     check_initial_overlaps, check_law_for_polygons, check_neighbour_budget, check_particles,
     finite_bound, smallest_bounding_radius,
 };
+use super::error::ExplicitError;
 use super::keys::pack_limits;
 use super::motion::{BlockMotion, StepCheck};
 use super::neighbours::{NeighbourList, PairSlot, BLOCK};
@@ -360,10 +361,12 @@ fn check_memory<S>(n: usize) -> Result<()> {
         + 2 * std::mem::size_of::<Vec2>()
         + 4 * std::mem::size_of::<PairSlot<S>>();
     let bytes = (n as u128) * per_particle as u128;
-    let refused = |advice: MemoryAdvice| DismechError::OutOfMemory {
-        what: MemoryUse::Dem { particles: n },
-        bytes,
-        advice,
+    let refused = |advice: MemoryAdvice| {
+        DismechError::Explicit(ExplicitError::OutOfMemory {
+            what: MemoryUse::Dem { particles: n },
+            bytes,
+            advice,
+        })
     };
     let len = usize::try_from(bytes).map_err(|_| refused(MemoryAdvice::AddressSpace))?;
     let mut probe: Vec<u8> = Vec::new();
@@ -411,23 +414,23 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a time step `settings.dt` that
     /// is not finite and positive, or not a normal number;
-    /// [`DismechError::LawUndefinedForShape`] for a scene with a polygon
+    /// [`ExplicitError::LawUndefinedForShape`] for a scene with a polygon
     /// where the law (or its stiffness bound) gives no finite value at a
-    /// vertex-on-edge contact; [`DismechError::UnstableTimeStep`] when
+    /// vertex-on-edge contact; [`ExplicitError::UnstableTimeStep`] when
     /// `settings.check_stability` is set and `settings.dt` exceeds the
     /// estimated stable limit;
-    /// [`DismechError::InvalidParticle`] for a particle whose pose,
+    /// [`ExplicitError::InvalidParticle`] for a particle whose pose,
     /// velocity or external force is not finite, or whose mass or moment of
     /// inertia is not finite and positive (both `+∞`, a prescribed
     /// particle, is accepted); [`DismechError::InvalidParameter`] for a
     /// negative or non-finite `initial_overlap_tolerance` or
     /// `neighbour_skin`, or a scene with 2³¹ particles or walls or more, or
-    /// a polygon of 2²⁹ vertices or more; [`DismechError::OutOfMemory`] for
+    /// a polygon of 2²⁹ vertices or more; [`ExplicitError::OutOfMemory`] for
     /// a fixed `neighbour_skin` that would list more pairs than the budget
     /// ([`MAX_LISTED_PAIRS_PER_PARTICLE`](crate::explicit::MAX_LISTED_PAIRS_PER_PARTICLE)
     /// per particle), or a scene whose run the allocator refuses;
-    /// [`DismechError::InitialOverlap`] for two particles (not both
-    /// prescribed) that overlap, and [`DismechError::StartsInsideWall`] for
+    /// [`ExplicitError::InitialOverlap`] for two particles (not both
+    /// prescribed) that overlap, and [`ExplicitError::StartsInsideWall`] for
     /// a free particle that penetrates a wall, by more than
     /// `initial_overlap_tolerance`.
     pub fn new(scene: Scene, law: L, integrator: I, settings: DemSettings) -> Result<Self>
@@ -448,12 +451,12 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         }
         let limit = critical_time_step_at(&scene, &law, overlap);
         if settings.check_stability && settings.dt > limit.dt {
-            return Err(DismechError::UnstableTimeStep {
+            return Err(DismechError::Explicit(ExplicitError::UnstableTimeStep {
                 dt: settings.dt,
                 limit: limit.dt,
                 governing: limit.governing,
                 overlap: None,
-            });
+            }));
         }
         let mut sim = Self::build(scene, law, integrator, settings)?;
         sim.stable_estimate = Some(limit.dt).filter(|dt| dt.is_finite() && *dt > 0.0);
@@ -470,20 +473,20 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// [`DismechError::InvalidParameter`] when `settings.check_stability`
     /// is `true`, or for a time step `settings.dt` that is not finite and
     /// positive, or not a normal number;
-    /// [`DismechError::LawUndefinedForShape`] for a scene with a polygon
+    /// [`ExplicitError::LawUndefinedForShape`] for a scene with a polygon
     /// where the law gives no finite force at a vertex-on-edge contact;
-    /// [`DismechError::InvalidParticle`] for a particle whose pose,
+    /// [`ExplicitError::InvalidParticle`] for a particle whose pose,
     /// velocity or external force is not finite, or whose mass or moment of
     /// inertia is not finite and positive (both `+∞`, a prescribed
     /// particle, is accepted); [`DismechError::InvalidParameter`] for a
     /// negative or non-finite `initial_overlap_tolerance` or
     /// `neighbour_skin`, or a scene with 2³¹ particles or walls or more, or
-    /// a polygon of 2²⁹ vertices or more; [`DismechError::OutOfMemory`] for
+    /// a polygon of 2²⁹ vertices or more; [`ExplicitError::OutOfMemory`] for
     /// a fixed `neighbour_skin` that would list more pairs than the budget
     /// ([`MAX_LISTED_PAIRS_PER_PARTICLE`](crate::explicit::MAX_LISTED_PAIRS_PER_PARTICLE)
     /// per particle), or a scene whose run the allocator refuses;
-    /// [`DismechError::InitialOverlap`] for two particles (not both
-    /// prescribed) that overlap, and [`DismechError::StartsInsideWall`] for
+    /// [`ExplicitError::InitialOverlap`] for two particles (not both
+    /// prescribed) that overlap, and [`ExplicitError::StartsInsideWall`] for
     /// a free particle that penetrates a wall, by more than
     /// `initial_overlap_tolerance`.
     pub fn with_unchecked_time_step(
@@ -719,7 +722,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// at every check; a caller of [`Self::step`] runs it when it likes.
     ///
     /// # Errors
-    /// [`DismechError::UnstableTimeStep`] when the time step exceeds the
+    /// [`ExplicitError::UnstableTimeStep`] when the time step exceeds the
     /// stable step at the overlap reached, naming the pair, the overlap
     /// and the setting to change.
     pub fn check_overlap_stability(&self) -> Result<()> {
@@ -736,7 +739,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         if self.settings.dt <= limit.dt {
             return Ok(());
         }
-        Err(DismechError::UnstableTimeStep {
+        Err(DismechError::Explicit(ExplicitError::UnstableTimeStep {
             dt: self.settings.dt,
             limit: limit.dt,
             governing: limit.governing,
@@ -747,7 +750,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
                 ratio,
                 stability_overlap: self.settings.stability_overlap,
             }),
-        })
+        }))
     }
 
     /// Time the steps by phase from now on ([`PhaseTimes`]: the list's
@@ -862,12 +865,12 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// same to the last bit on one thread or many.
     ///
     /// # Errors
-    /// [`DismechError::NonFinite`] naming the particle and the step when a
+    /// [`ExplicitError::NonFinite`] naming the particle and the step when a
     /// force, position or velocity is NaN or infinite;
-    /// [`DismechError::EnergyBlowUp`] when a particle leaves the frame while
+    /// [`ExplicitError::EnergyBlowUp`] when a particle leaves the frame while
     /// the kinetic energy exceeds twice what the loads and the initial
     /// motion can supply (an unstable step), and
-    /// [`DismechError::ParticleLeftFrame`] when it leaves otherwise;
+    /// [`ExplicitError::ParticleLeftFrame`] when it leaves otherwise;
     /// [`DismechError::UnsupportedPair`] for a pair of shapes with no
     /// contact routine (two segments, which a scene the constructors
     /// accepted does not hold).
@@ -1006,13 +1009,13 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
             if let Some(blow_up) = self.energy_blow_up() {
                 return Err(blow_up);
             }
-            return Err(DismechError::ParticleLeftFrame {
+            return Err(DismechError::Explicit(ExplicitError::ParticleLeftFrame {
                 step: self.step,
                 time: self.time,
                 body: i,
                 x: p.pose.position.x,
                 y: p.pose.position.y,
-            });
+            }));
         }
         // The power a prescribed particle supplies is minus that of the
         // contact forces on it (it moves whatever they are).
@@ -1027,7 +1030,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
         Ok(())
     }
 
-    /// [`DismechError::EnergyBlowUp`] when the kinetic energy exceeds
+    /// [`ExplicitError::EnergyBlowUp`] when the kinetic energy exceeds
     /// twice what gravity, the external forces, the initial motion and
     /// the work of the prescribed particles can supply (the sign of an
     /// unstable step).
@@ -1043,12 +1046,12 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     fn blow_up_at(&self, kinetic: f64, released: f64) -> Option<DismechError> {
         let available = released.max(0.0) + self.initial_kinetic + self.prescribed_work.max(0.0);
         (kinetic > 2.0 * available + 1e-12 * self.scene.total_weight().max(1.0)).then_some(
-            DismechError::EnergyBlowUp {
+            DismechError::Explicit(ExplicitError::EnergyBlowUp {
                 step: self.step,
                 kinetic,
                 available,
                 initial_overlap: self.initial_overlap,
-            },
+            }),
         )
     }
 
@@ -1071,17 +1074,17 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     }
 
     fn non_finite(&self, body: usize, quantity: &'static str) -> DismechError {
-        DismechError::NonFinite {
+        DismechError::Explicit(ExplicitError::NonFinite {
             step: self.step,
             time: self.time,
             body,
             quantity,
-        }
+        })
     }
 
     /// Run until the rest criterion holds or the time limit is reached.
     ///
-    /// Stops with [`DismechError::EnergyBlowUp`] if the kinetic energy
+    /// Stops with [`ExplicitError::EnergyBlowUp`] if the kinetic energy
     /// exceeds what gravity and the initial motion can supply (the sign of
     /// an unstable step). `on_check` is called at every check with the
     /// current time and the ratio the rest test reads (kinetic to released
@@ -1093,7 +1096,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
     /// `kinetic_to_released_ratio` or `max_time` that is not finite and
     /// positive, a `min_time` or `unbalanced_force_ratio` that is negative
     /// or not finite, or `max_steps` of 0 (checked before any step);
-    /// [`DismechError::EnergyBlowUp`] at a check where the kinetic energy
+    /// [`ExplicitError::EnergyBlowUp`] at a check where the kinetic energy
     /// exceeds twice the energy supplied; any error of [`Self::step`]
     /// (after which the run should not be continued).
     pub fn run_to_rest(
@@ -1243,7 +1246,7 @@ impl<L: ContactLaw<2>, I: ExplicitIntegrator> ExplicitDynamics<L, I> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_memory, MemoryUse};
+    use super::{check_memory, ExplicitError, MemoryUse};
     use crate::error::DismechError;
     use crate::law::SpringState;
 
@@ -1259,11 +1262,11 @@ mod tests {
             (usize::MAX, "more than the address space"),
         ] {
             match check_memory::<SpringState<2>>(n) {
-                Err(DismechError::OutOfMemory {
+                Err(DismechError::Explicit(ExplicitError::OutOfMemory {
                     what,
                     bytes,
                     advice,
-                }) => {
+                })) => {
                     assert!(what.to_string().contains(&n.to_string()), "{what}");
                     assert_eq!(what, MemoryUse::Dem { particles: n });
                     assert!(bytes >= n as u128 * 100, "{bytes}");

@@ -1,7 +1,7 @@
 //! Why the memory of an explicit run is refused
-//! ([`DismechError::OutOfMemory`]): what it was for, and what to change.
+//! ([`ExplicitError::OutOfMemory`](crate::explicit::ExplicitError::OutOfMemory)): what it was for, and what to change.
 //!
-//! [`DismechError::OutOfMemory`]: crate::error::DismechError::OutOfMemory
+//! [`ExplicitError::OutOfMemory`](crate::explicit::ExplicitError::OutOfMemory): crate::explicit::ExplicitError::OutOfMemory
 
 use super::MAX_LISTED_PAIRS_PER_PARTICLE;
 

@@ -61,10 +61,14 @@
 //! where the frame runs clockwise), a fixed neighbour skin that would list
 //! more than [`MAX_LISTED_PAIRS_PER_PARTICLE`] pairs a particle, and a
 //! scene whose memory the system does not give
-//! ([`crate::error::DismechError::OutOfMemory`], asked of the allocator
+//! ([`ExplicitError::OutOfMemory`], asked of the allocator
 //! before it is taken). [`ExplicitDynamics::run_to_rest`] ends at rest, at
 //! [`RestCriterion::max_time`], after [`RestCriterion::max_steps`] steps or
 //! after [`RestCriterion::max_wall_time`].
+//! These refusals, and a run stopped on the way (a value that is not
+//! finite, a particle out of the frame, an energy blow-up), are the
+//! driver's own errors, [`ExplicitError`] (`error.rs`), joined into
+//! [`DismechError::Explicit`](crate::error::DismechError::Explicit).
 //!
 //! A particle of infinite mass and moment of inertia is prescribed
 //! ([`crate::scene::Particle::prescribed`], [`crate::scene::Particle::fixed`]):
@@ -91,6 +95,7 @@
 
 mod checks;
 mod driver;
+mod error;
 mod keys;
 mod list_travel;
 mod memory;
@@ -107,6 +112,7 @@ pub use driver::{
     ContactRecord, ContactTarget, DemSettings, ExplicitDynamics, RestCriterion, RunOutcome,
     RunStatus,
 };
+pub use error::ExplicitError;
 pub use memory::{MemoryAdvice, MemoryUse};
 pub use phases::PhaseTimes;
 pub use stability::{

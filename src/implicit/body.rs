@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use nalgebra::{Matrix2, Matrix3, SVector, Vector3};
 
+use super::error::ImplicitError;
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::kinematics::{AreaMoments, PlacedEllipse, PlacedPolygon};
 use crate::math::{Aabb2, Point, Pose2, Vec2};
@@ -141,17 +142,17 @@ impl BodyMaterial {
     /// Check every value; `body` names the body in the error.
     ///
     /// # Errors
-    /// [`DismechError::InvalidBlock`] naming `body` for a density `ρ` or a
+    /// [`ImplicitError::InvalidBlock`] naming `body` for a density `ρ` or a
     /// Young's modulus `E` that is not finite and positive, or a Poisson's
     /// ratio ν that is not finite or outside (−1, 0.5).
     pub fn validate(&self, body: usize) -> Result<()> {
         let bad = |name: &'static str, value: f64, requirement: &'static str| {
-            DismechError::InvalidBlock {
+            DismechError::Implicit(ImplicitError::InvalidBlock {
                 block: body,
                 name,
                 value,
                 requirement,
-            }
+            })
         };
         if !(self.density.is_finite() && self.density > 0.0) {
             return Err(bad("density", self.density, "must be finite and > 0"));
@@ -294,7 +295,7 @@ impl<const N: usize> Body<N> {
     /// `ρ ≤ 0`, `E ≤ 0` or ν outside (−1, 0.5), are refused.
     ///
     /// # Errors
-    /// [`DismechError::InvalidBlock`] naming `index` for a density or
+    /// [`ImplicitError::InvalidBlock`] naming `index` for a density or
     /// Young's modulus that is not finite and positive, or a Poisson's
     /// ratio outside (−1, 0.5) ([`BodyMaterial::validate`]);
     /// [`DismechError::InvalidPolygon`] naming `index` for fewer than
@@ -312,7 +313,7 @@ impl<const N: usize> Body<N> {
     /// (rad), centred at `centre`.
     ///
     /// # Errors
-    /// [`DismechError::InvalidBlock`] naming `index` for a bad material (as
+    /// [`ImplicitError::InvalidBlock`] naming `index` for a bad material (as
     /// [`Body::new`]); [`DismechError::InvalidParameter`] for a semi-axis
     /// that is not finite and positive, an angle or centre that is not
     /// finite, or semi-axes so far apart that the shape matrix is singular
@@ -340,7 +341,7 @@ impl<const N: usize> Body<N> {
     /// A disc of `radius` centred at `centre`.
     ///
     /// # Errors
-    /// [`DismechError::InvalidBlock`] naming `index` for a bad material (as
+    /// [`ImplicitError::InvalidBlock`] naming `index` for a bad material (as
     /// [`Body::new`]); [`DismechError::InvalidParameter`] for a radius that
     /// is not finite and positive or a centre that is not finite.
     pub fn circle(
@@ -428,7 +429,7 @@ impl<const N: usize> Body<N> {
     /// ellipse, a circle or a wall has no edge to act on) and is finite.
     ///
     /// # Errors
-    /// [`DismechError::InvalidEdgeTraction`] naming the body and the edge
+    /// [`ImplicitError::InvalidEdgeTraction`] naming the body and the edge
     /// for a traction on a body that is not a polygon, on an edge index at
     /// or beyond the vertex count, or with a component that is not finite.
     pub fn validate_edge_tractions(&self, index: usize) -> Result<()> {
@@ -446,11 +447,11 @@ impl<const N: usize> Body<N> {
             } else {
                 continue;
             };
-            return Err(DismechError::InvalidEdgeTraction {
+            return Err(DismechError::Implicit(ImplicitError::InvalidEdgeTraction {
                 body: index,
                 edge,
                 reason,
-            });
+            }));
         }
         Ok(())
     }
@@ -464,7 +465,7 @@ impl<const N: usize> Body<N> {
 }
 
 /// What is wrong with an edge traction
-/// ([`crate::error::DismechError::InvalidEdgeTraction`]).
+/// ([`crate::implicit::ImplicitError::InvalidEdgeTraction`]).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum EdgeTractionProblem {
     /// The body is not a polygon: it has no edge to load.

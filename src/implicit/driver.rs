@@ -7,6 +7,7 @@ use nalgebra::SVector;
 
 use super::body::{Body, BodyGeometry};
 use super::detect::{detect, ContactKey, Previous, StepContact};
+use super::error::ImplicitError;
 use super::laws::ContactLaws;
 use super::motion;
 use super::report::{ContactReport, Halvings, StepFailure, StepReport, StepTooSmall};
@@ -114,14 +115,14 @@ where
     /// [`MAX_ASPECT_RATIO`](crate::shape::MAX_ASPECT_RATIO) (the overlap
     /// check at the start runs the explicit pair queries,
     /// [`BodyGeometry::shape_and_pose`]);
-    /// [`DismechError::InvalidEdgeTraction`] for an edge traction on an
+    /// [`ImplicitError::InvalidEdgeTraction`] for an edge traction on an
     /// edge the body does not have, on a body that is not a polygon, or
-    /// that is not finite; [`DismechError::InvalidBlock`] for a body whose
+    /// that is not finite; [`ImplicitError::InvalidBlock`] for a body whose
     /// load (weight and edge tractions) is not finite;
-    /// [`DismechError::BlocksOverlap`] naming the vertex and both bodies
+    /// [`ImplicitError::BlocksOverlap`] naming the vertex and both bodies
     /// when a vertex (or a smooth boundary) lies inside another body by
     /// more than `settings.overlap_tolerance`, and
-    /// [`DismechError::BlocksCross`] when two polygons' edges cross by more
+    /// [`ImplicitError::BlocksCross`] when two polygons' edges cross by more
     /// than it.
     pub fn compose(
         bodies: Vec<Body<N>>,
@@ -136,12 +137,12 @@ where
             body.validate_edge_tractions(index)?;
             let load = super::step::external_force(&kinematics, body, &settings.gravity);
             if let Some(value) = load.iter().copied().find(|v| !v.is_finite()) {
-                return Err(DismechError::InvalidBlock {
+                return Err(DismechError::Implicit(ImplicitError::InvalidBlock {
                     block: index,
                     name: "load (weight and edge tractions)",
                     value,
                     requirement: "must be finite: lower the density, the gravity or the tractions",
-                });
+                }));
             }
         }
         let settings_search = settings.search_distance;
@@ -199,12 +200,12 @@ where
                     };
                     if let Some(depth) = crossing_depth(&world(a), &world(b)) {
                         if depth > tolerance {
-                            return Err(DismechError::BlocksCross {
+                            return Err(DismechError::Implicit(ImplicitError::BlocksCross {
                                 a: i,
                                 b: j,
                                 depth,
                                 tolerance,
-                            });
+                            }));
                         }
                     }
                 }
@@ -218,13 +219,13 @@ where
                     _ => (i, 0, j),
                 },
             };
-            return Err(DismechError::BlocksOverlap {
+            return Err(DismechError::Implicit(ImplicitError::BlocksOverlap {
                 vertex_block,
                 vertex,
                 edge_block,
                 depth: deepest.overlap,
                 tolerance,
-            });
+            }));
         }
         Ok(())
     }
@@ -638,11 +639,11 @@ where
     /// accepted state, and the error says what failed and what to change.
     ///
     /// # Errors
-    /// [`DismechError::StepFailed`] with the time reached, the smallest
+    /// [`ImplicitError::StepFailed`] with the time reached, the smallest
     /// sub-step tried, the reason ([`StepFailure`]) and the report of the
     /// call so far, when a sub-step cannot be completed even at the
     /// smallest step; [`DismechError::InvalidParameter`] for a time step that is not
-    /// finite and positive; [`DismechError::TimeStepTooSmall`] for one
+    /// finite and positive; [`ImplicitError::TimeStepTooSmall`] for one
     /// whose smallest sub-step (`dt × min_dt_ratio`) is not a normal
     /// number (the halving would never end), or which does not move the
     /// clock on from the time reached. A step is halved only while its half
@@ -667,10 +668,12 @@ where
     ) -> Result<StepReport> {
         require_positive("time step dt", dt)?;
         let smallest = dt * self.settings.min_dt_ratio;
-        let too_small = |reason: StepTooSmall| DismechError::TimeStepTooSmall {
-            dt,
-            time: self.time,
-            reason,
+        let too_small = |reason: StepTooSmall| {
+            DismechError::Implicit(ImplicitError::TimeStepTooSmall {
+                dt,
+                time: self.time,
+                reason,
+            })
         };
         if !smallest.is_normal() {
             return Err(too_small(StepTooSmall::SubStepNotNormal { smallest }));
@@ -761,12 +764,12 @@ where
                         )?;
                     } else {
                         report.iterations = self.solves - solves;
-                        return Err(DismechError::StepFailed {
+                        return Err(DismechError::Implicit(ImplicitError::StepFailed {
                             time: self.time,
                             dt: h,
                             reason,
                             report: Box::new(report),
-                        });
+                        }));
                     }
                 }
             }

@@ -23,6 +23,7 @@
 //! | assembly, open–close, Newton, line search | `step.rs` |
 //! | the driver: time loop, Δt control, commit | `driver.rs` |
 //! | settings, reports | `settings.rs`, `report.rs` |
+//! | errors ([`ImplicitError`], joined into [`DismechError::Implicit`](crate::error::DismechError::Implicit)) | `error.rs` |
 //!
 //! * **Contacts**: detected at the start of each step; a polygon vertex
 //!   meets the edges [`crate::query::variation::entrance_edges`] gives it:
@@ -79,13 +80,13 @@
 //!   the step doubles again up to the requested one
 //!   ([`StepReport::halvings`] counts the causes). Past that bound
 //!   [`ImplicitDynamics::advance`] returns
-//!   [`crate::error::DismechError::StepFailed`] saying what failed and what
+//!   [`ImplicitError::StepFailed`] saying what failed and what
 //!   to change (the explicit driver's answer to an unstable step is an
 //!   error too). The halving is bounded: `min_dt_ratio`
 //!   is at least [`MIN_DT_RATIO_FLOOR`] (52 halvings), a step is halved
 //!   only while its half moves the clock on, and a step whose smallest
 //!   sub-step underflows, or which itself does not move the clock, is
-//!   refused ([`crate::error::DismechError::TimeStepTooSmall`]).
+//!   refused ([`ImplicitError::TimeStepTooSmall`]).
 //!
 //! * **Checkpoints**: [`ImplicitDynamics::checkpoint`] (or
 //!   [`ImplicitDynamics::save_checkpoint`]) saves the bodies' geometry and
@@ -101,6 +102,7 @@
 mod body;
 mod detect;
 mod driver;
+mod error;
 mod laws;
 mod motion;
 mod report;
@@ -112,6 +114,7 @@ pub use body::{
 };
 pub use detect::{ContactKey, StepContact};
 pub use driver::{FixedPoint, ImplicitDynamics};
+pub use error::ImplicitError;
 pub use laws::ContactLaws;
 pub use report::{ContactReport, Halvings, StepFailure, StepReport, StepTooSmall};
 pub use settings::{ImplicitSettings, Predictor, MIN_DT_RATIO_FLOOR};

@@ -136,7 +136,7 @@ impl Halvings {
 
 /// Record of one [`super::ImplicitDynamics::advance`] call: of the whole
 /// interval when it returns it, of the call up to the failure in
-/// [`DismechError::StepFailed`].
+/// [`super::ImplicitError::StepFailed`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepReport {
     /// Sub-steps taken.
@@ -244,7 +244,7 @@ mod tests {
 }
 
 /// Why a time step is too small for the implicit driver's clock
-/// ([`crate::error::DismechError::TimeStepTooSmall`]).
+/// ([`crate::implicit::ImplicitError::TimeStepTooSmall`]).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum StepTooSmall {
     /// Its smallest sub-step `dt × min_dt_ratio` is not a normal number:

@@ -119,7 +119,9 @@ fn fitted_acceleration(samples: &[(f64, f64)]) -> Option<f64> {
 /// # Errors
 /// [`DismechError::InvalidParameter`] for a slope outside (0, 90°), a
 /// duration not above the settling time, or any value the bodies, the law
-/// or the driver refuses; [`DismechError::StepFailed`] when a step fails.
+/// or the driver refuses;
+/// [`ImplicitError::StepFailed`](dismech::implicit::ImplicitError::StepFailed)
+/// when a step fails.
 pub fn run_rolling_disc(setup: &RollingDisc) -> Result<RollingRun> {
     let beta = setup.slope;
     super::require_incline_run(beta, setup.settling_time, setup.duration)?;

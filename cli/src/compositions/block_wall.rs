@@ -343,7 +343,8 @@ const DDA_MAX_STEPS: usize = 200;
 ///
 /// # Errors
 /// As [`RunningBondWall::blocks`], the DDA's own errors, and
-/// [`DismechError::StepFailed`] if a step fails at its smallest size.
+/// [`ImplicitError::StepFailed`](dismech::implicit::ImplicitError::StepFailed)
+/// if a step fails at its smallest size.
 pub fn wall_by_dda(wall: &RunningBondWall) -> Result<WallSolution> {
     let layout = wall.blocks()?;
     let material = BlockMaterial {

@@ -374,8 +374,9 @@ fn max_speed(model: &BoxModel, count: usize) -> f64 {
 /// Settle `setup` until at rest (or `max_time`).
 ///
 /// # Errors
-/// Invalid set-up values, and [`DismechError::StepFailed`] when a step
-/// fails at its smallest size.
+/// Invalid set-up values, and
+/// [`ImplicitError::StepFailed`](dismech::implicit::ImplicitError::StepFailed)
+/// when a step fails at its smallest size.
 pub fn settle(setup: &EllipseBox) -> Result<SettledBox> {
     let mut model = build(setup)?;
     let (dt, dt_explicit) = (setup.time_step(), setup.explicit_limit());

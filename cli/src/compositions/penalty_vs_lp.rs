@@ -320,8 +320,9 @@ impl PushoverCurve {
 /// steps with contact penalty `penalty` and search distance `search`.
 ///
 /// # Errors
-/// As [`pushover_model`], and [`DismechError::StepFailed`] when a step
-/// fails at its smallest size.
+/// As [`pushover_model`], and
+/// [`ImplicitError::StepFailed`](dismech::implicit::ImplicitError::StepFailed)
+/// when a step fails at its smallest size.
 pub fn pushover(
     limit: &LimitModel,
     penalty: f64,

@@ -3,6 +3,7 @@
 //! the offending value.
 
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::slope::SlopeError;
 
 use super::source::{KeyPath, Located, Source};
@@ -24,7 +25,8 @@ pub fn named(
     error: DismechError,
 ) -> Refusal {
     let key = match &error {
-        DismechError::InvalidParameter { name, .. } | DismechError::InvalidBlock { name, .. } => {
+        DismechError::InvalidParameter { name, .. }
+        | DismechError::Implicit(ImplicitError::InvalidBlock { name, .. }) => {
             names.iter().find(|(n, _)| n == name).map(|(_, key)| *key)
         }
         DismechError::Slope(SlopeError::InvalidRange { name, .. }) => {

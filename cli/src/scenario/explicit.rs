@@ -3,6 +3,7 @@
 
 use dismech::dem::DemSimulation;
 use dismech::error::DismechError;
+use dismech::explicit::ExplicitError;
 use dismech::explicit::{DemSettings, RestCriterion};
 use dismech::integrate::ExplicitEuler;
 use dismech::law::{PenaltyCoulomb, SpringDashpotCoulomb};
@@ -264,18 +265,21 @@ fn build_error(source: &Source<'_>, entry_of: &[usize], error: DismechError) -> 
     let driver = KeyPath::root("driver");
     let message = error.to_string();
     Box::new(match &error {
-        DismechError::StartsInsideWall { body: b, .. }
-        | DismechError::InvalidParticle { particle: b, .. } => {
+        DismechError::Explicit(ExplicitError::StartsInsideWall { body: b, .. })
+        | DismechError::Explicit(ExplicitError::InvalidParticle { particle: b, .. }) => {
             source.at_keys(&[&body(*b), &KeyPath::root("boundary")], message)
         }
-        DismechError::InitialOverlap { a, b, .. } => {
+        DismechError::Explicit(ExplicitError::InitialOverlap { a, b, .. }) => {
             source.at_keys(&[&body(*a), &body(*b)], message)
         }
-        DismechError::LawUndefinedForShape { body: b, .. } => source.at_keys(
-            &[&body(*b).key("kind"), &KeyPath::root("law").key("kind")],
-            message,
-        ),
-        DismechError::UnstableTimeStep { .. } => source.at_key(&driver.key("dt"), message),
+        DismechError::Explicit(ExplicitError::LawUndefinedForShape { body: b, .. }) => source
+            .at_keys(
+                &[&body(*b).key("kind"), &KeyPath::root("law").key("kind")],
+                message,
+            ),
+        DismechError::Explicit(ExplicitError::UnstableTimeStep { .. }) => {
+            source.at_key(&driver.key("dt"), message)
+        }
         DismechError::InvalidParameter { name, .. } => {
             let key = match *name {
                 "time step dt" => "dt",
@@ -286,7 +290,9 @@ fn build_error(source: &Source<'_>, entry_of: &[usize], error: DismechError) -> 
             };
             source.at_key(&driver.key(key), message)
         }
-        DismechError::OutOfMemory { .. } => source.at_key(&KeyPath::root("bodies"), message),
+        DismechError::Explicit(ExplicitError::OutOfMemory { .. }) => {
+            source.at_key(&KeyPath::root("bodies"), message)
+        }
         _ => source.at_key(&driver, message),
     })
 }

@@ -3,6 +3,7 @@
 //! LU, and a run of a number of steps of the driver's `dt`.
 
 use dismech::error::DismechError;
+use dismech::implicit::ImplicitError;
 use dismech::implicit::{
     Body, BodyMaterial, ContactLaws, ImplicitDynamics, ImplicitSettings, PlaneState, Predictor,
     Prescribed,
@@ -289,13 +290,15 @@ fn compose_error(source: &Source<'_>, spec: &ScenarioSpec, error: DismechError) 
     let message = error.to_string();
     let driver = KeyPath::root("driver");
     Box::new(match &error {
-        DismechError::BlocksOverlap {
+        DismechError::Implicit(ImplicitError::BlocksOverlap {
             vertex_block,
             edge_block,
             ..
-        } => source.at_keys(&[&body(*vertex_block), &body(*edge_block)], message),
-        DismechError::BlocksCross { a, b, .. } => source.at_keys(&[&body(*a), &body(*b)], message),
-        DismechError::InvalidEdgeTraction { body: b, edge, .. } => {
+        }) => source.at_keys(&[&body(*vertex_block), &body(*edge_block)], message),
+        DismechError::Implicit(ImplicitError::BlocksCross { a, b, .. }) => {
+            source.at_keys(&[&body(*a), &body(*b)], message)
+        }
+        DismechError::Implicit(ImplicitError::InvalidEdgeTraction { body: b, edge, .. }) => {
             let k = spec
                 .loads
                 .tractions
@@ -304,7 +307,9 @@ fn compose_error(source: &Source<'_>, spec: &ScenarioSpec, error: DismechError) 
                 .unwrap_or(0);
             source.at_key(&KeyPath::root("loads").key("tractions").index(k), message)
         }
-        DismechError::InvalidBlock { block, .. } => source.at_key(&body(*block), message),
+        DismechError::Implicit(ImplicitError::InvalidBlock { block, .. }) => {
+            source.at_key(&body(*block), message)
+        }
         DismechError::InvalidParameter { name, .. } => {
             let key = match *name {
                 "search distance d0" => "search_distance",
