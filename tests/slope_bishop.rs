@@ -634,4 +634,10 @@ fn m_alpha_floor_is_a_setting() {
         at_lower.lowest().unwrap().result.safety_factor
             <= at_02.lowest().unwrap().result.safety_factor
     );
+    // A higher floor refuses strictly more surfaces: the search reads the
+    // setting (equal counts would mean it ignored it).
+    let at_higher = run(BishopSettings::default().with_m_alpha_floor(0.6).unwrap());
+    println!("m_alpha refusals at 0.6: {}", small(&at_higher));
+    assert!(small(&at_higher) > small(&at_02));
+    assert!(at_higher.counts.evaluated < at_02.counts.evaluated);
 }

@@ -943,6 +943,9 @@ fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
         .as_f64()
         .unwrap();
     assert!(light_fs.is_finite() && light_fs > 0.0, "{light_fs}");
+    // The lighter colluvium (same strength) gives another Fs: the
+    // elements weigh the layer they hold.
+    assert_ne!(light_fs.to_bits(), layered_fs.to_bits(), "{light_fs}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

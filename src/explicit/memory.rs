@@ -1,7 +1,5 @@
 //! Why the memory of an explicit run is refused
 //! ([`ExplicitError::OutOfMemory`](crate::explicit::ExplicitError::OutOfMemory)): what it was for, and what to change.
-//!
-//! [`ExplicitError::OutOfMemory`](crate::explicit::ExplicitError::OutOfMemory): crate::explicit::ExplicitError::OutOfMemory
 
 use super::MAX_LISTED_PAIRS_PER_PARTICLE;
 

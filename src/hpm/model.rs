@@ -223,21 +223,23 @@ impl WeightStratum {
 /// unbounded below, the first unbounded above) and the mean water level
 /// `hw`: `Σ γ_k Δz_k`, summed from the bottom up, with `γ_sub` below
 /// `hw` and `γ_t` above it. Neighbouring pieces of the same unit weight
-/// are one piece, so that one stratum (or strata of equal weights) gives
-/// eqs. (8)–(10) with the same floating-point operations:
-/// `γ_t (hu − hd)`, `γ_sub (hu − hd)`, or
+/// on the same side of the water table are one piece (the water table
+/// always cuts, even where `γ_sub = γ_t`), so that one stratum (or strata
+/// of equal weights) gives eqs. (8)–(10) with the same floating-point
+/// operations: `γ_t (hu − hd)`, `γ_sub (hu − hd)`, or
 /// `γ_sub (hw − hd) + γ_t (hu − hw)`.
 fn stratified_weight(strata: &[WeightStratum], hw: Option<f64>, hd: f64, hu: f64) -> f64 {
     let mut body = 0.0;
-    // The unit weight of the piece being summed and its bottom.
-    let mut piece: Option<(f64, f64)> = None;
-    let mut add = |gamma: f64, from: f64| match piece {
-        Some((g, _)) if g == gamma => {}
-        Some((g, start)) => {
+    // The unit weight of the piece being summed, whether it lies below
+    // the water table, and its bottom.
+    let mut piece: Option<(f64, bool, f64)> = None;
+    let mut add = |gamma: f64, submerged: bool, from: f64| match piece {
+        Some((g, wet, _)) if g == gamma && wet == submerged => {}
+        Some((g, _, start)) => {
             body += g * (from - start);
-            piece = Some((gamma, from));
+            piece = Some((gamma, submerged, from));
         }
-        None => piece = Some((gamma, from)),
+        None => piece = Some((gamma, submerged, from)),
     };
     for (i, stratum) in strata.iter().enumerate().rev() {
         let low = stratum.bottom.map_or(hd, |b| b.max(hd));
@@ -249,15 +251,15 @@ fn stratified_weight(strata: &[WeightStratum], hw: Option<f64>, hd: f64, hu: f64
             continue;
         }
         match hw {
-            Some(w) if w >= high => add(stratum.submerged_unit_weight, low),
+            Some(w) if w >= high => add(stratum.submerged_unit_weight, true, low),
             Some(w) if w > low => {
-                add(stratum.submerged_unit_weight, low);
-                add(stratum.unit_weight, w);
+                add(stratum.submerged_unit_weight, true, low);
+                add(stratum.unit_weight, false, w);
             }
-            _ => add(stratum.unit_weight, low),
+            _ => add(stratum.unit_weight, false, low),
         }
     }
-    if let Some((g, start)) = piece {
+    if let Some((g, _, start)) = piece {
         body += g * (hu - start);
     }
     body
