@@ -1124,3 +1124,33 @@ fn strength_reduction_without_any_failure_gives_no_factor() {
         other => panic!("{other:?}"),
     }
 }
+
+/// `set_column_strata` weighs a column over the grids the model was built
+/// on: grids of other rows, columns or cell size are refused by name (not
+/// indexed out of range); the model's own grids are taken.
+#[test]
+fn column_strata_over_other_grids_are_refused() {
+    let m = material();
+    let grids = slab(4, 5, 25.0, 270.0, 8.0, None);
+    let mut model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+    let strata = [WeightStratum {
+        bottom: None,
+        unit_weight: m.unit_weight,
+        submerged_unit_weight: m.submerged_unit_weight,
+    }];
+    let last = model.columns.len() - 1;
+    for (other, name) in [
+        (slab(2, 5, 25.0, 270.0, 8.0, None), "rows of the grids"),
+        (slab(4, 2, 25.0, 270.0, 8.0, None), "columns of the grids"),
+    ] {
+        let e = model.set_column_strata(&other, last, &strata).unwrap_err();
+        assert!(
+            matches!(e, DismechError::InvalidParameter { .. }) && e.to_string().contains(name),
+            "{e}"
+        );
+    }
+    let weights: Vec<f64> = model.elements.iter().map(|e| e.weight).collect();
+    model.set_column_strata(&grids, last, &strata).unwrap();
+    let after: Vec<f64> = model.elements.iter().map(|e| e.weight).collect();
+    assert_eq!(weights, after);
+}

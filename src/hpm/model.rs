@@ -474,8 +474,9 @@ impl HpmModel {
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a column the model does not
     /// have, no stratum, a unit weight that is not finite and positive, a
-    /// bottom given to the last stratum or missing from another, or
-    /// bottoms that are not finite or rise downwards.
+    /// bottom given to the last stratum or missing from another, bottoms
+    /// that are not finite or rise downwards, or grids of other rows,
+    /// columns or cell size than the model's.
     pub fn set_column_strata(
         &mut self,
         grids: &SlopeGrids,
@@ -490,9 +491,33 @@ impl HpmModel {
             });
         };
         check_strata(strata)?;
+        let raster = &grids.ground().raster;
+        let (rows, columns, d) = self.grid;
+        for (name, given, built) in [
+            ("HPM weight strata: rows of the grids", raster.rows(), rows),
+            (
+                "HPM weight strata: columns of the grids",
+                raster.columns(),
+                columns,
+            ),
+        ] {
+            if given != built {
+                return Err(DismechError::InvalidParameter {
+                    name,
+                    value: given as f64,
+                    requirement: "must be those of the grids the model was built on",
+                });
+            }
+        }
+        if raster.cell_size() != d {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM weight strata: cell size of the grids",
+                value: raster.cell_size(),
+                requirement: "must be that of the grids the model was built on",
+            });
+        }
         let (r, c) = grid_column.cell;
         let (_, _, water) = grids.corners(r, c);
-        let d = self.grid.2;
         for e in grid_column.elements.clone() {
             let element = &mut self.elements[e];
             element.weight = element_weight(strata, &element.shape, water.as_ref(), d * d);
