@@ -115,6 +115,16 @@ where
     let folder = StagedFolder::new_replacing_runs(&args.out, "summary.json")?;
     let bishop = args.bishop()?;
     let bar = progress_bar(family.len(&problem.terrain), args.quiet);
+    let search = || {
+        run_family(
+            problem,
+            family,
+            args.keep,
+            args.method.method(),
+            bishop,
+            &bar,
+        )
+    };
     let threads;
     let start = Instant::now();
     let result = match args.threads {
@@ -134,27 +144,11 @@ where
                     )
                 })?;
             threads = n;
-            pool.install(|| {
-                run_family(
-                    problem,
-                    family,
-                    args.keep,
-                    args.method.method(),
-                    bishop,
-                    &bar,
-                )
-            })?
+            pool.install(search)?
         }
         None => {
             threads = rayon::current_num_threads();
-            run_family(
-                problem,
-                family,
-                args.keep,
-                args.method.method(),
-                bishop,
-                &bar,
-            )?
+            search()?
         }
     };
     let seconds = start.elapsed().as_secs_f64();
