@@ -7,7 +7,7 @@
 //! and a run that writes its checkpoints through an observer, killed at a
 //! random step, resumes from the last one on disk to the same bits.
 
-mod kill_common;
+use crate::kill_common;
 
 use std::path::PathBuf;
 
@@ -305,7 +305,10 @@ fn a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bi
     let straight_reports = advance(&mut straight, CALLS as usize);
     let folder = temp_path("killed").parent().unwrap().to_path_buf();
     let killed = kill_common::run_and_kill(
-        "a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits",
+        concat!(
+            module_path!(),
+            "::a_run_killed_at_a_random_step_resumes_from_its_last_checkpoint_in_the_same_bits"
+        ),
         &folder,
         2 * EVERY..=CALLS - LEAD - 1,
         LEAD,

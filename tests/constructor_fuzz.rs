@@ -7,7 +7,7 @@
 //!
 //! `cargo test` runs 1 500 cases a driver; set `DISMECH_FUZZ_CASES` for
 //! more (`DISMECH_FUZZ_CASES=100000 cargo test --release --test
-//! constructor_fuzz`, a few minutes).
+//! integration constructor_fuzz::`, a few minutes).
 
 use dismech::dda::{
     Block, BlockMaterial, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, PlaneState,

@@ -2,7 +2,7 @@
 //! kinematics' derivatives, a patch test, the block on an inclined plane,
 //! the exact sliding-block solution, and bad input.
 
-mod dda_common;
+use crate::dda_common;
 
 use dda_common::{material, rect};
 use dismech::dda::{

@@ -1,7 +1,7 @@
 //! Hostile DDA inputs: a block dropped through a base in one long step,
 //! blocks crossing at the start, and polygons at extreme scales.
 
-mod dda_common;
+use crate::dda_common;
 
 use dda_common::{material, rect};
 use dismech::dda::{Block, DdaModel, DdaSettings, FrictionIntegration, PenaltyCoulomb, Prescribed};

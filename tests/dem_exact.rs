@@ -9,7 +9,7 @@ use dismech::law::{Damping, NormalStiffness, PairProperties, SpringDashpotCoulom
 use dismech::math::{Point, Vec2};
 use dismech::scene::{Frame, Scene};
 
-mod common;
+use crate::common;
 
 use common::settle;
 

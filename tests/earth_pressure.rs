@@ -13,7 +13,7 @@ use dismech::math::{Point, Vec2};
 use dismech::scene::Layout;
 use dismech::scene::{Frame, Scene};
 
-mod common;
+use crate::common;
 
 use common::settle;
 

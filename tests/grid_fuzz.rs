@@ -4,7 +4,7 @@
 //! claiming more cells than the cap is always refused. The same fuzzer runs
 //! 10^6 cases and more with `cargo run --release --example fuzz_grids`.
 
-mod grid_fuzzer;
+use crate::grid_fuzzer;
 
 use grid_fuzzer::{case_input, run, Seeds};
 

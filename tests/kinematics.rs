@@ -4,7 +4,7 @@
 //! mass gives a disc's exact kinetic energy, and the map derivatives are
 //! the finite differences of the map parameters.
 
-mod dda_common;
+use crate::dda_common;
 
 use dda_common::material;
 use dismech::dda::Block;

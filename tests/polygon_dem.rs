@@ -13,7 +13,7 @@ use dismech::query::Feature;
 use dismech::scene::{Frame, Scene};
 use nalgebra::{Matrix3, Vector3};
 
-mod common;
+use crate::common;
 
 use common::settle;
 

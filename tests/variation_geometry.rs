@@ -2,7 +2,7 @@
 //! force, invariance under rigid motion and under a change of frame, the
 //! normal search, and the contacts of smooth bodies at polygon corners.
 
-mod variation_common;
+use crate::variation_common;
 
 use dismech::kinematics::{MapVector, PlacedEllipse, PlacedPolygon, Rigid2};
 use dismech::math::{Point, Vec2};

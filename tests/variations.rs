@@ -4,9 +4,9 @@
 //! circles; DDA's vertex–edge contact to round-off, and its gap on a
 //! long edge to round-off of the gap itself.
 
-mod dda_common;
+use crate::dda_common;
 
-mod variation_common;
+use crate::variation_common;
 
 use dda_common::material;
 use dismech::dda::Block;

@@ -5,7 +5,7 @@
 //! option and the value at fault and the exit status of bad input, and
 //! leaves the output folder as it was.
 
-mod slope_common;
+use crate::slope_common;
 use slope_common::{scratch, terrain_file};
 
 use std::path::Path;

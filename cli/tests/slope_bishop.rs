@@ -4,7 +4,7 @@
 //! for bit; summary.json names the method; the lowest Fs lies above
 //! Hovland's.
 
-mod slope_common;
+use crate::slope_common;
 use slope_common::{scratch, terrain_file};
 
 use std::path::Path;

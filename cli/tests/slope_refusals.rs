@@ -5,7 +5,7 @@
 //! bishop`; and where no surface gives an Fs over a `--bedrock`, the
 //! message names the bedrock as a cause.
 
-mod slope_common;
+use crate::slope_common;
 use slope_common::{scratch, terrain_file};
 
 use std::path::Path;

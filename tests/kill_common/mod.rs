@@ -69,7 +69,8 @@ pub struct Killed {
     pub checkpoint: (u64, PathBuf),
 }
 
-/// Run the test `test` of this binary as a child writing its checkpoints
+/// Run the test `test` of this binary (its path from [`module_path!`],
+/// whose first segment, the binary's own name, is dropped) as a child writing its checkpoints
 /// into `folder` (emptied first), kill it with SIGKILL once it reports a
 /// step at or past one drawn uniformly from `draw` (seeded by [`SEED`] or
 /// the clock; printed), and give the last checkpoint it left. The child
@@ -85,6 +86,7 @@ pub fn run_and_kill(
     draw: std::ops::RangeInclusive<u64>,
     lead: u64,
 ) -> Killed {
+    let test = test.split_once("::").map_or(test, |(_binary, path)| path);
     let seed = match std::env::var(SEED) {
         Ok(s) => s.parse().expect("DISMECH_KILL_SEED is a number"),
         Err(_) => std::time::SystemTime::now()
