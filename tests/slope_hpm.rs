@@ -262,7 +262,13 @@ fn two_layers(upper: SlopeMaterial, bottom: NamedRaster, lower: SlopeMaterial) -
 }
 
 /// The worst surface of the valley's search on `terrain`, re-analysed on
-/// `ground`, elastic and nonlinear.
+/// `ground`, elastic and nonlinear. The nonlinear analysis stops at 200
+/// iterations: under the water table at 19 kN/m³ (and 18–19, not 17 or
+/// 19.5) it does not converge, its residual caught in a cycle of 15
+/// iterations about 1e-3 (springs that open lose their cohesion's shear
+/// at once), where the dry valley converges in under 50 iterations; the
+/// bit-for-bit and 1e-12 comparisons of such a run hold for 200 iterates
+/// as for the default 3000, at a tenth of the time.
 fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmReanalysis> {
     let result = searched(terrain);
     let worst = result.lowest().unwrap();
@@ -274,7 +280,10 @@ fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmR
         &worst.result,
         &HpmStiffness::default(),
         &HpmSettings::default(),
-        Some(&NonlinearSettings::default()),
+        Some(&NonlinearSettings {
+            max_iterations: 200,
+            ..NonlinearSettings::default()
+        }),
     )
 }
 
