@@ -298,7 +298,8 @@ fn a_penalty_stiff_to_round_off_converges_or_is_refused_naming_a_penalty() {
 /// whose slip would reverse again, rather than at the first, settles the
 /// same wall: a settling running bond of 205 bricks (bed joints open by
 /// 10 µm) at E × 1 m, every step converging, the base carrying the weight
-/// to 0.5 % over the last 100 of 300 steps, with the default and with 0.2;
+/// to 0.5 % over the last 100 of 300 steps, with 0 and with the default
+/// 0.2;
 /// the two take different numbers of linear solves (the setting acts). A
 /// quantile outside [0, 1) is refused naming it.
 #[test]

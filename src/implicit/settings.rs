@@ -87,25 +87,36 @@ pub struct ImplicitSettings {
     /// reverse a second time (consistent laws; see the
     /// [module documentation](super)): each such contact sticks at some
     /// fraction of the update, and the update is stopped at this quantile
-    /// of those fractions. 0 (the default) stops it where the first one
-    /// sticks, so that none jumps across its stick band; on a wall of
-    /// hundreds of such contacts that one contact shortens the update of
-    /// every block. With 0.2 the update stops where a fifth of them have
+    /// of those fractions. 0 stops it where the first one sticks, so that
+    /// none jumps across its stick band; on a wall of hundreds of such
+    /// contacts that one contact shortens the update of every block. With
+    /// 0.2 (the default) the update stops where a fifth of them have
     /// stuck: those may jump across their band and are stopped at a later
-    /// update; the other four in five have not reached theirs. Measured
-    /// with 0.2 against 0 (`benches/dda_blocks.rs` with `quantile=0.2`,
-    /// return mapping, 1 610 bricks, 30 steps of 1 ms, 40 for the first
-    /// row), linear solves a step and halvings:
+    /// update; the other four in five have not reached theirs. Where fewer
+    /// than five contacts would reverse, ⌊0.2 n⌋ = 0 and the update stops
+    /// at the first stick point, as with 0. Measured over the whole of
+    /// `benches/dda_blocks.rs` (return mapping, 50 steps of 1 ms, every
+    /// size, state and penalty; linear solves a step; halvings, and those
+    /// after the tenth step), 0.2 against 0:
     ///
-    /// | wall | 0 | 0.2 |
-    /// |---|---|---|
-    /// | settling, E × 1 m | 28.0, 3 | 20.4, 0 |
-    /// | settling, 10 E | 171.3, 41 | 109.8, 24 |
-    /// | touching, E × 1 m | 7.27, 0 | 7.50, 0 |
-    /// | touching, 10 E | 27.1, 5 | 21.8, 2 |
+    /// | bricks | state | penalty | 0 | 0.2 |
+    /// |---|---|---|---|---|
+    /// | 101 | touching | E × 1 m | 1.5; 0 | 1.54; 0 |
+    /// | 101 | touching | 10 E | 1.8; 0 | 1.72; 0 |
+    /// | 101 | settling | E × 1 m | 3.6; 0 | 3.52; 0 |
+    /// | 101 | settling | 10 E | 10.4; 2 (0) | 10.00; 2 (0) |
+    /// | 399 | touching | E × 1 m | 2.8; 0 | 2.78; 0 |
+    /// | 399 | touching | 10 E | 3.6; 0 | 3.46; 0 |
+    /// | 399 | settling | E × 1 m | 8.0; 0 | 7.06; 0 |
+    /// | 399 | settling | 10 E | 33.2; 8 (6) | 24.20; 4 (2) |
+    /// | 1 610 | touching | E × 1 m | 6.1; 0 | 6.12; 0 |
+    /// | 1 610 | touching | 10 E | 18.1; 5 (3) | 15.10; 2 (2) |
+    /// | 1 610 | settling | E × 1 m | 24.3; 3 (3) | 18.56; 0 |
+    /// | 1 610 | settling | 10 E | 126.8; 52 (51) | 79.02; 25 (24) |
     ///
-    /// The default stays 0 until the whole bench and the studies are
-    /// measured with another. It must lie in [0, 1).
+    /// No row takes more than 0.04 solves a step more; the four hardest
+    /// lose 17–38 % of their solves and half or all of their halvings.
+    /// It must lie in [0, 1).
     pub slip_reversal_quantile: f64,
     /// Mass-proportional (Rayleigh) damping `α` (1/s): a force `−α M v`
     /// on every body, with `v` the end-of-step velocity of the integrator.
@@ -129,7 +140,7 @@ impl Default for ImplicitSettings {
             min_dt_ratio: 1.0 / 64.0,
             predictor: Predictor::default(),
             slip_regularization: 0.0,
-            slip_reversal_quantile: 0.0,
+            slip_reversal_quantile: 0.2,
             mass_damping: 0.0,
         }
     }
