@@ -3,11 +3,12 @@
 //! One error per module for the grid files ([`crate::grid::GridError`]),
 //! HPM ([`crate::hpm::HpmError`]), the slope search
 //! ([`crate::slope::SlopeError`]), the implicit driver
-//! ([`crate::implicit::ImplicitError`]) and the explicit driver
-//! ([`crate::explicit::ExplicitError`]), joined into [`DismechError`] by
-//! its variants [`DismechError::Grid`], [`DismechError::Hpm`],
-//! [`DismechError::Slope`], [`DismechError::Implicit`] and
-//! [`DismechError::Explicit`] (transparent: the same message, and `From`,
+//! ([`crate::implicit::ImplicitError`]), the explicit driver
+//! ([`crate::explicit::ExplicitError`]) and the limit analysis
+//! ([`crate::limit::LimitError`]), joined into [`DismechError`] by its
+//! variants [`DismechError::Grid`], [`DismechError::Hpm`],
+//! [`DismechError::Slope`], [`DismechError::Implicit`],
+//! [`DismechError::Explicit`] and [`DismechError::Limit`] (transparent: the same message, and `From`,
 //! so that `?` turns one into a [`DismechError`]); the rest, shared by
 //! several modules or of the other methods, are variants of
 //! [`DismechError`] itself.
@@ -16,10 +17,11 @@
 ///
 /// Each variant names the offending value, so that a message read on its own
 /// says what to change. The errors of the grid files, HPM, the slope
-/// search and the implicit and explicit drivers are their modules' own,
-/// joined here ([`DismechError::Grid`], [`DismechError::Hpm`],
-/// [`DismechError::Slope`], [`DismechError::Implicit`],
-/// [`DismechError::Explicit`]).
+/// search, the implicit and explicit drivers and the limit analysis are
+/// their modules' own, joined here ([`DismechError::Grid`],
+/// [`DismechError::Hpm`], [`DismechError::Slope`],
+/// [`DismechError::Implicit`], [`DismechError::Explicit`],
+/// [`DismechError::Limit`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DismechError {
     /// A parameter is outside its admissible range (non-finite, negative, zero…).
@@ -58,35 +60,6 @@ pub enum DismechError {
         /// What is wrong with it.
         reason: &'static str,
     },
-    /// A contact was declared between bodies that do not touch.
-    #[error("contact {contact} (element {body} with {partner}) is declared but the surfaces are {gap:.3e} m apart (negative: overlapping); they must touch within {tolerance:.1e} m")]
-    ContactNotTouching {
-        /// Index of the contact.
-        contact: usize,
-        /// The element.
-        body: usize,
-        /// What it was declared against (its Display says it in words).
-        partner: crate::limit::NamedPartner,
-        /// Distance between the surfaces.
-        gap: f64,
-        /// Accepted distance.
-        tolerance: f64,
-    },
-    /// A driving plate has no contact.
-    #[error("the moving support `{name}` (support {support}) touches no element")]
-    PlateTouchesNothing {
-        /// Index of the support.
-        support: usize,
-        /// Its name.
-        name: String,
-    },
-    /// A limit analysis needs exactly one driver: one moving support, or a
-    /// live load or the dead loads' multiplier and no moving support.
-    #[error("a limit analysis needs exactly one driver: one moving support (plate), or a live load (set_live_load) or the dead loads' multiplier (multiply_dead_loads) and no moving support; found {0} moving supports")]
-    DrivingSupportCount(usize),
-    /// The dead loads' multiplier is sought, but every dead load is zero.
-    #[error("the dead loads' multiplier is sought (multiply_dead_loads), but every body's load is zero: set the bodies' weights with set_load")]
-    NoDeadLoads,
     /// A grid file (ESRI ASCII or GeoTIFF) that cannot be read or used
     /// ([`crate::grid::GridError`]).
     #[error(transparent)]
@@ -109,6 +82,10 @@ pub enum DismechError {
     /// stopped on the way ([`crate::explicit::ExplicitError`]).
     #[error(transparent)]
     Explicit(#[from] crate::explicit::ExplicitError),
+    /// A limit analysis whose model cannot be built or analysed, or whose
+    /// optimum is not certified ([`crate::limit::LimitError`]).
+    #[error(transparent)]
+    Limit(#[from] crate::limit::LimitError),
     /// A polygon block is not a valid simple polygon.
     #[error("block {block} is not a valid polygon: {reason}")]
     InvalidPolygon {
@@ -123,12 +100,6 @@ pub enum DismechError {
     /// A shape pair has no contact routine.
     #[error("unsupported contact pair: {0} against {1}")]
     UnsupportedPair(&'static str, &'static str),
-    /// A contact declared between a body and itself.
-    #[error("a contact of element {body} with itself: a contact joins two elements, or an element and a support")]
-    SelfContact {
-        /// The element.
-        body: usize,
-    },
     /// A body index does not exist.
     #[error("no body with index {index} (the scene has {count})")]
     NoSuchBody {
@@ -155,67 +126,6 @@ pub enum DismechError {
         path: String,
         /// The operating system's message.
         message: String,
-    },
-    /// Two rigid elements of a limit analysis share their reference point.
-    #[error("element {body} has its reference point at ({x}, {y}), within {distance:.1e} m of that of element {existing}: two rigid elements cannot share a point (an element declared twice would double its strength and load)")]
-    DuplicateBody {
-        /// The element refused.
-        body: usize,
-        /// The element already there.
-        existing: usize,
-        /// Reference point x.
-        x: f64,
-        /// Reference point y.
-        y: f64,
-        /// The distance within which two reference points coincide.
-        distance: f64,
-    },
-    /// A contact repeats one already declared: the same pair at the same
-    /// point.
-    #[error("contact {contact} (element {body} with {partner}) repeats contact {existing}: the same pair at the same point would count its strength twice")]
-    DuplicateContact {
-        /// The contact refused.
-        contact: usize,
-        /// The contact it repeats.
-        existing: usize,
-        /// The element.
-        body: usize,
-        /// What it was declared against (its Display says it in words).
-        partner: crate::limit::NamedPartner,
-    },
-    /// A lattice with more elements than the limit.
-    #[error("lattice of m = {m} columns × n = {n} elements exceeds the limit of {limit} elements (each needs about 13 kB for the LP and its factor); use a smaller m or n")]
-    LatticeTooLarge {
-        /// Columns.
-        m: usize,
-        /// Elements per column.
-        n: usize,
-        /// The largest number of elements accepted.
-        limit: usize,
-    },
-    /// A limit analysis without a limit load was asked for one.
-    #[error("the limit analysis has no limit load (status {status:?}): {what} needs a collapse")]
-    NoLimitLoad {
-        /// The analysis' status.
-        status: crate::limit::LimitStatus,
-        /// What needed the load.
-        what: &'static str,
-    },
-    /// An LP solver reported an optimum that fails the LP's own optimality
-    /// conditions at the tolerance a certified limit load needs (see
-    /// [`crate::limit::CERTIFICATE_TOLERANCE`]).
-    #[error("the LP solver reported an optimum ({solver_status}) that fails the optimality conditions of its LP: primal residual {primal_residual:.1e}, dual residual {dual_residual:.1e}, duality gap {gap:.1e}, where a certified limit load needs each at most {tolerance:.0e}; solve more tightly (LinearProgramSolver.tolerance 1e-9, the default, or lower)")]
-    UncertifiedOptimum {
-        /// The solver's own termination status.
-        solver_status: String,
-        /// Relative violation of the LP's rows by its solution.
-        primal_residual: f64,
-        /// Relative violation of stationarity and of the multipliers' signs.
-        dual_residual: f64,
-        /// Relative gap between the primal and dual objectives.
-        gap: f64,
-        /// The largest residual a certified optimum may have.
-        tolerance: f64,
     },
     /// A reproduction name that does not exist.
     #[error("unknown study `{0}`; known studies: {1}")]

@@ -362,11 +362,12 @@
 //! and material ([`law::friction_from_degrees`] converts an angle). Misuse is an `Err` of
 //! [`error::DismechError`] naming the offending value; a run that goes
 //! unstable stops with an error saying what to change. The grid files, HPM,
-//! the slope search and the implicit and explicit drivers each have their
-//! own error, one per module ([`grid::GridError`], [`hpm::HpmError`],
-//! [`slope::SlopeError`], [`implicit::ImplicitError`],
-//! [`explicit::ExplicitError`]), joined into [`error::DismechError`] (its
-//! `Grid`, `Hpm`, `Slope`, `Implicit` and `Explicit` variants, each with
+//! the slope search, the implicit and explicit drivers and the limit
+//! analysis each have their own error, one per module
+//! ([`grid::GridError`], [`hpm::HpmError`], [`slope::SlopeError`],
+//! [`implicit::ImplicitError`], [`explicit::ExplicitError`],
+//! [`limit::LimitError`]), joined into [`error::DismechError`] (its `Grid`,
+//! `Hpm`, `Slope`, `Implicit`, `Explicit` and `Limit` variants, each with
 //! `From` and the same message), which every fallible function returns.
 //!
 //! ## Exact references and reproductions

@@ -4,6 +4,7 @@
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
 use dismech::limit::lattice::Lattice;
+use dismech::limit::LimitError;
 use dismech::limit::{analyse, LimitModel, LimitResult, LimitStatus, NamedPartner, Partner};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Vec2};
@@ -174,14 +175,14 @@ fn unequal_lattices_solve_or_report_locked() {
     // error carries the status, to be matched on.
     match dismech::limit::mechanism_uniqueness(&model, &mut LinearProgramSolver::default(), &locked)
     {
-        Err(err @ DismechError::NoLimitLoad { .. }) => {
+        Err(err @ DismechError::Limit(LimitError::NoLimitLoad { .. })) => {
             assert!(
                 matches!(
                     err,
-                    DismechError::NoLimitLoad {
+                    DismechError::Limit(LimitError::NoLimitLoad {
                         status: LimitStatus::Locked,
                         ..
-                    }
+                    })
                 ),
                 "{err}"
             );
@@ -261,12 +262,12 @@ fn limit_model_bad_input_is_a_typed_error() {
     let b = m.add_body(Point::new(2.5, 0.0), 1.0, true).unwrap();
     let law = RigidPlastic::cohesive(1.0).unwrap();
     match m.add_contact(a, Partner::Body(b), law).unwrap_err() {
-        DismechError::ContactNotTouching {
+        DismechError::Limit(LimitError::ContactNotTouching {
             contact: 0,
             body: 0,
             gap,
             ..
-        } => approx::assert_relative_eq!(gap, 0.5),
+        }) => approx::assert_relative_eq!(gap, 0.5),
         other => panic!("{other}"),
     }
     assert!(matches!(
@@ -301,7 +302,7 @@ fn limit_model_bad_input_is_a_typed_error() {
     .unwrap();
     let plate = m.supports().len() - 1;
     match analyse(&m, &mut LinearProgramSolver::default()) {
-        Err(DismechError::PlateTouchesNothing { support, ref name }) => {
+        Err(DismechError::Limit(LimitError::PlateTouchesNothing { support, ref name })) => {
             assert_eq!(support, plate);
             assert_eq!(name, "plate");
         }
@@ -467,13 +468,13 @@ fn duplicate_contact_is_refused() {
     let (left, e1, e2) = (Partner::Support(0), 0, 1);
     let law = RigidPlastic::cohesive(1.0).unwrap();
     match m.add_contact(e1, left, law) {
-        Err(DismechError::DuplicateContact {
+        Err(DismechError::Limit(LimitError::DuplicateContact {
             contact,
             existing,
             body,
             partner,
             ..
-        }) => {
+        })) => {
             assert_eq!((contact, existing, body), (4, 0, e1));
             assert_eq!(
                 partner,
@@ -490,20 +491,26 @@ fn duplicate_contact_is_refused() {
     // same point.
     assert!(matches!(
         m.add_contact(e2, Partner::Body(e1), law),
-        Err(DismechError::DuplicateContact { existing: 2, .. })
+        Err(DismechError::Limit(LimitError::DuplicateContact {
+            existing: 2,
+            ..
+        }))
     ));
     assert!(matches!(
         m.add_contact(e2, Partner::Body(e1), law),
-        Err(DismechError::DuplicateContact {
+        Err(DismechError::Limit(LimitError::DuplicateContact {
             partner: NamedPartner::Element(0),
             ..
-        })
+        }))
     ));
     let point = m.contacts()[2].point;
     let normal = m.contacts()[2].normal;
     assert!(matches!(
         m.add_contact_at(e2, Partner::Body(e1), law, point, -normal),
-        Err(DismechError::DuplicateContact { existing: 2, .. })
+        Err(DismechError::Limit(LimitError::DuplicateContact {
+            existing: 2,
+            ..
+        }))
     ));
     assert_eq!(m.contacts().len(), 4);
     approx::assert_relative_eq!(
@@ -520,7 +527,10 @@ fn duplicate_contact_is_refused() {
     m.add_contact(a, Partner::Body(b), law).unwrap();
     assert!(matches!(
         m.add_contact(b, Partner::Body(a), law),
-        Err(DismechError::DuplicateContact { existing: 0, .. })
+        Err(DismechError::Limit(LimitError::DuplicateContact {
+            existing: 0,
+            ..
+        }))
     ));
     // Two points of one pair are two contacts: a second corner on a floor.
     let (mut m, e) = element_on_floor(false, 1.0, RigidPlastic::cohesive(1.0).unwrap());
@@ -529,7 +539,7 @@ fn duplicate_contact_is_refused() {
         .unwrap();
     assert!(matches!(
         m.add_contact_at(e, floor, law, Point::new(0.5, 0.0), -Vec2::y()),
-        Err(DismechError::DuplicateContact { .. })
+        Err(DismechError::Limit(LimitError::DuplicateContact { .. }))
     ));
 }
 
@@ -540,13 +550,13 @@ fn two_bodies_at_one_point_are_refused() {
     let mut m = two_elements(1.0).unwrap();
     let centre = m.bodies()[1].centre;
     match m.add_body(centre, 1.0, true) {
-        Err(DismechError::DuplicateBody {
+        Err(DismechError::Limit(LimitError::DuplicateBody {
             body,
             existing,
             x,
             y,
             ..
-        }) => {
+        })) => {
             assert_eq!((body, existing), (2, 1));
             assert_eq!((x, y), (centre.x, centre.y));
         }
@@ -557,7 +567,10 @@ fn two_bodies_at_one_point_are_refused() {
     let near = dismech::math::Pose2::new(centre.x + 0.5e-9, centre.y, 0.3);
     assert!(matches!(
         m.add_shape(square.into(), near, false),
-        Err(DismechError::DuplicateBody { existing: 1, .. })
+        Err(DismechError::Limit(LimitError::DuplicateBody {
+            existing: 1,
+            ..
+        }))
     ));
     assert_eq!(m.bodies().len(), 2);
     // A loose contact tolerance (a DEM packing's overlaps) does not make
@@ -567,11 +580,11 @@ fn two_bodies_at_one_point_are_refused() {
     m.add_body(Point::new(0.05, 0.0), 1.0, true).unwrap();
     assert!(matches!(
         m.add_body(Point::new(0.05 + 0.5e-6, 0.0), 1.0, true),
-        Err(DismechError::DuplicateBody {
+        Err(DismechError::Limit(LimitError::DuplicateBody {
             body: 2,
             existing: 1,
             ..
-        })
+        }))
     ));
 }
 
@@ -580,11 +593,11 @@ fn huge_lattice_is_refused() {
     use dismech::limit::lattice::MAX_LATTICE_ELEMENTS;
     for (m, n) in [(2, 1_000_000), (2, usize::MAX), (usize::MAX - 1, 3)] {
         match Lattice::l_model(m, n, true).build() {
-            Err(DismechError::LatticeTooLarge {
+            Err(DismechError::Limit(LimitError::LatticeTooLarge {
                 m: gm,
                 n: gn,
                 limit,
-            }) => {
+            })) => {
                 assert_eq!((gm, gn, limit), (m, n, MAX_LATTICE_ELEMENTS));
             }
             other => panic!("({m}, {n}): {:?}", other.map(|_| "built")),

@@ -9,6 +9,7 @@ mod heyman_arch;
 
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
+use dismech::limit::LimitError;
 use dismech::limit::{
     admissibility, analyse, analyse_static, LimitModel, LimitStatus, LoadDriver, NamedPartner,
     Partner,
@@ -137,7 +138,7 @@ fn load_drivers_are_replaced_and_cleared() {
     model.multiply_dead_loads();
     assert!(matches!(
         analyse(&model, &mut solver),
-        Err(DismechError::NoDeadLoads)
+        Err(DismechError::Limit(LimitError::NoDeadLoads))
     ));
     model.set_load(block, Vec2::new(0.0, -10.0)).unwrap();
     // A block on a floor stands under any multiple of its weight.
@@ -159,7 +160,7 @@ fn load_drivers_are_replaced_and_cleared() {
     assert!(model.load_driver().is_none() && model.live_load().is_none());
     assert!(matches!(
         analyse(&model, &mut solver),
-        Err(DismechError::DrivingSupportCount(0))
+        Err(DismechError::Limit(LimitError::DrivingSupportCount(0)))
     ));
 }
 
@@ -178,7 +179,7 @@ fn outlines_apart_are_refused_with_their_gap() {
         .unwrap();
     let joint = RigidPlastic::coulomb(0.0, 0.5, true).unwrap();
     match model.add_contacts(low, Partner::Support(floor), joint) {
-        Err(DismechError::ContactNotTouching { gap, partner, .. }) => {
+        Err(DismechError::Limit(LimitError::ContactNotTouching { gap, partner, .. })) => {
             assert!((gap - 1e-3).abs() < 1e-12, "gap {gap}");
             assert!(
                 matches!(partner, NamedPartner::Support { support, .. } if support == floor),
@@ -189,18 +190,18 @@ fn outlines_apart_are_refused_with_their_gap() {
     }
     assert!(matches!(
         model.add_contacts(low, Partner::Body(high), joint),
-        Err(DismechError::ContactNotTouching { .. })
+        Err(DismechError::Limit(LimitError::ContactNotTouching { .. }))
     ));
     assert!(matches!(
         model.add_contacts(low, Partner::Body(high), joint),
-        Err(DismechError::ContactNotTouching {
+        Err(DismechError::Limit(LimitError::ContactNotTouching {
             partner: NamedPartner::Element(j),
             ..
-        }) if j == high
+        })) if j == high
     ));
     assert!(matches!(
         model.add_contacts(low, Partner::Body(low), joint),
-        Err(DismechError::SelfContact { .. })
+        Err(DismechError::Limit(LimitError::SelfContact { .. }))
     ));
     // Stacked within the tolerance, a face on a face gives its two ends.
     let top = model
@@ -277,7 +278,7 @@ fn ellipse_on_a_floor_touches_at_its_lowest_point_and_pairs_are_all_or_none() {
     let before = model.contacts().len();
     assert!(matches!(
         model.add_contacts(block, Partner::Support(floor), joint),
-        Err(DismechError::DuplicateContact { .. })
+        Err(DismechError::Limit(LimitError::DuplicateContact { .. }))
     ));
     assert_eq!(model.contacts().len(), before);
 }

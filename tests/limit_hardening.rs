@@ -5,6 +5,7 @@
 use dismech::error::DismechError;
 use dismech::law::{RigidPlastic, Strength, StrengthLaw};
 use dismech::limit::lattice::Lattice;
+use dismech::limit::LimitError;
 use dismech::limit::{
     analyse, analyse_static, mechanism_uniqueness, LimitModel, LimitStatus, Partner,
 };
@@ -34,13 +35,13 @@ fn loose_solver_tolerance_is_not_certified() {
             ("static", analyse_static(&model, &mut loose(tolerance))),
         ] {
             match outcome {
-                Err(DismechError::UncertifiedOptimum {
+                Err(DismechError::Limit(LimitError::UncertifiedOptimum {
                     primal_residual,
                     dual_residual,
                     gap,
                     tolerance: certificate,
                     ..
-                }) => {
+                })) => {
                     assert_eq!(certificate, dismech::limit::CERTIFICATE_TOLERANCE);
                     assert!(
                         primal_residual.max(dual_residual).max(gap) > certificate,
@@ -70,13 +71,13 @@ fn uniqueness_test_at_a_loose_solver_tolerance_is_not_certified() {
     assert_eq!(r.status, LimitStatus::Collapse);
     for tolerance in [0.1, 1e-3] {
         match mechanism_uniqueness(&model, &mut loose(tolerance), &r) {
-            Err(DismechError::UncertifiedOptimum {
+            Err(DismechError::Limit(LimitError::UncertifiedOptimum {
                 primal_residual,
                 dual_residual,
                 gap,
                 tolerance: certificate,
                 ..
-            }) => {
+            })) => {
                 assert_eq!(certificate, dismech::limit::CERTIFICATE_TOLERANCE);
                 assert!(
                     primal_residual.max(dual_residual).max(gap) > certificate,
@@ -308,7 +309,10 @@ fn contact_of_an_element_with_itself_is_refused_as_such() {
         ),
     ] {
         let err = outcome.unwrap_err();
-        assert_eq!(err, DismechError::SelfContact { body: e });
+        assert_eq!(
+            err,
+            DismechError::Limit(LimitError::SelfContact { body: e })
+        );
         assert!(err.to_string().contains("with itself"), "{err}");
     }
     assert!(m.contacts().is_empty());

@@ -8,7 +8,7 @@ use dismech::error::{DismechError, SolveError};
 use dismech::explicit::ExplicitError;
 use dismech::hpm::HpmError;
 use dismech::implicit::ImplicitError;
-use dismech::limit::LimitStatus;
+use dismech::limit::{LimitError, LimitStatus};
 use dismech::slope::SlopeError;
 
 /// What the command's exit code says.
@@ -102,6 +102,7 @@ impl Exit {
         use ExplicitError as X;
         use HpmError as H;
         use ImplicitError as I;
+        use LimitError as L;
         use SlopeError as S;
         match error {
             E::Output { .. } => Exit::OutputFailed,
@@ -112,8 +113,7 @@ impl Exit {
             )
             | E::Implicit(I::StepFailed { .. })
             | E::Hpm(H::IllConditioned { .. })
-            | E::NoLimitLoad { .. }
-            | E::UncertifiedOptimum { .. } => Exit::SolverFailure,
+            | E::Limit(L::NoLimitLoad { .. } | L::UncertifiedOptimum { .. }) => Exit::SolverFailure,
             // Strength reduction: no factor fails the slope (it cannot
             // collapse), or none holds it (it collapses under its weight).
             E::Hpm(H::StrengthReductionNoFailure { .. }) => Exit::Locked,
@@ -135,10 +135,16 @@ impl Exit {
             )
             | E::FrameNotClosed { .. }
             | E::DegenerateWall { .. }
-            | E::ContactNotTouching { .. }
-            | E::PlateTouchesNothing { .. }
-            | E::DrivingSupportCount(_)
-            | E::NoDeadLoads
+            | E::Limit(
+                L::ContactNotTouching { .. }
+                | L::PlateTouchesNothing { .. }
+                | L::DrivingSupportCount(_)
+                | L::NoDeadLoads
+                | L::DuplicateBody { .. }
+                | L::DuplicateContact { .. }
+                | L::LatticeTooLarge { .. }
+                | L::SelfContact { .. },
+            )
             | E::Grid(_)
             | E::Hpm(
                 H::NoValidColumn { .. }
@@ -165,13 +171,9 @@ impl Exit {
                 | I::BlocksCross { .. },
             )
             | E::InvalidPolygon { .. }
-            | E::DuplicateBody { .. }
-            | E::DuplicateContact { .. }
-            | E::LatticeTooLarge { .. }
             | E::PenaltyModel(_)
             | E::UnsupportedPair(..)
             | E::NoSuchBody { .. }
-            | E::SelfContact { .. }
             | E::UnknownStudy(..)
             | E::VtkData { .. }
             | E::Checkpoint { .. } => Exit::BadInput,
@@ -383,6 +385,89 @@ mod tests {
         ];
         for (error, exit) in &cases {
             assert_eq!(Exit::of_error(error), *exit, "{error:?}");
+        }
+    }
+
+    /// The limit analysis' errors, gathered into `LimitError`, exit with the
+    /// codes they had as variants of `DismechError`: a model that cannot be
+    /// built or analysed is bad input, an analysis without a certified
+    /// limit load a solver failure.
+    #[test]
+    fn the_limit_analysis_errors_exit_as_before() {
+        use dismech::limit::NamedPartner;
+        let cases: Vec<(LimitError, Exit)> = vec![
+            (
+                LimitError::ContactNotTouching {
+                    contact: 0,
+                    body: 1,
+                    partner: NamedPartner::Element(2),
+                    gap: 1e-3,
+                    tolerance: 1e-9,
+                },
+                Exit::BadInput,
+            ),
+            (
+                LimitError::PlateTouchesNothing {
+                    support: 0,
+                    name: "plate".into(),
+                },
+                Exit::BadInput,
+            ),
+            (LimitError::DrivingSupportCount(2), Exit::BadInput),
+            (LimitError::NoDeadLoads, Exit::BadInput),
+            (LimitError::SelfContact { body: 0 }, Exit::BadInput),
+            (
+                LimitError::DuplicateBody {
+                    body: 1,
+                    existing: 0,
+                    x: 0.0,
+                    y: 0.0,
+                    distance: 1e-12,
+                },
+                Exit::BadInput,
+            ),
+            (
+                LimitError::DuplicateContact {
+                    contact: 1,
+                    existing: 0,
+                    body: 0,
+                    partner: NamedPartner::Support {
+                        support: 0,
+                        name: "base".into(),
+                    },
+                },
+                Exit::BadInput,
+            ),
+            (
+                LimitError::LatticeTooLarge {
+                    m: 1000,
+                    n: 1000,
+                    limit: 10,
+                },
+                Exit::BadInput,
+            ),
+            (
+                LimitError::NoLimitLoad {
+                    status: LimitStatus::Locked,
+                    what: "the uniqueness test",
+                },
+                Exit::SolverFailure,
+            ),
+            (
+                LimitError::UncertifiedOptimum {
+                    solver_status: "Solved".into(),
+                    primal_residual: 1e-3,
+                    dual_residual: 1e-3,
+                    gap: 1e-3,
+                    tolerance: 1e-7,
+                },
+                Exit::SolverFailure,
+            ),
+        ];
+        for (error, exit) in cases {
+            let joined = DismechError::from(error.clone());
+            assert_eq!(joined.to_string(), error.to_string());
+            assert_eq!(Exit::of_error(&joined), exit, "{error:?}");
         }
     }
 

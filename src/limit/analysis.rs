@@ -2,6 +2,7 @@
 
 use super::model::{LimitModel, LiveLoad, LoadDriver, Partner};
 use super::verdict::{certify, dead_load_scales, record_bounds, status_of_load};
+use super::LimitError;
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LpSolver, LpStatus};
 use crate::math::{cross, Vec2};
@@ -239,13 +240,13 @@ fn build_kinematic_lp(model: &LimitModel) -> Result<KinematicLp> {
 /// mechanism on which they do work) is [`LimitStatus::Locked`].
 ///
 /// # Errors
-/// [`DismechError::DrivingSupportCount`] for a model without exactly one
+/// [`LimitError::DrivingSupportCount`] for a model without exactly one
 /// driver (one moving support, or a live load or the dead loads' multiplier
-/// and no moving support); [`DismechError::NoDeadLoads`] for the dead
+/// and no moving support); [`LimitError::NoDeadLoads`] for the dead
 /// loads' multiplier where every dead load is zero;
-/// [`DismechError::PlateTouchesNothing`] for a plate touching nothing;
+/// [`LimitError::PlateTouchesNothing`] for a plate touching nothing;
 /// [`DismechError::Solve`] for a solver that refuses the LP;
-/// [`DismechError::UncertifiedOptimum`] when the solver reports an
+/// [`LimitError::UncertifiedOptimum`] when the solver reports an
 /// optimum that fails the LP's optimality conditions (e.g. a loose
 /// `LinearProgramSolver.tolerance`).
 pub fn analyse<S: LpSolver>(model: &LimitModel, solver: &mut S) -> Result<LimitResult> {
@@ -372,7 +373,7 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
         .collect();
     if let Some(load) = model.load_driver() {
         if !drivers.is_empty() {
-            return Err(DismechError::DrivingSupportCount(drivers.len()));
+            return Err(LimitError::DrivingSupportCount(drivers.len()).into());
         }
         return match load {
             LoadDriver::Live(live) => Ok(Driver::Live(*live)),
@@ -380,13 +381,13 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
                 if model.has_dead_loads() {
                     Ok(Driver::DeadLoads)
                 } else {
-                    Err(DismechError::NoDeadLoads)
+                    Err(LimitError::NoDeadLoads.into())
                 }
             }
         };
     }
     if drivers.len() != 1 {
-        return Err(DismechError::DrivingSupportCount(drivers.len()));
+        return Err(LimitError::DrivingSupportCount(drivers.len()).into());
     }
     let plate = drivers[0];
     if !model
@@ -394,10 +395,11 @@ pub(super) fn driver(model: &LimitModel) -> Result<Driver> {
         .iter()
         .any(|c| c.partner == Partner::Support(plate))
     {
-        return Err(DismechError::PlateTouchesNothing {
+        return Err(LimitError::PlateTouchesNothing {
             support: plate,
             name: model.supports()[plate].name.clone(),
-        });
+        }
+        .into());
     }
     Ok(Driver::Plate {
         plate,
@@ -490,8 +492,8 @@ pub struct Uniqueness {
 /// extreme could make a unique mechanism look blended, or the reverse).
 ///
 /// # Errors
-/// [`DismechError::NoLimitLoad`] when `result` has no kinematic load (it
-/// is not a collapse); [`DismechError::UncertifiedOptimum`] when the
+/// [`LimitError::NoLimitLoad`] when `result` has no kinematic load (it
+/// is not a collapse); [`LimitError::UncertifiedOptimum`] when the
 /// solver reports an optimum of either LP that fails its optimality
 /// conditions (e.g. a loose `LinearProgramSolver.tolerance`);
 /// [`DismechError::Solve`] when either LP ends without an optimum (other
@@ -502,7 +504,7 @@ pub fn mechanism_uniqueness<S: LpSolver>(
     solver: &mut S,
     result: &LimitResult,
 ) -> Result<Uniqueness> {
-    let kinematic = result.kinematic_load.ok_or(DismechError::NoLimitLoad {
+    let kinematic = result.kinematic_load.ok_or(LimitError::NoLimitLoad {
         status: result.status,
         what: "the uniqueness test of the mechanism",
     })?;

@@ -15,6 +15,7 @@
 //! A lattice has at most [`MAX_LATTICE_ELEMENTS`] elements (m × n).
 
 use super::model::{LimitModel, Partner};
+use super::LimitError;
 use crate::error::{DismechError, Result};
 use crate::law::RigidPlastic;
 use crate::math::{Point, Vec2};
@@ -109,7 +110,7 @@ impl Lattice {
     /// [`DismechError::InvalidParameter`] for m odd or below 2, n below 1,
     /// n below 2 in the rolling L-model (its one loaded element rolls away
     /// at no load), n' outside `1..=n`, a radius that is not positive or a
-    /// negative strength; [`DismechError::LatticeTooLarge`] for more than
+    /// negative strength; [`LimitError::LatticeTooLarge`] for more than
     /// [`MAX_LATTICE_ELEMENTS`] elements.
     pub fn build(&self) -> Result<LimitModel> {
         if self.m < 2 || self.m % 2 != 0 {
@@ -141,11 +142,12 @@ impl Lattice {
             .checked_mul(self.n)
             .is_none_or(|elements| elements > MAX_LATTICE_ELEMENTS)
         {
-            return Err(DismechError::LatticeTooLarge {
+            return Err(LimitError::LatticeTooLarge {
                 m: self.m,
                 n: self.n,
                 limit: MAX_LATTICE_ELEMENTS,
-            });
+            }
+            .into());
         }
         if let LatticeKind::U { loaded } = self.kind {
             if loaded < 1 || loaded > self.n {

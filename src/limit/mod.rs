@@ -40,6 +40,7 @@
 
 mod analysis;
 mod equilibrium;
+mod error;
 mod from_dem;
 pub mod lattice;
 mod model;
@@ -48,6 +49,7 @@ mod verdict;
 
 pub use analysis::{analyse, mechanism_uniqueness, LimitResult, LimitStatus, Uniqueness};
 pub use equilibrium::{admissibility, Admissibility};
+pub use error::LimitError;
 pub use from_dem::{model_from_packing, PackingLimitSettings};
 pub use model::{
     LimitBody, LimitContact, LimitModel, LiveLoad, LoadDriver, NamedPartner, Partner,

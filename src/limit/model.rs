@@ -20,14 +20,15 @@
 //!   and a line, touch at one point. Several points of one pair given
 //!   explicitly (the corners of a face on a floor) are distinct contacts.
 //!
-//! Both are refused when declared ([`DismechError::DuplicateBody`],
-//! [`DismechError::DuplicateContact`]), found through a hash of the
+//! Both are refused when declared ([`LimitError::DuplicateBody`],
+//! [`LimitError::DuplicateContact`]), found through a hash of the
 //! reference points on cells of the tolerance's size and a list of the
 //! contacts of each pair, so that a model of many bodies is checked in
 //! linear time.
 
 use std::collections::HashMap;
 
+use super::LimitError;
 use crate::error::{require_finite, require_positive, DismechError, Result};
 use crate::law::{Strength, StrengthLaw};
 use crate::math::{perp, Point, Pose2, Vec2};
@@ -191,8 +192,8 @@ pub enum Partner {
 }
 
 /// What a refused contact was declared against, with the support's name
-/// ([`crate::error::DismechError::ContactNotTouching`],
-/// [`crate::error::DismechError::DuplicateContact`]).
+/// ([`LimitError::ContactNotTouching`],
+/// [`LimitError::DuplicateContact`]).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum NamedPartner {
     /// Another element.
@@ -288,7 +289,7 @@ impl LimitModel {
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for a radius
     /// that is not finite and positive or a centre that is not finite;
-    /// [`DismechError::DuplicateBody`] when an element already has its
+    /// [`LimitError::DuplicateBody`] when an element already has its
     /// reference point at `centre` (as [`LimitModel::add_shape`]).
     pub fn add_body(&mut self, centre: Point, radius: f64, rotates: bool) -> Result<usize> {
         require_positive("element radius", radius)?;
@@ -301,7 +302,7 @@ impl LimitModel {
     ///
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a pose that is not finite;
-    /// [`DismechError::DuplicateBody`] when an element
+    /// [`LimitError::DuplicateBody`] when an element
     /// already has its reference point where this one has (see the module
     /// documentation).
     pub fn add_shape(&mut self, shape: AnyShape2, pose: Pose2, rotates: bool) -> Result<usize> {
@@ -321,13 +322,14 @@ impl LimitModel {
                     let other = &self.bodies[existing];
                     let within = self.coincidence(radius.min(other.radius()));
                     if (other.centre - pose.position).norm() <= within {
-                        return Err(DismechError::DuplicateBody {
+                        return Err(LimitError::DuplicateBody {
                             body: index,
                             existing,
                             x: pose.position.x,
                             y: pose.position.y,
                             distance: within,
-                        });
+                        }
+                        .into());
                     }
                 }
             }
@@ -359,7 +361,7 @@ impl LimitModel {
 
     /// Record contact `contact` unless it repeats one of its pair: at a
     /// coinciding point, or at all when `one_point` (circle geometry)
-    /// ([`DismechError::DuplicateContact`]).
+    /// ([`LimitError::DuplicateContact`]).
     fn push_contact(
         &mut self,
         contact: LimitContact,
@@ -378,12 +380,13 @@ impl LimitModel {
             .iter()
             .find(|&&c| one_point || (self.contacts[c].point - contact.point).norm() <= within)
         {
-            return Err(DismechError::DuplicateContact {
+            return Err(LimitError::DuplicateContact {
                 contact: index,
                 existing,
                 body: contact.body,
                 partner: partner_name,
-            });
+            }
+            .into());
         }
         self.pairs.entry(key).or_default().push(index);
         self.contacts.push(contact);
@@ -507,10 +510,10 @@ impl LimitModel {
     /// A law whose strength is negative or not finite
     /// ([`DismechError::InvalidParameter`], see [`PlasticContact::of`]), an
     /// unknown element or support, an element paired with itself
-    /// ([`DismechError::SelfContact`]), a shape that is not a circle, surfaces
+    /// ([`LimitError::SelfContact`]), a shape that is not a circle, surfaces
     /// that do not touch within the tolerance
-    /// ([`DismechError::ContactNotTouching`]), or a contact of the same pair
-    /// already declared ([`DismechError::DuplicateContact`]: two circles,
+    /// ([`LimitError::ContactNotTouching`]), or a contact of the same pair
+    /// already declared ([`LimitError::DuplicateContact`]: two circles,
     /// or a circle and a line, touch at one point).
     pub fn add_contact(
         &mut self,
@@ -534,7 +537,7 @@ impl LimitModel {
         };
         let radius_a = circle_of(a)?;
         let (point, normal, gap, name) = match partner {
-            Partner::Body(j) if j == body => return Err(DismechError::SelfContact { body }),
+            Partner::Body(j) if j == body => return Err(LimitError::SelfContact { body }.into()),
             Partner::Body(j) => {
                 let b = self
                     .bodies
@@ -573,13 +576,14 @@ impl LimitModel {
             }
         };
         if partner == Partner::Body(body) || gap.abs() > self.tolerance {
-            return Err(DismechError::ContactNotTouching {
+            return Err(LimitError::ContactNotTouching {
                 contact: index,
                 body,
                 partner: name,
                 gap,
                 tolerance: self.tolerance,
-            });
+            }
+            .into());
         }
         self.push_contact(
             LimitContact {
@@ -605,9 +609,9 @@ impl LimitModel {
     /// A law whose strength is negative or not finite
     /// ([`DismechError::InvalidParameter`], see [`PlasticContact::of`]), an
     /// unknown element or support, non-finite data, a support contact off
-    /// its line ([`DismechError::ContactNotTouching`]), or a contact of the
+    /// its line ([`LimitError::ContactNotTouching`]), or a contact of the
     /// same pair already declared at this point
-    /// ([`DismechError::DuplicateContact`]; see the module documentation).
+    /// ([`LimitError::DuplicateContact`]; see the module documentation).
     pub fn add_contact_at(
         &mut self,
         body: usize,
@@ -634,7 +638,7 @@ impl LimitModel {
         let normal = normal / length;
         let name = match partner {
             Partner::Body(j) if j == body => {
-                return Err(DismechError::SelfContact { body });
+                return Err(LimitError::SelfContact { body }.into());
             }
             Partner::Body(j) if j >= count => {
                 return Err(DismechError::NoSuchBody { index: j, count });
@@ -652,13 +656,14 @@ impl LimitModel {
                     name: support.name.clone(),
                 };
                 if gap.abs() > self.tolerance || !facing {
-                    return Err(DismechError::ContactNotTouching {
+                    return Err(LimitError::ContactNotTouching {
                         contact: index,
                         body,
                         partner: name,
                         gap,
                         tolerance: self.tolerance,
-                    });
+                    }
+                    .into());
                 }
                 name
             }
@@ -706,9 +711,9 @@ impl LimitModel {
     ///
     /// # Errors
     /// As [`LimitModel::add_contact_at`] for each point (e.g.
-    /// [`DismechError::DuplicateContact`] where the pair already has a
+    /// [`LimitError::DuplicateContact`] where the pair already has a
     /// contact at one of them);
-    /// [`DismechError::ContactNotTouching`] when the outlines give no
+    /// [`LimitError::ContactNotTouching`] when the outlines give no
     /// point (they do not touch within the tolerance), with the distance
     /// between their reference points as the gap where no better one is
     /// known; [`DismechError::UnsupportedPair`] for a shape the pair query
@@ -733,7 +738,7 @@ impl LimitModel {
         let mut heights: Vec<(Point, f64)> = Vec::new();
         let mut apart: Option<f64> = None;
         let name = match partner {
-            Partner::Body(j) if j == body => return Err(DismechError::SelfContact { body }),
+            Partner::Body(j) if j == body => return Err(LimitError::SelfContact { body }.into()),
             Partner::Body(j) => {
                 let b = self
                     .bodies
@@ -829,13 +834,14 @@ impl LimitModel {
             }
         };
         if let Some(gap) = apart {
-            return Err(DismechError::ContactNotTouching {
+            return Err(LimitError::ContactNotTouching {
                 contact: self.contacts.len(),
                 body,
                 partner: name,
                 gap,
                 tolerance: self.tolerance,
-            });
+            }
+            .into());
         }
         let mut added = Vec::with_capacity(points.len());
         let mut radius = a.radius();

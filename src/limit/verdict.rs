@@ -10,7 +10,7 @@
 //! primal feasibility, dual feasibility and a zero gap, each at most
 //! [`CERTIFICATE_TOLERANCE`] relative to the terms it sums
 //! ([`crate::lp::Optimality`]); a solution that fails is refused
-//! ([`DismechError::UncertifiedOptimum`]).
+//! ([`LimitError::UncertifiedOptimum`]).
 //!
 //! **Zero and negative loads.** The optimum is a dissipation less the
 //! power of the dead loads. Where it is zero to the resolution of the data
@@ -27,6 +27,7 @@
 
 use super::analysis::{Driver, LimitResult, LimitStatus};
 use super::model::LimitModel;
+use super::LimitError;
 use crate::error::{DismechError, Result};
 use crate::lp::{LinearProgram, LinearProgramSolution, Optimality, Scales};
 
@@ -94,7 +95,7 @@ pub(super) fn dead_load_scales(
 /// `floors` (see [`dead_load_scales`]).
 ///
 /// # Errors
-/// [`DismechError::UncertifiedOptimum`] when a residual is above the
+/// [`LimitError::UncertifiedOptimum`] when a residual is above the
 /// tolerance; a [`crate::error::SolveError`] when the solution does not
 /// have the sizes of `lp`.
 pub(super) fn certify(
@@ -106,13 +107,14 @@ pub(super) fn certify(
     if optimality.holds(CERTIFICATE_TOLERANCE) {
         Ok(optimality)
     } else {
-        Err(DismechError::UncertifiedOptimum {
+        Err(LimitError::UncertifiedOptimum {
             solver_status: solution.solver_status.clone(),
             primal_residual: optimality.primal_residual,
             dual_residual: optimality.dual_residual,
             gap: optimality.gap,
             tolerance: CERTIFICATE_TOLERANCE,
-        })
+        }
+        .into())
     }
 }
 

@@ -7,6 +7,7 @@
 use dismech::error::DismechError;
 use dismech::law::RigidPlastic;
 use dismech::limit::lattice::{Lattice, LatticeKind};
+use dismech::limit::LimitError;
 use dismech::limit::{LimitModel, Partner};
 use dismech::lp::LinearProgramSolver;
 use dismech::math::{Point, Pose2, Vec2};
@@ -445,7 +446,7 @@ fn add_contacts(
         .map(|s| (s.point, s.normal))
         .collect();
     let touched = |r: dismech::error::Result<Vec<usize>>| match r {
-        Ok(_) | Err(DismechError::ContactNotTouching { .. }) => Ok(()),
+        Ok(_) | Err(DismechError::Limit(LimitError::ContactNotTouching { .. })) => Ok(()),
         Err(e) => Err(e),
     };
     for i in 0..n {
@@ -493,7 +494,7 @@ fn lattice_error(source: &Source<'_>, path: &KeyPath, error: DismechError) -> Re
         DismechError::InvalidParameter { name, .. } if name.contains("cohesion") => {
             path.key("wall_cohesion")
         }
-        DismechError::LatticeTooLarge { .. } => {
+        DismechError::Limit(LimitError::LatticeTooLarge { .. }) => {
             return Box::new(source.at_keys(&[&path.key("m"), &path.key("n")], message))
         }
         _ => path.clone(),
