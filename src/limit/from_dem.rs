@@ -3,7 +3,6 @@
 //! LP of the same assembly.
 
 use super::model::{LimitModel, Partner};
-use super::LimitError;
 use crate::error::{require_positive, DismechError, Result};
 use crate::explicit::{ContactRecord, ContactTarget};
 use crate::law::RigidPlastic;
@@ -44,13 +43,13 @@ pub struct PackingLimitSettings {
 /// or a normal of zero length; [`DismechError::NoSuchBody`] for a record
 /// naming a particle the scene does not have, and
 /// [`DismechError::DegenerateWall`] for one naming a wall the frame does
-/// not have; [`LimitError::DuplicateBody`] for two particles whose
+/// not have; [`super::LimitError::DuplicateBody`] for two particles whose
 /// centres coincide ([`LimitModel::add_shape`]);
-/// [`LimitError::SelfContact`] for a record of a particle with itself;
-/// [`LimitError::ContactNotTouching`] for two circles, or a circle and a
+/// [`super::LimitError::SelfContact`] for a record of a particle with itself;
+/// [`super::LimitError::ContactNotTouching`] for two circles, or a circle and a
 /// wall, farther apart than the tolerance (1.01 times the largest overlap
 /// of the records), or a record of another shape with a wall whose normal
-/// does not point into the wall; [`LimitError::DuplicateContact`] for a
+/// does not point into the wall; [`super::LimitError::DuplicateContact`] for a
 /// record that repeats one of its pair (a second record of two circles, or
 /// of a circle and a wall, or one at a point of the pair already taken),
 /// as [`LimitModel::add_contact`] and [`LimitModel::add_contact_at`].

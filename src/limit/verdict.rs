@@ -28,7 +28,7 @@
 use super::analysis::{Driver, LimitResult, LimitStatus};
 use super::model::LimitModel;
 use super::LimitError;
-use crate::error::{DismechError, Result};
+use crate::error::Result;
 use crate::lp::{LinearProgram, LinearProgramSolution, Optimality, Scales};
 
 /// The largest relative residual of the LP's optimality conditions (primal
