@@ -222,6 +222,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     })
     .map(|(_, integration)| integration)
     .collect();
+    if integrations.is_empty() {
+        return Err("law= takes `return` or `conventional`".into());
+    }
     let penalties: Vec<f64> = match args.iter().find_map(|a| {
         a.strip_prefix("penalty=")
             .and_then(|s| s.parse::<f64>().ok())

@@ -561,11 +561,13 @@ impl Reach {
             Ok(true) => self.stepped += 1,
             Ok(false) => {}
             Err(e) => {
-                // The implicit and explicit drivers' errors under their
-                // own names, as `StepFailed`, `EnergyBlowUp`, ...
+                // The implicit and explicit drivers' and the limit
+                // analysis' errors under their own names, as `StepFailed`,
+                // `EnergyBlowUp`, `NoLimitLoad`, ...
                 let kind = match e {
                     DismechError::Implicit(implicit) => format!("{implicit:?}"),
                     DismechError::Explicit(explicit) => format!("{explicit:?}"),
+                    DismechError::Limit(limit) => format!("{limit:?}"),
                     other => format!("{other:?}"),
                 };
                 let kind = kind.split([' ', '(', '{']).next().unwrap_or("").to_string();

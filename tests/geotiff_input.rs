@@ -601,6 +601,27 @@ fn memory_bound(input: usize) -> u64 {
     2 * MAX_GEOTIFF_EXPANSION * input as u64 + 4 * 1024 * 1024
 }
 
+thread_local! {
+    /// Whether this thread's panics are caught cases, not to be printed.
+    static SILENT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Print no panic message for this thread's panics while `silent`. The
+/// hook is installed once and never removed, wrapping the one before it,
+/// so that the other tests of this binary (the grid fuzzer installs its
+/// own the same way) keep theirs whichever installs first.
+fn silence_panics_of_this_thread(silent: bool) {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if !SILENT.with(|s| s.get()) {
+                previous(info);
+            }
+        }));
+    });
+    SILENT.with(|s| s.set(silent));
+}
 #[test]
 fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
     // 100 000 cases in `cargo test` (a fraction of a second);
@@ -618,13 +639,7 @@ fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
     let mut refused = std::collections::BTreeMap::<&str, u64>::new();
     // Silent for this thread's caught panics only: the other tests of this
     // binary, running beside it, keep their messages.
-    let fuzzing = std::thread::current().id();
-    let previous = panic::take_hook();
-    panic::set_hook(Box::new(move |info| {
-        if std::thread::current().id() != fuzzing {
-            previous(info);
-        }
-    }));
+    silence_panics_of_this_thread(true);
     for index in 0..cases {
         let seed = &seeds[rng.random_range(0..seeds.len())];
         let bytes = mutate(&mut rng, seed);
@@ -649,7 +664,7 @@ fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
             Err(_) => panics.push(index),
         }
     }
-    let _ = panic::take_hook();
+    silence_panics_of_this_thread(false);
     eprintln!(
         "{cases} cases (seed {seed}): {accepted} accepted, refused {refused:?}, {} panics, largest peak {largest_ratio:.0} bytes per byte of file",
         panics.len()

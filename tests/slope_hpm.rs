@@ -268,7 +268,7 @@ fn two_layers(upper: SlopeMaterial, bottom: NamedRaster, lower: SlopeMaterial) -
 /// iterations about 1e-3 (springs that open lose their cohesion's shear
 /// at once), where the dry valley converges in under 50 iterations; the
 /// bit-for-bit and 1e-12 comparisons of such a run hold for 200 iterates
-/// as for the default 3000, at a tenth of the time.
+/// as for the default 3000, at a tenth of that run's time.
 fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmReanalysis> {
     let result = searched(terrain);
     let worst = result.lowest().unwrap();

@@ -2491,6 +2491,12 @@ fn the_slip_reversal_quantile_is_read_and_checked() {
         );
     }
     let text = std::fs::read_to_string(scenarios().join("dda_sliding_block.toml")).unwrap();
-    let text = text.replacen(from, &format!("{from}\nslip_reversal_quantile = 0.2"), 1);
-    assert!(scenario::prepare(Path::new("model.toml"), &text, Overrides::default()).is_ok());
+    let text = text.replacen(from, &format!("{from}\nslip_reversal_quantile = 0.5"), 1);
+    let prepared = scenario::prepare(Path::new("model.toml"), &text, Overrides::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let scenario::Model::Implicit(model) = prepared.model else {
+        panic!("the sliding block is an implicit model")
+    };
+    // Not the default (0.2): the file's value.
+    assert_eq!(model.settings().slip_reversal_quantile, 0.5);
 }

@@ -49,9 +49,10 @@
 //!   contact, whose slip has already reversed once in the step, to slip
 //!   the other way again stops where that contact sticks (its stick band
 //!   is too narrow for a full update to land in, and Newton would cycle
-//!   between the two slip directions; with many such contacts, where the
-//!   first sticks, or at a quantile of where they stick:
-//!   [`ImplicitSettings::slip_reversal_quantile`]); a backtracking line
+//!   between the two slip directions); with several such contacts it stops
+//!   at a quantile of where they stick, by default where a fifth of them
+//!   have stuck ([`ImplicitSettings::slip_reversal_quantile`], 0.2; 0 stops
+//!   it where the first sticks); a backtracking line
 //!   search on `‖R‖` then halves a step that does not lower the residual
 //!   (at most 8 times).
 //!   A law that is not consistent ([`crate::law::TangentLaw::is_consistent`],

@@ -91,6 +91,18 @@ pub struct ImplicitModel {
     pub motions: u64,
 }
 
+impl ImplicitModel {
+    /// The driver's settings, as the scenario gave them.
+    pub fn settings(&self) -> &ImplicitSettings {
+        match &self.driver {
+            ImplicitDriver::RigidSpring(d) => d.settings(),
+            ImplicitDriver::RigidPenalty(d) => d.settings(),
+            ImplicitDriver::AffineSpring(d) => d.settings(),
+            ImplicitDriver::AffinePenalty(d) => d.settings(),
+        }
+    }
+}
+
 /// The FNV-1a hash of each body's sine motion as given (body index,
 /// amplitude, frequency and direction bits) and of each moving wall's
 /// velocity (`wall`, the body index and the velocity's bits); 0 without
