@@ -7,9 +7,9 @@
 //! more memory than its bound.
 
 use std::io::Cursor;
-use std::panic::{self, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
+use crate::grid_fuzzer::catch_panic;
 use dismech::error::DismechError;
 use dismech::grid::{
     parse_geotiff, read_geotiff, write_geotiff, FileKind, GeoTiffProblem, GridCellProblem,
@@ -601,27 +601,6 @@ fn memory_bound(input: usize) -> u64 {
     2 * MAX_GEOTIFF_EXPANSION * input as u64 + 4 * 1024 * 1024
 }
 
-thread_local! {
-    /// Whether this thread's panics are caught cases, not to be printed.
-    static SILENT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-/// Print no panic message for this thread's panics while `silent`. The
-/// hook is installed once and never removed, wrapping the one before it,
-/// so that the other tests of this binary (the grid fuzzer installs its
-/// own the same way) keep theirs whichever installs first.
-fn silence_panics_of_this_thread(silent: bool) {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let previous = panic::take_hook();
-        panic::set_hook(Box::new(move |info| {
-            if !SILENT.with(|s| s.get()) {
-                previous(info);
-            }
-        }));
-    });
-    SILENT.with(|s| s.set(silent));
-}
 #[test]
 fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
     // 100 000 cases in `cargo test` (a fraction of a second);
@@ -637,17 +616,14 @@ fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
     let mut over_bound = Vec::new();
     let mut unnamed = Vec::new();
     let mut refused = std::collections::BTreeMap::<&str, u64>::new();
-    // Silent for this thread's caught panics only: the other tests of this
-    // binary, running beside it, keep their messages.
-    silence_panics_of_this_thread(true);
     for index in 0..cases {
         let seed = &seeds[rng.random_range(0..seeds.len())];
         let bytes = mutate(&mut rng, seed);
         let mut outcome = None;
+        // A panic's message is recorded, not printed: the other tests of
+        // this binary, running beside it, keep theirs.
         let info = allocation_counter::measure(|| {
-            outcome = Some(panic::catch_unwind(AssertUnwindSafe(|| {
-                parse_geotiff(&bytes, NAME)
-            })));
+            outcome = Some(catch_panic(|| parse_geotiff(&bytes, NAME)));
         });
         largest_ratio = largest_ratio.max(info.bytes_max as f64 / bytes.len().max(1) as f64);
         if info.bytes_max > memory_bound(bytes.len()) {
@@ -661,10 +637,9 @@ fn fuzzed_geotiffs_never_panic_nor_outgrow_their_memory_bound() {
                 }
                 *refused.entry(kind(&e)).or_default() += 1;
             }
-            Err(_) => panics.push(index),
+            Err(message) => panics.push((index, message)),
         }
     }
-    silence_panics_of_this_thread(false);
     eprintln!(
         "{cases} cases (seed {seed}): {accepted} accepted, refused {refused:?}, {} panics, largest peak {largest_ratio:.0} bytes per byte of file",
         panics.len()

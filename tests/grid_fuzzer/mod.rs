@@ -349,6 +349,19 @@ fn install_panic_hook() {
     });
 }
 
+/// Run `f`, giving the message and place of a panic in it instead of the
+/// panic. The hook that records it is installed once and never removed;
+/// it leaves the panics of other threads, and of this one outside such a
+/// call, to the hook before it, so that the other tests of a binary keep
+/// their messages.
+pub fn catch_panic<T>(f: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    install_panic_hook();
+    CAUGHT.with(|c| *c.borrow_mut() = Some(None));
+    let caught = panic::catch_unwind(AssertUnwindSafe(f));
+    let message = CAUGHT.with(|c| c.borrow_mut().take()).flatten();
+    caught.map_err(|_| message.unwrap_or_else(|| "panic without a message".to_string()))
+}
+
 /// Byte spans of the whitespace-separated tokens of `text`.
 fn tokens(text: &[u8]) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
@@ -771,18 +784,11 @@ fn run_case(seeds: &Seeds, seed: u64, index: u64, dir: &Path) -> (Target, CaseRe
     let huge_claim = files
         .iter()
         .any(|(_, b)| claimed_cells(b).is_some_and(|cells| cells > MAX_GRID_CELLS as f64));
-    CAUGHT.with(|c| *c.borrow_mut() = Some(None));
     let mut caught = None;
     let info = allocation_counter::measure(|| {
-        caught = Some(panic::catch_unwind(AssertUnwindSafe(|| {
-            run_target(target, &files, dir)
-        })));
+        caught = Some(catch_panic(|| run_target(target, &files, dir)));
     });
-    let message = CAUGHT.with(|c| c.borrow_mut().take()).flatten();
-    let outcome = match caught.expect("the case ran") {
-        Ok(result) => Ok(result),
-        Err(_) => Err(message.unwrap_or_else(|| "panic without a message".to_string())),
-    };
+    let outcome = caught.expect("the case ran");
     (
         target,
         CaseResult {
