@@ -103,7 +103,29 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
             coefficient: kh,
             direction: towards_deg(towards),
         };
-        let exact = exact_fs(&exact_w, &m, dip, kh);
+        // Under a water table the seepage force `γ_w h_w tan β` per unit
+        // plan area (γ_w = γ_t − γ_sub) pushes down the dip beside the
+        // seismic force `k_h W'`: a seismic coefficient larger by its
+        // ratio to the submerged weight W'.
+        let seepage = hw.map_or(0.0, |w| {
+            (m.unit_weight - m.submerged_unit_weight) * w * dip.to_radians().tan()
+        });
+        let exact = exact_fs(
+            &exact_w,
+            &m,
+            dip,
+            kh + seepage * exact_w.plan / exact_w.weight,
+        );
+        if let (Some(w), 0.0) = (hw, kh) {
+            // The same Fs from the total weight and the pore pressure
+            // `u = γ_w h_w` on the base: `(c + (σ_v cos² β − u) tan φ) /
+            // (σ_v sin β cos β)`, σ_v = γ_t h.
+            let (beta, sigma_v) = (dip.to_radians(), m.unit_weight * h);
+            let u = (m.unit_weight - m.submerged_unit_weight) * w;
+            let total = (m.cohesion + (sigma_v * beta.cos().powi(2) - u) * m.friction())
+                / (sigma_v * beta.sin() * beta.cos());
+            assert!((total / exact - 1.0).abs() < 1e-12, "{total} vs {exact}");
+        }
         let mut solver = HpmSolver::new(&model).unwrap();
         let elastic = solver.elastic(&model, &seismic).unwrap();
         let fs = elastic.safety_factor(&model).unwrap();

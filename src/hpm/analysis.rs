@@ -9,7 +9,8 @@
 //!   [`EQUILIBRIUM_TOLERANCE`] (and an iterative solver met its own
 //!   criterion).
 //! * **Nonlinear**: the slip springs follow [`MohrCoulombSpring`] (c, φ,
-//!   return mapping, no tension). The global equations are solved by the
+//!   return mapping, no tension, an opening spring's cohesion lost over an
+//!   opening of `c / k_n`). The global equations are solved by the
 //!   initial-stiffness method with Aitken's relaxation: the elastic
 //!   stiffness, factorised once, is applied to the out-of-balance force
 //!   `F − F_int(U)` and the correction scaled by Aitken's factor until

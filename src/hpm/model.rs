@@ -47,6 +47,28 @@ pub struct Element {
     pub volume: f64,
     /// Weight W_I (N), eqs. (8)–(10).
     pub weight: f64,
+    /// Horizontal seepage force (N) along x and y of the pore water below
+    /// the water table; zero without one.
+    ///
+    /// Eqs. (8)–(10) weigh the ground below the water table by `γ_sub`:
+    /// its weight less the buoyancy `(γ_t − γ_sub) V_w` of its volume
+    /// `V_w` below the table. That is the whole of the pore water's action
+    /// only where the table is level. The pore pressure of a table at
+    /// `z_w(x, y)`, hydrostatic below it (`u = γ_w (z_w − z)`, the pressure
+    /// Hovland's method and the slope search take on a column's base),
+    /// acts on the ground below it with `−∇u = γ_w e_z − γ_w ∇z_w` per unit
+    /// volume: the buoyancy, and the seepage force `−γ_w ∇z_w`, horizontal,
+    /// down the table's slope. The element takes it at its centroid, with
+    /// the table's slope over the cell (the mean of its edges' slopes, as
+    /// the slip surface's in [`super::hovland()`]) and `γ_w = γ_t − γ_sub`
+    /// of each stratum (the buoyancy its weight already has): `seepage =
+    /// −(W_dry − W) ∇z_w`, with `W_dry` the element's weight without the
+    /// table. Submerged weight and seepage force together are the total
+    /// weight and the pore pressure on the element's boundary: on a planar
+    /// slope under a parallel table, HPM's and Hovland's Fs are those of
+    /// total weight and pore pressure (`tests/hpm_exact.rs`). Paper 001
+    /// weighs by `γ_sub` and has no seepage force.
+    pub seepage: [f64; 2],
 }
 
 /// One valid column of the grid.
@@ -266,15 +288,24 @@ fn stratified_weight(strata: &[WeightStratum], hw: Option<f64>, hd: f64, hu: f64
 }
 
 /// Weight of an element, eqs. (8)–(10), over `strata`
-/// ([`stratified_weight`]).
-fn element_weight(
+/// ([`stratified_weight`]), and its horizontal seepage force
+/// ([`Element::seepage`]).
+fn element_loads(
     strata: &[WeightStratum],
     shape: &Column,
     water: Option<&[f64; 4]>,
     cell_area: f64,
-) -> f64 {
+) -> (f64, [f64; 2]) {
     let (hu, hd) = (mean(&shape.top()), mean(&shape.bottom()));
-    stratified_weight(strata, water.map(mean), hd, hu) * cell_area
+    let weight = stratified_weight(strata, water.map(mean), hd, hu) * cell_area;
+    let Some(w) = water else {
+        return (weight, [0.0; 2]);
+    };
+    let buoyancy = stratified_weight(strata, None, hd, hu) * cell_area - weight;
+    let d = shape.size();
+    let slope_x = 0.5 * ((w[1] - w[0]) + (w[2] - w[3])) / d;
+    let slope_y = 0.5 * ((w[3] - w[0]) + (w[2] - w[1])) / d;
+    (weight, [-buoyancy * slope_x, -buoyancy * slope_y])
 }
 
 /// Check the strata of [`HpmModel::set_column_strata`].
@@ -520,7 +551,8 @@ impl HpmModel {
         let (_, _, water) = grids.corners(r, c);
         for e in grid_column.elements.clone() {
             let element = &mut self.elements[e];
-            element.weight = element_weight(strata, &element.shape, water.as_ref(), d * d);
+            (element.weight, element.seepage) =
+                element_loads(strata, &element.shape, water.as_ref(), d * d);
         }
         Ok(())
     }
@@ -582,17 +614,15 @@ impl HpmModel {
             index[r * grid_columns + c] = k;
             let first = elements.len();
             for (layer, part) in shape.layers(layers)?.into_iter().enumerate() {
+                let (weight, seepage) =
+                    element_loads(&[WeightStratum::of(material)], &part, water.as_ref(), d * d);
                 elements.push(Element {
                     column: k,
                     layer,
                     centre: part.centroid(),
                     volume: part.volume(),
-                    weight: element_weight(
-                        &[WeightStratum::of(material)],
-                        &part,
-                        water.as_ref(),
-                        d * d,
-                    ),
+                    weight,
+                    seepage,
                     shape: part,
                 });
             }
@@ -735,10 +765,11 @@ impl HpmModel {
         k
     }
 
-    /// The load vector: weights W_I (eqs. 8–10) and the seismic force
+    /// The load vector: weights W_I (eqs. 8–10), the seismic force
     /// `k_h W_I` along the unit horizontal direction of `seismic` (eqs.
-    /// 11–13), at each element's centroid. A zero coefficient adds no
-    /// horizontal force whatever the direction.
+    /// 11–13) and the seepage force below a water table
+    /// ([`Element::seepage`]), at each element's centroid. A zero
+    /// coefficient adds no horizontal force whatever the direction.
     pub fn loads(&self, seismic: &Seismic) -> Vec<f64> {
         let (cx, cy) = if seismic.coefficient == 0.0 {
             (0.0, 0.0)
@@ -748,8 +779,8 @@ impl HpmModel {
         let mut f = vec![0.0; self.dof()];
         for (e, element) in self.elements.iter().enumerate() {
             let h = seismic.coefficient * element.weight;
-            f[ELEMENT_DOF * e] = h * cx;
-            f[ELEMENT_DOF * e + 1] = h * cy;
+            f[ELEMENT_DOF * e] = h * cx + element.seepage[0];
+            f[ELEMENT_DOF * e + 1] = h * cy + element.seepage[1];
             f[ELEMENT_DOF * e + 2] = -element.weight;
         }
         f

@@ -80,7 +80,10 @@ pub struct ContactInput<const D: usize> {
 /// The state a contact is in after an evaluation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Regime {
-    /// No force: separated, or a tension was released.
+    /// No normal force: separated, or a tension was released. A cohesive
+    /// law may still carry the rest of its cohesion in shear while it
+    /// opens ([`super::MohrCoulombSpring`], over an opening of `c / k_n`);
+    /// every other law carries nothing.
     Open,
     /// Elastic in shear (DDA "LOCK").
     Stick,

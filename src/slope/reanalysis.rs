@@ -26,11 +26,14 @@
 //! the elements below it, and an `r_u σ_v` on the slip surface would be a
 //! load on the slip springs that the model does not have. The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
-//! weight `γ − γ_w` of their layer (eqs. 8–10), where Hovland's method of the search
-//! keeps the total weight and takes the pore pressure `γ_w h_p` off the
-//! base's normal force; under a level water table the two give the same
-//! effective normal force. The seismic coefficient acts along the
-//! surface's sliding direction of Hovland's method (eqs. 11–13).
+//! weight `γ − γ_w` of their layer (eqs. 8–10) and take the seepage force
+//! `−γ_w ∇z_w` per unit volume ([`crate::hpm::Element::seepage`]), where
+//! Hovland's method of the search keeps the total weight and takes the
+//! pore pressure `γ_w h_p` off the base's normal force: both are the same
+//! hydrostatic pore pressure under the table, and on a planar slope under
+//! a parallel table they give the same Fs. The seismic coefficient acts
+//! along the surface's sliding direction of Hovland's method (eqs.
+//! 11–13).
 
 use super::error::SlopeError;
 use crate::error::{DismechError, Result};
