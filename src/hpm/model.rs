@@ -769,7 +769,10 @@ impl HpmModel {
     /// `k_h W_I` along the unit horizontal direction of `seismic` (eqs.
     /// 11–13) and the seepage force below a water table
     /// ([`Element::seepage`]), at each element's centroid. A zero
-    /// coefficient adds no horizontal force whatever the direction.
+    /// coefficient adds no horizontal force whatever the direction. Below
+    /// a water table the seismic force is `k_h` times the submerged weight,
+    /// as eq. (11) takes W_I of eqs. (8)–(10); the slope search's Hovland
+    /// ([`crate::slope`]) takes `k_h` times the total weight.
     pub fn loads(&self, seismic: &Seismic) -> Vec<f64> {
         let (cx, cy) = if seismic.coefficient == 0.0 {
             (0.0, 0.0)
