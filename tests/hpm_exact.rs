@@ -105,25 +105,25 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
         };
         // Under a water table the seepage force `γ_w h_w tan β` per unit
         // plan area (γ_w = γ_t − γ_sub) pushes down the dip beside the
-        // seismic force `k_h W'`: a seismic coefficient larger by its
-        // ratio to the submerged weight W'.
-        let seepage = hw.map_or(0.0, |w| {
-            (m.unit_weight - m.submerged_unit_weight) * w * dip.to_radians().tan()
-        });
-        let exact = exact_fs(
-            &exact_w,
-            &m,
-            dip,
-            kh + seepage * exact_w.plan / exact_w.weight,
-        );
-        if let (Some(w), 0.0) = (hw, kh) {
-            // The same Fs from the total weight and the pore pressure
-            // `u = γ_w h_w` on the base: `(c + (σ_v cos² β − u) tan φ) /
-            // (σ_v sin β cos β)`, σ_v = γ_t h.
+        // seismic force, `k_h` times the total weight `γ_t h`: together a
+        // seismic coefficient on the submerged weight W' of their sum over
+        // W'.
+        let plan_weight = exact_w.weight / exact_w.plan;
+        let horizontal = kh * m.unit_weight * h
+            + hw.map_or(0.0, |w| {
+                (m.unit_weight - m.submerged_unit_weight) * w * dip.to_radians().tan()
+            });
+        let exact = exact_fs(&exact_w, &m, dip, horizontal / plan_weight);
+        if let Some(w) = hw {
+            // The same Fs from the total weight σ_v = γ_t h, its seismic
+            // force and the pore pressure `u = γ_w h_w` on the base:
+            // `(c + (σ_v (cos β − k_h sin β) cos β − u) tan φ) /
+            // (σ_v (sin β + k_h cos β) cos β)`.
             let (beta, sigma_v) = (dip.to_radians(), m.unit_weight * h);
             let u = (m.unit_weight - m.submerged_unit_weight) * w;
-            let total = (m.cohesion + (sigma_v * beta.cos().powi(2) - u) * m.friction())
-                / (sigma_v * beta.sin() * beta.cos());
+            let normal = sigma_v * (beta.cos() - kh * beta.sin()) * beta.cos() - u;
+            let total = (m.cohesion + normal * m.friction())
+                / (sigma_v * (beta.sin() + kh * beta.cos()) * beta.cos());
             assert!((total / exact - 1.0).abs() < 1e-12, "{total} vs {exact}");
         }
         let mut solver = HpmSolver::new(&model).unwrap();

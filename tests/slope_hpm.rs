@@ -472,7 +472,7 @@ fn a_slide_in_the_lower_layer_is_that_of_the_lower_layer_alone() {
 /// seepage take a larger share of a lighter ground's weight, and change
 /// the shallow and the deep elements' shares unequally (measured: elastic
 /// 0.91277 all light, 1.09320 all heavy, 1.02555 layered). Each element's
-/// seepage force is checked against an independent sum.
+/// buoyancy and seepage force are checked against an independent sum.
 #[test]
 fn layers_of_other_unit_weights_weigh_each_element_by_its_layers() {
     let light = SlopeMaterial {
@@ -538,7 +538,7 @@ fn layers_of_other_unit_weights_weigh_each_element_by_its_layers() {
                 // the mean water level, down the table's mean slope over
                 // the cell (corners (x0, y0), (x0 + d, y0), (x0 + d, y0 + d),
                 // (x0, y0 + d)).
-                let expected = match water {
+                let (buoyancy, expected) = match water {
                     Some(w) => {
                         let below = (hw.unwrap().min(hi) - lo).max(0.0);
                         let buoyancy = WATER_UNIT_WEIGHT * below * d * d;
@@ -546,10 +546,15 @@ fn layers_of_other_unit_weights_weigh_each_element_by_its_layers() {
                             ((w[1] + w[2]) - (w[0] + w[3])) / (2.0 * d),
                             ((w[2] + w[3]) - (w[0] + w[1])) / (2.0 * d),
                         ];
-                        [-buoyancy * slope[0], -buoyancy * slope[1]]
+                        (buoyancy, [-buoyancy * slope[0], -buoyancy * slope[1]])
                     }
-                    None => [0.0; 2],
+                    None => (0.0, [0.0; 2]),
                 };
+                assert!(
+                    (element.buoyancy - buoyancy).abs() <= 1e-9 * element.weight,
+                    "({r}, {c}) element {e}: buoyancy {} {buoyancy}",
+                    element.buoyancy
+                );
                 for (got, want) in element.seepage.iter().zip(expected) {
                     assert!(
                         (got - want).abs() <= 1e-9 * element.weight,

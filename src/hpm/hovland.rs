@@ -4,8 +4,9 @@
 //! Each column is a rigid prism whose base is the slip surface at the cell
 //! centre (the bilinear surface of eq. 23 and its slopes there), with the
 //! column's weight W (the sum of the HPM element weights, eqs. 5–10),
-//! the seismic force `k_h W` of eqs. (11)–(13) and the seepage force
-//! below a water table (the sum of the elements',
+//! the seismic force `k_h W` of eqs. (11)–(13) (on the total weight below
+//! a water table, W and the buoyancy, as in [`HpmModel::loads`]) and the
+//! seepage force below a water table (the sum of the elements',
 //! [`super::Element::seepage`]); forces between columns are neglected. With `w` the column's load vector, `n` the base normal
 //! pointing into the ground and `d` the unit vector along the base in the
 //! sliding direction (the horizontal direction given, lifted onto the base):
@@ -87,11 +88,12 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
             let zy = 0.5 * ((z[3] - z[0]) + (z[2] - z[1])) / d;
             let elements = &model.elements[column.elements.clone()];
             let weight: f64 = elements.iter().map(|e| e.weight).sum();
+            let total: f64 = elements.iter().map(|e| e.weight + e.buoyancy).sum();
             let seepage_x: f64 = elements.iter().map(|e| e.seepage[0]).sum();
             let seepage_y: f64 = elements.iter().map(|e| e.seepage[1]).sum();
             let w = Vector3::new(
-                seismic.coefficient * weight * sx + seepage_x,
-                seismic.coefficient * weight * sy + seepage_y,
+                seismic.coefficient * total * sx + seepage_x,
+                seismic.coefficient * total * sy + seepage_y,
                 -weight,
             );
             let root = (1.0 + zx * zx + zy * zy).sqrt();

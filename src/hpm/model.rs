@@ -69,6 +69,10 @@ pub struct Element {
     /// total weight and pore pressure (`tests/hpm_exact.rs`). Paper 001
     /// weighs by `γ_sub` and has no seepage force.
     pub seepage: [f64; 2],
+    /// Buoyancy (N) of its volume below the water table, `W_dry − W`;
+    /// zero without one. The seismic force takes the total weight
+    /// `W + buoyancy` ([`HpmModel::loads`]).
+    pub buoyancy: f64,
 }
 
 /// One valid column of the grid.
@@ -288,24 +292,24 @@ fn stratified_weight(strata: &[WeightStratum], hw: Option<f64>, hd: f64, hu: f64
 }
 
 /// Weight of an element, eqs. (8)–(10), over `strata`
-/// ([`stratified_weight`]), and its horizontal seepage force
-/// ([`Element::seepage`]).
+/// ([`stratified_weight`]), its buoyancy ([`Element::buoyancy`]) and its
+/// horizontal seepage force ([`Element::seepage`]).
 fn element_loads(
     strata: &[WeightStratum],
     shape: &Column,
     water: Option<&[f64; 4]>,
     cell_area: f64,
-) -> (f64, [f64; 2]) {
+) -> (f64, f64, [f64; 2]) {
     let (hu, hd) = (mean(&shape.top()), mean(&shape.bottom()));
     let weight = stratified_weight(strata, water.map(mean), hd, hu) * cell_area;
     let Some(w) = water else {
-        return (weight, [0.0; 2]);
+        return (weight, 0.0, [0.0; 2]);
     };
     let buoyancy = stratified_weight(strata, None, hd, hu) * cell_area - weight;
     let d = shape.size();
     let slope_x = 0.5 * ((w[1] - w[0]) + (w[2] - w[3])) / d;
     let slope_y = 0.5 * ((w[3] - w[0]) + (w[2] - w[1])) / d;
-    (weight, [-buoyancy * slope_x, -buoyancy * slope_y])
+    (weight, buoyancy, [-buoyancy * slope_x, -buoyancy * slope_y])
 }
 
 /// Check the strata of [`HpmModel::set_column_strata`].
@@ -551,7 +555,7 @@ impl HpmModel {
         let (_, _, water) = grids.corners(r, c);
         for e in grid_column.elements.clone() {
             let element = &mut self.elements[e];
-            (element.weight, element.seepage) =
+            (element.weight, element.buoyancy, element.seepage) =
                 element_loads(strata, &element.shape, water.as_ref(), d * d);
         }
         Ok(())
@@ -614,7 +618,7 @@ impl HpmModel {
             index[r * grid_columns + c] = k;
             let first = elements.len();
             for (layer, part) in shape.layers(layers)?.into_iter().enumerate() {
-                let (weight, seepage) =
+                let (weight, buoyancy, seepage) =
                     element_loads(&[WeightStratum::of(material)], &part, water.as_ref(), d * d);
                 elements.push(Element {
                     column: k,
@@ -623,6 +627,7 @@ impl HpmModel {
                     volume: part.volume(),
                     weight,
                     seepage,
+                    buoyancy,
                     shape: part,
                 });
             }
@@ -770,9 +775,12 @@ impl HpmModel {
     /// 11–13) and the seepage force below a water table
     /// ([`Element::seepage`]), at each element's centroid. A zero
     /// coefficient adds no horizontal force whatever the direction. Below
-    /// a water table the seismic force is `k_h` times the submerged weight,
-    /// as eq. (11) takes W_I of eqs. (8)–(10); the slope search's Hovland
-    /// ([`crate::slope`]) takes `k_h` times the total weight.
+    /// a water table the seismic force is `k_h` times the total weight
+    /// `W_I + buoyancy` (soil and pore water move together), as the slope
+    /// search's Hovland ([`crate::slope`]) takes it; eq. (11) takes W_I of
+    /// eqs. (8)–(10), the submerged weight. With the seepage force this
+    /// makes the loads those of total weight and pore pressure, seismic
+    /// included.
     pub fn loads(&self, seismic: &Seismic) -> Vec<f64> {
         let (cx, cy) = if seismic.coefficient == 0.0 {
             (0.0, 0.0)
@@ -781,7 +789,7 @@ impl HpmModel {
         };
         let mut f = vec![0.0; self.dof()];
         for (e, element) in self.elements.iter().enumerate() {
-            let h = seismic.coefficient * element.weight;
+            let h = seismic.coefficient * (element.weight + element.buoyancy);
             f[ELEMENT_DOF * e] = h * cx + element.seepage[0];
             f[ELEMENT_DOF * e + 1] = h * cy + element.seepage[1];
             f[ELEMENT_DOF * e + 2] = -element.weight;

@@ -22,9 +22,10 @@
 //! Paper 001 averages the ground's values (§3); one material, or layers
 //! of equal unit weights and strength, give the one-material model bit for
 //! bit. A pore-pressure ratio r_u is refused ([`SlopeError::HpmGround`]):
-//! HPM's pore water is a water table's, taken as the submerged weight of
-//! the elements below it, and an `r_u σ_v` on the slip surface would be a
-//! load on the slip springs that the model does not have. The water table of the
+//! HPM's pore water is a water table's, taken as the submerged weight and
+//! the seepage force of the elements below it, and an `r_u σ_v` on the
+//! slip surface would be a load on the slip springs that the model does
+//! not have. The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
 //! weight `γ − γ_w` of their layer (eqs. 8–10) and take the seepage force
 //! `−γ_w ∇z_w` per unit volume ([`crate::hpm::Element::seepage`]), where
@@ -33,7 +34,7 @@
 //! hydrostatic pore pressure under the table, and on a planar slope under
 //! a parallel table they give the same Fs. The seismic coefficient acts
 //! along the surface's sliding direction of Hovland's method (eqs.
-//! 11–13).
+//! 11–13), on the total weight in both.
 
 use super::error::SlopeError;
 use crate::error::{DismechError, Result};
@@ -176,7 +177,7 @@ fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<Ground> {
     if let Some(ratio) = ground.pore_ratio() {
         return Err(DismechError::Slope(SlopeError::HpmGround {
             reason: format!(
-                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only (the submerged weight of the elements below it), and has no pore-pressure load on its slip springs",
+                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only (the submerged weight and seepage force of the elements below it), and has no pore-pressure load on its slip springs",
                 ratio.describe()
             ),
         }));

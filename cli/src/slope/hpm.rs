@@ -154,7 +154,7 @@ pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     if args.ru.is_none() {
         return Ok(());
     }
-    let reason = "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only, as the submerged weight of the elements below it, and has no pore-pressure load on its slip springs".to_string();
+    let reason = "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only, as the submerged weight and seepage force of the elements below it, and has no pore-pressure load on its slip springs".to_string();
     Err(SlopeError::argument(
         "--hpm",
         &hpm.to_string(),
