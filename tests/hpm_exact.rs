@@ -912,11 +912,36 @@ fn bad_material_values_are_refused_with_their_name_and_value() {
             },
             "friction coefficient mu = tan(phi)",
         ),
+        // γ_t − γ_sub is the pore water's unit weight: not negative.
+        (
+            HpmMaterial {
+                submerged_unit_weight: 18.5e3,
+                ..HpmMaterial::paper()
+            },
+            "submerged unit weight gamma_sub",
+        ),
     ] {
         match HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap_err() {
             DismechError::InvalidParameter { name: got, .. } => assert_eq!(got, name),
             e => panic!("{e}"),
         }
+    }
+    // The same for a weight stratum of a column.
+    let mut model = HpmModel::new(&grids, &HpmMaterial::paper(), &HpmSettings::default()).unwrap();
+    let heavier_under_water = WeightStratum {
+        bottom: None,
+        unit_weight: 18e3,
+        submerged_unit_weight: 18.5e3,
+    };
+    match model
+        .set_column_strata(&grids, 0, &[heavier_under_water])
+        .unwrap_err()
+    {
+        DismechError::InvalidParameter { name, value, .. } => {
+            assert_eq!(name, "HPM weight stratum: submerged unit weight gamma_sub");
+            assert_eq!(value, 18.5e3);
+        }
+        e => panic!("{e}"),
     }
     // An angle is converted once, and refused outside [0, 90) degrees.
     for bad in [90.0, -1.0, f64::NAN] {

@@ -925,6 +925,7 @@ fn hpm_solver_settings_out_of_range_are_refused_naming_the_value() {
 fn fs_whose_ratio_overflows_says_nothing_drives_sliding() {
     let mut material = HpmMaterial::paper();
     material.unit_weight = f64::MIN_POSITIVE;
+    material.submerged_unit_weight = f64::MIN_POSITIVE;
     let m = HpmModel::new(
         &grids(2, 2, 20.0, 5.0).unwrap(),
         &material,

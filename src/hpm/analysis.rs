@@ -60,7 +60,8 @@
 //! (which balances the horizontal loads and the horizontal push of the
 //! slip surface) above [`MIN_DRIVING_RATIO`] of the slide's weight, and for
 //! the second definition the shear along the direction too. On a level
-//! slip surface without seismic load that resultant is rounding alone: the
+//! slip surface without seismic load or seepage force that resultant is
+//! rounding alone: the
 //! springs still carry shear (the soil squeezed over the surface), which
 //! would make the stress ratio a finite number (9.07 for a 6 m slab of
 //! 3 × 4 cells on level ground) while Hovland's Fs is infinite, and the Fs

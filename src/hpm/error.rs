@@ -83,7 +83,7 @@ pub enum HpmError {
     /// direction it is measured in: the ratio of resisting to driving
     /// forces is undefined (infinite for a slide at rest on level ground,
     /// meaningless against a direction up the slope).
-    #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}, or a driving force so small beside the resisting one that their ratio overflows), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
+    #[error("nothing drives sliding ({what}): the driving force along the slip direction is {driving:.4e} N, the slide's weight {weight:.4e} N (a ratio of {:.3e}, not above {ratio:.0e}, or a driving force so small beside the resisting one that their ratio overflows), so its safety factor, resisting over driving forces, is undefined; a slope that dips, a seismic load, a water table that slopes or (for a given direction) a direction down the slip surface's dip drives a slide", .driving / .weight)]
     NothingDrivesSliding {
         /// Which safety factor, and the force that drives it.
         what: crate::hpm::SafetyFactorTerm,

@@ -7,16 +7,18 @@
 //! the seismic force `k_h W` of eqs. (11)–(13) (on the total weight below
 //! a water table, W and the buoyancy, as in [`HpmModel::loads`]) and the
 //! seepage force below a water table (the sum of the elements',
-//! [`super::Element::seepage`]); forces between columns are neglected. With `w` the column's load vector, `n` the base normal
-//! pointing into the ground and `d` the unit vector along the base in the
+//! [`super::Element::seepage`]); forces between columns are neglected.
+//! With `w` the column's load vector, `n` the base normal pointing into
+//! the ground and `d` the unit vector along the base in the
 //! sliding direction (the horizontal direction given, lifted onto the base):
 //! `N = w · n`, `T = w · d`, `A` the true base area and
 //! `Fs = Σ (c A + N tan φ) / Σ T`.
 //!
 //! The Fs is a ratio of resisting to driving forces: it is given only where
 //! the columns' loads drive the slide along the direction asked,
-//! `Σ T > `[`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO)` × Σ W`. On a level slip surface without
-//! seismic load `Σ T` is zero (the Fs would be infinite, or a huge number
+//! `Σ T > `[`MIN_DRIVING_RATIO`](super::analysis::MIN_DRIVING_RATIO)` × Σ W`.
+//! On a level slip surface without seismic load or seepage force `Σ T` is
+//! zero (the Fs would be infinite, or a huge number
 //! of either sign from rounding), and towards a direction up the slope it
 //! is negative (a negative Fs means nothing): both are refused with
 //! [`HpmError::NothingDrivesSliding`](super::HpmError::NothingDrivesSliding),

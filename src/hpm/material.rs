@@ -17,9 +17,13 @@ pub struct HpmMaterial {
     /// crate's convention for friction: [`crate::law::friction_from_degrees`]
     /// or [`Self::with_friction_angle_deg`] convert an angle).
     pub friction_coefficient: f64,
-    /// Unit weight γ_t above the water table (N/m³).
+    /// Unit weight γ_t above the water table (N/m³); below it the soil is
+    /// taken as saturated at this unit weight.
     pub unit_weight: f64,
-    /// Submerged unit weight γ_sub below the water table (N/m³).
+    /// Submerged unit weight γ_sub below the water table (N/m³), at most
+    /// γ_t: `γ_t − γ_sub` is the unit weight of the pore water, whose
+    /// buoyancy and seepage force the elements below the table take
+    /// ([`super::Element::seepage`]).
     pub submerged_unit_weight: f64,
     /// Modulus E_slip of the slip-surface springs (eq. 30), giving
     /// `k_n = (1 − ν) E_slip / ((1 + ν)(1 − 2ν) h_I)` (Pa/m).
@@ -52,7 +56,8 @@ impl HpmMaterial {
     /// # Errors
     /// [`DismechError::InvalidParameter`] naming the value for a Young's
     /// modulus, unit weight, submerged unit weight or slip-surface modulus
-    /// that is not finite and positive, a Poisson's ratio outside
+    /// that is not finite and positive, a submerged unit weight above the
+    /// unit weight, a Poisson's ratio outside
     /// `[0, 0.5)`, a cohesion or friction coefficient that is negative or
     /// not finite, cohesion and friction both zero, or a slip shear stiffness given that is not finite and
     /// positive.
@@ -80,6 +85,11 @@ impl HpmMaterial {
         require_positive(
             "submerged unit weight gamma_sub",
             self.submerged_unit_weight,
+        )?;
+        require_submerged_below_total(
+            "submerged unit weight gamma_sub",
+            self.submerged_unit_weight,
+            self.unit_weight,
         )?;
         require_positive("slip-surface modulus E_slip", self.slip_modulus)?;
         if let Some(k) = self.slip_shear_stiffness {
@@ -123,7 +133,8 @@ impl HpmMaterial {
 pub const MAX_SEISMIC_COEFFICIENT: f64 = 10.0;
 
 /// The static seismic load of eqs. (11)–(13): `H = k_h W` in the horizontal
-/// direction `direction` (x, y).
+/// direction `direction` (x, y), W the total weight (below a water table
+/// the submerged weight and the buoyancy: [`HpmModel::loads`](super::HpmModel::loads)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seismic {
     /// Design horizontal seismic coefficient k_h, in `[0, MAX_SEISMIC_COEFFICIENT]`.
@@ -249,4 +260,23 @@ impl HpmSettings {
         require_positive("penalty factor p", self.penalty)?;
         Ok(())
     }
+}
+
+/// Refuse a submerged unit weight above the total one: `γ_t − γ_sub` is
+/// the pore water's unit weight, and a negative one would make the
+/// buoyancy a downward force and the seepage force point up the water
+/// table's slope.
+pub(super) fn require_submerged_below_total(
+    name: &'static str,
+    submerged: f64,
+    total: f64,
+) -> Result<()> {
+    if submerged > total {
+        return Err(DismechError::InvalidParameter {
+            name,
+            value: submerged,
+            requirement: "must not exceed the unit weight gamma_t (gamma_t - gamma_sub is the pore water's unit weight)",
+        });
+    }
+    Ok(())
 }

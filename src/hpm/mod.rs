@@ -54,7 +54,15 @@
 //! where nothing drives the slide or where its strength
 //! `Σ (c + σ tan φ) A` is not positive (the surface in tension beyond
 //! `c / tan φ`); corner heights interpolated from the cell-centre values
-//! of the rasters.
+//! of the rasters; a slip spring that opens loses its cohesion over an
+//! opening of `c / k_n` rather than at once ([`crate::law::MohrCoulombSpring`]).
+//! Where the paper's choices are departed from: below a water table the
+//! elements take the seepage force of the table's slope
+//! ([`Element::seepage`]) and the seismic force acts on their total
+//! weight ([`HpmModel::loads`]), so that submerged weight, seepage and
+//! seismic force are those of the total weight and the hydrostatic pore
+//! pressure that Hovland's method of [`crate::slope`] takes; the paper
+//! (eqs. 8–11) has neither, and its example no water table.
 
 mod analysis;
 mod conditioning;

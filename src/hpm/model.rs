@@ -338,6 +338,11 @@ fn check_strata(strata: &[WeightStratum]) -> Result<()> {
             "HPM weight stratum: submerged unit weight gamma_sub",
             stratum.submerged_unit_weight,
         )?;
+        super::material::require_submerged_below_total(
+            "HPM weight stratum: submerged unit weight gamma_sub",
+            stratum.submerged_unit_weight,
+            stratum.unit_weight,
+        )?;
         if std::ptr::eq(stratum, last) {
             break;
         }
@@ -509,6 +514,7 @@ impl HpmModel {
     /// # Errors
     /// [`DismechError::InvalidParameter`] for a column the model does not
     /// have, no stratum, a unit weight that is not finite and positive, a
+    /// submerged unit weight above its stratum's unit weight, a
     /// bottom given to the last stratum or missing from another, bottoms
     /// that are not finite or rise downwards, or grids of other rows,
     /// columns or cell size than the model's.
@@ -774,7 +780,7 @@ impl HpmModel {
     /// `k_h W_I` along the unit horizontal direction of `seismic` (eqs.
     /// 11–13) and the seepage force below a water table
     /// ([`Element::seepage`]), at each element's centroid. A zero
-    /// coefficient adds no horizontal force whatever the direction. Below
+    /// coefficient adds no seismic force whatever the direction. Below
     /// a water table the seismic force is `k_h` times the total weight
     /// `W_I + buoyancy` (soil and pore water move together), as the slope
     /// search's Hovland ([`crate::slope`]) takes it; eq. (11) takes W_I of

@@ -22,7 +22,7 @@
 //! and the nonlinear solve's fixed-point iteration can then cycle for
 //! ever among springs that open and close (a valley under a water table at
 //! unit weights of 18–19 kN/m³ did, its residual cycling about 1e-3 over
-//! 3 000 iterations; converged in 16 with the cap). The cap makes the force
+//! 3 000 iterations; it converges with the cap). The cap makes the force
 //! continuous; it changes nothing in compression or for `c = 0`, and
 //! within an opening of micrometres (`c / k_n`, 8 µm for `c` = 8 kPa at
 //! `k_n` = 1e9 Pa/m) otherwise.

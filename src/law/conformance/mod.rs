@@ -159,7 +159,9 @@ pub fn within_strength<L: ContactLaw<D> + StrengthLaw, const D: usize>(
 /// the first entry `(i, j)` of the tangent, with its analytic value and
 /// the difference, that is off by more than the tolerance; an open
 /// contact that carries nothing, and a component whose difference
-/// straddles a kink, pass.
+/// straddles a kink (a change of regime, a force clamped to zero, or, for
+/// an open contact that carries force, one-sided differences that
+/// disagree), pass.
 pub fn tangent_matches_finite_differences<L: TangentLaw<D>, const D: usize>(
     law: &L,
     input: &ContactInput<D>,
@@ -191,6 +193,19 @@ pub fn tangent_matches_finite_differences<L: TangentLaw<D>, const D: usize>(
             let fd = (rp.force[i] - rm.force[i]) / (2.0 * h);
             let roundoff = 1e-15 * (rp.force[i].abs() + rm.force[i].abs()) / h;
             let scale = 1.0 + tangent[(i, j)].abs() + fd.abs();
+            // An open contact that carries force (a cohesive law losing its
+            // cohesion) keeps its regime whether its shear sticks under the
+            // falling cap or slides on it: a kink there shows as one-sided
+            // differences that disagree.
+            let one_sided = [
+                (rp.force[i] - r.force[i]) / h,
+                (r.force[i] - rm.force[i]) / h,
+            ];
+            if r.regime == Regime::Open
+                && (one_sided[0] - one_sided[1]).abs() > relative * scale + 2.0 * roundoff
+            {
+                continue;
+            }
             if (fd - tangent[(i, j)]).abs() > relative * scale + roundoff {
                 return fail(
                     "tangent_matches_finite_differences",
