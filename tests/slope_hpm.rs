@@ -324,7 +324,11 @@ fn the_wet_valley_s_reanalysis_converges_at_every_unit_weight() {
             )
             .unwrap();
             let convergence = re.nonlinear.as_ref().unwrap().convergence;
-            println!("{unit_weight} N/m³: {convergence:?}");
+            println!(
+                "{unit_weight} N/m³: Hovland {:.4}, HPM elastic {:.4}, {convergence:?}",
+                worst.result.safety_factor,
+                elastic_fs(&re)
+            );
             assert!(
                 convergence.converged() && convergence.iterations() <= 50,
                 "{unit_weight} N/m³: {convergence:?}"
