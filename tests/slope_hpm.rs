@@ -40,13 +40,17 @@ fn family() -> SphereGrid {
 }
 
 fn searched(terrain: &Terrain) -> SearchResult<Sphere> {
+    searched_with(terrain, &soil())
+}
+
+fn searched_with(terrain: &Terrain, soil: &SlopeMaterial) -> SearchResult<Sphere> {
     let settings = SearchSettings {
         critical: 3,
         ..SearchSettings::default()
     };
     search(
         terrain,
-        &soil(),
+        soil,
         &SlopeLoads::default(),
         &family(),
         &settings,
@@ -265,7 +269,17 @@ fn two_layers(upper: SlopeMaterial, bottom: NamedRaster, lower: SlopeMaterial) -
 /// `ground`, elastic and nonlinear at the default settings; the nonlinear
 /// analysis must converge.
 fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmReanalysis> {
-    let result = searched(terrain);
+    reanalysed_with(terrain, &soil(), ground).map(|(re, _)| re)
+}
+
+/// [`reanalysed`] for the worst surface of a search with `soil`, with that
+/// surface's Hovland Fs.
+fn reanalysed_with(
+    terrain: &Terrain,
+    soil: &SlopeMaterial,
+    ground: &Ground,
+) -> dismech::error::Result<(HpmReanalysis, f64)> {
+    let result = searched_with(terrain, soil);
     let worst = result.lowest().unwrap();
     let re = hpm_reanalysis(
         terrain,
@@ -279,7 +293,7 @@ fn reanalysed(terrain: &Terrain, ground: &Ground) -> dismech::error::Result<HpmR
     )?;
     let convergence = re.nonlinear.as_ref().unwrap().convergence;
     assert!(convergence.converged(), "{convergence:?}");
-    Ok(re)
+    Ok((re, worst.result.safety_factor))
 }
 
 /// Under a water table 3 m down, at unit weights of 18–19 kN/m³ the
@@ -298,35 +312,10 @@ fn the_wet_valley_s_reanalysis_converges_at_every_unit_weight() {
                 unit_weight,
                 ..soil()
             };
-            let settings = SearchSettings {
-                critical: 1,
-                ..SearchSettings::default()
-            };
-            let result = search(
-                &terrain,
-                &soil,
-                &SlopeLoads::default(),
-                &family(),
-                &settings,
-                |_, _| {},
-            )
-            .unwrap();
-            let worst = result.lowest().unwrap();
-            let re = hpm_reanalysis(
-                &terrain,
-                &Ground::from(soil),
-                &SlopeLoads::default(),
-                &worst.surface,
-                &worst.result,
-                &HpmStiffness::default(),
-                &HpmSettings::default(),
-                Some(&NonlinearSettings::default()),
-            )
-            .unwrap();
+            let (re, hovland) = reanalysed_with(&terrain, &soil, &Ground::from(soil)).unwrap();
             let convergence = re.nonlinear.as_ref().unwrap().convergence;
             println!(
-                "{unit_weight} N/m³: Hovland {:.4}, HPM elastic {:.4}, {convergence:?}",
-                worst.result.safety_factor,
+                "{unit_weight} N/m³: Hovland {hovland:.4}, HPM elastic {:.4}, {convergence:?}",
                 elastic_fs(&re)
             );
             assert!(
