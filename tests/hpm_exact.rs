@@ -156,6 +156,92 @@ fn planar_slab_fs_is_exact_for_elastic_hpm_and_hovland_static_seismic_and_submer
     }
 }
 
+/// A pore-pressure ratio on a planar slab: `u = r_u σ_v` on the slip
+/// surface (σ_v = γ h, no water table) gives Bishop & Morgenstern's
+/// infinite-slope Fs `(c + (cos² β − r_u) σ_v tan φ) / (σ_v sin β cos β)`,
+/// static, and with the seismic load `(c + ((cos β − k_h sin β) cos β −
+/// r_u) σ_v tan φ) / (σ_v (sin β + k_h cos β) cos β)`: elastic HPM along
+/// the sliding direction to 1e-6, Hovland on HPM's columns to 1e-9. Bad
+/// pressures and columns are refused, naming the value.
+#[test]
+fn planar_slab_with_a_pore_pressure_ratio_gives_the_exact_fs() {
+    let m = material();
+    let (rows, columns, h) = (5, 7, 8.0);
+    for (dip, towards, kh, ru) in [
+        (25.0, 270.0, 0.0, 0.2),
+        (18.0, 225.0, 0.0, 0.35),
+        (20.0, 200.0, 0.1, 0.25),
+    ] {
+        let grids = slab(rows, columns, dip, towards, h, None);
+        let mut model = HpmModel::new(&grids, &m, &HpmSettings::default()).unwrap();
+        let sigma_v = m.unit_weight * h;
+        for k in 0..model.columns.len() {
+            model.set_column_pore_pressure(k, ru * sigma_v).unwrap();
+        }
+        assert!(model
+            .column_pore_pressures()
+            .iter()
+            .all(|&u| u == ru * sigma_v));
+        let beta = f64::to_radians(dip);
+        let normal = sigma_v * (beta.cos() - kh * beta.sin()) * beta.cos() - ru * sigma_v;
+        let exact = (m.cohesion + normal * m.friction())
+            / (sigma_v * (beta.sin() + kh * beta.cos()) * beta.cos());
+        let seismic = Seismic {
+            coefficient: kh,
+            direction: towards_deg(towards),
+        };
+        let elastic = HpmSolver::new(&model)
+            .unwrap()
+            .elastic(&model, &seismic)
+            .unwrap();
+        let sliding = elastic.sliding_safety_factor(&model).unwrap();
+        let hov = hovland(&model, &seismic, towards_deg(towards))
+            .unwrap()
+            .safety_factor;
+        eprintln!("dip {dip} k_h {kh} r_u {ru}: exact {exact:.5}, HPM along the sliding direction {sliding:.5}, Hovland {hov:.5}");
+        assert!(
+            (sliding / exact - 1.0).abs() < 1e-6,
+            "HPM {sliding} vs exact {exact}"
+        );
+        assert!(
+            (hov / exact - 1.0).abs() < 1e-9,
+            "Hovland {hov} vs exact {exact}"
+        );
+        // The springs carry the effective stress: their normal tractions
+        // sum to the effective normal force.
+        let springs: f64 = model
+            .slip
+            .iter()
+            .zip(&elastic.tractions)
+            .map(|(s, t)| t.normal * s.point.point.area)
+            .sum();
+        let plan = (rows * columns) as f64 * 100.0;
+        let effective = normal * plan / beta.cos();
+        assert!(
+            (springs / effective - 1.0).abs() < 1e-6,
+            "{springs} vs {effective}"
+        );
+    }
+    let mut model = HpmModel::new(
+        &slab(2, 2, 20.0, 270.0, 5.0, None),
+        &m,
+        &HpmSettings::default(),
+    )
+    .unwrap();
+    for (column, pressure, name) in [
+        (0, -1.0, "pore pressure u on the slip surface"),
+        (0, f64::NAN, "pore pressure u on the slip surface"),
+        (0, f64::INFINITY, "pore pressure u on the slip surface"),
+        (4, 1.0, "HPM column index"),
+    ] {
+        match model.set_column_pore_pressure(column, pressure) {
+            Err(DismechError::InvalidParameter { name: got, .. }) => assert_eq!(got, name),
+            other => panic!("{column} {pressure}: {other:?}"),
+        }
+    }
+    assert!(model.column_pore_pressures().iter().all(|&u| u == 0.0));
+}
+
 #[test]
 fn planar_slab_slip_springs_balance_the_load_exactly() {
     // Global equilibrium: the slip tractions sum to the applied load.

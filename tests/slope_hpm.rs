@@ -154,9 +154,10 @@ fn reanalysis_equals_a_direct_hpm_run_on_the_surface_raster_bit_for_bit() {
 /// the strength of the layer the surface crosses at its cell centre (a
 /// weak layer 2 m thick over the soil), and the Fs falls below the single
 /// soil's; layers of different unit weights are taken (the weights of the
-/// layers over each element's height), r_u is refused.
+/// layers over each element's height); a pore-pressure ratio puts
+/// `u = r_u σ_v` on the slip surface, and is refused beside a water table.
 #[test]
-fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
+fn reanalysis_takes_each_layer_s_strength_and_a_pore_pressure_ratio() {
     let dem = valley_dem();
     let terrain = Terrain::new(NamedRaster::new("valley", dem.clone()), None).unwrap();
     let result = searched(&terrain);
@@ -230,10 +231,50 @@ fn reanalysis_takes_each_layer_s_strength_and_refuses_what_it_cannot() {
     let light = run(&layered(heavy)).unwrap();
     assert!(light.model.total_weight() < two.model.total_weight());
     assert_eq!(light.model.slip, two.model.slip);
-    let e = run(&ratio).unwrap_err();
+    // A pore-pressure ratio: u = r_u σ_v on the slip surface under each
+    // column, σ_v its weight per unit plan area (an independent sum), which
+    // lowers the Fs; the weights and springs are those without it.
+    let with_ratio = run(&ratio).unwrap();
+    assert_eq!(with_ratio.model.elements, one.model.elements);
+    for (k, column) in with_ratio.model.columns.iter().enumerate() {
+        let sigma_v: f64 = one.model.elements[column.elements.clone()]
+            .iter()
+            .map(|e| e.weight)
+            .sum::<f64>()
+            / (2.0 * 2.0);
+        for spring in with_ratio.model.slip.iter().filter(|s| s.column == k) {
+            assert!(
+                (spring.pore_pressure - 0.2 * sigma_v).abs() <= 1e-12 * sigma_v,
+                "column {k}: {} {sigma_v}",
+                spring.pore_pressure
+            );
+        }
+    }
     assert!(
-        matches!(&e, DismechError::Slope(SlopeError::HpmGround { reason }) if reason.contains("r_u")),
-        "{e}"
+        fs(&with_ratio) < fs(&one),
+        "{} {}",
+        fs(&with_ratio),
+        fs(&one)
+    );
+    // With a water table too, r_u is refused as in the search.
+    let [_, wet] = dry_and_wet();
+    let both = hpm_reanalysis(
+        &wet,
+        &ratio,
+        &SlopeLoads::default(),
+        &worst.surface,
+        &worst.result,
+        &HpmStiffness::default(),
+        &HpmSettings::default(),
+        None,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            &both,
+            DismechError::Slope(SlopeError::PorePressureTwice { .. })
+        ),
+        "{both}"
     );
 }
 

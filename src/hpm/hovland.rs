@@ -7,7 +7,9 @@
 //! the seismic force `k_h W` of eqs. (11)–(13) (on the total weight below
 //! a water table, W and the buoyancy, as in [`HpmModel::loads`]) and the
 //! seepage force below a water table (the sum of the elements',
-//! [`super::Element::seepage`]); forces between columns are neglected.
+//! [`super::Element::seepage`]); forces between columns are neglected. A
+//! pore pressure `u` on the slip surface
+//! ([`HpmModel::set_column_pore_pressure`]) lowers `N` to `N − u A`.
 //! With `w` the column's load vector, `n` the base normal pointing into
 //! the ground and `d` the unit vector along the base in the
 //! sliding direction (the horizontal direction given, lifted onto the base):
@@ -44,7 +46,8 @@ use crate::error::Result;
 /// One column's terms in Hovland's sums.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HovlandColumn {
-    /// Base normal force N (N).
+    /// Base normal force N (N), less the pore pressure's `u A` where the
+    /// model has one ([`HpmModel::set_column_pore_pressure`]).
     pub normal: f64,
     /// Driving force T along the sliding direction (N).
     pub driving: f64,
@@ -80,11 +83,13 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
     let (dx, dy) = horizontal_unit("sliding direction (length)", towards)?;
     let (sx, sy) = seismic.unit();
     let strengths = model.column_strengths();
+    let pressures = model.column_pore_pressures();
     let d = model.grid.2;
     let columns: Vec<HovlandColumn> = model
         .columns
         .iter()
-        .map(|column| {
+        .zip(&pressures)
+        .map(|(column, &pressure)| {
             let z = column.shape.bottom();
             let zx = 0.5 * ((z[1] - z[0]) + (z[2] - z[3])) / d;
             let zy = 0.5 * ((z[3] - z[0]) + (z[2] - z[1])) / d;
@@ -101,10 +106,11 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
             let root = (1.0 + zx * zx + zy * zy).sqrt();
             let n = Vector3::new(zx, zy, -1.0) / root;
             let along = Vector3::new(dx, dy, zx * dx + zy * dy).normalize();
+            let area = d * d * root;
             HovlandColumn {
-                normal: w.dot(&n),
+                normal: w.dot(&n) - pressure * area,
                 driving: w.dot(&along),
-                area: d * d * root,
+                area,
             }
         })
         .collect();

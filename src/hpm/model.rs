@@ -116,6 +116,12 @@ pub struct SlipSpring {
     pub normal_stiffness: f64,
     /// k_s = k_t (Pa/m).
     pub shear_stiffness: f64,
+    /// Pore pressure u (Pa) on the slip surface at this point, a load
+    /// `−u A n` that pushes the slide off the surface, so that the spring
+    /// carries the effective normal traction; zero unless
+    /// [`HpmModel::set_column_pore_pressure`] gave one (a pore-pressure
+    /// ratio: [`crate::slope::hpm_reanalysis`]).
+    pub pore_pressure: f64,
 }
 
 /// The discretised slope.
@@ -473,6 +479,44 @@ impl HpmModel {
         strengths
     }
 
+    /// Put the pore pressure `u` (Pa) on the slip surface under column
+    /// `column` (an index into [`Self::columns`]): at each of its slip
+    /// springs a load `−u A n` on the slide, normal to the surface and away
+    /// from it, so that the springs carry the effective normal traction
+    /// `σ' = σ − u` and their strength is `c + σ' tan φ`. With the weights
+    /// the total ones (no water table), a pore-pressure ratio's `u = r_u
+    /// σ_v` (Bishop & Morgenstern 1960) on a planar slab gives its exact
+    /// `Fs = (c + (cos² β − r_u) σ_v tan φ) / (σ_v sin β cos β)`
+    /// (`tests/hpm_exact.rs`). It replaces a pressure set before.
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a column the model does not
+    /// have, or a pressure that is negative or not finite.
+    pub fn set_column_pore_pressure(&mut self, column: usize, pressure: f64) -> Result<()> {
+        if column >= self.columns.len() {
+            return Err(DismechError::InvalidParameter {
+                name: "HPM column index",
+                value: column as f64,
+                requirement: "must be below the model's number of columns",
+            });
+        }
+        crate::error::require_non_negative("pore pressure u on the slip surface", pressure)?;
+        for spring in self.slip.iter_mut().filter(|s| s.column == column) {
+            spring.pore_pressure = pressure;
+        }
+        Ok(())
+    }
+
+    /// The pore pressure on the slip surface under each column, in the
+    /// order of [`Self::columns`] ([`Self::set_column_pore_pressure`]).
+    pub fn column_pore_pressures(&self) -> Vec<f64> {
+        let mut pressures = vec![0.0; self.columns.len()];
+        for spring in &self.slip {
+            pressures[spring.column] = spring.pore_pressure;
+        }
+        pressures
+    }
+
     /// Give the slip springs under column `column` (an index into
     /// [`Self::columns`]) the strength `strength` in place of the
     /// material's: the strength of the layer the slip surface crosses
@@ -653,6 +697,7 @@ impl HpmModel {
                     law,
                     normal_stiffness: k_n,
                     shear_stiffness: k_s,
+                    pore_pressure: 0.0,
                 });
             }
             columns.push(GridColumn {
@@ -779,7 +824,9 @@ impl HpmModel {
     /// The load vector: weights W_I (eqs. 8–10), the seismic force
     /// `k_h W_I` along the unit horizontal direction of `seismic` (eqs.
     /// 11–13) and the seepage force below a water table
-    /// ([`Element::seepage`]), at each element's centroid. A zero
+    /// ([`Element::seepage`]), at each element's centroid, and the pore
+    /// pressure on the slip surface ([`SlipSpring::pore_pressure`]) at the
+    /// springs' points. A zero
     /// coefficient adds no seismic force whatever the direction. Below
     /// a water table the seismic force is `k_h` times the total weight
     /// `W_I + buoyancy` (soil and pore water move together), as the slope
@@ -799,6 +846,15 @@ impl HpmModel {
             f[ELEMENT_DOF * e] = h * cx + element.seepage[0];
             f[ELEMENT_DOF * e + 1] = h * cy + element.seepage[1];
             f[ELEMENT_DOF * e + 2] = -element.weight;
+        }
+        for spring in self.slip.iter().filter(|s| s.pore_pressure != 0.0) {
+            let p = &spring.point.point;
+            let element = &self.elements[spring.element];
+            let force = -p.normal * (spring.pore_pressure * p.area);
+            let generalised = shape_matrix(&element.centre, &p.position).transpose() * force;
+            for (k, value) in generalised.iter().enumerate() {
+                f[ELEMENT_DOF * spring.element + k] += value;
+            }
         }
         f
     }

@@ -84,10 +84,8 @@ pub enum SlopeError {
         value: f64,
     },
     /// Ground that an HPM re-analysis of a trial surface
-    /// ([`crate::slope::hpm_reanalysis`]) cannot take: a pore-pressure
-    /// ratio r_u (HPM takes pore water from a water table only, with no
-    /// pore-pressure load on its slip springs), or a layer bottom with no
-    /// data where a column needs it.
+    /// ([`crate::slope::hpm_reanalysis`]) cannot take: a layer bottom or a
+    /// pore-pressure ratio with no data where a column needs it.
     #[error("HPM re-analysis cannot take this ground: {reason}")]
     HpmGround {
         /// What the ground has that HPM cannot take.

@@ -129,7 +129,7 @@ impl PoreRatio {
         }
     }
 
-    fn at(&self, row: usize, column: usize) -> Option<f64> {
+    pub(super) fn at(&self, row: usize, column: usize) -> Option<f64> {
         match self {
             PoreRatio::Constant(v) => Some(*v),
             PoreRatio::Raster(r) => r.raster.get(row, column),

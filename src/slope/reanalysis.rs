@@ -21,11 +21,12 @@
 //! ([`HpmModel::set_column_strata`]: eqs. 8–10 summed layer by layer).
 //! Paper 001 averages the ground's values (§3); one material, or layers
 //! of equal unit weights and strength, give the one-material model bit for
-//! bit. A pore-pressure ratio r_u is refused ([`SlopeError::HpmGround`]):
-//! HPM's pore water is a water table's, taken as the submerged weight and
-//! the seepage force of the elements below it, and an `r_u σ_v` on the
-//! slip surface would be a load on the slip springs that the model does
-//! not have. The water table of the
+//! bit. A pore-pressure ratio r_u (Bishop & Morgenstern 1960) puts the
+//! pore pressure `u = r_u σ_v` on the slip surface under each column
+//! ([`HpmModel::set_column_pore_pressure`]), `σ_v` the column's total
+//! weight per unit plan area and r_u at its cell centre, as Hovland's
+//! method of the search takes them: the slip springs then carry the
+//! effective normal traction. The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
 //! weight `γ − γ_w` of their layer (eqs. 8–10) and take the seepage force
 //! `−γ_w ∇z_w` per unit volume ([`crate::hpm::Element::seepage`]), where
@@ -45,7 +46,7 @@ use crate::hpm::{
 };
 use crate::law::Strength;
 
-use super::ground::{Ground, ToGround};
+use super::ground::{Ground, PoreRatio, ToGround};
 use super::hovland::SurfaceFs;
 use super::layer_problem::LayerProblem;
 use super::material::{SlopeLoads, SlopeMaterial};
@@ -170,19 +171,32 @@ impl HpmReanalysis {
     }
 }
 
-/// The ground HPM takes: its layers (one or more), or why HPM cannot
-/// take `ground` (a pore-pressure ratio).
-fn hpm_ground(ground: &(impl ToGround + ?Sized)) -> Result<Ground> {
-    let ground = ground.to_ground();
-    if let Some(ratio) = ground.pore_ratio() {
-        return Err(DismechError::Slope(SlopeError::HpmGround {
-            reason: format!(
-                "a pore-pressure ratio r_u ({}) is given; HPM takes pore water from a water table only (the submerged weight and seepage force of the elements below it), and has no pore-pressure load on its slip springs",
-                ratio.describe()
-            ),
-        }));
+/// Put the pore pressure `u = r_u σ_v` of `ratio` on the slip surface
+/// under each column of `model`, with `σ_v` the column's total weight per
+/// unit plan area (its elements' weights over `d²`, the layers' where the
+/// ground has layers) and r_u at its cell centre, as the search's
+/// Hovland takes them.
+fn take_pore_ratio(model: &mut HpmModel, ratio: &PoreRatio) -> Result<()> {
+    let plan = model.grid.2 * model.grid.2;
+    for k in 0..model.columns.len() {
+        let column = &model.columns[k];
+        let (r, c) = column.cell;
+        let ru = ratio.at(r, c).ok_or_else(|| {
+            DismechError::Slope(SlopeError::HpmGround {
+                reason: format!(
+                    "the pore-pressure ratio r_u ({}) has no data at cell (row {r}, column {c}), a column of the slide",
+                    ratio.describe()
+                ),
+            })
+        })?;
+        let sigma_v: f64 = model.elements[column.elements.clone()]
+            .iter()
+            .map(|e| e.weight + e.buoyancy)
+            .sum::<f64>()
+            / plan;
+        model.set_column_pore_pressure(k, ru * sigma_v)?;
     }
-    Ok(ground)
+    Ok(())
 }
 
 /// HPM's material of each layer of `ground` (its unit weights: `γ`, and
@@ -266,8 +280,10 @@ fn take_layers(
 /// documentation).
 ///
 /// # Errors
-/// [`SlopeError::HpmGround`] for a pore-pressure ratio or a layer's
-/// bottom without data under a column; [`SlopeError::InvalidLayer`]
+/// Those of [`Ground::validate_on`] (a water table and a pore-pressure
+/// ratio together: [`SlopeError::PorePressureTwice`]);
+/// [`SlopeError::HpmGround`] for a layer's bottom or a pore-pressure
+/// ratio without data under a column; [`SlopeError::InvalidLayer`]
 /// naming a layer whose material HPM refuses
 /// ([`HpmStiffness::material`]: under a water table, a unit weight not
 /// above `γ_w`); those of [`HpmStiffness::material`], [`Seismic::validate`],
@@ -285,7 +301,8 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     settings: &HpmSettings,
     nonlinear: Option<&NonlinearSettings>,
 ) -> Result<HpmReanalysis> {
-    let ground = hpm_ground(ground)?;
+    let ground = ground.to_ground();
+    ground.validate_on(terrain)?;
     // Dry ground: no element lies below a water table, so the submerged
     // unit weight is never taken; a unit weight at or below γ_w is no
     // reason to refuse.
@@ -316,6 +333,9 @@ pub fn hpm_reanalysis<S: TrialSurface>(
     let mut model = HpmModel::new(&grids, &material, settings)?;
     if let Some(materials) = &layers {
         take_layers(&mut model, &grids, terrain, &ground, materials)?;
+    }
+    if let Some(ratio) = ground.pore_ratio() {
+        take_pore_ratio(&mut model, ratio)?;
     }
     let mut solver = HpmSolver::new(&model)?;
     let elastic = solver.elastic(&model, &seismic)?;

@@ -274,7 +274,8 @@ pub struct SlopeArgs {
     /// `hpm_*.asc`/`.tif`. With --layer each HPM column takes its layers
     /// at its cell centre: its slip springs the strength of the layer
     /// the surface crosses, its elements the unit weights of the layers
-    /// over their height; --ru is refused. K ≥ 1; leave --hpm out for no
+    /// over their height; with --ru the pore pressure r_u σ_v pushes on
+    /// the slip surface under each column. K ≥ 1; leave --hpm out for no
     /// re-analysis.
     #[arg(long, value_name = "K", value_parser = parse_hpm, help_heading = "HPM re-analysis")]
     pub hpm: Option<usize>,

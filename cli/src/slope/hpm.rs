@@ -3,7 +3,6 @@
 //! (Fs, displacement, share of the slip surface yielded) for critical.csv
 //! and summary.json, and the maps of the most critical one.
 
-use dismech::error::DismechError;
 use dismech::hpm::{HpmResult, HpmSettings, NonlinearSettings};
 use dismech::slope::{
     hpm_reanalysis, CriticalSurface, HpmReanalysis, HpmStiffness, SearchResult, TrialSurface,
@@ -133,14 +132,12 @@ pub struct HpmRuns {
     pub worst: Option<HpmReanalysis>,
 }
 
-/// Refuse `--hpm` above `--keep`, or with ground HPM cannot take (checked
-/// before the search).
+/// Refuse `--hpm` above `--keep` (checked before the search). Layers of
+/// any unit weights, a water table and a pore-pressure ratio are taken
+/// ([`dismech::slope::hpm_reanalysis`]).
 ///
 /// # Errors
-/// [`SlopeError::HpmAboveKeep`] for `--hpm K` above `--keep`;
-/// [`SlopeError::Argument`] naming `--hpm` with
-/// [`dismech::slope::SlopeError::HpmGround`] for `--ru` (layers of any
-/// unit weights are taken: [`dismech::slope::hpm_reanalysis`]).
+/// [`SlopeError::HpmAboveKeep`] for `--hpm K` above `--keep`.
 pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
     let Some(hpm) = args.hpm else {
         return Ok(());
@@ -151,15 +148,7 @@ pub fn check(args: &SlopeArgs) -> Result<(), SlopeError> {
             keep: args.keep,
         });
     }
-    if args.ru.is_none() {
-        return Ok(());
-    }
-    let reason = "--ru gives a pore-pressure ratio; HPM takes pore water from a water table (--water) only, as the submerged weight and seepage force of the elements below it, and has no pore-pressure load on its slip springs".to_string();
-    Err(SlopeError::argument(
-        "--hpm",
-        &hpm.to_string(),
-        DismechError::Slope(dismech::slope::SlopeError::HpmGround { reason }),
-    ))
+    Ok(())
 }
 
 /// Re-analyse the `args.hpm` most critical surfaces of `result`.
