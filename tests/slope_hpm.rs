@@ -185,9 +185,9 @@ fn reanalysis_takes_each_layer_s_strength_and_a_pore_pressure_ratio() {
         ])
         .unwrap()
     };
-    let run = |ground: &Ground| {
+    let run_on = |terrain: &Terrain, ground: &Ground| {
         hpm_reanalysis(
-            &terrain,
+            terrain,
             ground,
             &SlopeLoads::default(),
             &worst.surface,
@@ -197,6 +197,7 @@ fn reanalysis_takes_each_layer_s_strength_and_a_pore_pressure_ratio() {
             None,
         )
     };
+    let run = |ground: &Ground| run_on(&terrain, ground);
     let one = run(&Ground::from(soil())).unwrap();
     let two = run(&layered(weak)).unwrap();
     let strengths = two.model.column_strengths();
@@ -258,17 +259,7 @@ fn reanalysis_takes_each_layer_s_strength_and_a_pore_pressure_ratio() {
     );
     // With a water table too, r_u is refused as in the search.
     let [_, wet] = dry_and_wet();
-    let both = hpm_reanalysis(
-        &wet,
-        &ratio,
-        &SlopeLoads::default(),
-        &worst.surface,
-        &worst.result,
-        &HpmStiffness::default(),
-        &HpmSettings::default(),
-        None,
-    )
-    .unwrap_err();
+    let both = run_on(&wet, &ratio).unwrap_err();
     assert!(
         matches!(
             &both,

@@ -799,8 +799,7 @@ fn layers_and_ru_are_those_of_the_library_search() {
 /// of the library search's most critical surface bit for bit; HPM run
 /// directly on it and the DEM, read from their files, gives the Fs of
 /// summary.json and critical.csv and the maps `hpm_*.asc` bit for bit;
-/// the third surface, not re-analysed, has empty HPM columns; `--hpm` with
-/// layered ground is refused naming `--hpm`.
+/// the third surface, not re-analysed, has empty HPM columns.
 #[test]
 fn hpm_reanalysis_of_the_worst_surfaces_is_a_direct_hpm_run() {
     use dismech::hpm::{

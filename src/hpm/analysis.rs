@@ -1117,7 +1117,9 @@ const MAX_RELAXATION: f64 = 10.0;
 
 impl HpmResult {
     /// Global safety factor `Σ (c + σ tan φ) A / Σ |τ| A` (the stress
-    /// ratio) with the material's own c and φ.
+    /// ratio) with the material's own c and φ; σ is the springs' normal
+    /// traction, the effective one where the model has a pore pressure on
+    /// its slip surface ([`HpmModel::set_column_pore_pressure`]).
     ///
     /// # Errors
     /// [`HpmError::NothingDrivesSliding`] when the horizontal part of

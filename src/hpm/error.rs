@@ -104,7 +104,7 @@ pub enum HpmError {
     /// negative ratio of resisting to driving forces is no factor of
     /// safety: the slide is lifted off the surface there, not sheared
     /// along it.
-    #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
+    #[error("the slip surface has no strength left ({what}): Σ(c + σ tan φ)A = {strength:.4e} N against a driving force of {driving:.4e} N; the surface is in tension beyond c / tan φ, where c + σ tan φ is negative, over {:.1} % of its area, under {} of {columns} columns{}, so the ratio of resisting to driving forces would be zero or negative, no factor of safety: the slide is lifted off the surface rather than sheared along it; lower the seismic coefficient k_h or the pore pressure, check the slip surface against the direction of the load, or use the nonlinear HPM analysis, whose slip springs carry no tension", 100.0 * .area_share, .cells.len(), cell_list(cells))]
     SlipSurfaceInTension {
         /// Which safety factor, and the force that drives it.
         what: crate::hpm::SafetyFactorTerm,

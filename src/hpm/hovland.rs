@@ -27,8 +27,12 @@
 //! naming `Σ T` and `Σ W`.
 //!
 //! A column whose load pulls it off its base (`N < 0`, a seismic force
-//! that outweighs the weight's normal part) has a strength `c A + N tan φ`
-//! that falls below zero beyond `N = −c A / tan φ`. Where the columns'
+//! that outweighs the weight's normal part, or a pore pressure `u A` above
+//! it: with r_u, where `r_u > cos² θ` on a base of true dip θ) has a
+//! strength `c A + N tan φ` that falls below zero beyond
+//! `N = −c A / tan φ`: `N` is the equilibrium's, not floored at zero as
+//! the slope search's Hovland floors `N − u A` ([`crate::slope`]), so
+//! there the two differ. Where the columns'
 //! strengths sum to zero or less, the Fs would be zero or negative, which
 //! is no factor of safety, and is refused with
 //! [`HpmError::SlipSurfaceInTension`](super::HpmError::SlipSurfaceInTension),

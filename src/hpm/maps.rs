@@ -97,7 +97,7 @@ pub const HOVLAND_MAP_NAMES: [&str; 3] = ["local_fs", "normal_force", "driving_f
 /// | `local_fs` | [`HpmResult::local_safety_factors`] (no data where the springs carry no shear) | `(c A + N tan φ) / T` of the column (no data where `T ≤ 0`) |
 /// | `displacement_x`, `_y`, `_z`, `displacement` | the displacement (m) at the top of the column, at its centre ([`HpmResult::surface`]), and its length | — |
 /// | `strain_major`, `strain_minor` | the principal plan strains there ([`SurfacePoint::principal`](super::SurfacePoint::principal)), extension positive | — |
-/// | `normal_force`, `driving_force` | — | the column's base normal force N and driving force T (N) |
+/// | `normal_force`, `driving_force` | — | the column's base normal force N (less `u A` with a pore pressure on the slip surface) and driving force T (N) |
 ///
 /// A local Fs of 0 marks a column whose strength `c A + N tan φ` (HPM: over
 /// its springs) is not positive, as [`HpmResult::local_safety_factors`]

@@ -24,9 +24,12 @@
 //! bit. A pore-pressure ratio r_u (Bishop & Morgenstern 1960) puts the
 //! pore pressure `u = r_u σ_v` on the slip surface under each column
 //! ([`HpmModel::set_column_pore_pressure`]), `σ_v` the column's total
-//! weight per unit plan area and r_u at its cell centre, as Hovland's
-//! method of the search takes them: the slip springs then carry the
-//! effective normal traction. The water table of the
+//! weight per unit plan area (from HPM's elements, whose heights are
+//! interpolated at the corners, where the search takes `γ (ground −
+//! base)` at the cell centre) and r_u at its cell centre, as the search
+//! reads it: the slip springs then carry the effective normal traction.
+//! HPM's normal forces are those of equilibrium, not floored at zero as
+//! the search's `N − u A` is. The water table of the
 //! terrain becomes HPM's: the elements below it weigh the submerged unit
 //! weight `γ − γ_w` of their layer (eqs. 8–10) and take the seepage force
 //! `−γ_w ∇z_w` per unit volume ([`crate::hpm::Element::seepage`]), where
@@ -174,8 +177,7 @@ impl HpmReanalysis {
 /// Put the pore pressure `u = r_u σ_v` of `ratio` on the slip surface
 /// under each column of `model`, with `σ_v` the column's total weight per
 /// unit plan area (its elements' weights over `d²`, the layers' where the
-/// ground has layers) and r_u at its cell centre, as the search's
-/// Hovland takes them.
+/// ground has layers) and r_u at its cell centre.
 fn take_pore_ratio(model: &mut HpmModel, ratio: &PoreRatio) -> Result<()> {
     let plan = model.grid.2 * model.grid.2;
     for k in 0..model.columns.len() {
