@@ -44,7 +44,7 @@ use super::analysis::{
     resisting_over_driving, DrivingForce, SafetyFactorKind, SafetyFactorTerm, Tension,
 };
 use super::material::{horizontal_unit, Seismic};
-use super::model::HpmModel;
+use super::model::{cell_slope, HpmModel};
 use crate::error::Result;
 
 /// One column's terms in Hovland's sums.
@@ -95,8 +95,7 @@ pub fn hovland(model: &HpmModel, seismic: &Seismic, towards: (f64, f64)) -> Resu
         .zip(&pressures)
         .map(|(column, &pressure)| {
             let z = column.shape.bottom();
-            let zx = 0.5 * ((z[1] - z[0]) + (z[2] - z[3])) / d;
-            let zy = 0.5 * ((z[3] - z[0]) + (z[2] - z[1])) / d;
+            let (zx, zy) = cell_slope(&z, d);
             let elements = &model.elements[column.elements.clone()];
             let weight: f64 = elements.iter().map(|e| e.weight).sum();
             let total: f64 = elements.iter().map(|e| e.weight + e.buoyancy).sum();

@@ -224,6 +224,16 @@ fn mean(z: &[f64; 4]) -> f64 {
     0.25 * z.iter().sum::<f64>()
 }
 
+/// Slopes `(∂z/∂x, ∂z/∂y)` over a cell of side `d` of a surface with
+/// corner heights `z` in the order of [`Column::new`]: the mean of the
+/// slopes of its two edges along each axis.
+pub(super) fn cell_slope(z: &[f64; 4], d: f64) -> (f64, f64) {
+    (
+        0.5 * ((z[1] - z[0]) + (z[2] - z[3])) / d,
+        0.5 * ((z[3] - z[0]) + (z[2] - z[1])) / d,
+    )
+}
+
 /// One stratum of a column's ground, for the weight of its elements
 /// ([`HpmModel::set_column_strata`]): its bottom elevation and its unit
 /// weights above and below the water table.
@@ -312,9 +322,7 @@ fn element_loads(
         return (weight, 0.0, [0.0; 2]);
     };
     let buoyancy = stratified_weight(strata, None, hd, hu) * cell_area - weight;
-    let d = shape.size();
-    let slope_x = 0.5 * ((w[1] - w[0]) + (w[2] - w[3])) / d;
-    let slope_y = 0.5 * ((w[3] - w[0]) + (w[2] - w[1])) / d;
+    let (slope_x, slope_y) = cell_slope(w, shape.size());
     (weight, buoyancy, [-buoyancy * slope_x, -buoyancy * slope_y])
 }
 
@@ -479,6 +487,21 @@ impl HpmModel {
         strengths
     }
 
+    /// Column `column` (an index into [`Self::columns`]).
+    ///
+    /// # Errors
+    /// [`DismechError::InvalidParameter`] for a column the model does not
+    /// have.
+    fn grid_column(&self, column: usize) -> Result<&GridColumn> {
+        self.columns
+            .get(column)
+            .ok_or(DismechError::InvalidParameter {
+                name: "HPM column index",
+                value: column as f64,
+                requirement: "must be below the model's number of columns",
+            })
+    }
+
     /// Put the pore pressure `u` (Pa) on the slip surface under column
     /// `column` (an index into [`Self::columns`]): at each of its slip
     /// springs a load `−u A n` on the slide, normal to the surface and away
@@ -493,13 +516,7 @@ impl HpmModel {
     /// [`DismechError::InvalidParameter`] for a column the model does not
     /// have, or a pressure that is negative or not finite.
     pub fn set_column_pore_pressure(&mut self, column: usize, pressure: f64) -> Result<()> {
-        if column >= self.columns.len() {
-            return Err(DismechError::InvalidParameter {
-                name: "HPM column index",
-                value: column as f64,
-                requirement: "must be below the model's number of columns",
-            });
-        }
+        self.grid_column(column)?;
         crate::error::require_non_negative("pore pressure u on the slip surface", pressure)?;
         for spring in self.slip.iter_mut().filter(|s| s.column == column) {
             spring.pore_pressure = pressure;
@@ -528,13 +545,7 @@ impl HpmModel {
     /// have, or a cohesion or friction coefficient that is negative or not
     /// finite.
     pub fn set_column_strength(&mut self, column: usize, strength: Strength) -> Result<()> {
-        if column >= self.columns.len() {
-            return Err(DismechError::InvalidParameter {
-                name: "HPM column index",
-                value: column as f64,
-                requirement: "must be below the model's number of columns",
-            });
-        }
+        self.grid_column(column)?;
         crate::error::require_non_negative("cohesion c", strength.cohesion)?;
         crate::error::require_non_negative("friction coefficient tan(phi)", strength.friction)?;
         for spring in self.slip.iter_mut().filter(|s| s.column == column) {
@@ -568,13 +579,7 @@ impl HpmModel {
         column: usize,
         strata: &[WeightStratum],
     ) -> Result<()> {
-        let Some(grid_column) = self.columns.get(column) else {
-            return Err(DismechError::InvalidParameter {
-                name: "HPM column index",
-                value: column as f64,
-                requirement: "must be below the model's number of columns",
-            });
-        };
+        let grid_column = self.grid_column(column)?;
         check_strata(strata)?;
         let raster = &grids.ground().raster;
         let (rows, columns, d) = self.grid;
